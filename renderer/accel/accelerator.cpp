@@ -1,0 +1,57 @@
+#include "accel/accelerator.h"
+
+#include "accel/brute_force.h"
+#include "accel/embree_accel.h"
+#include "scene/scene.h"
+
+namespace glint {
+
+std::string_view accelName(AccelKind k) {
+  switch (k) {
+    case AccelKind::Embree: return "embree";
+    case AccelKind::BruteForce: return "brute";
+  }
+  return "?";
+}
+
+bool parseAccelKind(std::string_view name, AccelKind& out) {
+  for (auto k : {AccelKind::Embree, AccelKind::BruteForce})
+    if (accelName(k) == name) {
+      out = k;
+      return true;
+    }
+  return false;
+}
+
+std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene) {
+  switch (kind) {
+    case AccelKind::Embree: return std::make_unique<EmbreeAccel>(scene);
+    case AccelKind::BruteForce: return std::make_unique<BruteForce>(scene);
+  }
+  return nullptr;
+}
+
+void intersectPlanes(const Scene& scene, const Ray& ray, Hit& hit) {
+  if (scene.planes.empty()) return;
+  const auto& world = scene.groups[0].geometries;
+  for (uint32_t i = 0; i < world.size(); ++i) {
+    if (world[i].kind != GeomKind::Plane) continue;
+    Ray clipped = ray;
+    clipped.tMax = std::min(ray.tMax, hit.t);
+    const float t = intersectPlane(scene.planes[world[i].index], clipped);
+    if (t < clipped.tMax) {
+      hit = Hit{};
+      hit.t = t;
+      hit.geomId = i;
+      hit.primId = 0;
+    }
+  }
+}
+
+bool occludedByPlanes(const Scene& scene, const Ray& ray) {
+  for (const Plane& p : scene.planes)
+    if (intersectPlane(p, ray) < ray.tMax) return true;
+  return false;
+}
+
+}  // namespace glint

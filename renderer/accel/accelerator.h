@@ -1,0 +1,33 @@
+#pragma once
+// The intersection seam (DESIGN.md §3): backends answer only with Hit. Planes are unbounded and
+// fit no hierarchy, so every backend tests them with the same shared loop (intersectPlanes).
+#include <memory>
+#include <string_view>
+
+#include "core/ray.h"
+#include "geometry/hit.h"
+
+namespace glint {
+
+class Scene;
+
+enum class AccelKind { Embree, BruteForce };
+
+std::string_view accelName(AccelKind);
+bool parseAccelKind(std::string_view name, AccelKind& out);
+
+class Accelerator {
+ public:
+  virtual ~Accelerator() = default;
+  virtual Hit intersect(const Ray&) const = 0;  // closest hit in (tMin, tMax) at ray.time
+  virtual bool occluded(const Ray&) const = 0;  // any hit in (tMin, tMax)
+  virtual std::string_view name() const = 0;
+};
+
+std::unique_ptr<Accelerator> makeAccelerator(AccelKind, const Scene&);
+
+// Closest plane hit of the world group closer than hit.t; updates `hit` in place.
+void intersectPlanes(const Scene& scene, const Ray& ray, Hit& hit);
+bool occludedByPlanes(const Scene& scene, const Ray& ray);
+
+}  // namespace glint

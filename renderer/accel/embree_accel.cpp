@@ -1,0 +1,206 @@
+#include "accel/embree_accel.h"
+
+#include <mutex>
+#include <string>
+
+#include "core/error.h"
+#include "scene/scene.h"
+
+namespace glint {
+
+namespace {
+
+thread_local std::string tEmbreeError;
+
+void onEmbreeError(void*, RTCError code, const char* str) {
+  tEmbreeError = std::string("Embree error ") + std::to_string(int(code)) + ": " +
+                 (str ? str : "(no message)");
+}
+
+struct DeviceHolder {
+  RTCDevice device = nullptr;
+  DeviceHolder() {
+    device = rtcNewDevice(nullptr);
+    if (!device) throw GlintError("cannot create the Embree device (rtcNewDevice failed)");
+    rtcSetDeviceErrorFunction(device, onEmbreeError, nullptr);
+  }
+  ~DeviceHolder() { rtcReleaseDevice(device); }
+};
+
+}  // namespace
+
+RTCDevice embreeDevice() {
+  static DeviceHolder holder;
+  return holder.device;
+}
+
+void throwIfEmbreeFailed(const char* what) {
+  const RTCError code = rtcGetDeviceError(embreeDevice());
+  if (code == RTC_ERROR_NONE && tEmbreeError.empty()) return;
+  std::string msg = tEmbreeError.empty() ? "Embree error " + std::to_string(int(code)) : tEmbreeError;
+  tEmbreeError.clear();
+  throw GlintError(std::string(what) + ": " + msg);
+}
+
+std::string embreeVersionString() {
+  const auto v = rtcGetDeviceProperty(embreeDevice(), RTC_DEVICE_PROPERTY_VERSION);
+  return std::to_string(v / 10000) + "." + std::to_string((v / 100) % 100) + "." +
+         std::to_string(v % 100);
+}
+
+struct EmbreeAccel::UserShape {
+  GeomKind kind;
+  const Sphere* sphere = nullptr;
+  const Quad* quad = nullptr;
+};
+
+namespace {
+
+Ray toRay(RTCRayN* rays, unsigned N, unsigned i) {
+  Ray r;
+  r.o = {RTCRayN_org_x(rays, N, i), RTCRayN_org_y(rays, N, i), RTCRayN_org_z(rays, N, i)};
+  r.d = {RTCRayN_dir_x(rays, N, i), RTCRayN_dir_y(rays, N, i), RTCRayN_dir_z(rays, N, i)};
+  r.tMin = RTCRayN_tnear(rays, N, i);
+  r.tMax = RTCRayN_tfar(rays, N, i);
+  r.time = RTCRayN_time(rays, N, i);
+  return r;
+}
+
+float intersectUser(const EmbreeAccel::UserShape& s, const Ray& r, float& u, float& v) {
+  if (s.kind == GeomKind::Sphere) return intersectSphere(*s.sphere, r);
+  return intersectQuad(*s.quad, r, u, v);
+}
+
+void userBounds(const RTCBoundsFunctionArguments* args) {
+  const auto& s = *static_cast<const EmbreeAccel::UserShape*>(args->geometryUserPtr);
+  const Bounds3f b = s.kind == GeomKind::Sphere ? bounds(*s.sphere) : bounds(*s.quad);
+  *args->bounds_o = {b.lo.x, b.lo.y, b.lo.z, 0, b.hi.x, b.hi.y, b.hi.z, 0};
+}
+
+void userIntersect(const RTCIntersectFunctionNArguments* args) {
+  const auto& s = *static_cast<const EmbreeAccel::UserShape*>(args->geometryUserPtr);
+  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i]) continue;
+    const Ray r = toRay(rays, args->N, i);
+    float u = 0, v = 0;
+    const float t = intersectUser(s, r, u, v);
+    if (!(t < r.tMax)) continue;
+    RTCRayN_tfar(rays, args->N, i) = t;
+    RTCHitN_u(hits, args->N, i) = u;
+    RTCHitN_v(hits, args->N, i) = v;
+    RTCHitN_Ng_x(hits, args->N, i) = 0;  // Glint rebuilds normals itself (Scene::shadingPoint)
+    RTCHitN_Ng_y(hits, args->N, i) = 0;
+    RTCHitN_Ng_z(hits, args->N, i) = 1;
+    RTCHitN_primID(hits, args->N, i) = args->primID;
+    RTCHitN_geomID(hits, args->N, i) = args->geomID;
+    RTCHitN_instID(hits, args->N, i, 0) = args->context->instID[0];
+  }
+}
+
+void userOccluded(const RTCOccludedFunctionNArguments* args) {
+  const auto& s = *static_cast<const EmbreeAccel::UserShape*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i]) continue;
+    const Ray r = toRay(args->ray, args->N, i);
+    float u = 0, v = 0;
+    if (intersectUser(s, r, u, v) < r.tMax) RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
+  }
+}
+
+}  // namespace
+
+EmbreeAccel::EmbreeAccel(const Scene& scene) : scene_(scene) {
+  groupScenes_.assign(scene.groups.size(), nullptr);
+  // Instanced groups first: the world's instances refer to their committed scenes.
+  for (uint32_t g = 1; g < scene.groups.size(); ++g) groupScenes_[g] = buildGroup(g);
+  groupScenes_[0] = buildGroup(0);
+}
+
+EmbreeAccel::~EmbreeAccel() {
+  for (RTCScene s : groupScenes_)
+    if (s) rtcReleaseScene(s);
+}
+
+RTCScene EmbreeAccel::buildGroup(uint32_t groupId) {
+  RTCDevice device = embreeDevice();
+  RTCScene rtcScene = rtcNewScene(device);
+  const auto& geoms = scene_.groups[groupId].geometries;
+  for (uint32_t gi = 0; gi < geoms.size(); ++gi) {
+    const Geometry& g = geoms[gi];
+    RTCGeometry geom = nullptr;
+    switch (g.kind) {
+      case GeomKind::Mesh: {
+        const TriangleMesh& m = scene_.meshes[g.index];
+        geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                   m.positions.data(), 0, sizeof(Vec3f), m.positions.size());
+        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                   m.indices.data(), 0, 3 * sizeof(uint32_t), m.triangleCount());
+        break;
+      }
+      case GeomKind::Sphere:
+      case GeomKind::Quad: {
+        auto shape = std::make_unique<UserShape>();
+        shape->kind = g.kind;
+        if (g.kind == GeomKind::Sphere) shape->sphere = &scene_.spheres[g.index];
+        else shape->quad = &scene_.quads[g.index];
+        geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(geom, 1);
+        rtcSetGeometryUserData(geom, shape.get());
+        rtcSetGeometryBoundsFunction(geom, userBounds, nullptr);
+        rtcSetGeometryIntersectFunction(geom, userIntersect);
+        rtcSetGeometryOccludedFunction(geom, userOccluded);
+        userShapes_.push_back(std::move(shape));
+        break;
+      }
+      case GeomKind::Plane: continue;  // unbounded: the shared plane loop handles it
+      case GeomKind::Instance: {
+        const Instance& inst = scene_.instances[g.index];
+        geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(geom, groupScenes_[inst.groupId]);
+        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR,
+                                inst.worldFromObject.matrix().m.data());
+        break;
+      }
+    }
+    rtcCommitGeometry(geom);
+    rtcAttachGeometryByID(rtcScene, geom, gi);
+    rtcReleaseGeometry(geom);
+    throwIfEmbreeFailed("building the Embree scene");
+  }
+  rtcCommitScene(rtcScene);
+  throwIfEmbreeFailed("committing the Embree scene");
+  return rtcScene;
+}
+
+Hit EmbreeAccel::intersect(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray = {ray.o.x, ray.o.y, ray.o.z, ray.tMin, ray.d.x, ray.d.y, ray.d.z, ray.time,
+            ray.tMax, ~0u, 0, 0};
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(groupScenes_[0], &context, &rh);
+  Hit hit;
+  if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+    // Embree's instance convention is Glint's: geomID inside the group, instID[0] in the world.
+    hit = {rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.primID, rh.hit.instID[0]};
+  }
+  intersectPlanes(scene_, ray, hit);
+  return hit;
+}
+
+bool EmbreeAccel::occluded(const Ray& ray) const {
+  if (occludedByPlanes(scene_, ray)) return true;
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r{ray.o.x, ray.o.y, ray.o.z, ray.tMin, ray.d.x, ray.d.y, ray.d.z, ray.time,
+           ray.tMax, ~0u, 0, 0};
+  rtcOccluded1(groupScenes_[0], &context, &r);
+  return r.tfar < 0;
+}
+
+}  // namespace glint

@@ -1,0 +1,40 @@
+#pragma once
+// Embree 3 backend: one RTCScene per group, groups placed by Embree instances (shared, not
+// copied), triangle meshes shared with Embree without copying, spheres and quads as user
+// geometry calling the shared intersection routines of geometry/shapes.h.
+#include <embree3/rtcore.h>
+
+#include <vector>
+
+#include "accel/accelerator.h"
+
+namespace glint {
+
+// One Embree device per process. Embree reports errors through a callback; we record the
+// message there and throw it as a GlintError after the call (throwing through C is undefined).
+RTCDevice embreeDevice();
+void throwIfEmbreeFailed(const char* what);
+std::string embreeVersionString();
+
+class EmbreeAccel final : public Accelerator {
+ public:
+  explicit EmbreeAccel(const Scene& scene);
+  ~EmbreeAccel() override;
+  EmbreeAccel(const EmbreeAccel&) = delete;
+  EmbreeAccel& operator=(const EmbreeAccel&) = delete;
+
+  Hit intersect(const Ray& ray) const override;
+  bool occluded(const Ray& ray) const override;
+  std::string_view name() const override { return "embree"; }
+
+  struct UserShape;  // what a user-geometry callback needs, owned here
+
+ private:
+  RTCScene buildGroup(uint32_t groupId);
+
+  const Scene& scene_;
+  std::vector<RTCScene> groupScenes_;  // index = group id; [0] is the world
+  std::vector<std::unique_ptr<UserShape>> userShapes_;
+};
+
+}  // namespace glint

@@ -1,0 +1,54 @@
+#include <glint_version.h>
+
+#include <map>
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "core/log.h"
+
+namespace glint {
+
+namespace {
+std::string gCommandLine;
+}
+
+const std::string& commandLine() { return gCommandLine; }
+
+int runCli(int argc, char** argv) {
+  for (int i = 0; i < argc; ++i) gCommandLine += (i ? " " : "") + std::string(argv[i]);
+  CLI::App app{"Glint: a Whitted / distribution ray tracer on Embree", "glint"};
+  app.set_version_flag("--version", std::string("glint ") + GLINT_VERSION);
+  app.require_subcommand(1);
+  std::map<CLI::App*, CommandRunner> runners;
+  const auto add = [&](CommandRunner runner) {
+    runners[app.get_subcommands({}).back()] = std::move(runner);
+  };
+  add(addRenderCommand(app));
+  add(addInfoCommand(app));
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? kExitOk : kExitUsage;
+  }
+  try {
+    for (auto& [sub, run] : runners)
+      if (sub->parsed()) return run();
+  } catch (const SceneError& e) {
+    log::error(e.what());
+    return kExitUsage;
+  } catch (const GlintError& e) {
+    log::error(e.what());
+    return kExitRuntime;
+  } catch (const std::bad_alloc&) {
+    log::error("out of memory");
+    return kExitRuntime;
+  } catch (const std::exception& e) {
+    log::error(e.what());
+    return kExitRuntime;
+  }
+  return kExitUsage;
+}
+
+}  // namespace glint

@@ -1,0 +1,176 @@
+#include <default_scene.h>
+#include <glint_version.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "core/error.h"
+#include "core/log.h"
+#include "film/atomic_file.h"
+#include "film/display.h"
+#include "film/exr_output.h"
+#include "io/scene_loader.h"
+#include "render/render_job.h"
+
+namespace glint {
+
+namespace {
+
+struct RenderArgs {
+  std::string scenePath;
+  std::string output;
+  std::string display;
+  std::string accel = "embree";
+  std::string sampler;
+  std::string statsJson;
+  std::optional<int> spp, width, height, maxDepth, threads;
+  std::optional<uint64_t> seed;
+  std::vector<int> crop;
+  int tileSize = 32;
+  bool stats = false;
+  bool quiet = false;
+};
+
+void applyOverrides(const RenderArgs& a, Scene& scene) {
+  RenderSettings& r = scene.render;
+  if (a.spp) r.spp = *a.spp;
+  if (a.width) r.width = *a.width;
+  if (a.height) r.height = *a.height;
+  if (a.maxDepth) r.maxDepth = *a.maxDepth;
+  if (a.seed) r.seed = *a.seed;
+  if (!a.sampler.empty()) parseSamplerKind(a.sampler, r.sampler);
+}
+
+std::optional<PixelWindow> cropWindow(const RenderArgs& a, const RenderSettings& r) {
+  if (a.crop.empty()) return std::nullopt;
+  const PixelWindow w{a.crop[0], a.crop[1], a.crop[2], a.crop[3]};
+  if (w.x0 < 0 || w.x1 > r.width || w.x0 >= w.x1 || w.y0 < 0 || w.y1 > r.height || w.y0 >= w.y1)
+    throw SceneError({"--crop", 0}, "",
+                     "crop [" + std::to_string(w.x0) + "," + std::to_string(w.x1) + ") x [" +
+                         std::to_string(w.y0) + "," + std::to_string(w.y1) +
+                         ") must be non-empty and inside the " + std::to_string(r.width) + "x" +
+                         std::to_string(r.height) + " frame");
+  return w;
+}
+
+nlohmann::json statsJson(const Scene& scene, const RenderStats& st) {
+  nlohmann::json j;
+  j["seconds"] = st.seconds;
+  j["rays_total"] = st.rays.total();
+  j["rays"] = {{"camera", st.rays.camera},
+               {"shadow", st.rays.shadow},
+               {"reflection", st.rays.reflection},
+               {"refraction", st.rays.refraction}};
+  j["nonfinite_samples"] = st.rays.nonfiniteSamples;
+  j["features_used"] = scene.features.used();
+  j["features_left_out"] = scene.features.leftOut();
+  return j;
+}
+
+void printStats(const Scene& scene, const RenderStats& st) {
+  const auto join = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& x : v) s += (s.empty() ? "" : ", ") + x;
+    return s.empty() ? std::string("(none)") : s;
+  };
+  std::printf("render time      %.3f s\n", st.seconds);
+  std::printf("rays             %llu (camera %llu, shadow %llu, reflection %llu, refraction %llu)\n",
+              (unsigned long long)st.rays.total(), (unsigned long long)st.rays.camera,
+              (unsigned long long)st.rays.shadow, (unsigned long long)st.rays.reflection,
+              (unsigned long long)st.rays.refraction);
+  std::printf("Mrays/s          %.2f\n", st.seconds > 0 ? double(st.rays.total()) / st.seconds * 1e-6 : 0.0);
+  std::printf("non-finite       %llu samples\n", (unsigned long long)st.rays.nonfiniteSamples);
+  std::printf("features used    %s\n", join(scene.features.used()).c_str());
+  std::printf("left out         %s\n", join(scene.features.leftOut()).c_str());
+}
+
+ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderStats& st) {
+  ExrMetadata m;
+  m.strings = {{"Software", std::string("Glint ") + GLINT_VERSION},
+               {"glint:version", GLINT_VERSION},
+               {"glint:scene", scene.sourcePath},
+               {"glint:sampler", std::string(samplerName(scene.render.sampler))},
+               {"glint:accel", a.accel},
+               {"glint:commandline", commandLine()}};
+  m.ints = {{"glint:spp", scene.render.spp},
+            {"glint:seed", static_cast<int>(scene.render.seed)},
+            {"glint:partial", 0}};
+  m.floats = {{"glint:render_seconds", static_cast<float>(st.seconds)},
+              {"glint:rays", static_cast<float>(st.rays.total())}};
+  return m;
+}
+
+int runRender(const RenderArgs& a) {
+  if (a.quiet) log::setLevel(log::Level::Warning);
+  Scene scene = a.scenePath.empty()
+                    ? loadSceneText(kDefaultSceneJson, "<default scene>", kDefaultSceneDir)
+                    : loadSceneFile(a.scenePath);
+  applyOverrides(a, scene);
+  RenderOptions opt;
+  opt.threads = a.threads.value_or(0);
+  opt.tileSize = a.tileSize;
+  opt.crop = cropWindow(a, scene.render);
+  opt.progress = !a.quiet;
+  AccelKind kind = AccelKind::Embree;
+  parseAccelKind(a.accel, kind);
+
+  const auto accel = makeAccelerator(kind, scene);
+  const RenderResult result = renderScene(scene, *accel, opt);
+
+  std::string out = a.output;
+  if (out.empty())
+    out = (a.scenePath.empty() ? std::string("default")
+                               : std::filesystem::path(a.scenePath).stem().string()) + ".exr";
+  writeExr(out, result.film, exrMetadata(a, scene, result.stats));
+  if (!a.display.empty()) writeDisplayPng(a.display, result.film);
+  if (!a.statsJson.empty()) {
+    const std::string text = statsJson(scene, result.stats).dump(2) + "\n";
+    writeFileAtomically(a.statsJson, [&](const std::string& tmp) {
+      std::ofstream f(tmp);
+      f << text;
+      if (!f.flush()) throw GlintError("cannot write " + a.statsJson);
+    });
+  }
+  if (a.stats) printStats(scene, result.stats);
+  if (result.stats.rays.nonfiniteSamples > 0)
+    log::warning(std::to_string(result.stats.rays.nonfiniteSamples) +
+                 " non-finite samples were dropped (written as black)");
+  log::info("wrote " + out + (a.display.empty() ? "" : " and " + a.display));
+  return kExitOk;
+}
+
+}  // namespace
+
+CommandRunner addRenderCommand(CLI::App& app) {
+  auto args = std::make_shared<RenderArgs>();
+  CLI::App* cmd = app.add_subcommand("render", "Render a scene to an HDR EXR frame");
+  cmd->add_option("scene", args->scenePath, "Scene file (.json); omitted: the default scene")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("-o,--output", args->output, "Output EXR (default: SCENE_NAME.exr)");
+  cmd->add_option("--display", args->display, "Also write an sRGB PNG for viewing");
+  cmd->add_option("--spp", args->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
+  cmd->add_option("--seed", args->seed, "Scene seed");
+  cmd->add_option("--threads", args->threads, "Render threads (default: all cores)")
+      ->check(CLI::Range(1, 4096));
+  cmd->add_option("--width", args->width, "Image width")->check(CLI::Range(1, 1 << 15));
+  cmd->add_option("--height", args->height, "Image height")->check(CLI::Range(1, 1 << 15));
+  cmd->add_option("--max-depth", args->maxDepth, "Recursion limit")->check(CLI::Range(0, 1000));
+  cmd->add_option("--accel", args->accel, "Intersection backend")
+      ->check(CLI::IsMember({"embree", "brute"}));
+  cmd->add_option("--sampler", args->sampler, "Pixel sampler (overrides the scene)")
+      ->check(CLI::IsMember({"regular", "random", "stratified"}));
+  cmd->add_option("--crop", args->crop, "Pixel bounds X0 X1 Y0 Y1 ([X0,X1) x [Y0,Y1))")
+      ->expected(4);
+  cmd->add_option("--tile-size", args->tileSize, "Tile edge in pixels")->check(CLI::Range(1, 4096));
+  cmd->add_flag("--stats", args->stats, "Print render statistics");
+  cmd->add_option("--stats-json", args->statsJson, "Write render statistics as JSON");
+  cmd->add_flag("--quiet", args->quiet, "No progress or info messages");
+  return [args, &app] {
+    (void)app;
+    return runRender(*args);
+  };
+}
+
+}  // namespace glint

@@ -1,0 +1,26 @@
+#pragma once
+// The `glint` subcommands (../shared/CLI.md). Each registers its options on the CLI11 app and
+// returns the process exit code when run.
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+namespace glint {
+
+// Exit codes of CLI.md.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitRuntime = 1;
+inline constexpr int kExitUsage = 2;
+
+using CommandRunner = std::function<int()>;
+
+CommandRunner addRenderCommand(CLI::App& app);
+CommandRunner addInfoCommand(CLI::App& app);
+
+// The command line as typed, for EXR metadata.
+const std::string& commandLine();
+
+// Runs the whole command line; errors are printed and mapped to exit codes.
+int runCli(int argc, char** argv);
+
+}  // namespace glint

@@ -1,0 +1,41 @@
+#include "camera/camera.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace glint {
+
+Camera::Camera(const CameraDesc& desc, int width, int height)
+    : desc_(desc), width_(width), height_(height) {
+  const Vec3f back = desc.eye - desc.lookAt;
+  if (!(length(back) > 0)) throw std::invalid_argument("eye and look_at are the same point");
+  w_ = normalize(back);
+  const Vec3f right = cross(desc.up, w_);
+  if (!(length(right) > 1e-6f * length(desc.up)))
+    throw std::invalid_argument("up is parallel to the viewing direction");
+  u_ = normalize(right);
+  v_ = cross(w_, u_);
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  if (desc.projection == Projection::Perspective)
+    halfHeight_ = std::tan(0.5f * desc.vfovDegrees * kPi / 180.0f);
+  else
+    halfHeight_ = 0.5f * desc.orthoHeight;
+  halfWidth_ = halfHeight_ * aspect;
+}
+
+Ray Camera::generateRay(float x, float y) const {
+  // Seed 000 eq. 4.1 with l = −halfWidth, r = halfWidth, b = −halfHeight, t = halfHeight.
+  const float su = -halfWidth_ + 2 * halfWidth_ * x / static_cast<float>(width_);
+  const float sv = halfHeight_ - 2 * halfHeight_ * y / static_cast<float>(height_);
+  Ray ray;
+  if (desc_.projection == Projection::Perspective) {
+    ray.o = desc_.eye;
+    ray.d = normalize(su * u_ + sv * v_ - w_);
+  } else {
+    ray.o = desc_.eye + su * u_ + sv * v_;
+    ray.d = -w_;
+  }
+  return ray;
+}
+
+}  // namespace glint

@@ -1,0 +1,41 @@
+#pragma once
+// Viewing rays of seed 000 §4.3: perspective (vertical field of view) and orthographic (view
+// height), with the camera frame u, v, w built from eye, look_at and up.
+#include "core/ray.h"
+
+namespace glint {
+
+enum class Projection { Perspective, Orthographic };
+
+struct CameraDesc {
+  Projection projection = Projection::Perspective;
+  Vec3f eye{0, 0, 0}, lookAt{0, 0, -1}, up{0, 1, 0};
+  float vfovDegrees = 40;
+  float orthoHeight = 2;
+  float apertureRadius = 0;
+  float focusDistance = 1;
+  float shutterOpen = 0, shutterClose = 0;
+};
+
+class Camera {
+ public:
+  Camera() = default;
+  // Throws std::invalid_argument when eye == look_at or up is parallel to the view direction.
+  Camera(const CameraDesc& desc, int width, int height);
+
+  // A ray through film position (x, y) in pixels, y down from the top edge.
+  Ray generateRay(float x, float y) const;
+
+  const CameraDesc& desc() const { return desc_; }
+  Vec3f u() const { return u_; }
+  Vec3f v() const { return v_; }
+  Vec3f w() const { return w_; }
+
+ private:
+  CameraDesc desc_;
+  int width_ = 1, height_ = 1;
+  Vec3f u_, v_, w_;          // right, up, backwards (w = eye − look_at, normalised)
+  float halfWidth_ = 1, halfHeight_ = 1;  // image plane extent at distance 1 (or in units, ortho)
+};
+
+}  // namespace glint

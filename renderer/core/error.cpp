@@ -1,0 +1,34 @@
+#include "core/error.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace glint {
+
+namespace {
+std::string formatSceneError(const FileLoc& loc, const std::string& path,
+                             const std::string& problem) {
+  std::string s = loc.file;
+  if (loc.line > 0) s.append(":").append(std::to_string(loc.line));
+  s.append(": ");
+  if (!path.empty()) s.append(path).append(": ");
+  return s.append(problem);
+}
+}  // namespace
+
+SceneError::SceneError(const FileLoc& loc, const std::string& path, const std::string& problem)
+    : GlintError(formatSceneError(loc, path, problem)), loc_(loc), path_(path), problem_(problem) {}
+
+size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+}  // namespace glint

@@ -1,0 +1,34 @@
+#pragma once
+// Errors a user can act on. SceneError carries the file, line and JSON path of the mistake and
+// formats as `scene.json:14: objects[3].radius: must be > 0, got -1`.
+#include <stdexcept>
+#include <string>
+
+namespace glint {
+
+class GlintError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct FileLoc {
+  std::string file;  // as the user named it
+  int line = 0;      // 1-based; 0 when unknown
+};
+
+class SceneError : public GlintError {
+ public:
+  SceneError(const FileLoc& loc, const std::string& path, const std::string& problem);
+  const FileLoc& loc() const { return loc_; }
+  const std::string& path() const { return path_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  FileLoc loc_;
+  std::string path_, problem_;
+};
+
+// Edit distance, for "did you mean" suggestions on unknown keys and names.
+size_t editDistance(const std::string& a, const std::string& b);
+
+}  // namespace glint

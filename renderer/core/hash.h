@@ -1,0 +1,31 @@
+#pragma once
+// Stateless integer hashing: every random number in Glint is a pure function of its key, never
+// of a thread or of how many numbers were drawn before it.
+#include <cstdint>
+
+namespace glint {
+
+// SplitMix64's finaliser (Steele, Lea, Flood 2014): full avalanche on 64 bits.
+constexpr uint64_t mix64(uint64_t z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  return z ^ (z >> 31);
+}
+
+constexpr uint64_t hashCombine(uint64_t seed, uint64_t v) {
+  return mix64(seed ^ (v + 0x9e3779b97f4a7c15ULL + (seed << 6) + (seed >> 2)));
+}
+
+template <typename... Ts>
+constexpr uint64_t hashKey(uint64_t first, Ts... rest) {
+  uint64_t h = mix64(first + 0x9e3779b97f4a7c15ULL);
+  ((h = hashCombine(h, static_cast<uint64_t>(rest))), ...);
+  return h;
+}
+
+// Top 24 bits as a float in [0, 1): exactly representable, never 1.
+constexpr float toUnitFloat(uint64_t bits) {
+  return static_cast<float>(bits >> 40) * (1.0f / 16777216.0f);
+}
+
+}  // namespace glint

@@ -1,0 +1,47 @@
+#pragma once
+// The one sampler. Every number is keyed by (pixel, sample index, dimension, scene seed), so a
+// frame is the same for any thread count, tile size or crop. Pixel samples are stratified;
+// other dimensions (light, lens, time, gloss) draw from their own stratified sets, shuffled per
+// pixel and dimension so they are not correlated with the pixel samples (seed 000 §13.4.2).
+#include <cstdint>
+#include <string_view>
+
+#include "core/vec.h"
+
+namespace glint {
+
+enum class SamplerKind {
+  Regular,     // n×n cell centres (seed 000 §13.4.1 "regular"); non-square spp: see docs
+  Random,      // independent uniform samples
+  Stratified,  // jittered: one random point per stratum; correlated multi-jitter for any spp
+};
+
+std::string_view samplerName(SamplerKind);
+bool parseSamplerKind(std::string_view name, SamplerKind& out);
+
+// Dimensions are named, so adding an effect never shifts another effect's numbers.
+enum class Dim : uint32_t { Pixel = 0, Lens = 1, Time = 2, LightBase = 16 };
+
+class Sampler {
+ public:
+  Sampler(SamplerKind kind, int samplesPerPixel, uint64_t seed)
+      : kind_(kind), spp_(samplesPerPixel), seed_(seed) {}
+
+  SamplerKind kind() const { return kind_; }
+  int samplesPerPixel() const { return spp_; }
+
+  // Offset inside pixel (px, py) for sample `index` in [0, spp), each coordinate in [0, 1).
+  Vec2f pixelSample(int px, int py, int index) const;
+  // A 2D sample of dimension `dim` for sample `index`, stratified over the spp samples of the
+  // pixel and over `count` sub-samples (e.g. shadow samples per camera sample).
+  Vec2f get2D(int px, int py, int index, uint32_t dim, int sub = 0, int count = 1) const;
+
+ private:
+  Vec2f stratified2D(uint64_t pattern, int index, int n) const;
+
+  SamplerKind kind_;
+  int spp_;
+  uint64_t seed_;
+};
+
+}  // namespace glint

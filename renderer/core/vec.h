@@ -1,0 +1,57 @@
+#pragma once
+// Small fixed-size vectors for geometry (float, like Embree) and a few helpers on them.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace glint {
+
+inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
+inline constexpr float kPi = 3.14159265358979323846f;
+
+struct Vec2f {
+  float x = 0, y = 0;
+};
+
+struct Vec3f {
+  float x = 0, y = 0, z = 0;
+
+  constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
+  constexpr float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
+  constexpr Vec3f operator-() const { return {-x, -y, -z}; }
+  constexpr Vec3f& operator+=(const Vec3f& b) { x += b.x; y += b.y; z += b.z; return *this; }
+  constexpr Vec3f& operator-=(const Vec3f& b) { x -= b.x; y -= b.y; z -= b.z; return *this; }
+  constexpr Vec3f& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+  friend constexpr bool operator==(const Vec3f&, const Vec3f&) = default;
+};
+
+constexpr Vec3f operator+(Vec3f a, const Vec3f& b) { return a += b; }
+constexpr Vec3f operator-(Vec3f a, const Vec3f& b) { return a -= b; }
+constexpr Vec3f operator*(Vec3f a, float s) { return a *= s; }
+constexpr Vec3f operator*(float s, Vec3f a) { return a *= s; }
+constexpr Vec3f operator/(const Vec3f& a, float s) { return a * (1.0f / s); }
+constexpr Vec3f mul(const Vec3f& a, const Vec3f& b) { return {a.x * b.x, a.y * b.y, a.z * b.z}; }
+
+constexpr float dot(const Vec3f& a, const Vec3f& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+constexpr Vec3f cross(const Vec3f& a, const Vec3f& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline float length(const Vec3f& a) { return std::sqrt(dot(a, a)); }
+inline Vec3f normalize(const Vec3f& a) { return a / length(a); }
+inline Vec3f abs(const Vec3f& a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
+inline float maxComponent(const Vec3f& a) { return std::max(a.x, std::max(a.y, a.z)); }
+inline Vec3f min(const Vec3f& a, const Vec3f& b) {
+  return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
+}
+inline Vec3f max(const Vec3f& a, const Vec3f& b) {
+  return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)};
+}
+inline bool isFinite(const Vec3f& a) {
+  return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z);
+}
+// Reflect d about n (seed 000 §4.8: r = d − 2(d·n)n); n need not face d.
+constexpr Vec3f reflect(const Vec3f& d, const Vec3f& n) { return d - 2.0f * dot(d, n) * n; }
+constexpr Vec3f faceForward(const Vec3f& n, const Vec3f& v) { return dot(n, v) < 0 ? -n : n; }
+
+}  // namespace glint

@@ -1,0 +1,35 @@
+#include "film/film.h"
+
+#include "core/check.h"
+
+namespace glint {
+
+Film::Film(int fullWidth, int fullHeight, const PixelWindow& window)
+    : fullWidth_(fullWidth), fullHeight_(fullHeight), window_(window),
+      rgba_(static_cast<size_t>(window.area()) * 4, 0.0) {
+  GLINT_CHECK(window.x0 >= 0 && window.x1 <= fullWidth && window.x0 < window.x1);
+  GLINT_CHECK(window.y0 >= 0 && window.y1 <= fullHeight && window.y0 < window.y1);
+}
+
+size_t Film::offset(int x, int y) const {
+  return (static_cast<size_t>(y - window_.y0) * static_cast<size_t>(window_.width()) +
+          static_cast<size_t>(x - window_.x0)) * 4;
+}
+
+void Film::setPixel(int x, int y, double r, double g, double b, double a) {
+  double* p = &rgba_[offset(x, y)];
+  p[0] = r;
+  p[1] = g;
+  p[2] = b;
+  p[3] = a;
+}
+
+const double* Film::pixel(int x, int y) const { return &rgba_[offset(x, y)]; }
+
+std::vector<float> Film::toFloatRgba() const {
+  std::vector<float> out(rgba_.size());
+  for (size_t i = 0; i < rgba_.size(); ++i) out[i] = static_cast<float>(rgba_[i]);
+  return out;
+}
+
+}  // namespace glint

@@ -1,0 +1,40 @@
+#pragma once
+// The film: scene-linear RGBA for the pixels of a crop window of the full frame, accumulated in
+// double. Each pixel is written by exactly one tile task, so no synchronisation is needed.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace glint {
+
+// Pixel bounds [x0, x1) × [y0, y1) inside a full frame of width × height.
+struct PixelWindow {
+  int x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  int64_t area() const { return int64_t(width()) * height(); }
+};
+
+class Film {
+ public:
+  Film(int fullWidth, int fullHeight, const PixelWindow& window);
+
+  int fullWidth() const { return fullWidth_; }
+  int fullHeight() const { return fullHeight_; }
+  const PixelWindow& window() const { return window_; }
+
+  // (x, y) in full-frame pixel coordinates, inside window().
+  void setPixel(int x, int y, double r, double g, double b, double a);
+  const double* pixel(int x, int y) const;  // 4 values: R, G, B, A
+
+  // Row-major float RGBA of the window, for image output.
+  std::vector<float> toFloatRgba() const;
+
+ private:
+  size_t offset(int x, int y) const;
+  int fullWidth_, fullHeight_;
+  PixelWindow window_;
+  std::vector<double> rgba_;
+};
+
+}  // namespace glint

@@ -1,0 +1,94 @@
+#include "geometry/shapes.h"
+
+#include <cmath>
+#include <utility>
+
+namespace glint {
+
+float intersectSphere(const Sphere& s, const Ray& ray) {
+  // Ray Tracing Gems ch. 7 (Haines et al.): the discriminant from the distance of the centre to
+  // the ray line, and the near root from c/q, avoid the cancellation of the textbook formula.
+  const Vec3f f = ray.o - s.center;
+  const float a = dot(ray.d, ray.d);
+  const float b = -dot(f, ray.d);  // half of the usual b, negated
+  const Vec3f l = f + (b / a) * ray.d;
+  const float r2 = s.radius * s.radius;
+  const float disc = a * (r2 - dot(l, l));
+  if (disc < 0) return kInfinity;
+  const float c = dot(f, f) - r2;
+  const float q = b + std::copysign(std::sqrt(disc), b);
+  float t0 = c / q, t1 = q / a;
+  if (q == 0) t0 = t1 = 0;  // ray through the centre with the origin on the surface
+  if (t0 > t1) std::swap(t0, t1);
+  if (t0 > ray.tMin && t0 < ray.tMax) return t0;
+  if (t1 > ray.tMin && t1 < ray.tMax) return t1;
+  return kInfinity;
+}
+
+float intersectQuad(const Quad& q, const Ray& ray, float& u, float& v) {
+  const Vec3f n = cross(q.edge1, q.edge2);
+  const float denom = dot(n, ray.d);
+  if (denom == 0) return kInfinity;
+  const float t = dot(q.corner - ray.o, n) / denom;
+  if (!(t > ray.tMin && t < ray.tMax)) return kInfinity;
+  const Vec3f rel = ray.at(t) - q.corner;
+  const float nn = dot(n, n);
+  const float alpha = dot(cross(rel, q.edge2), n) / nn;
+  const float beta = dot(cross(q.edge1, rel), n) / nn;
+  if (alpha < 0 || alpha > 1 || beta < 0 || beta > 1) return kInfinity;
+  u = alpha;
+  v = beta;
+  return t;
+}
+
+float intersectPlane(const Plane& p, const Ray& ray) {
+  const float denom = dot(p.normal, ray.d);
+  if (denom == 0) return kInfinity;
+  const float t = dot(p.point - ray.o, p.normal) / denom;
+  return (t > ray.tMin && t < ray.tMax) ? t : kInfinity;
+}
+
+float intersectTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const Ray& ray,
+                        float& u, float& v) {
+  // Permute so the direction's largest component is z, shear to +z, then 2D edge functions;
+  // edges shared by two triangles give consistent signs, so no ray slips between them.
+  int kz = 0;
+  const Vec3f ad = abs(ray.d);
+  if (ad.y > ad[kz]) kz = 1;
+  if (ad.z > ad[kz]) kz = 2;
+  int kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+  if (ray.d[kz] < 0) std::swap(kx, ky);
+  const float sx = ray.d[kx] / ray.d[kz], sy = ray.d[ky] / ray.d[kz], sz = 1.0f / ray.d[kz];
+  const Vec3f a = p0 - ray.o, b = p1 - ray.o, c = p2 - ray.o;
+  const float ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
+  const float bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
+  const float cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
+  double U = double(cx) * by - double(cy) * bx;
+  double V = double(ax) * cy - double(ay) * cx;
+  double W = double(bx) * ay - double(by) * ax;
+  if ((U < 0 || V < 0 || W < 0) && (U > 0 || V > 0 || W > 0)) return kInfinity;
+  const double det = U + V + W;
+  if (det == 0) return kInfinity;
+  const double T = U * (sz * a[kz]) + V * (sz * b[kz]) + W * (sz * c[kz]);
+  const double t = T / det;
+  if (!(t > ray.tMin && t < ray.tMax)) return kInfinity;
+  u = static_cast<float>(V / det);
+  v = static_cast<float>(W / det);
+  return static_cast<float>(t);
+}
+
+Bounds3f bounds(const Sphere& s) {
+  const Vec3f r{s.radius, s.radius, s.radius};
+  return {s.center - r, s.center + r};
+}
+
+Bounds3f bounds(const Quad& q) {
+  Bounds3f b;
+  b.extend(q.corner);
+  b.extend(q.corner + q.edge1);
+  b.extend(q.corner + q.edge2);
+  b.extend(q.corner + q.edge1 + q.edge2);
+  return b;
+}
+
+}  // namespace glint

@@ -1,0 +1,36 @@
+#pragma once
+// Analytic shapes and their ray intersection, shared by every backend (Embree user geometry,
+// brute force, and later the reference BVH) so that backends differ only in traversal.
+#include "core/bounds.h"
+#include "core/ray.h"
+
+namespace glint {
+
+struct Sphere {
+  Vec3f center;
+  float radius = 1;
+};
+
+// Parallelogram corner + α·edge1 + β·edge2, α, β in [0, 1]; normal = edge1 × edge2.
+struct Quad {
+  Vec3f corner, edge1, edge2;
+};
+
+// Infinite plane through `point`; `normal` is unit length.
+struct Plane {
+  Vec3f point, normal;
+};
+
+// Each returns the nearest t in (ray.tMin, ray.tMax) or a value ≥ ray.tMax (kInfinity) on a
+// miss; (u, v) are written only on a hit.
+float intersectSphere(const Sphere& s, const Ray& ray);
+float intersectQuad(const Quad& q, const Ray& ray, float& u, float& v);
+float intersectPlane(const Plane& p, const Ray& ray);
+// Watertight ray–triangle test (Woop, Benthin, Wald 2013), Embree's barycentric convention.
+float intersectTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const Ray& ray,
+                        float& u, float& v);
+
+Bounds3f bounds(const Sphere& s);
+Bounds3f bounds(const Quad& q);
+
+}  // namespace glint

@@ -1,0 +1,60 @@
+#pragma once
+// Dielectric optics of seed 000 §13.1 and seed 001 §7, with every cosine clamped and total
+// internal reflection explicit, so no NaN can come out for any input direction.
+#include <algorithm>
+#include <cmath>
+
+#include "core/rgb.h"
+#include "core/vec.h"
+
+namespace glint {
+
+// Exact unpolarised Fresnel reflectance for light arriving at cosine cosI (clamped to [0, 1])
+// from a medium of index etaI into one of index etaT. Returns 1 under total internal reflection.
+inline float fresnelDielectric(float cosI, float etaI, float etaT) {
+  cosI = std::clamp(cosI, 0.0f, 1.0f);
+  const float sin2T = (etaI / etaT) * (etaI / etaT) * std::max(0.0f, 1 - cosI * cosI);
+  if (sin2T >= 1) return 1;
+  const float cosT = std::sqrt(1 - sin2T);
+  const float rs = (etaI * cosI - etaT * cosT) / (etaI * cosI + etaT * cosT);
+  const float rp = (etaT * cosI - etaI * cosT) / (etaT * cosI + etaI * cosT);
+  return std::clamp(0.5f * (rs * rs + rp * rp), 0.0f, 1.0f);
+}
+
+// Schlick's approximation (seed 000 §13.1), with the cosine taken on the less dense side.
+inline float fresnelSchlick(float cosI, float etaI, float etaT) {
+  cosI = std::clamp(cosI, 0.0f, 1.0f);
+  float cosine = cosI;
+  if (etaI > etaT) {
+    const float sin2T = (etaI / etaT) * (etaI / etaT) * std::max(0.0f, 1 - cosI * cosI);
+    if (sin2T >= 1) return 1;
+    cosine = std::sqrt(1 - sin2T);
+  }
+  const float r0 = ((etaT - etaI) / (etaT + etaI)) * ((etaT - etaI) / (etaT + etaI));
+  const float m = 1 - cosine;
+  return r0 + (1 - r0) * m * m * m * m * m;
+}
+
+// Refracts unit d through a surface with unit normal n facing against d (dot(d, n) ≤ 0),
+// eta = etaI / etaT (seed 001 §7). Returns false under total internal reflection.
+inline bool refract(const Vec3f& d, const Vec3f& n, float eta, Vec3f& t) {
+  const float cosI = std::clamp(-dot(d, n), 0.0f, 1.0f);
+  const float sin2T = eta * eta * std::max(0.0f, 1 - cosI * cosI);
+  if (sin2T >= 1) return false;
+  const float cosT = std::sqrt(1 - sin2T);
+  t = normalize(eta * d + (eta * cosI - cosT) * n);
+  return true;
+}
+
+// Beer's law I(s) = I(0)·exp(ln(a)·s) per channel; a = 1 transmits fully even for s = ∞, and
+// a = 0 blocks fully even for s = 0⁺, so 0·∞ never reaches exp.
+inline float beerChannel(float a, float s) {
+  if (a >= 1 || s <= 0) return 1;
+  if (a <= 0 || std::isinf(s)) return 0;
+  return std::exp(std::log(a) * s);
+}
+inline Rgb beer(const Rgb& a, float s) {
+  return {beerChannel(a.r, s), beerChannel(a.g, s), beerChannel(a.b, s)};
+}
+
+}  // namespace glint

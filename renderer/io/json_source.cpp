@@ -1,0 +1,321 @@
+#include "io/json_source.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iterator>
+
+namespace glint {
+
+namespace {
+
+using nlohmann::json;
+
+// An input iterator that counts the characters nlohmann's lexer has consumed, so the SAX
+// callbacks below know where in the text they are.
+struct CountingIterator {
+  using iterator_category = std::input_iterator_tag;
+  using value_type = char;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const char*;
+  using reference = const char&;
+
+  const char* p = nullptr;
+  size_t* consumed = nullptr;
+
+  reference operator*() const { return *p; }
+  CountingIterator& operator++() {
+    ++p;
+    ++*consumed;
+    return *this;
+  }
+  CountingIterator operator++(int) {
+    CountingIterator old = *this;
+    ++*this;
+    return old;
+  }
+  bool operator==(const CountingIterator& o) const { return p == o.p; }
+  bool operator!=(const CountingIterator& o) const { return p != o.p; }
+};
+
+std::string escapePointerToken(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~') out += "~0";
+    else if (c == '/') out += "~1";
+    else out += c;
+  }
+  return out;
+}
+
+// Records the line of every key and array element. nlohmann calls each callback right after
+// scanning the token it reports (numbers read one character ahead), so the last consumed
+// character lies on the token's line.
+class LineRecorder : public nlohmann::json_sax<json> {
+ public:
+  LineRecorder(const std::vector<size_t>& lineStarts, const size_t& consumed,
+               std::unordered_map<std::string, int>& lines)
+      : lineStarts_(lineStarts), consumed_(consumed), lines_(lines) {}
+
+  bool null() override { return scalar(1); }
+  bool boolean(bool) override { return scalar(1); }
+  bool number_integer(number_integer_t) override { return scalar(2); }
+  bool number_unsigned(number_unsigned_t) override { return scalar(2); }
+  bool number_float(number_float_t, const string_t&) override { return scalar(2); }
+  bool string(string_t&) override { return scalar(1); }
+  bool binary(binary_t&) override { return scalar(1); }
+  bool start_object(std::size_t) override {
+    stack_.push_back({false, 0, {}, beginValue(1)});
+    return true;
+  }
+  bool end_object() override { return endContainer(); }
+  bool start_array(std::size_t) override {
+    stack_.push_back({true, 0, {}, beginValue(1)});
+    return true;
+  }
+  bool end_array() override { return endContainer(); }
+  bool key(string_t& k) override {
+    stack_.back().key = k;
+    lines_.emplace(stack_.back().pointer + "/" + escapePointerToken(k), lineNow(1));
+    return true;
+  }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
+    return false;
+  }
+
+ private:
+  struct Frame {
+    bool isArray;
+    size_t index;
+    std::string key;
+    std::string pointer;
+  };
+
+  int lineNow(size_t back) const {
+    const size_t offset = consumed_ >= back ? consumed_ - back : 0;
+    const auto it = std::upper_bound(lineStarts_.begin(), lineStarts_.end(), offset);
+    return static_cast<int>(it - lineStarts_.begin());
+  }
+  std::string beginValue(size_t back) {
+    if (stack_.empty()) {
+      lines_.emplace("", lineNow(back));
+      return "";
+    }
+    Frame& top = stack_.back();
+    if (!top.isArray) return top.pointer + "/" + escapePointerToken(top.key);
+    std::string ptr = top.pointer + "/" + std::to_string(top.index++);
+    lines_.emplace(ptr, lineNow(back));
+    return ptr;
+  }
+  bool scalar(size_t back) {
+    beginValue(back);
+    return true;
+  }
+  bool endContainer() {
+    stack_.pop_back();
+    return true;
+  }
+
+  const std::vector<size_t>& lineStarts_;
+  const size_t& consumed_;
+  std::unordered_map<std::string, int>& lines_;
+  std::vector<Frame> stack_;
+};
+
+std::string joinPath(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+
+std::string formatNumber(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.9g", v);
+  return buf;
+}
+
+}  // namespace
+
+JsonDocument::JsonDocument(const std::string& text, std::string fileName)
+    : fileName_(std::move(fileName)) {
+  std::vector<size_t> lineStarts{0};
+  for (size_t i = 0; i < text.size(); ++i)
+    if (text[i] == '\n') lineStarts.push_back(i + 1);
+  const auto lineOfOffset = [&](size_t offset) {
+    return static_cast<int>(std::upper_bound(lineStarts.begin(), lineStarts.end(), offset) -
+                            lineStarts.begin());
+  };
+  try {
+    root_ = json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const json::parse_error& e) {
+    // e.byte is 1-based and points just past the offending character.
+    const size_t offset = e.byte > 0 ? e.byte - 1 : 0;
+    std::string what = e.what();
+    const auto colon = what.find("syntax error");
+    throw SceneError({fileName_, lineOfOffset(offset)}, "",
+                     "invalid JSON: " + (colon != std::string::npos ? what.substr(colon) : what));
+  }
+  size_t consumed = 0;
+  LineRecorder recorder(lineStarts, consumed, lines_);
+  CountingIterator first{text.data(), &consumed}, last{text.data() + text.size(), &consumed};
+  json::sax_parse(first, last, &recorder, nlohmann::detail::input_format_t::json, true, true);
+}
+
+int JsonDocument::lineOf(const std::string& pointer) const {
+  const auto it = lines_.find(pointer);
+  return it == lines_.end() ? 0 : it->second;
+}
+
+void JsonNode::fail(const std::string& problem) const { throw SceneError(loc(), path_, problem); }
+
+std::string JsonNode::typeName() const { return value_->type_name(); }
+
+JsonNode JsonNode::child(const nlohmann::json& value, const std::string& key) const {
+  return JsonNode(*doc_, value, pointer_ + "/" + escapePointerToken(key), joinPath(path_, key));
+}
+
+void JsonNode::checkKeys(std::initializer_list<std::string_view> allowed) const {
+  if (!isObject()) fail("must be an object, got " + typeName());
+  std::vector<std::string> names(allowed.begin(), allowed.end());
+  for (const auto& item : value_->items()) {
+    if (std::find(names.begin(), names.end(), item.key()) != names.end()) continue;
+    const std::string hint = nearestName(item.key(), names);
+    child(item.value(), item.key())
+        .fail("unknown key" + (hint.empty() ? std::string() : " (did you mean \"" + hint + "\"?)"));
+  }
+}
+
+bool JsonNode::has(const std::string& key) const {
+  return value_->is_object() && value_->contains(key);
+}
+
+JsonNode JsonNode::at(const std::string& key) const {
+  if (!isObject()) fail("must be an object, got " + typeName());
+  const auto it = value_->find(key);
+  if (it == value_->end()) fail("missing required key \"" + key + "\"");
+  return child(*it, key);
+}
+
+std::optional<JsonNode> JsonNode::get(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return child(value_->at(key), key);
+}
+
+std::vector<std::string> JsonNode::keys() const {
+  if (!isObject()) fail("must be an object, got " + typeName());
+  std::vector<std::string> out;
+  for (const auto& item : value_->items()) out.push_back(item.key());
+  return out;
+}
+
+size_t JsonNode::size() const {
+  if (!isArray()) fail("must be an array, got " + typeName());
+  return value_->size();
+}
+
+JsonNode JsonNode::operator[](size_t i) const {
+  return JsonNode(*doc_, value_->at(i), pointer_ + "/" + std::to_string(i),
+                  path_ + "[" + std::to_string(i) + "]");
+}
+
+std::vector<JsonNode> JsonNode::elements() const {
+  std::vector<JsonNode> out;
+  for (size_t i = 0; i < size(); ++i) out.push_back((*this)[i]);
+  return out;
+}
+
+float JsonNode::number() const {
+  if (!isNumber()) fail("must be a number, got " + typeName());
+  const double v = value_->get<double>();
+  if (!std::isfinite(v)) fail("must be finite, got " + formatNumber(v));
+  if (std::fabs(v) > 3.4e38) fail("is out of the float range, got " + formatNumber(v));
+  return static_cast<float>(v);
+}
+
+float JsonNode::number(float lo, float hi, bool loOpen) const {
+  const float v = number();
+  if (loOpen ? !(v > lo) : !(v >= lo))
+    fail("must be " + std::string(loOpen ? "> " : ">= ") + formatNumber(lo) + ", got " +
+         formatNumber(v));
+  if (v > hi) fail("must be <= " + formatNumber(hi) + ", got " + formatNumber(v));
+  return v;
+}
+
+int JsonNode::integer(int lo, int hi) const {
+  if (!value_->is_number_integer()) fail("must be an integer, got " + typeName());
+  const auto v = value_->get<long long>();
+  if (v < lo || v > hi)
+    fail("must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
+         std::to_string(v));
+  return static_cast<int>(v);
+}
+
+uint64_t JsonNode::unsignedInteger() const {
+  if (!value_->is_number_unsigned()) fail("must be a non-negative integer, got " + raw().dump());
+  return value_->get<uint64_t>();
+}
+
+bool JsonNode::boolean() const {
+  if (!value_->is_boolean()) fail("must be true or false, got " + typeName());
+  return value_->get<bool>();
+}
+
+std::string JsonNode::string() const {
+  if (!isString()) fail("must be a string, got " + typeName());
+  return value_->get<std::string>();
+}
+
+std::string JsonNode::choice(std::initializer_list<std::string_view> options) const {
+  const std::string s = string();
+  std::vector<std::string> names(options.begin(), options.end());
+  if (std::find(names.begin(), names.end(), s) != names.end()) return s;
+  std::string list;
+  for (const auto& n : names) list += (list.empty() ? "\"" : ", \"") + n + "\"";
+  const std::string hint = nearestName(s, names);
+  fail("must be one of " + list + ", got \"" + s + "\"" +
+       (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
+}
+
+Vec3f JsonNode::vec3() const {
+  if (!isArray() || value_->size() != 3) fail("must be an array of 3 numbers, got " + raw().dump());
+  return {(*this)[0].number(), (*this)[1].number(), (*this)[2].number()};
+}
+
+Vec3f JsonNode::direction() const {
+  const Vec3f v = vec3();
+  if (!(length(v) > 0)) fail("must be a non-zero vector");
+  return normalize(v);
+}
+
+Rgb JsonNode::color() const {
+  if (!isArray() || value_->size() != 3) fail("must be an RGB triple, got " + raw().dump());
+  return {(*this)[0].number(0, 3.4e38f), (*this)[1].number(0, 3.4e38f),
+          (*this)[2].number(0, 3.4e38f)};
+}
+
+float JsonNode::number(const std::string& key, float dflt) const {
+  const auto n = get(key);
+  return n ? n->number() : dflt;
+}
+
+Vec3f JsonNode::vec3(const std::string& key, Vec3f dflt) const {
+  const auto n = get(key);
+  return n ? n->vec3() : dflt;
+}
+
+Rgb JsonNode::color(const std::string& key, Rgb dflt) const {
+  const auto n = get(key);
+  return n ? n->color() : dflt;
+}
+
+std::string nearestName(const std::string& name, const std::vector<std::string>& candidates) {
+  std::string best;
+  size_t bestDist = std::max<size_t>(2, name.size() / 3) + 1;
+  for (const auto& c : candidates) {
+    const size_t d = editDistance(name, c);
+    if (d < bestDist) {
+      bestDist = d;
+      best = c;
+    }
+  }
+  return best;
+}
+
+}  // namespace glint

@@ -1,0 +1,46 @@
+#include "io/mesh_io.h"
+
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <assimp/Importer.hpp>
+#include <filesystem>
+
+#include "core/error.h"
+
+namespace glint {
+
+TriangleMesh loadMeshFile(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path))
+    throw GlintError("mesh file not found: " + path);
+  Assimp::Importer importer;
+  // Meshes are shaded flat from their triangles for now, so normals and UVs are not imported.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_COLORS |
+                                                          aiComponent_TEXCOORDS |
+                                                          aiComponent_MATERIALS);
+  const aiScene* s = importer.ReadFile(
+      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                aiProcess_PreTransformVertices | aiProcess_RemoveComponent |
+                aiProcess_SortByPType);
+  if (!s || !s->mRootNode)
+    throw GlintError("cannot read mesh " + path + ": " + importer.GetErrorString());
+  TriangleMesh mesh;
+  for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
+    const aiMesh* m = s->mMeshes[mi];
+    if (!(m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;  // points and lines
+    const auto base = static_cast<uint32_t>(mesh.positions.size());
+    for (unsigned v = 0; v < m->mNumVertices; ++v) {
+      const aiVector3D& p = m->mVertices[v];
+      mesh.positions.push_back({p.x, p.y, p.z});
+    }
+    for (unsigned f = 0; f < m->mNumFaces; ++f) {
+      const aiFace& face = m->mFaces[f];
+      if (face.mNumIndices != 3) continue;
+      for (int c = 0; c < 3; ++c) mesh.indices.push_back(base + face.mIndices[c]);
+    }
+  }
+  if (mesh.indices.empty()) throw GlintError("mesh " + path + " has no triangles");
+  return mesh;
+}
+
+}  // namespace glint

@@ -1,0 +1,224 @@
+// Turns entries of `objects` and `groups` into scene geometry. Triangle-based shapes (box,
+// triangle, polygon, mesh) are baked into world (or group) space; analytic shapes keep their
+// exact form; a sphere under a non-similarity transform becomes an implicit instance.
+#include <filesystem>
+
+#include "core/error.h"
+#include "geometry/triangulate.h"
+#include "io/mesh_io.h"
+#include "io/scene_builder.h"
+
+namespace glint {
+
+namespace {
+
+uint32_t materialOf(SceneBuilder& b, const JsonNode& obj) {
+  const JsonNode n = obj.at("material");
+  const std::string name = n.string();
+  const auto it = b.materialIds.find(name);
+  if (it != b.materialIds.end()) return it->second;
+  std::vector<std::string> names;
+  for (const auto& [k, v] : b.materialIds) names.push_back(k);
+  const std::string hint = nearestName(name, names);
+  n.fail("no material named \"" + name + "\"" +
+         (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
+}
+
+uint32_t push(Scene& s, uint32_t groupId, GeomKind kind, uint32_t index, uint32_t material,
+              uint32_t objectId) {
+  auto& geoms = s.groups[groupId].geometries;
+  geoms.push_back({kind, index, material, objectId});
+  return static_cast<uint32_t>(geoms.size() - 1);
+}
+
+void addMesh(SceneBuilder& b, TriangleMesh mesh, const Transform& xf, const JsonNode& where,
+             uint32_t groupId, uint32_t material, uint32_t objectId) {
+  for (auto& p : mesh.positions) {
+    if (!isFinite(p)) where.fail("a vertex is not finite");
+    p = xf.point(p);
+    if (!isFinite(p)) where.fail("a transformed vertex is not finite");
+  }
+  for (uint32_t idx : mesh.indices)
+    if (idx >= mesh.positions.size())
+      where.fail("index " + std::to_string(idx) + " is out of range (" +
+                 std::to_string(mesh.positions.size()) + " vertices)");
+  mesh.padForEmbree();
+  b.scene.meshes.push_back(std::move(mesh));
+  push(b.scene, groupId, GeomKind::Mesh, static_cast<uint32_t>(b.scene.meshes.size() - 1),
+       material, objectId);
+}
+
+std::vector<Vec3f> parsePoints(const JsonNode& n, size_t minCount) {
+  if (!n.isArray() || n.size() < minCount)
+    n.fail("must be an array of at least " + std::to_string(minCount) + " points");
+  std::vector<Vec3f> out;
+  for (const JsonNode& p : n.elements()) out.push_back(p.vec3());
+  return out;
+}
+
+TriangleMesh boxMesh(const Vec3f& lo, const Vec3f& hi) {
+  TriangleMesh m;
+  for (int c = 0; c < 8; ++c)
+    m.positions.push_back({(c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z});
+  // Counter-clockwise seen from outside, so normals point out (dielectric boxes need that).
+  m.indices = {0, 2, 1, 1, 2, 3,  4, 5, 6, 5, 7, 6,  0, 1, 4, 1, 5, 4,
+               2, 6, 3, 3, 6, 7,  0, 4, 2, 2, 4, 6,  1, 3, 5, 3, 7, 5};
+  return m;
+}
+
+TriangleMesh inlineMesh(const JsonNode& obj) {
+  TriangleMesh m;
+  m.positions = parsePoints(obj.at("positions"), 3);
+  const JsonNode idx = obj.at("indices");
+  for (const JsonNode& tri : idx.elements()) {
+    if (tri.size() != 3) tri.fail("must be a triple of vertex indices");
+    for (const JsonNode& i : tri.elements()) {
+      const int v = i.integer(0, std::numeric_limits<int>::max());
+      if (static_cast<size_t>(v) >= m.positions.size())
+        i.fail("index " + std::to_string(v) + " is out of range (" +
+               std::to_string(m.positions.size()) + " positions)");
+      m.indices.push_back(static_cast<uint32_t>(v));
+    }
+  }
+  if (m.indices.empty()) idx.fail("must list at least one triangle");
+  return m;
+}
+
+TriangleMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
+  const std::filesystem::path rel(fileNode.string());
+  const std::filesystem::path full = rel.is_absolute() ? rel : std::filesystem::path(b.baseDir) / rel;
+  try {
+    return loadMeshFile(full.lexically_normal().string());
+  } catch (const GlintError& e) {
+    fileNode.fail(e.what());
+  }
+}
+
+}  // namespace
+
+Transform parseTransform(const JsonNode& n) {
+  n.checkKeys({"translate", "rotate", "scale", "matrix"});
+  try {
+    if (auto m = n.get("matrix")) {
+      if (n.has("translate") || n.has("rotate") || n.has("scale"))
+        n.fail("\"matrix\" replaces translate/rotate/scale; give one or the other");
+      if (m->size() != 16) m->fail("must hold 16 numbers (row-major 4×4)");
+      Mat4 mat;
+      for (size_t i = 0; i < 16; ++i) mat.m[i] = (*m)[i].number();
+      try {
+        return Transform(mat);
+      } catch (const std::invalid_argument& e) {
+        m->fail(e.what());
+      }
+    }
+    Transform t;
+    if (auto s = n.get("scale")) {
+      const Vec3f v = s->vec3();
+      if (v.x == 0 || v.y == 0 || v.z == 0) s->fail("scale factors must be non-zero");
+      t = Transform::scale(v);
+    }
+    if (auto r = n.get("rotate")) {
+      if (r->size() != 4) r->fail("must be [axis x, axis y, axis z, angle in degrees]");
+      const Vec3f axis{(*r)[0].number(), (*r)[1].number(), (*r)[2].number()};
+      if (!(length(axis) > 0)) r->fail("the rotation axis has zero length");
+      t = Transform::rotate(axis, (*r)[3].number()) * t;
+    }
+    if (auto tr = n.get("translate")) t = Transform::translate(tr->vec3()) * t;
+    return t;
+  } catch (const std::invalid_argument& e) {
+    n.fail(e.what());
+  }
+}
+
+void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t objectId) {
+  Scene& s = b.scene;
+  const std::string type = obj.at("type").choice(
+      {"sphere", "plane", "quad", "box", "triangle", "polygon", "mesh", "instance"});
+  if (auto m = obj.get("motion")) m->fail("motion blur is not supported yet");
+  const Transform xf = obj.has("transform") ? parseTransform(obj.at("transform")) : Transform{};
+
+  if (type == "instance") {
+    obj.checkKeys({"type", "group", "transform", "motion"});
+    if (groupId != 0) obj.fail("instances inside groups are not supported (one level, like Embree's default)");
+    const JsonNode g = obj.at("group");
+    const auto it = b.groupIds.find(g.string());
+    if (it == b.groupIds.end()) {
+      std::vector<std::string> names;
+      for (const auto& [k, v] : b.groupIds) names.push_back(k);
+      const std::string hint = nearestName(g.string(), names);
+      g.fail("no group named \"" + g.string() + "\"" +
+             (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
+    }
+    s.instances.push_back({it->second, xf});
+    push(s, 0, GeomKind::Instance, static_cast<uint32_t>(s.instances.size() - 1), 0, objectId);
+    return;
+  }
+
+  const uint32_t material = materialOf(b, obj);
+  if (type == "sphere") {
+    obj.checkKeys({"type", "center", "radius", "material", "transform", "motion"});
+    Sphere sp{obj.at("center").vec3(), obj.at("radius").number(0, 3.4e38f, true)};
+    float scale = 1;
+    if (xf.isSimilarity(&scale)) {
+      sp = {xf.point(sp.center), sp.radius * scale};
+      s.spheres.push_back(sp);
+      push(s, groupId, GeomKind::Sphere, static_cast<uint32_t>(s.spheres.size() - 1), material,
+           objectId);
+      return;
+    }
+    // An ellipsoid: keep the exact sphere in a group of its own, placed by an instance.
+    if (groupId != 0) obj.at("transform").fail("a non-uniformly scaled sphere cannot sit inside a group");
+    s.spheres.push_back(sp);
+    const auto implicitGroup = static_cast<uint32_t>(s.groups.size());
+    s.groups.push_back({"<sphere objects[" + std::to_string(objectId) + "]>", {}});
+    push(s, implicitGroup, GeomKind::Sphere, static_cast<uint32_t>(s.spheres.size() - 1),
+         material, objectId);
+    s.instances.push_back({implicitGroup, xf});
+    push(s, 0, GeomKind::Instance, static_cast<uint32_t>(s.instances.size() - 1), 0, objectId);
+  } else if (type == "plane") {
+    obj.checkKeys({"type", "point", "normal", "material", "transform"});
+    if (groupId != 0) obj.fail("planes are unbounded and cannot be placed in groups");
+    const Vec3f p = obj.at("point").vec3();
+    const Vec3f n = obj.at("normal").direction();
+    s.planes.push_back({xf.point(p), normalize(xf.normal(n))});
+    push(s, groupId, GeomKind::Plane, static_cast<uint32_t>(s.planes.size() - 1), material,
+         objectId);
+  } else if (type == "quad") {
+    obj.checkKeys({"type", "corner", "edge1", "edge2", "material", "transform", "motion"});
+    Quad q{xf.point(obj.at("corner").vec3()), xf.vector(obj.at("edge1").vec3()),
+           xf.vector(obj.at("edge2").vec3())};
+    if (!(length(cross(q.edge1, q.edge2)) > 0)) obj.fail("edge1 and edge2 must span a parallelogram (they are parallel or zero)");
+    s.quads.push_back(q);
+    push(s, groupId, GeomKind::Quad, static_cast<uint32_t>(s.quads.size() - 1), material,
+         objectId);
+  } else if (type == "box") {
+    obj.checkKeys({"type", "min", "max", "material", "transform", "motion"});
+    const Vec3f lo = obj.at("min").vec3(), hi = obj.at("max").vec3();
+    if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) obj.at("max").fail("must exceed min in x, y and z");
+    addMesh(b, boxMesh(lo, hi), xf, obj, groupId, material, objectId);
+  } else if (type == "triangle") {
+    obj.checkKeys({"type", "vertices", "material", "transform", "motion"});
+    const JsonNode v = obj.at("vertices");
+    if (v.size() != 3) v.fail("must hold exactly 3 points");
+    TriangleMesh m;
+    m.positions = parsePoints(v, 3);
+    m.indices = {0, 1, 2};
+    addMesh(b, std::move(m), xf, obj, groupId, material, objectId);
+  } else if (type == "polygon") {
+    obj.checkKeys({"type", "vertices", "material", "transform", "motion"});
+    const JsonNode v = obj.at("vertices");
+    TriangleMesh m;
+    m.positions = parsePoints(v, 3);
+    if (!triangulatePolygon(m.positions, m.indices))
+      v.fail("cannot triangulate: the polygon is degenerate or self-intersecting");
+    addMesh(b, std::move(m), xf, obj, groupId, material, objectId);
+  } else {  // mesh
+    obj.checkKeys({"type", "file", "positions", "indices", "material", "transform", "motion"});
+    if (obj.has("file") == obj.has("positions"))
+      obj.fail("a mesh needs either \"file\" or \"positions\" with \"indices\"");
+    TriangleMesh m = obj.has("file") ? fileMesh(b, obj.at("file")) : inlineMesh(obj);
+    addMesh(b, std::move(m), xf, obj, groupId, material, objectId);
+  }
+}
+
+}  // namespace glint

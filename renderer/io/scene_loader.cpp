@@ -1,0 +1,210 @@
+#include "io/scene_loader.h"
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "io/scene_builder.h"
+
+namespace glint {
+
+namespace {
+
+[[noreturn]] void notYet(const JsonNode& n, const std::string& what) {
+  n.fail(what + " is not supported yet (it arrives with the distribution ray tracing work)");
+}
+
+void parseRender(const JsonNode& n, RenderSettings& r) {
+  n.checkKeys({"width", "height", "spp", "max_depth", "seed", "sampler", "background", "ambient",
+               "transparent_shadows"});
+  if (auto v = n.get("width")) r.width = v->integer(1, 1 << 15);
+  if (auto v = n.get("height")) r.height = v->integer(1, 1 << 15);
+  if (auto v = n.get("spp")) r.spp = v->integer(1, 1 << 20);
+  if (auto v = n.get("max_depth")) r.maxDepth = v->integer(0, 1000);
+  if (auto v = n.get("seed")) r.seed = v->unsignedInteger();
+  if (auto v = n.get("sampler"))
+    parseSamplerKind(v->choice({"regular", "random", "stratified"}), r.sampler);
+  r.background = n.color("background", r.background);
+  r.ambient = n.color("ambient", r.ambient);
+  if (auto v = n.get("transparent_shadows")) {
+    r.transparentShadows = v->boolean();
+    if (r.transparentShadows) v->fail("transparent shadows are not supported yet");
+  }
+}
+
+void parseCamera(const JsonNode& n, CameraDesc& c) {
+  const std::string type = n.has("type") ? n.at("type").choice({"perspective", "orthographic"})
+                                         : "perspective";
+  c.projection = type == "perspective" ? Projection::Perspective : Projection::Orthographic;
+  if (c.projection == Projection::Perspective) {
+    n.checkKeys({"type", "eye", "look_at", "up", "vfov", "aperture_radius", "focus_distance",
+                 "shutter"});
+    if (auto v = n.get("vfov")) c.vfovDegrees = v->number(0, 179.9f, true);
+  } else {
+    n.checkKeys({"type", "eye", "look_at", "up", "height", "shutter"});
+    c.orthoHeight = n.at("height").number(0, 3.4e38f, true);
+  }
+  c.eye = n.at("eye").vec3();
+  c.lookAt = n.at("look_at").vec3();
+  c.up = n.vec3("up", {0, 1, 0});
+  if (auto v = n.get("aperture_radius")) {
+    c.apertureRadius = v->number(0, 3.4e38f);
+    if (c.apertureRadius > 0) notYet(*v, "depth of field");
+  }
+  c.focusDistance = length(c.lookAt - c.eye);
+  if (auto v = n.get("focus_distance")) c.focusDistance = v->number(0, 3.4e38f, true);
+  if (auto v = n.get("shutter")) {
+    if (v->size() != 2) v->fail("must be [open, close]");
+    c.shutterOpen = (*v)[0].number();
+    c.shutterClose = (*v)[1].number();
+    if (c.shutterClose < c.shutterOpen) v->fail("close must not be before open");
+  }
+  try {
+    Camera check(c, 1, 1);
+  } catch (const std::invalid_argument& e) {
+    n.fail(e.what());
+  }
+}
+
+ColorTexture parseColorTexture(const JsonNode& n) {
+  ColorTexture t;
+  if (n.isArray()) {
+    t.constant = n.color();
+    return t;
+  }
+  n.checkKeys({"checker"});
+  const JsonNode c = n.at("checker");
+  c.checkKeys({"scale", "a", "b"});
+  t.checker = true;
+  t.scale = c.has("scale") ? c.at("scale").number(0, 3.4e38f, true) : 1.0f;
+  t.a = c.at("a").color();
+  t.b = c.at("b").color();
+  return t;
+}
+
+Material parseMaterial(const JsonNode& n) {
+  const std::string type = n.at("type").choice({"phong", "mirror", "dielectric"});
+  if (type == "phong") {
+    n.checkKeys({"type", "ka", "kd", "ks", "exponent", "specular_model", "km", "gloss"});
+    PhongMaterial m;
+    m.kd.constant = {0.5f, 0.5f, 0.5f};
+    if (auto v = n.get("kd")) m.kd = parseColorTexture(*v);
+    m.ka = m.kd;  // documented default: ambient reflectance follows the diffuse colour
+    if (auto v = n.get("ka")) m.ka = parseColorTexture(*v);
+    m.ks = n.color("ks", m.ks);
+    m.km = n.color("km", m.km);
+    if (auto v = n.get("exponent")) m.exponent = v->number(0, 1e6f);
+    if (auto v = n.get("specular_model"))
+      m.specularModel = v->choice({"blinn", "phong"}) == "blinn" ? SpecularModel::BlinnPhong
+                                                                 : SpecularModel::Phong;
+    if (auto v = n.get("gloss")) {
+      m.gloss = v->number(0, 3.4e38f);
+      if (m.gloss > 0) notYet(*v, "glossy reflection");
+    }
+    return m;
+  }
+  if (type == "mirror") {
+    n.checkKeys({"type", "km", "gloss"});
+    MirrorMaterial m;
+    m.km = n.color("km", m.km);
+    if (auto v = n.get("gloss")) {
+      m.gloss = v->number(0, 3.4e38f);
+      if (m.gloss > 0) notYet(*v, "glossy reflection");
+    }
+    return m;
+  }
+  n.checkKeys({"type", "ior", "attenuation", "fresnel", "blur"});
+  DielectricMaterial m;
+  if (auto v = n.get("ior")) m.ior = v->number(0, 1e3f, true);
+  if (auto v = n.get("attenuation")) {
+    m.attenuation = v->color();
+    if (m.attenuation.maxChannel() > 1) v->fail("each channel must be in [0, 1]");
+  }
+  if (auto v = n.get("fresnel"))
+    m.fresnel = v->choice({"exact", "schlick"}) == "exact" ? FresnelModel::Exact
+                                                           : FresnelModel::Schlick;
+  if (auto v = n.get("blur")) {
+    m.blur = v->number(0, 3.4e38f);
+    if (m.blur > 0) notYet(*v, "blurred translucency");
+  }
+  return m;
+}
+
+Light parseLight(const JsonNode& n) {
+  const std::string type = n.at("type").choice({"point", "directional", "quad", "disk"});
+  if (type == "point") {
+    n.checkKeys({"type", "position", "intensity", "falloff"});
+    PointLight l;
+    l.position = n.at("position").vec3();
+    l.intensity = n.color("intensity", l.intensity);
+    if (auto v = n.get("falloff"))
+      l.falloff = v->choice({"none", "inverse_square"}) == "none" ? Falloff::None
+                                                                  : Falloff::InverseSquare;
+    return l;
+  }
+  if (type == "directional") {
+    n.checkKeys({"type", "direction", "intensity"});
+    DirectionalLight l;
+    l.direction = n.at("direction").direction();
+    l.intensity = n.color("intensity", l.intensity);
+    return l;
+  }
+  notYet(n.at("type"), "the " + type + " area light");
+}
+
+void parseScene(SceneBuilder& b, const JsonNode& root) {
+  root.checkKeys({"render", "camera", "materials", "lights", "objects", "groups"});
+  Scene& s = b.scene;
+  if (auto n = root.get("render")) parseRender(*n, s.render);
+  parseCamera(root.at("camera"), s.cameraDesc);
+
+  if (auto mats = root.get("materials"))
+    for (const std::string& name : mats->keys()) {
+      b.materialIds[name] = static_cast<uint32_t>(s.materials.size());
+      s.materials.push_back({name, parseMaterial(mats->at(name))});
+    }
+  if (auto lights = root.get("lights"))
+    for (const JsonNode& l : lights->elements()) s.lights.push_back(parseLight(l));
+
+  s.groups.push_back({"", {}});
+  // Groups are registered before objects so instances can name them in any order.
+  std::optional<JsonNode> groups = root.get("groups");
+  if (groups)
+    for (const std::string& name : groups->keys()) {
+      b.groupIds[name] = static_cast<uint32_t>(s.groups.size());
+      s.groups.push_back({name, {}});
+    }
+  if (groups)
+    for (const std::string& name : groups->keys()) {
+      const JsonNode members = groups->at(name);
+      for (size_t i = 0; i < members.size(); ++i)
+        addObject(b, members[i], b.groupIds[name], static_cast<uint32_t>(i));
+    }
+  const JsonNode objects = root.at("objects");
+  for (size_t i = 0; i < objects.size(); ++i)
+    addObject(b, objects[i], 0, static_cast<uint32_t>(i));
+  s.features = computeFeatures(s);
+}
+
+}  // namespace
+
+Scene loadSceneText(const std::string& text, const std::string& fileName,
+                    const std::string& baseDir) {
+  const JsonDocument doc(text, fileName);
+  SceneBuilder b;
+  b.baseDir = baseDir;
+  b.scene.sourcePath = fileName;
+  parseScene(b, JsonNode(doc, doc.root(), "", ""));
+  return std::move(b.scene);
+}
+
+Scene loadSceneFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError({path, 0}, "", "cannot open the scene file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::filesystem::path p(path);
+  return loadSceneText(ss.str(), path, p.parent_path().string());
+}
+
+}  // namespace glint

@@ -1,0 +1,73 @@
+#include "render/render_job.h"
+
+#include <atomic>
+#include <chrono>
+#include <string>
+
+#include "camera/camera.h"
+#include "core/log.h"
+#include "core/sampler.h"
+#include "integrator/whitted.h"
+#include "render/progress.h"
+#include "render/tile_scheduler.h"
+
+namespace glint {
+
+namespace {
+constexpr int kMaxLoggedNonfinite = 5;
+}
+
+RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt) {
+  const auto start = std::chrono::steady_clock::now();
+  const RenderSettings& rs = scene.render;
+  const PixelWindow window = opt.crop.value_or(PixelWindow{0, rs.width, 0, rs.height});
+  Film film(rs.width, rs.height, window);
+  const Camera camera(scene.cameraDesc, rs.width, rs.height);
+  const Sampler sampler(rs.sampler, rs.spp, rs.seed);
+  const WhittedIntegrator integrator(scene, accel);
+
+  const std::vector<PixelWindow> tiles = makeTiles(window, opt.tileSize);
+  std::vector<RayCounters> tileCounters(tiles.size());
+  Progress progress(window.area(), opt.progress);
+  std::atomic<int> loggedNonfinite{0};
+
+  runTiles(tiles, opt.threads, [&](size_t tileIndex) {
+    const PixelWindow& tile = tiles[tileIndex];
+    RayCounters& counters = tileCounters[tileIndex];
+    for (int y = tile.y0; y < tile.y1; ++y)
+      for (int x = tile.x0; x < tile.x1; ++x) {
+        double sum[4] = {0, 0, 0, 0};
+        for (int s = 0; s < rs.spp; ++s) {
+          const Vec2f u = sampler.pixelSample(x, y, s);
+          const Ray ray = camera.generateRay(static_cast<float>(x) + u.x,
+                                             static_cast<float>(y) + u.y);
+          const Radiance r = integrator.trace(ray, counters);
+          if (!r.L.isFinite()) {
+            // A non-finite sample never reaches the film: it counts as black.
+            ++counters.nonfiniteSamples;
+            if (loggedNonfinite.fetch_add(1) < kMaxLoggedNonfinite)
+              log::warning("non-finite sample at pixel (" + std::to_string(x) + ", " +
+                           std::to_string(y) + ") sample " + std::to_string(s));
+            sum[3] += r.alpha;
+            continue;
+          }
+          sum[0] += r.L.r;
+          sum[1] += r.L.g;
+          sum[2] += r.L.b;
+          sum[3] += r.alpha;
+        }
+        const double inv = 1.0 / rs.spp;
+        film.setPixel(x, y, sum[0] * inv, sum[1] * inv, sum[2] * inv, sum[3] * inv);
+      }
+    progress.advance(tile.area(), counters.total());
+  });
+  progress.finish();
+
+  RenderResult result{std::move(film), {}};
+  for (const RayCounters& c : tileCounters) result.stats.rays += c;
+  result.stats.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return result;
+}
+
+}  // namespace glint

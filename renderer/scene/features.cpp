@@ -1,0 +1,54 @@
+#include "scene/features.h"
+
+#include <utility>
+
+#include "scene/scene.h"
+
+namespace glint {
+
+namespace {
+std::vector<std::pair<const char*, bool>> table(const Features& f) {
+  return {{"instancing", f.instancing},   {"planes", f.planes},
+          {"point_lights", f.pointLights}, {"directional_lights", f.directionalLights},
+          {"shadows", f.shadows},         {"specular", f.specular},
+          {"reflection", f.reflection},   {"refraction", f.refraction},
+          {"absorption", f.absorption},   {"textures", f.textures},
+          {"ambient", f.ambient}};
+}
+std::vector<std::string> pick(const Features& f, bool want) {
+  std::vector<std::string> out;
+  for (auto& [name, on] : table(f))
+    if (on == want) out.emplace_back(name);
+  return out;
+}
+}  // namespace
+
+std::vector<std::string> Features::used() const { return pick(*this, true); }
+std::vector<std::string> Features::leftOut() const { return pick(*this, false); }
+
+Features computeFeatures(const Scene& scene) {
+  Features f;
+  f.instancing = !scene.instances.empty();
+  f.planes = !scene.planes.empty();
+  for (const auto& l : scene.lights) {
+    if (std::holds_alternative<PointLight>(l)) f.pointLights = true;
+    if (std::holds_alternative<DirectionalLight>(l)) f.directionalLights = true;
+  }
+  f.shadows = !scene.lights.empty();
+  f.ambient = !scene.render.ambient.isBlack();
+  for (const auto& nm : scene.materials) {
+    if (const auto* ph = std::get_if<PhongMaterial>(&nm.material)) {
+      f.specular |= !ph->ks.isBlack();
+      f.reflection |= !ph->km.isBlack();
+      f.textures |= ph->kd.checker || ph->ka.checker;
+    } else if (const auto* m = std::get_if<MirrorMaterial>(&nm.material)) {
+      f.reflection |= !m->km.isBlack();
+    } else if (const auto* d = std::get_if<DielectricMaterial>(&nm.material)) {
+      f.refraction = f.reflection = true;
+      f.absorption |= !(d->attenuation == Rgb{1, 1, 1});
+    }
+  }
+  return f;
+}
+
+}  // namespace glint

@@ -1,0 +1,80 @@
+#pragma once
+// The immutable scene every later stage reads: geometry in groups (group 0 is the world;
+// others are placed by instances), materials, lights, camera and render settings.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "camera/camera.h"
+#include "core/bounds.h"
+#include "core/sampler.h"
+#include "core/transform.h"
+#include "geometry/shading_point.h"
+#include "geometry/shapes.h"
+#include "geometry/triangle_mesh.h"
+#include "lights/light.h"
+#include "materials/material.h"
+#include "scene/features.h"
+
+namespace glint {
+
+enum class GeomKind : uint8_t { Mesh, Sphere, Quad, Plane, Instance };
+
+// One entry of a group. A hit's geomId is this entry's index in its group, so every backend
+// reports the same ids.
+struct Geometry {
+  GeomKind kind = GeomKind::Mesh;
+  uint32_t index = 0;       // into the scene's array for `kind`
+  uint32_t materialId = 0;  // unused for instances
+  uint32_t objectId = 0;    // the `objects[i]` (or `groups.NAME[i]`) entry it came from
+};
+
+struct Instance {
+  uint32_t groupId = 0;
+  Transform worldFromObject;
+};
+
+struct Group {
+  std::string name;
+  std::vector<Geometry> geometries;
+};
+
+struct RenderSettings {
+  int width = 640, height = 480;
+  int spp = 16;
+  int maxDepth = 8;
+  uint64_t seed = 0;
+  SamplerKind sampler = SamplerKind::Stratified;
+  Rgb background;
+  Rgb ambient;
+  bool transparentShadows = false;
+};
+
+class Scene {
+ public:
+  std::string sourcePath;  // the scene file, or "<default>"
+  RenderSettings render;
+  CameraDesc cameraDesc;
+  std::vector<NamedMaterial> materials;
+  std::vector<Light> lights;
+
+  std::vector<Group> groups;  // groups[0] is the world
+  std::vector<TriangleMesh> meshes;
+  std::vector<Sphere> spheres;
+  std::vector<Quad> quads;
+  std::vector<Plane> planes;
+  std::vector<Instance> instances;
+
+  Features features;
+
+  // Rebuilds the world-space surface point of a hit (DESIGN.md §3). Shared by all backends.
+  ShadingPoint shadingPoint(const Ray& ray, const Hit& hit) const;
+  // Bounds of everything finite in the world (planes excluded).
+  Bounds3f worldBounds() const;
+  Bounds3f groupBounds(uint32_t groupId) const;
+  size_t triangleCount() const;
+
+  const Geometry& geometry(const Hit& hit) const;
+};
+
+}  // namespace glint
