@@ -9,8 +9,9 @@ function(glint_library name)
 endfunction()
 
 function(glint_warnings target)
+  # -Wno-restrict: GCC 12 reports false positives on `"literal" + std::string` (GCC bug 105651).
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
-                                           -Wno-sign-conversion -Werror=return-type)
+                                           -Wno-sign-conversion -Wno-restrict -Werror=return-type)
   if(GLINT_NATIVE_ARCH)
     target_compile_options(${target} PRIVATE -march=native)
   endif()

@@ -8,8 +8,10 @@ namespace glint {
 
 std::string_view accelName(AccelKind k) {
   switch (k) {
-    case AccelKind::Embree: return "embree";
-    case AccelKind::BruteForce: return "brute";
+    case AccelKind::Embree:
+      return "embree";
+    case AccelKind::BruteForce:
+      return "brute";
   }
   return "?";
 }
@@ -25,8 +27,10 @@ bool parseAccelKind(std::string_view name, AccelKind& out) {
 
 std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene) {
   switch (kind) {
-    case AccelKind::Embree: return std::make_unique<EmbreeAccel>(scene);
-    case AccelKind::BruteForce: return std::make_unique<BruteForce>(scene);
+    case AccelKind::Embree:
+      return std::make_unique<EmbreeAccel>(scene);
+    case AccelKind::BruteForce:
+      return std::make_unique<BruteForce>(scene);
   }
   return nullptr;
 }

@@ -4,8 +4,7 @@
 
 namespace glint {
 
-void BruteForce::intersectGroup(uint32_t groupId, const Ray& ray, uint32_t instId,
-                                Hit& hit) const {
+void BruteForce::intersectGroup(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const {
   const auto& geoms = scene_.groups[groupId].geometries;
   for (uint32_t gi = 0; gi < geoms.size(); ++gi) {
     const Geometry& g = geoms[gi];
@@ -26,9 +25,14 @@ void BruteForce::intersectGroup(uint32_t groupId, const Ray& ray, uint32_t instI
                  tri);
         break;
       }
-      case GeomKind::Sphere: record(intersectSphere(scene_.spheres[g.index], r), 0); break;
-      case GeomKind::Quad: record(intersectQuad(scene_.quads[g.index], r, u, v), 0); break;
-      case GeomKind::Plane: break;  // shared loop in intersectPlanes
+      case GeomKind::Sphere:
+        record(intersectSphere(scene_.spheres[g.index], r), 0);
+        break;
+      case GeomKind::Quad:
+        record(intersectQuad(scene_.quads[g.index], r, u, v), 0);
+        break;
+      case GeomKind::Plane:
+        break;  // shared loop in intersectPlanes
       case GeomKind::Instance: {
         // Same convention as Embree: the instanced ray keeps t, so d is not renormalised.
         const Instance& inst = scene_.instances[g.index];

@@ -37,7 +37,8 @@ RTCDevice embreeDevice() {
 void throwIfEmbreeFailed(const char* what) {
   const RTCError code = rtcGetDeviceError(embreeDevice());
   if (code == RTC_ERROR_NONE && tEmbreeError.empty()) return;
-  std::string msg = tEmbreeError.empty() ? "Embree error " + std::to_string(int(code)) : tEmbreeError;
+  std::string msg =
+      tEmbreeError.empty() ? "Embree error " + std::to_string(int(code)) : tEmbreeError;
   tEmbreeError.clear();
   throw GlintError(std::string(what) + ": " + msg);
 }
@@ -144,8 +145,10 @@ RTCScene EmbreeAccel::buildGroup(uint32_t groupId) {
       case GeomKind::Quad: {
         auto shape = std::make_unique<UserShape>();
         shape->kind = g.kind;
-        if (g.kind == GeomKind::Sphere) shape->sphere = &scene_.spheres[g.index];
-        else shape->quad = &scene_.quads[g.index];
+        if (g.kind == GeomKind::Sphere)
+          shape->sphere = &scene_.spheres[g.index];
+        else
+          shape->quad = &scene_.quads[g.index];
         geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
         rtcSetGeometryUserPrimitiveCount(geom, 1);
         rtcSetGeometryUserData(geom, shape.get());
@@ -155,7 +158,8 @@ RTCScene EmbreeAccel::buildGroup(uint32_t groupId) {
         userShapes_.push_back(std::move(shape));
         break;
       }
-      case GeomKind::Plane: continue;  // unbounded: the shared plane loop handles it
+      case GeomKind::Plane:
+        continue;  // unbounded: the shared plane loop handles it
       case GeomKind::Instance: {
         const Instance& inst = scene_.instances[g.index];
         geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
@@ -179,8 +183,8 @@ Hit EmbreeAccel::intersect(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
-  rh.ray = {ray.o.x, ray.o.y, ray.o.z, ray.tMin, ray.d.x, ray.d.y, ray.d.z, ray.time,
-            ray.tMax, ~0u, 0, 0};
+  rh.ray = {ray.o.x, ray.o.y,  ray.o.z,  ray.tMin, ray.d.x, ray.d.y,
+            ray.d.z, ray.time, ray.tMax, ~0u,      0,       0};
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(groupScenes_[0], &context, &rh);
@@ -197,8 +201,8 @@ bool EmbreeAccel::occluded(const Ray& ray) const {
   if (occludedByPlanes(scene_, ray)) return true;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay r{ray.o.x, ray.o.y, ray.o.z, ray.tMin, ray.d.x, ray.d.y, ray.d.z, ray.time,
-           ray.tMax, ~0u, 0, 0};
+  RTCRay r{ray.o.x, ray.o.y,  ray.o.z,  ray.tMin, ray.d.x, ray.d.y,
+           ray.d.z, ray.time, ray.tMax, ~0u,      0,       0};
   rtcOccluded1(groupScenes_[0], &context, &r);
   return r.tfar < 0;
 }

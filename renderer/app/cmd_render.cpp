@@ -76,11 +76,13 @@ void printStats(const Scene& scene, const RenderStats& st) {
     return s.empty() ? std::string("(none)") : s;
   };
   std::printf("render time      %.3f s\n", st.seconds);
-  std::printf("rays             %llu (camera %llu, shadow %llu, reflection %llu, refraction %llu)\n",
-              (unsigned long long)st.rays.total(), (unsigned long long)st.rays.camera,
-              (unsigned long long)st.rays.shadow, (unsigned long long)st.rays.reflection,
-              (unsigned long long)st.rays.refraction);
-  std::printf("Mrays/s          %.2f\n", st.seconds > 0 ? double(st.rays.total()) / st.seconds * 1e-6 : 0.0);
+  std::printf(
+      "rays             %llu (camera %llu, shadow %llu, reflection %llu, refraction %llu)\n",
+      (unsigned long long)st.rays.total(), (unsigned long long)st.rays.camera,
+      (unsigned long long)st.rays.shadow, (unsigned long long)st.rays.reflection,
+      (unsigned long long)st.rays.refraction);
+  std::printf("Mrays/s          %.2f\n",
+              st.seconds > 0 ? double(st.rays.total()) / st.seconds * 1e-6 : 0.0);
   std::printf("non-finite       %llu samples\n", (unsigned long long)st.rays.nonfiniteSamples);
   std::printf("features used    %s\n", join(scene.features.used()).c_str());
   std::printf("left out         %s\n", join(scene.features.leftOut()).c_str());
@@ -122,7 +124,8 @@ int runRender(const RenderArgs& a) {
   std::string out = a.output;
   if (out.empty())
     out = (a.scenePath.empty() ? std::string("default")
-                               : std::filesystem::path(a.scenePath).stem().string()) + ".exr";
+                               : std::filesystem::path(a.scenePath).stem().string()) +
+          ".exr";
   writeExr(out, result.film, exrMetadata(a, scene, result.stats));
   if (!a.display.empty()) writeDisplayPng(a.display, result.film);
   if (!a.statsJson.empty()) {

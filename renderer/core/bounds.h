@@ -8,8 +8,14 @@ struct Bounds3f {
   Vec3f lo{kInfinity, kInfinity, kInfinity};
   Vec3f hi{-kInfinity, -kInfinity, -kInfinity};
 
-  void extend(const Vec3f& p) { lo = min(lo, p); hi = max(hi, p); }
-  void extend(const Bounds3f& b) { lo = min(lo, b.lo); hi = max(hi, b.hi); }
+  void extend(const Vec3f& p) {
+    lo = min(lo, p);
+    hi = max(hi, p);
+  }
+  void extend(const Bounds3f& b) {
+    lo = min(lo, b.lo);
+    hi = max(hi, b.hi);
+  }
   bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
   Vec3f diagonal() const { return hi - lo; }
 };

@@ -46,9 +46,12 @@ uint32_t key32(uint64_t h) { return static_cast<uint32_t>(h ^ (h >> 32)); }
 
 std::string_view samplerName(SamplerKind k) {
   switch (k) {
-    case SamplerKind::Regular: return "regular";
-    case SamplerKind::Random: return "random";
-    case SamplerKind::Stratified: return "stratified";
+    case SamplerKind::Regular:
+      return "regular";
+    case SamplerKind::Random:
+      return "random";
+    case SamplerKind::Stratified:
+      return "stratified";
   }
   return "?";
 }
@@ -90,13 +93,15 @@ Vec2f Sampler::pixelSample(int px, int py, int index) const {
     }
     case SamplerKind::Random:
       return {toUnitFloat(hashKey(pattern, index, 1)), toUnitFloat(hashKey(pattern, index, 2))};
-    case SamplerKind::Stratified: return stratified2D(pattern, index, spp_);
+    case SamplerKind::Stratified:
+      return stratified2D(pattern, index, spp_);
   }
   return {0.5f, 0.5f};
 }
 
 Vec2f Sampler::get2D(int px, int py, int index, uint32_t dim, int sub, int count) const {
-  const uint64_t pattern = hashKey(seed_, static_cast<uint32_t>(px), static_cast<uint32_t>(py), dim);
+  const uint64_t pattern =
+      hashKey(seed_, static_cast<uint32_t>(px), static_cast<uint32_t>(py), dim);
   const int n = spp_ * count;
   // The shuffle: sample `index` of the pixel takes a permuted stratum of this dimension's set.
   const int flat = index * count + sub;

@@ -70,8 +70,8 @@ Transform Transform::scale(const Vec3f& s) {
 
 Transform Transform::rotate(const Vec3f& axis, float degrees) {
   // Rodrigues' rotation in double so that 90° turns land on exact zeros where they can.
-  const double len = std::sqrt(double(axis.x) * axis.x + double(axis.y) * axis.y +
-                               double(axis.z) * axis.z);
+  const double len =
+      std::sqrt(double(axis.x) * axis.x + double(axis.y) * axis.y + double(axis.z) * axis.z);
   if (!(len > 0)) throw std::invalid_argument("the rotation axis has zero length");
   const double x = axis.x / len, y = axis.y / len, z = axis.z / len;
   const double rad = double(degrees) * 3.14159265358979323846 / 180.0;
@@ -106,8 +106,8 @@ bool Transform::isSimilarity(float* uniformScale) const {
   const float l0 = length(c[0]), l1 = length(c[1]), l2 = length(c[2]);
   const float tol = 1e-5f * l0;
   const bool ok = std::fabs(l0 - l1) <= tol && std::fabs(l0 - l2) <= tol &&
-                  std::fabs(dot(c[0], c[1])) <= tol * l0 && std::fabs(dot(c[0], c[2])) <= tol * l0 &&
-                  std::fabs(dot(c[1], c[2])) <= tol * l0;
+                  std::fabs(dot(c[0], c[1])) <= tol * l0 &&
+                  std::fabs(dot(c[0], c[2])) <= tol * l0 && std::fabs(dot(c[1], c[2])) <= tol * l0;
   if (ok && uniformScale) *uniformScale = l0;
   return ok;
 }

@@ -20,9 +20,24 @@ struct Vec3f {
   constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
   constexpr float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
   constexpr Vec3f operator-() const { return {-x, -y, -z}; }
-  constexpr Vec3f& operator+=(const Vec3f& b) { x += b.x; y += b.y; z += b.z; return *this; }
-  constexpr Vec3f& operator-=(const Vec3f& b) { x -= b.x; y -= b.y; z -= b.z; return *this; }
-  constexpr Vec3f& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+  constexpr Vec3f& operator+=(const Vec3f& b) {
+    x += b.x;
+    y += b.y;
+    z += b.z;
+    return *this;
+  }
+  constexpr Vec3f& operator-=(const Vec3f& b) {
+    x -= b.x;
+    y -= b.y;
+    z -= b.z;
+    return *this;
+  }
+  constexpr Vec3f& operator*=(float s) {
+    x *= s;
+    y *= s;
+    z *= s;
+    return *this;
+  }
   friend constexpr bool operator==(const Vec3f&, const Vec3f&) = default;
 };
 

@@ -25,8 +25,8 @@ void writeDisplayPng(const std::string& path, const Film& film) {
     for (int x = w.x0; x < w.x1; ++x) {
       const double* p = film.pixel(x, y);
       for (int c = 0; c < 3; ++c)
-        bytes[i++] = static_cast<unsigned char>(
-            std::lround(255.0f * srgbEncode(static_cast<float>(p[c]))));
+        bytes[i++] =
+            static_cast<unsigned char>(std::lround(255.0f * srgbEncode(static_cast<float>(p[c]))));
     }
   OIIO::ImageSpec spec(w.width(), w.height(), 3, OIIO::TypeDesc::UINT8);
   writeFileAtomically(path, [&](const std::string& tmp) {

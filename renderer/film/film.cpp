@@ -5,7 +5,9 @@
 namespace glint {
 
 Film::Film(int fullWidth, int fullHeight, const PixelWindow& window)
-    : fullWidth_(fullWidth), fullHeight_(fullHeight), window_(window),
+    : fullWidth_(fullWidth),
+      fullHeight_(fullHeight),
+      window_(window),
       rgba_(static_cast<size_t>(window.area()) * 4, 0.0) {
   GLINT_CHECK(window.x0 >= 0 && window.x1 <= fullWidth && window.x0 < window.x1);
   GLINT_CHECK(window.y0 >= 0 && window.y1 <= fullHeight && window.y0 < window.y1);
@@ -13,7 +15,8 @@ Film::Film(int fullWidth, int fullHeight, const PixelWindow& window)
 
 size_t Film::offset(int x, int y) const {
   return (static_cast<size_t>(y - window_.y0) * static_cast<size_t>(window_.width()) +
-          static_cast<size_t>(x - window_.x0)) * 4;
+          static_cast<size_t>(x - window_.x0)) *
+         4;
 }
 
 void Film::setPixel(int x, int y, double r, double g, double b, double a) {

@@ -9,9 +9,9 @@
 namespace glint {
 
 struct ShadingPoint {
-  Vec3f p;        // on the surface, computed from the primitive (not from o + t·d)
-  Vec3f ng;       // unit geometric normal, as the primitive defines it (not flipped)
-  Vec3f ns;       // unit shading normal, same side as ng
+  Vec3f p;   // on the surface, computed from the primitive (not from o + t·d)
+  Vec3f ng;  // unit geometric normal, as the primitive defines it (not flipped)
+  Vec3f ns;  // unit shading normal, same side as ng
   float t = 0;
   uint32_t materialId = 0;
   uint32_t objectId = 0;

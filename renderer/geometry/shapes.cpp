@@ -48,8 +48,8 @@ float intersectPlane(const Plane& p, const Ray& ray) {
   return (t > ray.tMin && t < ray.tMax) ? t : kInfinity;
 }
 
-float intersectTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const Ray& ray,
-                        float& u, float& v) {
+float intersectTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const Ray& ray, float& u,
+                        float& v) {
   // Permute so the direction's largest component is z, shear to +z, then 2D edge functions;
   // edges shared by two triangles give consistent signs, so no ray slips between them.
   int kz = 0;

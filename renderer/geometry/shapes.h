@@ -27,8 +27,8 @@ float intersectSphere(const Sphere& s, const Ray& ray);
 float intersectQuad(const Quad& q, const Ray& ray, float& u, float& v);
 float intersectPlane(const Plane& p, const Ray& ray);
 // Watertight ray–triangle test (Woop, Benthin, Wald 2013), Embree's barycentric convention.
-float intersectTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const Ray& ray,
-                        float& u, float& v);
+float intersectTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const Ray& ray, float& u,
+                        float& v);
 
 Bounds3f bounds(const Sphere& s);
 Bounds3f bounds(const Quad& q);

@@ -10,7 +10,7 @@
 namespace glint {
 
 struct TriangleMesh {
-  std::vector<Vec3f> positions;  // capacity ≥ size + 1: see padForEmbree()
+  std::vector<Vec3f> positions;   // capacity ≥ size + 1: see padForEmbree()
   std::vector<uint32_t> indices;  // 3 per triangle
 
   size_t triangleCount() const { return indices.size() / 3; }

@@ -24,7 +24,8 @@ bool triangulatePolygon(const std::vector<Vec3f>& vertices, std::vector<uint32_t
   for (size_t i = 0; i < n; ++i) {
     const Vec3f& a = vertices[i];
     const Vec3f& b = vertices[(i + 1) % n];
-    normal += Vec3f{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
+    normal +=
+        Vec3f{(a.y - b.y) * (a.z + b.z), (a.z - b.z) * (a.x + b.x), (a.x - b.x) * (a.y + b.y)};
   }
   const Vec3f an = abs(normal);
   if (maxComponent(an) == 0) return false;

@@ -40,8 +40,8 @@ Rgb WhittedIntegrator::Li(const Ray& ray, int depth, const Rgb& throughput,
   return L * absorbed;
 }
 
-Rgb WhittedIntegrator::shadePhong(const PhongMaterial& m, const ShadingPoint& sp,
-                                  const Vec3f& wo, float time, RayCounters& counters) const {
+Rgb WhittedIntegrator::shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo,
+                                  float time, RayCounters& counters) const {
   // Seed 000 eq. 4.4 / seed 001 §5: surfaces are two-sided, so the normal faces the viewer.
   const Vec3f n = faceForward(sp.ns, wo);
   const Rgb kd = m.kd.eval(sp.p);
@@ -68,9 +68,9 @@ Rgb WhittedIntegrator::shadePhong(const PhongMaterial& m, const ShadingPoint& sp
   return L;
 }
 
-Rgb WhittedIntegrator::reflectRay(const Rgb& km, const ShadingPoint& sp, const Ray& ray,
-                                  int depth, const Rgb& throughput,
-                                  const DielectricMaterial* medium, RayCounters& counters) const {
+Rgb WhittedIntegrator::reflectRay(const Rgb& km, const ShadingPoint& sp, const Ray& ray, int depth,
+                                  const Rgb& throughput, const DielectricMaterial* medium,
+                                  RayCounters& counters) const {
   // Seed 000 §4.8: no ray when k_m is black, past the depth limit, or when the branch's
   // throughput is negligible.
   const Rgb weight = throughput * km;

@@ -40,9 +40,12 @@ struct CountingIterator {
 std::string escapePointerToken(const std::string& key) {
   std::string out;
   for (char c : key) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
   }
   return out;
 }
@@ -151,6 +154,16 @@ JsonDocument::JsonDocument(const std::string& text, std::string fileName)
     const auto colon = what.find("syntax error");
     throw SceneError({fileName_, lineOfOffset(offset)}, "",
                      "invalid JSON: " + (colon != std::string::npos ? what.substr(colon) : what));
+  } catch (const json::out_of_range& e) {
+    // nlohmann refuses numbers beyond double range ("number overflow parsing '1e999'") without
+    // a position; find the literal in the text to name its line.
+    const std::string what = e.what();
+    const auto open = what.find('\''), close = what.rfind('\'');
+    const std::string literal =
+        open != std::string::npos && close > open ? what.substr(open + 1, close - open - 1) : "";
+    const size_t at = literal.empty() ? std::string::npos : text.find(literal);
+    throw SceneError({fileName_, at == std::string::npos ? 0 : lineOfOffset(at)}, "",
+                     "number " + literal + " is out of range: numbers must be finite");
   }
   size_t consumed = 0;
   LineRecorder recorder(lineStarts, consumed, lines_);

@@ -11,8 +11,7 @@
 namespace glint {
 
 TriangleMesh loadMeshFile(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path))
-    throw GlintError("mesh file not found: " + path);
+  if (!std::filesystem::is_regular_file(path)) throw GlintError("mesh file not found: " + path);
   Assimp::Importer importer;
   // Meshes are shaded flat from their triangles for now, so normals and UVs are not imported.
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_COLORS |
@@ -20,8 +19,7 @@ TriangleMesh loadMeshFile(const std::string& path) {
                                                           aiComponent_MATERIALS);
   const aiScene* s = importer.ReadFile(
       path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                aiProcess_PreTransformVertices | aiProcess_RemoveComponent |
-                aiProcess_SortByPType);
+                aiProcess_PreTransformVertices | aiProcess_RemoveComponent | aiProcess_SortByPType);
   if (!s || !s->mRootNode)
     throw GlintError("cannot read mesh " + path + ": " + importer.GetErrorString());
   TriangleMesh mesh;

@@ -44,8 +44,8 @@ void addMesh(SceneBuilder& b, TriangleMesh mesh, const Transform& xf, const Json
                  std::to_string(mesh.positions.size()) + " vertices)");
   mesh.padForEmbree();
   b.scene.meshes.push_back(std::move(mesh));
-  push(b.scene, groupId, GeomKind::Mesh, static_cast<uint32_t>(b.scene.meshes.size() - 1),
-       material, objectId);
+  push(b.scene, groupId, GeomKind::Mesh, static_cast<uint32_t>(b.scene.meshes.size() - 1), material,
+       objectId);
 }
 
 std::vector<Vec3f> parsePoints(const JsonNode& n, size_t minCount) {
@@ -61,8 +61,8 @@ TriangleMesh boxMesh(const Vec3f& lo, const Vec3f& hi) {
   for (int c = 0; c < 8; ++c)
     m.positions.push_back({(c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z});
   // Counter-clockwise seen from outside, so normals point out (dielectric boxes need that).
-  m.indices = {0, 2, 1, 1, 2, 3,  4, 5, 6, 5, 7, 6,  0, 1, 4, 1, 5, 4,
-               2, 6, 3, 3, 6, 7,  0, 4, 2, 2, 4, 6,  1, 3, 5, 3, 7, 5};
+  m.indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+               2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
   return m;
 }
 
@@ -86,7 +86,8 @@ TriangleMesh inlineMesh(const JsonNode& obj) {
 
 TriangleMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
   const std::filesystem::path rel(fileNode.string());
-  const std::filesystem::path full = rel.is_absolute() ? rel : std::filesystem::path(b.baseDir) / rel;
+  const std::filesystem::path full =
+      rel.is_absolute() ? rel : std::filesystem::path(b.baseDir) / rel;
   try {
     return loadMeshFile(full.lexically_normal().string());
   } catch (const GlintError& e) {
@@ -139,7 +140,8 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
 
   if (type == "instance") {
     obj.checkKeys({"type", "group", "transform", "motion"});
-    if (groupId != 0) obj.fail("instances inside groups are not supported (one level, like Embree's default)");
+    if (groupId != 0)
+      obj.fail("instances inside groups are not supported (one level, like Embree's default)");
     const JsonNode g = obj.at("group");
     const auto it = b.groupIds.find(g.string());
     if (it == b.groupIds.end()) {
@@ -167,12 +169,13 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
       return;
     }
     // An ellipsoid: keep the exact sphere in a group of its own, placed by an instance.
-    if (groupId != 0) obj.at("transform").fail("a non-uniformly scaled sphere cannot sit inside a group");
+    if (groupId != 0)
+      obj.at("transform").fail("a non-uniformly scaled sphere cannot sit inside a group");
     s.spheres.push_back(sp);
     const auto implicitGroup = static_cast<uint32_t>(s.groups.size());
     s.groups.push_back({"<sphere objects[" + std::to_string(objectId) + "]>", {}});
-    push(s, implicitGroup, GeomKind::Sphere, static_cast<uint32_t>(s.spheres.size() - 1),
-         material, objectId);
+    push(s, implicitGroup, GeomKind::Sphere, static_cast<uint32_t>(s.spheres.size() - 1), material,
+         objectId);
     s.instances.push_back({implicitGroup, xf});
     push(s, 0, GeomKind::Instance, static_cast<uint32_t>(s.instances.size() - 1), 0, objectId);
   } else if (type == "plane") {
@@ -187,14 +190,15 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
     obj.checkKeys({"type", "corner", "edge1", "edge2", "material", "transform", "motion"});
     Quad q{xf.point(obj.at("corner").vec3()), xf.vector(obj.at("edge1").vec3()),
            xf.vector(obj.at("edge2").vec3())};
-    if (!(length(cross(q.edge1, q.edge2)) > 0)) obj.fail("edge1 and edge2 must span a parallelogram (they are parallel or zero)");
+    if (!(length(cross(q.edge1, q.edge2)) > 0))
+      obj.fail("edge1 and edge2 must span a parallelogram (they are parallel or zero)");
     s.quads.push_back(q);
-    push(s, groupId, GeomKind::Quad, static_cast<uint32_t>(s.quads.size() - 1), material,
-         objectId);
+    push(s, groupId, GeomKind::Quad, static_cast<uint32_t>(s.quads.size() - 1), material, objectId);
   } else if (type == "box") {
     obj.checkKeys({"type", "min", "max", "material", "transform", "motion"});
     const Vec3f lo = obj.at("min").vec3(), hi = obj.at("max").vec3();
-    if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z)) obj.at("max").fail("must exceed min in x, y and z");
+    if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
+      obj.at("max").fail("must exceed min in x, y and z");
     addMesh(b, boxMesh(lo, hi), xf, obj, groupId, material, objectId);
   } else if (type == "triangle") {
     obj.checkKeys({"type", "vertices", "material", "transform", "motion"});

@@ -33,12 +33,12 @@ void parseRender(const JsonNode& n, RenderSettings& r) {
 }
 
 void parseCamera(const JsonNode& n, CameraDesc& c) {
-  const std::string type = n.has("type") ? n.at("type").choice({"perspective", "orthographic"})
-                                         : "perspective";
+  const std::string type =
+      n.has("type") ? n.at("type").choice({"perspective", "orthographic"}) : "perspective";
   c.projection = type == "perspective" ? Projection::Perspective : Projection::Orthographic;
   if (c.projection == Projection::Perspective) {
-    n.checkKeys({"type", "eye", "look_at", "up", "vfov", "aperture_radius", "focus_distance",
-                 "shutter"});
+    n.checkKeys(
+        {"type", "eye", "look_at", "up", "vfov", "aperture_radius", "focus_distance", "shutter"});
     if (auto v = n.get("vfov")) c.vfovDegrees = v->number(0, 179.9f, true);
   } else {
     n.checkKeys({"type", "eye", "look_at", "up", "height", "shutter"});
@@ -121,8 +121,8 @@ Material parseMaterial(const JsonNode& n) {
     if (m.attenuation.maxChannel() > 1) v->fail("each channel must be in [0, 1]");
   }
   if (auto v = n.get("fresnel"))
-    m.fresnel = v->choice({"exact", "schlick"}) == "exact" ? FresnelModel::Exact
-                                                           : FresnelModel::Schlick;
+    m.fresnel =
+        v->choice({"exact", "schlick"}) == "exact" ? FresnelModel::Exact : FresnelModel::Schlick;
   if (auto v = n.get("blur")) {
     m.blur = v->number(0, 3.4e38f);
     if (m.blur > 0) notYet(*v, "blurred translucency");
@@ -138,8 +138,8 @@ Light parseLight(const JsonNode& n) {
     l.position = n.at("position").vec3();
     l.intensity = n.color("intensity", l.intensity);
     if (auto v = n.get("falloff"))
-      l.falloff = v->choice({"none", "inverse_square"}) == "none" ? Falloff::None
-                                                                  : Falloff::InverseSquare;
+      l.falloff =
+          v->choice({"none", "inverse_square"}) == "none" ? Falloff::None : Falloff::InverseSquare;
     return l;
   }
   if (type == "directional") {
@@ -181,8 +181,7 @@ void parseScene(SceneBuilder& b, const JsonNode& root) {
         addObject(b, members[i], b.groupIds[name], static_cast<uint32_t>(i));
     }
   const JsonNode objects = root.at("objects");
-  for (size_t i = 0; i < objects.size(); ++i)
-    addObject(b, objects[i], 0, static_cast<uint32_t>(i));
+  for (size_t i = 0; i < objects.size(); ++i) addObject(b, objects[i], 0, static_cast<uint32_t>(i));
   s.features = computeFeatures(s);
 }
 

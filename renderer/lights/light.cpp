@@ -9,8 +9,8 @@ LightSample sampleLight(const Light& light, const Vec3f& p) {
     LightSample s;
     s.wi = toLight / std::sqrt(dist2);
     s.target = pl->position;
-    s.intensity = pl->falloff == Falloff::InverseSquare ? pl->intensity * (1.0f / dist2)
-                                                         : pl->intensity;
+    s.intensity =
+        pl->falloff == Falloff::InverseSquare ? pl->intensity * (1.0f / dist2) : pl->intensity;
     return s;
   }
   const auto& dl = std::get<DirectionalLight>(light);

@@ -26,8 +26,8 @@ using Light = std::variant<PointLight, DirectionalLight>;
 // What a light delivers at a point: direction to it, how far the shadow ray must reach, and
 // the intensity arriving (falloff applied).
 struct LightSample {
-  Vec3f wi;             // unit, from the point towards the light
-  Vec3f target;         // a point on the light, or far along wi for directional lights
+  Vec3f wi;      // unit, from the point towards the light
+  Vec3f target;  // a point on the light, or far along wi for directional lights
   bool atInfinity = false;
   Rgb intensity;
 };

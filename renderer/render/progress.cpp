@@ -7,8 +7,11 @@
 namespace glint {
 
 Progress::Progress(int64_t totalWork, bool enabled)
-    : total_(totalWork > 0 ? totalWork : 1), enabled_(enabled), tty_(::isatty(2) != 0),
-      start_(std::chrono::steady_clock::now()), lastPrint_(start_) {}
+    : total_(totalWork > 0 ? totalWork : 1),
+      enabled_(enabled),
+      tty_(::isatty(2) != 0),
+      start_(std::chrono::steady_clock::now()),
+      lastPrint_(start_) {}
 
 void Progress::advance(int64_t work, uint64_t rays) {
   if (!enabled_) return;
@@ -46,8 +49,8 @@ void Progress::print(bool final) {
                  100 * fraction, mrays, elapsed, eta);
     if (final) std::fputc('\n', stderr);
   } else if (!final || fraction < 1) {
-    std::fprintf(stderr, "glint: %3.0f%%  %.1f Mrays/s  %.1fs elapsed  ETA %.1fs\n",
-                 100 * fraction, mrays, elapsed, eta);
+    std::fprintf(stderr, "glint: %3.0f%%  %.1f Mrays/s  %.1fs elapsed  ETA %.1fs\n", 100 * fraction,
+                 mrays, elapsed, eta);
   }
   std::fflush(stderr);
 }

@@ -39,8 +39,8 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
         double sum[4] = {0, 0, 0, 0};
         for (int s = 0; s < rs.spp; ++s) {
           const Vec2f u = sampler.pixelSample(x, y, s);
-          const Ray ray = camera.generateRay(static_cast<float>(x) + u.x,
-                                             static_cast<float>(y) + u.y);
+          const Ray ray =
+              camera.generateRay(static_cast<float>(x) + u.x, static_cast<float>(y) + u.y);
           const Radiance r = integrator.trace(ray, counters);
           if (!r.L.isFinite()) {
             // A non-finite sample never reaches the film: it counts as black.

@@ -11,7 +11,7 @@
 namespace glint {
 
 struct RenderOptions {
-  int threads = 0;    // 0 = all cores
+  int threads = 0;  // 0 = all cores
   int tileSize = 32;
   std::optional<PixelWindow> crop;  // default: the full frame
   bool progress = true;

@@ -8,11 +8,11 @@ namespace glint {
 
 namespace {
 std::vector<std::pair<const char*, bool>> table(const Features& f) {
-  return {{"instancing", f.instancing},   {"planes", f.planes},
+  return {{"instancing", f.instancing},    {"planes", f.planes},
           {"point_lights", f.pointLights}, {"directional_lights", f.directionalLights},
-          {"shadows", f.shadows},         {"specular", f.specular},
-          {"reflection", f.reflection},   {"refraction", f.refraction},
-          {"absorption", f.absorption},   {"textures", f.textures},
+          {"shadows", f.shadows},          {"specular", f.specular},
+          {"reflection", f.reflection},    {"refraction", f.refraction},
+          {"absorption", f.absorption},    {"textures", f.textures},
           {"ambient", f.ambient}};
 }
 std::vector<std::string> pick(const Features& f, bool want) {

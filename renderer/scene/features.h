@@ -12,11 +12,11 @@ struct Features {
   bool pointLights = false;
   bool directionalLights = false;
   bool shadows = false;
-  bool specular = false;       // some Phong material has ks ≠ 0
-  bool reflection = false;     // some material has km ≠ 0
-  bool refraction = false;     // some dielectric
-  bool absorption = false;     // some dielectric with attenuation ≠ 1
-  bool textures = false;       // some checker
+  bool specular = false;    // some Phong material has ks ≠ 0
+  bool reflection = false;  // some material has km ≠ 0
+  bool refraction = false;  // some dielectric
+  bool absorption = false;  // some dielectric with attenuation ≠ 1
+  bool textures = false;    // some checker
   bool ambient = false;
 
   std::vector<std::string> used() const;

@@ -54,7 +54,8 @@ ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit) const {
       n = pl.normal;
       break;
     }
-    case GeomKind::Instance: GLINT_CHECK(false);
+    case GeomKind::Instance:
+      GLINT_CHECK(false);
   }
   if (worldFromObject) {
     p = worldFromObject->point(p);
@@ -70,18 +71,25 @@ Bounds3f Scene::groupBounds(uint32_t groupId) const {
   Bounds3f b;
   for (const Geometry& g : groups[groupId].geometries) {
     switch (g.kind) {
-      case GeomKind::Mesh: b.extend(meshes[g.index].bounds()); break;
-      case GeomKind::Sphere: b.extend(bounds(spheres[g.index])); break;
-      case GeomKind::Quad: b.extend(bounds(quads[g.index])); break;
-      case GeomKind::Plane: break;
+      case GeomKind::Mesh:
+        b.extend(meshes[g.index].bounds());
+        break;
+      case GeomKind::Sphere:
+        b.extend(bounds(spheres[g.index]));
+        break;
+      case GeomKind::Quad:
+        b.extend(bounds(quads[g.index]));
+        break;
+      case GeomKind::Plane:
+        break;
       case GeomKind::Instance: {
         const Instance& inst = instances[g.index];
         const Bounds3f ob = groupBounds(inst.groupId);
         if (ob.empty()) break;
         for (int c = 0; c < 8; ++c)
-          b.extend(inst.worldFromObject.point({(c & 1) ? ob.hi.x : ob.lo.x,
-                                               (c & 2) ? ob.hi.y : ob.lo.y,
-                                               (c & 4) ? ob.hi.z : ob.lo.z}));
+          b.extend(
+              inst.worldFromObject.point({(c & 1) ? ob.hi.x : ob.lo.x, (c & 2) ? ob.hi.y : ob.lo.y,
+                                          (c & 4) ? ob.hi.z : ob.lo.z}));
         break;
       }
     }

@@ -1,1 +1,131 @@
+// The command line contract of CLI.md: exit codes, messages, atomic output, determinism.
 #include <gtest/gtest.h>
+
+#include <glint_version.h>
+
+#include "film/exr_output.h"
+#include "test_util.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runGlint;
+
+const char* kSmallScene = R"({
+  "render": {"width": 40, "height": 30, "spp": 4, "seed": 3},
+  "camera": {"eye": [0,1,4], "look_at": [0,0.5,0]},
+  "materials": {"m": {"type": "phong", "kd": [0.7,0.3,0.2], "ks": [0.3,0.3,0.3]},
+                "g": {"type": "dielectric"}, "c": {"type": "mirror"}},
+  "lights": [{"type": "point", "position": [2,4,3]}],
+  "objects": [{"type": "plane", "point": [0,0,0], "normal": [0,1,0], "material": "m"},
+              {"type": "sphere", "center": [-0.6,0.5,0], "radius": 0.5, "material": "g"},
+              {"type": "sphere", "center": [0.6,0.5,0], "radius": 0.5, "material": "c"}]})";
+
+std::string slurp(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(f), {}};
+}
+
+TEST(Cli, VersionAndHelp) {
+  const auto v = runGlint("--version");
+  EXPECT_EQ(v.exitCode, 0);
+  EXPECT_NE(v.output.find(std::string("glint ") + GLINT_VERSION), std::string::npos);
+  EXPECT_EQ(runGlint("--help").exitCode, 0);
+  const auto h = runGlint("render --help");
+  EXPECT_EQ(h.exitCode, 0);
+  EXPECT_NE(h.output.find("--spp"), std::string::npos);
+  EXPECT_EQ(runGlint("render --no-such-flag").exitCode, 2);
+}
+
+TEST(Cli, SceneErrorExitsTwoWithLocation) {
+  const std::string scene = test::writeTemp("bad.json",
+                                            "{\n\"camera\": {\"eye\": [0,0,1],\n"
+                                            "\"look_at\": [0,0,0], \"vfvo\": 3}}");
+  const auto r = runGlint("render " + scene + " -o " + (test::tempDir() / "bad.exr").string());
+  EXPECT_EQ(r.exitCode, 2);
+  EXPECT_NE(r.output.find(scene + ":3: camera.vfvo: unknown key (did you mean \"vfov\"?)"),
+            std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(test::tempDir() / "bad.exr"));
+  EXPECT_EQ(runGlint("render /no/such/scene.json").exitCode, 2);
+}
+
+TEST(Cli, FailedWriteLeavesThePreviousFileAndNoTemporaries) {
+  const fs::path dir = test::tempDir() / "atomic";
+  fs::create_directories(dir);
+  const std::string scene = test::writeTemp("small.json", kSmallScene);
+  const std::string target = (dir / "frame.exr").string();
+  std::ofstream(target) << "previous contents";
+  // A 1-block file size limit makes the EXR write fail part-way (EFBIG): exit 1, old file kept.
+  const std::string cmd = "bash -c 'ulimit -f 1; exec " + std::string(GLINT_BINARY) + " render " +
+                          scene + " --quiet --width 400 --height 300 --spp 1 -o " + target +
+                          "' > /dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_EQ(slurp(target), "previous contents");
+  size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(dir)) entries += bool(e.is_regular_file());
+  EXPECT_EQ(entries, 1u) << "a temporary file was left behind";
+  // A missing directory is a clear runtime error.
+  const auto m = runGlint("render " + scene + " --quiet -o /no/such/dir/x.exr");
+  EXPECT_EQ(m.exitCode, 1);
+  EXPECT_NE(m.output.find("does not exist"), std::string::npos) << m.output;
+}
+
+TEST(Cli, SameImageForAnyThreadCountTileSizeAndCrop) {
+  const std::string scene = test::writeTemp("det.json", kSmallScene);
+  const auto path = [](const char* n) { return (test::tempDir() / n).string(); };
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --threads 1 --tile-size 32 -o " + path("a.exr"))
+                .exitCode,
+            0);
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --threads 2 --tile-size 7 -o " + path("b.exr"))
+                .exitCode,
+            0);
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --crop 5 25 3 17 -o " + path("c.exr")).exitCode,
+            0);
+  const Image a = readImage(path("a.exr")), b = readImage(path("b.exr")),
+              c = readImage(path("c.exr"));
+  EXPECT_EQ(a.pixels, b.pixels);  // bit for bit
+  ASSERT_EQ(c.width, 20);
+  ASSERT_EQ(c.height, 14);
+  EXPECT_EQ(c.x, 5);  // the data window sits inside the full display window
+  EXPECT_EQ(c.y, 3);
+  EXPECT_EQ(c.fullWidth, 40);
+  for (int y = 0; y < 14; ++y)
+    for (int x = 0; x < 20; ++x)
+      for (int ch = 0; ch < 4; ++ch)
+        ASSERT_EQ(c.pixels[(size_t(y) * 20 + size_t(x)) * 4 + size_t(ch)],
+                  a.pixels[(size_t(y + 3) * 40 + size_t(x + 5)) * 4 + size_t(ch)]);
+}
+
+TEST(Cli, BruteForceRendersTheSameImage) {
+  // Both backends share every intersection routine except triangles and traversal; on this
+  // scene (no triangles) they must agree exactly.
+  const std::string scene = test::writeTemp("backends.json", kSmallScene);
+  const auto path = [](const char* n) { return (test::tempDir() / n).string(); };
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --accel brute -o " + path("brute.exr")).exitCode,
+            0);
+  ASSERT_EQ(
+      runGlint("render " + scene + " --quiet --accel embree -o " + path("embree.exr")).exitCode, 0);
+  EXPECT_EQ(readImage(path("brute.exr")).pixels, readImage(path("embree.exr")).pixels);
+}
+
+TEST(Cli, DefaultSceneRendersWithStats) {
+  const std::string out = (test::tempDir() / "default.exr").string();
+  const std::string json = (test::tempDir() / "stats.json").string();
+  const auto r =
+      runGlint("render --quiet --width 64 --height 40 --spp 1 -o " + out + " --display " +
+               (test::tempDir() / "default.png").string() + " --stats-json " + json);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const Image img = readImage(out);
+  EXPECT_EQ(img.width, 64);
+  EXPECT_TRUE(fs::exists(test::tempDir() / "default.png"));
+  const std::string stats = slurp(json);
+  for (const char* key : {"\"seconds\"", "\"rays_total\"", "\"nonfinite_samples\": 0",
+                          "\"features_used\"", "\"features_left_out\""})
+    EXPECT_NE(stats.find(key), std::string::npos) << key;
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,1 +1,63 @@
+#include "integrator/optics.h"
+
 #include <gtest/gtest.h>
+
+namespace glint {
+namespace {
+
+TEST(Optics, FresnelAtNormalIncidence) {
+  // R = ((n − 1)/(n + 1))² = (0.5/2.5)² = 0.04 for n = 1.5, from either side.
+  EXPECT_NEAR(fresnelDielectric(1, 1, 1.5f), 0.04f, 1e-6);
+  EXPECT_NEAR(fresnelDielectric(1, 1.5f, 1), 0.04f, 1e-6);
+  EXPECT_NEAR(fresnelSchlick(1, 1, 1.5f), 0.04f, 1e-6);
+}
+
+TEST(Optics, FresnelStaysInUnitIntervalForExtremeCosines) {
+  for (float c : {0.0f, -0.0f, 1.0f, -1.0f, 1.0f + 1e-7f, 2.0f})
+    for (auto [a, b] : {std::pair{1.0f, 1.5f}, std::pair{1.5f, 1.0f}}) {
+      const float r = fresnelDielectric(c, a, b);
+      EXPECT_GE(r, 0.0f);
+      EXPECT_LE(r, 1.0f);
+      const float s = fresnelSchlick(c, a, b);
+      EXPECT_GE(s, 0.0f);
+      EXPECT_LE(s, 1.0f);
+    }
+  // At grazing incidence (cos 0) everything reflects.
+  EXPECT_NEAR(fresnelDielectric(0, 1, 1.5f), 1.0f, 1e-6);
+}
+
+TEST(Optics, SnellsLawHolds) {
+  // n₁ sinθ₁ = n₂ sinθ₂ to 1e-6 for a 40° incidence into glass.
+  const float theta = 40.0f * kPi / 180;
+  const Vec3f d{std::sin(theta), -std::cos(theta), 0};
+  Vec3f t;
+  ASSERT_TRUE(refract(d, {0, 1, 0}, 1.0f / 1.5f, t));
+  EXPECT_NEAR(1.0f * std::sin(theta), 1.5f * t.x, 1e-6);
+  EXPECT_LT(t.y, 0);
+  EXPECT_NEAR(length(t), 1, 1e-6);
+}
+
+TEST(Optics, TotalInternalReflectionPastTheCriticalAngle) {
+  // Glass → air: critical angle asin(1/1.5) = 41.81°; at 41.9° there is no transmitted ray and
+  // Fresnel reflects everything.
+  const float theta = 41.9f * kPi / 180;
+  const Vec3f d{std::sin(theta), -std::cos(theta), 0};
+  Vec3f t;
+  EXPECT_FALSE(refract(d, {0, 1, 0}, 1.5f, t));
+  EXPECT_EQ(fresnelDielectric(std::cos(theta), 1.5f, 1.0f), 1.0f);
+  EXPECT_EQ(fresnelSchlick(std::cos(theta), 1.5f, 1.0f), 1.0f);
+  // Just inside the critical angle light still gets out.
+  const float inside = 41.7f * kPi / 180;
+  EXPECT_TRUE(refract({std::sin(inside), -std::cos(inside), 0}, {0, 1, 0}, 1.5f, t));
+}
+
+TEST(Optics, BeerNeverProducesNaN) {
+  EXPECT_NEAR(beerChannel(0.5f, 2), 0.25f, 1e-7);  // 0.5² per two units
+  EXPECT_EQ(beerChannel(1, kInfinity), 1.0f);      // clear medium, infinite path: ln 1·∞ avoided
+  EXPECT_EQ(beerChannel(0.5f, kInfinity), 0.0f);
+  EXPECT_EQ(beerChannel(0, 0.001f), 0.0f);  // ln 0 = −∞ avoided
+  EXPECT_EQ(beerChannel(0, 0), 1.0f);       // no distance, no absorption
+}
+
+}  // namespace
+}  // namespace glint

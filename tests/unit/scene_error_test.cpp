@@ -1,1 +1,121 @@
+// Every kind of scene mistake gives file:line, the JSON path and the problem.
 #include <gtest/gtest.h>
+
+#include "test_util.h"
+
+namespace glint {
+namespace {
+
+std::string errorOf(const std::string& text) {
+  try {
+    test::sceneFromText(text);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+// Lines:         1  2                                                         3
+const char* kHead =
+    "{\n\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0]},\n"
+    "\"materials\": {\"red\": {\"type\": \"phong\"}},\n";
+
+TEST(SceneError, NegativeRadiusNamesLineAndPath) {
+  const std::string text =
+      std::string(kHead) +
+      "\"objects\": [\n"                                                    // 4
+      "  {\"type\": \"plane\", \"point\": [0,0,0], \"normal\": [0,1,0],\n"  // 5
+      "   \"material\": \"red\"},\n"                                        // 6
+      "  {\"type\": \"sphere\", \"center\": [0,0,0],\n"                     // 7
+      "   \"radius\": -1, \"material\": \"red\"}\n"                         // 8
+      "]}\n";
+  EXPECT_EQ(errorOf(text), "scene.json:8: objects[1].radius: must be > 0, got -1");
+}
+
+TEST(SceneError, UnknownKeySuggestsTheNearest) {
+  const std::string text = std::string(kHead) +
+                           "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0,0],\n"  // 4
+                           "  \"radus\": 1, \"material\": \"red\"}]}";                    // 5
+  EXPECT_EQ(errorOf(text),
+            "scene.json:5: objects[0].radus: unknown key (did you mean \"radius\"?)");
+}
+
+TEST(SceneError, MissingRequiredKey) {
+  const std::string text = std::string(kHead) +
+                           "\"objects\": [\n"                                   // 4
+                           "  {\"type\": \"sphere\", \"material\": \"red\",\n"  // 5
+                           "   \"radius\": 1}]}";
+  EXPECT_EQ(errorOf(text), "scene.json:5: objects[0]: missing required key \"center\"");
+}
+
+TEST(SceneError, WrongTypeAndBadVector) {
+  EXPECT_EQ(
+      errorOf(std::string(kHead) + "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0],\n"  // 4
+                                   "\"radius\": 1, \"material\": \"red\"}]}"),
+      "scene.json:4: objects[0].center: must be an array of 3 numbers, got [0,0]");
+  EXPECT_EQ(errorOf(std::string(kHead) + "\"render\": {\"spp\": \"many\"}, \"objects\": []}"),
+            "scene.json:4: render.spp: must be an integer, got string");
+}
+
+TEST(SceneError, UnknownMaterialAndEnumSuggest) {
+  EXPECT_EQ(errorOf(std::string(kHead) +
+                    "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0,0], \"radius\": 1,\n"
+                    "  \"material\": \"rde\"}]}"),
+            "scene.json:5: objects[0].material: no material named \"rde\" (did you mean \"red\"?)");
+  EXPECT_EQ(errorOf(std::string(kHead) + "\"objects\": [{\"type\": \"spher\"}]}"),
+            "scene.json:4: objects[0].type: must be one of \"sphere\", \"plane\", \"quad\", "
+            "\"box\", \"triangle\", \"polygon\", \"mesh\", \"instance\", got \"spher\" (did you "
+            "mean \"sphere\"?)");
+}
+
+TEST(SceneError, NonFiniteNumbersAreRejected) {
+  // JSON has no NaN literal; an overflowing literal would be infinity and must be refused.
+  EXPECT_EQ(errorOf(std::string(kHead) +
+                    "\"objects\": [{\"type\": \"sphere\", \"center\": [1e999,0,0], \"radius\": 1,"
+                    " \"material\": \"red\"}]}"),
+            "scene.json:4: number 1e999 is out of range: numbers must be finite");
+  // Finite in double but not in float (Embree's precision) is refused with its path.
+  EXPECT_EQ(errorOf(std::string(kHead) +
+                    "\"objects\": [{\"type\": \"sphere\", \"center\": [1e300,0,0], \"radius\": 1,"
+                    " \"material\": \"red\"}]}"),
+            "scene.json:4: objects[0].center[0]: is out of the float range, got 1e+300");
+}
+
+TEST(SceneError, SyntaxErrorNamesItsLine) {
+  const std::string msg = errorOf("{\n\"camera\": {\n\"eye\": [0,0,5],,\n}}");
+  EXPECT_EQ(msg.rfind("scene.json:3: invalid JSON: syntax error", 0), 0u) << msg;
+}
+
+TEST(SceneError, MissingMeshFileNamesThePathTried) {
+  const std::string msg = errorOf(std::string(kHead) +
+                                  "\"objects\": [{\"type\": \"mesh\", \"file\": \"nope/x.obj\","
+                                  " \"material\": \"red\"}]}");
+  EXPECT_NE(msg.find("scene.json:4: objects[0].file: mesh file not found: "), std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("nope/x.obj"), std::string::npos) << msg;
+}
+
+TEST(SceneError, DegenerateShapesAndTransforms) {
+  EXPECT_EQ(errorOf(std::string(kHead) +
+                    "\"objects\": [{\"type\": \"box\", \"min\": [0,0,0], \"max\": [1,0,1],"
+                    " \"material\": \"red\"}]}"),
+            "scene.json:4: objects[0].max: must exceed min in x, y and z");
+  EXPECT_EQ(
+      errorOf(std::string(kHead) +
+              "\"objects\": [{\"type\": \"triangle\", \"vertices\": [[0,0,0],[1,0,0],[0,1,0]],"
+              " \"material\": \"red\", \"transform\": {\"scale\": [1,0,1]}}]}"),
+      "scene.json:4: objects[0].transform.scale: scale factors must be non-zero");
+}
+
+TEST(SceneError, UnbuiltFeaturesAreRefusedNotIgnored) {
+  // A scene asking for an effect Glint cannot render yet must not render silently without it.
+  const std::string msg = errorOf(
+      "{\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0], \"aperture_radius\": 0.1},"
+      " \"objects\": []}");
+  EXPECT_EQ(msg,
+            "scene.json:1: camera.aperture_radius: depth of field is not supported yet (it "
+            "arrives with the distribution ray tracing work)");
+}
+
+}  // namespace
+}  // namespace glint

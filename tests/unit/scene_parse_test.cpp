@@ -1,1 +1,175 @@
 #include <gtest/gtest.h>
+
+#include "test_util.h"
+
+namespace glint {
+namespace {
+
+using test::sceneFromText;
+
+const char* kHeader = R"(
+  "camera": { "eye": [0, 0, 5], "look_at": [0, 0, 0] },
+  "materials": { "m": { "type": "phong", "kd": [0.5, 0.5, 0.5] } },
+)";
+
+Scene withObjects(const std::string& objects, const std::string& extra = "") {
+  return sceneFromText("{" + std::string(kHeader) + extra + "\"objects\": [" + objects + "]}");
+}
+
+TEST(SceneParse, RenderBlockAndDefaults) {
+  // Comments are allowed anywhere (SCENE_FORMAT.md).
+  const Scene s = sceneFromText(R"({
+    // a comment
+    "render": { "width": 32, "height": 16, "spp": 4, "max_depth": 3, "seed": 9,
+                "sampler": "random", "background": [0.1, 0.2, 0.3], "ambient": [1, 1, 1] },
+    /* another */
+    "camera": { "eye": [0, 0, 5], "look_at": [0, 0, 0] },
+    "objects": []
+  })");
+  EXPECT_EQ(s.render.width, 32);
+  EXPECT_EQ(s.render.height, 16);
+  EXPECT_EQ(s.render.spp, 4);
+  EXPECT_EQ(s.render.maxDepth, 3);
+  EXPECT_EQ(s.render.seed, 9u);
+  EXPECT_EQ(s.render.sampler, SamplerKind::Random);
+  EXPECT_EQ(s.render.background, (Rgb{0.1f, 0.2f, 0.3f}));
+  // Defaults: pinhole, shutter [0, 0], focus at the look-at distance.
+  EXPECT_EQ(s.cameraDesc.apertureRadius, 0);
+  EXPECT_EQ(s.cameraDesc.shutterClose, 0);
+  EXPECT_FLOAT_EQ(s.cameraDesc.focusDistance, 5);
+}
+
+TEST(SceneParse, BothCameraTypes) {
+  const Scene p = sceneFromText(R"({"camera": {"type": "perspective", "eye": [0,0,5],
+      "look_at": [0,0,0], "vfov": 30}, "objects": []})");
+  EXPECT_EQ(p.cameraDesc.projection, Projection::Perspective);
+  EXPECT_EQ(p.cameraDesc.vfovDegrees, 30);
+  const Scene o = sceneFromText(R"({"camera": {"type": "orthographic", "eye": [0,0,5],
+      "look_at": [0,0,0], "height": 3}, "objects": []})");
+  EXPECT_EQ(o.cameraDesc.projection, Projection::Orthographic);
+  EXPECT_EQ(o.cameraDesc.orthoHeight, 3);
+}
+
+TEST(SceneParse, MaterialsKeepEveryKey) {
+  const Scene s = sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+    "materials": {
+      "p": {"type": "phong", "ka": [0.1,0,0], "kd": {"checker": {"scale": 2, "a": [1,1,1], "b": [0,0,0]}},
+            "ks": [0.3,0.3,0.3], "exponent": 100, "specular_model": "phong", "km": [0.2,0.2,0.2]},
+      "m": {"type": "mirror", "km": [0.9, 0.8, 0.7]},
+      "g": {"type": "dielectric", "ior": 1.33, "attenuation": [0.9, 1, 0.9], "fresnel": "schlick"}
+    }, "objects": []})");
+  ASSERT_EQ(s.materials.size(), 3u);
+  const auto named = [&](const std::string& name) -> const Material& {
+    for (const auto& m : s.materials)
+      if (m.name == name) return m.material;
+    throw std::runtime_error("no material " + name);
+  };
+  const auto& p = std::get<PhongMaterial>(named("p"));
+  EXPECT_TRUE(p.kd.checker);
+  EXPECT_EQ(p.kd.scale, 2);
+  EXPECT_EQ(p.ka.constant, (Rgb{0.1f, 0, 0}));
+  EXPECT_EQ(p.specularModel, SpecularModel::Phong);
+  EXPECT_EQ(p.exponent, 100);
+  EXPECT_EQ(p.km, (Rgb{0.2f, 0.2f, 0.2f}));
+  EXPECT_EQ(std::get<MirrorMaterial>(named("m")).km, (Rgb{0.9f, 0.8f, 0.7f}));
+  const auto& g = std::get<DielectricMaterial>(named("g"));
+  EXPECT_FLOAT_EQ(g.ior, 1.33f);
+  EXPECT_EQ(g.fresnel, FresnelModel::Schlick);
+  EXPECT_TRUE(s.features.absorption);
+  EXPECT_TRUE(s.features.textures);
+}
+
+TEST(SceneParse, EveryObjectType) {
+  const Scene s = withObjects(R"(
+    {"type": "sphere", "center": [0,1,0], "radius": 1, "material": "m"},
+    {"type": "plane", "point": [0,0,0], "normal": [0,2,0], "material": "m"},
+    {"type": "quad", "corner": [0,0,0], "edge1": [1,0,0], "edge2": [0,1,0], "material": "m"},
+    {"type": "box", "min": [-1,0,-1], "max": [1,1,1], "material": "m"},
+    {"type": "triangle", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "material": "m"},
+    {"type": "polygon", "vertices": [[0,0,0],[1,0,0],[1,1,0],[0,1,0]], "material": "m"},
+    {"type": "mesh", "positions": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]], "indices": [[0,1,2],[1,3,2]], "material": "m"},
+    {"type": "mesh", "file": "meshes/wuson.obj", "material": "m"}
+  )");
+  ASSERT_EQ(s.groups[0].geometries.size(), 8u);
+  EXPECT_EQ(s.spheres.size(), 1u);
+  EXPECT_EQ(s.planes.size(), 1u);
+  EXPECT_FLOAT_EQ(s.planes[0].normal.y, 1);  // normalised
+  EXPECT_EQ(s.quads.size(), 1u);
+  ASSERT_EQ(s.meshes.size(), 5u);
+  EXPECT_EQ(s.meshes[0].triangleCount(), 12u);  // box: 6 faces × 2
+  EXPECT_EQ(s.meshes[1].triangleCount(), 1u);
+  EXPECT_EQ(s.meshes[2].triangleCount(), 2u);  // square polygon
+  EXPECT_EQ(s.meshes[3].triangleCount(), 2u);
+  EXPECT_GT(s.meshes[4].triangleCount(), 1000u);  // the Wuson model from assimp-testmodels
+  for (uint32_t i = 0; i < 8; ++i) EXPECT_EQ(s.groups[0].geometries[i].objectId, i);
+}
+
+TEST(SceneParse, BoxNormalsPointOutward) {
+  const Scene s =
+      withObjects(R"({"type": "box", "min": [-1,-1,-1], "max": [1,1,1], "material": "m"})");
+  const TriangleMesh& m = s.meshes[0];
+  for (uint32_t t = 0; t < m.triangleCount(); ++t) {
+    const Vec3f c = (m.vertex(t, 0) + m.vertex(t, 1) + m.vertex(t, 2)) / 3.0f;
+    const Vec3f n = cross(m.vertex(t, 1) - m.vertex(t, 0), m.vertex(t, 2) - m.vertex(t, 0));
+    EXPECT_GT(dot(n, c), 0) << "triangle " << t;
+  }
+}
+
+TEST(SceneParse, TransformsApplyScaleRotateTranslate) {
+  const Scene s = withObjects(R"(
+    {"type": "sphere", "center": [1,0,0], "radius": 1, "material": "m",
+     "transform": {"scale": [2,2,2], "rotate": [0,0,1,90], "translate": [0,0,5]}},
+    {"type": "quad", "corner": [0,0,0], "edge1": [1,0,0], "edge2": [0,1,0], "material": "m",
+     "transform": {"translate": [1,2,3]}},
+    {"type": "triangle", "vertices": [[1,0,0],[0,1,0],[0,0,1]], "material": "m",
+     "transform": {"matrix": [1,0,0,10, 0,1,0,0, 0,0,1,0, 0,0,0,1]}}
+  )");
+  // Centre (1,0,0) → ×2 → (2,0,0) → 90° about z → (0,2,0) → +(0,0,5); radius 1 × 2.
+  EXPECT_NEAR(s.spheres[0].center.x, 0, 1e-6);
+  EXPECT_NEAR(s.spheres[0].center.y, 2, 1e-6);
+  EXPECT_NEAR(s.spheres[0].center.z, 5, 1e-6);
+  EXPECT_NEAR(s.spheres[0].radius, 2, 1e-6);
+  EXPECT_EQ(s.quads[0].corner, (Vec3f{1, 2, 3}));
+  EXPECT_EQ(s.meshes[0].positions[0], (Vec3f{11, 0, 0}));
+}
+
+TEST(SceneParse, NonUniformSphereBecomesAnInstance) {
+  const Scene s = withObjects(R"({"type": "sphere", "center": [0,0,0], "radius": 1,
+      "material": "m", "transform": {"scale": [2,1,1]}})");
+  ASSERT_EQ(s.instances.size(), 1u);
+  EXPECT_EQ(s.groups.size(), 2u);
+  EXPECT_EQ(s.groups[0].geometries[0].kind, GeomKind::Instance);
+  EXPECT_EQ(s.spheres[0].radius, 1);  // the exact sphere, in object space
+}
+
+TEST(SceneParse, GroupsArePlacedByInstancesNotCopied) {
+  const Scene s = withObjects(R"(
+      {"type": "instance", "group": "tree", "transform": {"translate": [1,0,0]}},
+      {"type": "instance", "group": "tree", "transform": {"translate": [-1,0,0]}})",
+                              R"("groups": {"tree": [
+          {"type": "triangle", "vertices": [[0,0,0],[1,0,0],[0,1,0]], "material": "m"}]},)");
+  EXPECT_EQ(s.meshes.size(), 1u);  // one copy of the geometry
+  EXPECT_EQ(s.instances.size(), 2u);
+  EXPECT_EQ(s.instances[0].groupId, 1u);
+  EXPECT_TRUE(s.features.instancing);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(SceneParse, EveryBundledSceneLoads) {
+  // The examples are documentation; a format change that breaks one must fail here.
+  int count = 0;
+  for (const auto& e : std::filesystem::directory_iterator(GLINT_SCENES_DIR)) {
+    if (e.path().extension() != ".json") continue;
+    ++count;
+    EXPECT_NO_THROW(loadSceneFile(e.path().string())) << e.path();
+  }
+  EXPECT_GE(count, 4);
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,0 +1,51 @@
+#pragma once
+// Helpers shared by the test suites: scenes from strings, temporary files, running the binary.
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "core/error.h"
+#include "io/scene_loader.h"
+
+namespace glint::test {
+
+inline std::filesystem::path tempDir() {
+  static const std::filesystem::path dir = [] {
+    auto d = std::filesystem::temp_directory_path() / ("glint-test-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(d);
+    return d;
+  }();
+  return dir;
+}
+
+inline std::string writeTemp(const std::string& name, const std::string& text) {
+  const auto path = tempDir() / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+inline Scene sceneFromText(const std::string& text) {
+  return loadSceneText(text, "scene.json", GLINT_SCENES_DIR);
+}
+
+struct RunResult {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+inline RunResult runGlint(const std::string& args) {
+  RunResult r;
+  const std::string cmd = std::string(GLINT_BINARY) + " " + args + " 2>&1";
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
+  const int status = ::pclose(pipe);
+  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+}  // namespace glint::test

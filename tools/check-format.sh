@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Fails when any C++ file differs from .clang-format; `--fix` rewrites them instead.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+mapfile -t files < <(git ls-files '*.h' '*.cpp' '*.h.in' 2>/dev/null | grep -v '\.h\.in$' || true)
+[ ${#files[@]} -eq 0 ] && mapfile -t files < <(find renderer tests -name '*.h' -o -name '*.cpp')
+if [ "${1:-}" = "--fix" ]; then
+  clang-format -i "${files[@]}"
+else
+  clang-format --dry-run --Werror "${files[@]}" || {
+    echo "glint: unformatted files (fix with tools/check-format.sh --fix)" >&2
+    exit 1
+  }
+fi
