@@ -6,36 +6,56 @@
 
 namespace glint {
 
+namespace {
+
+// Shadow rays give up after this many dielectric interfaces and count the light as blocked.
+constexpr int kMaxShadowInterfaces = 64;
+
+float fresnel(const DielectricMaterial& m, float cosI, float etaI, float etaT) {
+  return m.fresnel == FresnelModel::Exact ? fresnelDielectric(cosI, etaI, etaT)
+                                          : fresnelSchlick(cosI, etaI, etaT);
+}
+
+}  // namespace
+
+const DielectricMaterial* WhittedIntegrator::dielectric(uint32_t materialId) const {
+  return std::get_if<DielectricMaterial>(&scene_.materials[materialId].material);
+}
+
+float WhittedIntegrator::iorOutside(const MediumStack& media) const {
+  return media.empty() ? 1.0f : dielectric(media.innermostMaterial())->ior;
+}
+
 Radiance WhittedIntegrator::trace(const Ray& cameraRay, RayCounters& counters) const {
   ++counters.camera;
   bool hit = false;
   Radiance r;
-  r.L = Li(cameraRay, 0, Rgb{1, 1, 1}, nullptr, counters, &hit);
+  r.L = Li(cameraRay, Branch{}, counters, &hit);
   r.alpha = hit ? 1.0f : 0.0f;
   return r;
 }
 
-Rgb WhittedIntegrator::Li(const Ray& ray, int depth, const Rgb& throughput,
-                          const DielectricMaterial* medium, RayCounters& counters,
+Rgb WhittedIntegrator::Li(const Ray& ray, const Branch& branch, RayCounters& counters,
                           bool* hitSomething) const {
   const Hit hit = accel_.intersect(ray);
-  const float travelled = hit.t * length(ray.d);
-  const Rgb absorbed = medium ? beer(medium->attenuation, travelled) : Rgb{1, 1, 1};
+  // Beer's law over the segment just travelled, in the medium the ray was inside.
+  Rgb absorbed{1, 1, 1};
+  if (!branch.media.empty())
+    absorbed =
+        beer(dielectric(branch.media.innermostMaterial())->attenuation, hit.t * length(ray.d));
   if (!hit) return scene_.render.background * absorbed;
   if (hitSomething) *hitSomething = true;
 
   const ShadingPoint sp = scene_.shadingPoint(ray, hit);
   const Material& material = scene_.materials[sp.materialId].material;
-  const Vec3f wo = normalize(-ray.d);
   Rgb L;
   if (const auto* phong = std::get_if<PhongMaterial>(&material)) {
-    L = shadePhong(*phong, sp, wo, ray.time, counters);
-    L += reflectRay(phong->km, sp, ray, depth, throughput, medium, counters);
+    L = shadePhong(*phong, sp, normalize(-ray.d), ray.time, counters);
+    L += reflectRay(phong->km, sp, ray, branch, counters);
   } else if (const auto* mirror = std::get_if<MirrorMaterial>(&material)) {
-    L = reflectRay(mirror->km, sp, ray, depth, throughput, medium, counters);
+    L = reflectRay(mirror->km, sp, ray, branch, counters);
   } else {
-    L = shadeDielectric(std::get<DielectricMaterial>(material), sp, ray, depth, throughput,
-                        counters);
+    L = shadeDielectric(hit, std::get<DielectricMaterial>(material), sp, ray, branch, counters);
   }
   return L * absorbed;
 }
@@ -50,64 +70,99 @@ Rgb WhittedIntegrator::shadePhong(const PhongMaterial& m, const ShadingPoint& sp
     const LightSample ls = sampleLight(light, sp.p);
     const float cosL = dot(n, ls.wi);
     if (cosL <= 0) continue;
-    ++counters.shadow;
-    Ray shadow = ls.atInfinity ? spawnRay(sp, ls.wi, time) : spawnRayTo(sp, ls.target, time);
-    if (accel_.occluded(shadow)) continue;
+    const Rgb visible = shadowTransmission(sp, ls, time, counters);
+    if (visible.isBlack()) continue;
     Rgb f = kd * cosL;
     if (!m.ks.isBlack()) {
-      float spec;
-      if (m.specularModel == SpecularModel::BlinnPhong) {
-        spec = std::max(0.0f, dot(n, normalize(ls.wi + wo)));
-      } else {
-        spec = std::max(0.0f, dot(reflect(-ls.wi, n), wo));
-      }
-      f += m.ks * std::pow(spec, m.exponent);
+      const float spec = m.specularModel == SpecularModel::BlinnPhong
+                             ? dot(n, normalize(ls.wi + wo))
+                             : dot(reflect(-ls.wi, n), wo);
+      f += m.ks * std::pow(std::max(0.0f, spec), m.exponent);
     }
-    L += f * ls.intensity;
+    L += f * ls.intensity * visible;
   }
   return L;
 }
 
-Rgb WhittedIntegrator::reflectRay(const Rgb& km, const ShadingPoint& sp, const Ray& ray, int depth,
-                                  const Rgb& throughput, const DielectricMaterial* medium,
-                                  RayCounters& counters) const {
+Rgb WhittedIntegrator::shadowTransmission(const ShadingPoint& sp, const LightSample& ls, float time,
+                                          RayCounters& counters) const {
+  ++counters.shadow;
+  Ray shadow = ls.atInfinity ? spawnRay(sp, ls.wi, time) : spawnRayTo(sp, ls.target, time);
+  if (!scene_.render.transparentShadows) return accel_.occluded(shadow) ? Rgb{} : Rgb{1, 1, 1};
+
+  // Seed 002 §9.1: the shadow ray carries the product of the transmissions of the dielectrics
+  // it passes (Fresnel at each interface, Beer inside); refraction of the shadow ray itself is
+  // ignored, so it runs straight on. Any opaque surface blocks it.
+  Rgb T{1, 1, 1};
+  MediumStack media;
+  for (int i = 0; i < kMaxShadowInterfaces; ++i) {
+    const Hit hit = accel_.intersect(shadow);
+    const float travelled = (hit ? hit.t : shadow.tMax) * length(shadow.d);
+    if (!media.empty()) T *= beer(dielectric(media.innermostMaterial())->attenuation, travelled);
+    if (!hit) return T;
+    const ShadingPoint next = scene_.shadingPoint(shadow, hit);
+    const DielectricMaterial* d = dielectric(next.materialId);
+    if (!d) return {};
+    const Vec3f dir = normalize(shadow.d);
+    const uint64_t key = objectKey(hit);
+    const bool entering = dot(dir, next.ng) < 0;
+    const float etaI = entering ? iorOutside(media) : d->ior;
+    const MediumStack after = entering ? media.entered(key, next.materialId) : media.left(key);
+    const float etaT = entering ? d->ior : iorOutside(after);
+    T *= 1 - fresnel(*d, std::fabs(dot(dir, next.ng)), etaI, etaT);
+    if (T.maxChannel() < minThroughput_) return {};
+    media = after;
+    // Continue over the rest of the segment from just past this interface.
+    const Vec3f target = shadow.at(shadow.tMax);
+    ++counters.shadow;
+    shadow = ls.atInfinity ? spawnRay(next, dir, time) : spawnRayTo(next, target, time);
+  }
+  return {};
+}
+
+Rgb WhittedIntegrator::reflectRay(const Rgb& km, const ShadingPoint& sp, const Ray& ray,
+                                  const Branch& branch, RayCounters& counters) const {
   // Seed 000 §4.8: no ray when k_m is black, past the depth limit, or when the branch's
   // throughput is negligible.
-  const Rgb weight = throughput * km;
-  if (km.isBlack() || depth + 1 > scene_.render.maxDepth || weight.maxChannel() < kMinThroughput)
+  const Branch next{branch.depth + 1, branch.throughput * km, branch.media};
+  if (km.isBlack() || next.depth > scene_.render.maxDepth ||
+      next.throughput.maxChannel() < minThroughput_)
     return {};
   const Vec3f d = normalize(ray.d);
   const Vec3f n = faceForward(sp.ns, -d);
   ++counters.reflection;
-  return km * Li(spawnRay(sp, reflect(d, n), ray.time), depth + 1, weight, medium, counters);
+  return km * Li(spawnRay(sp, reflect(d, n), ray.time), next, counters);
 }
 
-Rgb WhittedIntegrator::shadeDielectric(const DielectricMaterial& m, const ShadingPoint& sp,
-                                       const Ray& ray, int depth, const Rgb& throughput,
+Rgb WhittedIntegrator::shadeDielectric(const Hit& hit, const DielectricMaterial& m,
+                                       const ShadingPoint& sp, const Ray& ray, const Branch& branch,
                                        RayCounters& counters) const {
-  if (depth + 1 > scene_.render.maxDepth) return {};
+  if (branch.depth + 1 > scene_.render.maxDepth) return {};
   const Vec3f d = normalize(ray.d);
-  // Inside or outside from the geometric normal and the ray, never the shading normal.
+  // Entering or leaving from the geometric normal and the ray, never the shading normal; the
+  // interior list says which medium lies on the other side.
+  const uint64_t key = objectKey(hit);
   const bool entering = dot(d, sp.ng) < 0;
-  const Vec3f n = entering ? sp.ng : -sp.ng;
-  const float etaI = entering ? 1.0f : m.ior, etaT = entering ? m.ior : 1.0f;
+  const Vec3f n = dot(d, sp.ng) < 0 ? sp.ng : -sp.ng;
+  const MediumStack across =
+      entering ? branch.media.entered(key, sp.materialId) : branch.media.left(key);
+  const float etaI = entering ? iorOutside(branch.media) : m.ior;
+  const float etaT = entering ? m.ior : iorOutside(across);
   const float cosI = -dot(d, n);
-  const float R = m.fresnel == FresnelModel::Exact ? fresnelDielectric(cosI, etaI, etaT)
-                                                   : fresnelSchlick(cosI, etaI, etaT);
-  // The reflected ray stays on the side it came from; the refracted one crosses.
-  const DielectricMaterial* sameSide = entering ? nullptr : &m;
-  const DielectricMaterial* otherSide = entering ? &m : nullptr;
+  const float R = fresnel(m, cosI, etaI, etaT);
+
   Rgb L;
-  const Rgb reflWeight = throughput * R;
-  if (reflWeight.maxChannel() >= kMinThroughput) {
+  const Branch reflected{branch.depth + 1, branch.throughput * R, branch.media};
+  if (reflected.throughput.maxChannel() >= minThroughput_) {
     ++counters.reflection;
-    L += R * Li(spawnRay(sp, reflect(d, n), ray.time), depth + 1, reflWeight, sameSide, counters);
+    L += R * Li(spawnRay(sp, reflect(d, n), ray.time), reflected, counters);
   }
   Vec3f t;
-  const Rgb transWeight = throughput * (1 - R);
-  if (R < 1 && transWeight.maxChannel() >= kMinThroughput && refract(d, n, etaI / etaT, t)) {
+  const Branch refracted{branch.depth + 1, branch.throughput * (1 - R), across};
+  if (R < 1 && refracted.throughput.maxChannel() >= minThroughput_ &&
+      refract(d, n, etaI / etaT, t)) {
     ++counters.refraction;
-    L += (1 - R) * Li(spawnRay(sp, t, ray.time), depth + 1, transWeight, otherSide, counters);
+    L += (1 - R) * Li(spawnRay(sp, t, ray.time), refracted, counters);
   }
   return L;
 }

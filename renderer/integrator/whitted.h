@@ -1,17 +1,19 @@
 #pragma once
 // Recursive ray tracing of seed 002 §9.1 Trace(r, d): local Phong / Blinn-Phong shading with
-// ambient light and shadows, ideal mirror reflection, and dielectrics with Fresnel, total
-// internal reflection and Beer's law. Materials are dispatched here and nowhere else.
+// ambient light and shadows (optionally transparent), ideal mirror reflection, and dielectrics
+// with Fresnel, total internal reflection, Beer's law and nesting. Materials are dispatched
+// here and nowhere else.
 #include "accel/accelerator.h"
 #include "core/rgb.h"
+#include "integrator/medium_stack.h"
 #include "integrator/ray_counters.h"
 #include "scene/scene.h"
 
 namespace glint {
 
-// A branch whose throughput falls below this (in every channel) is not traced further: it could
-// change its pixel by at most this much times the radiance behind it.
-inline constexpr float kMinThroughput = 1.0f / 1024.0f;
+// A branch whose throughput falls below this in every channel is not traced: it could change
+// its pixel by at most this much times the radiance behind it (docs/shading.md).
+inline constexpr float kDefaultMinThroughput = 1.0f / 1024.0f;
 
 struct Radiance {
   Rgb L;
@@ -20,24 +22,37 @@ struct Radiance {
 
 class WhittedIntegrator {
  public:
-  WhittedIntegrator(const Scene& scene, const Accelerator& accel) : scene_(scene), accel_(accel) {}
+  WhittedIntegrator(const Scene& scene, const Accelerator& accel,
+                    float minThroughput = kDefaultMinThroughput)
+      : scene_(scene), accel_(accel), minThroughput_(minThroughput) {}
 
   Radiance trace(const Ray& cameraRay, RayCounters& counters) const;
 
  private:
-  // `medium` is the dielectric the ray travels inside, or nullptr for the outside world.
-  Rgb Li(const Ray& ray, int depth, const Rgb& throughput, const DielectricMaterial* medium,
-         RayCounters& counters, bool* hitSomething = nullptr) const;
+  struct Branch {  // what travels with a ray down the recursion
+    int depth = 0;
+    Rgb throughput{1, 1, 1};
+    MediumStack media;
+  };
+
+  Rgb Li(const Ray& ray, const Branch& branch, RayCounters& counters,
+         bool* hitSomething = nullptr) const;
   Rgb shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo, float time,
                  RayCounters& counters) const;
-  Rgb reflectRay(const Rgb& km, const ShadingPoint& sp, const Ray& ray, int depth,
-                 const Rgb& throughput, const DielectricMaterial* medium,
+  // Fraction of a light's intensity that reaches sp along the shadow ray: 0 or 1, or with
+  // transparent shadows the product of the dielectric transmissions met on the way.
+  Rgb shadowTransmission(const ShadingPoint& sp, const LightSample& ls, float time,
+                         RayCounters& counters) const;
+  Rgb reflectRay(const Rgb& km, const ShadingPoint& sp, const Ray& ray, const Branch& branch,
                  RayCounters& counters) const;
-  Rgb shadeDielectric(const DielectricMaterial& m, const ShadingPoint& sp, const Ray& ray,
-                      int depth, const Rgb& throughput, RayCounters& counters) const;
+  Rgb shadeDielectric(const Hit& hit, const DielectricMaterial& m, const ShadingPoint& sp,
+                      const Ray& ray, const Branch& branch, RayCounters& counters) const;
+  float iorOutside(const MediumStack& media) const;
+  const DielectricMaterial* dielectric(uint32_t materialId) const;
 
   const Scene& scene_;
   const Accelerator& accel_;
+  float minThroughput_;
 };
 
 }  // namespace glint

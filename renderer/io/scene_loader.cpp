@@ -26,10 +26,7 @@ void parseRender(const JsonNode& n, RenderSettings& r) {
     parseSamplerKind(v->choice({"regular", "random", "stratified"}), r.sampler);
   r.background = n.color("background", r.background);
   r.ambient = n.color("ambient", r.ambient);
-  if (auto v = n.get("transparent_shadows")) {
-    r.transparentShadows = v->boolean();
-    if (r.transparentShadows) v->fail("transparent shadows are not supported yet");
-  }
+  if (auto v = n.get("transparent_shadows")) r.transparentShadows = v->boolean();
 }
 
 void parseCamera(const JsonNode& n, CameraDesc& c) {

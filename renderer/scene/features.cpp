@@ -13,7 +13,7 @@ std::vector<std::pair<const char*, bool>> table(const Features& f) {
           {"shadows", f.shadows},          {"specular", f.specular},
           {"reflection", f.reflection},    {"refraction", f.refraction},
           {"absorption", f.absorption},    {"textures", f.textures},
-          {"ambient", f.ambient}};
+          {"ambient", f.ambient},          {"transparent_shadows", f.transparentShadows}};
 }
 std::vector<std::string> pick(const Features& f, bool want) {
   std::vector<std::string> out;
@@ -48,6 +48,7 @@ Features computeFeatures(const Scene& scene) {
       f.absorption |= !(d->attenuation == Rgb{1, 1, 1});
     }
   }
+  f.transparentShadows = scene.render.transparentShadows && f.refraction && f.shadows;
   return f;
 }
 

@@ -18,6 +18,7 @@ struct Features {
   bool absorption = false;  // some dielectric with attenuation ≠ 1
   bool textures = false;    // some checker
   bool ambient = false;
+  bool transparentShadows = false;  // asked for and some dielectric can cast them
 
   std::vector<std::string> used() const;
   std::vector<std::string> leftOut() const;
