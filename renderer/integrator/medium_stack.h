@@ -12,9 +12,7 @@
 
 namespace glint {
 
-inline uint64_t objectKey(const Hit& hit) {
-  return (uint64_t(hit.instId) << 32) | hit.geomId;
-}
+inline uint64_t objectKey(const Hit& hit) { return (uint64_t(hit.instId) << 32) | hit.geomId; }
 
 class MediumStack {
  public:
