@@ -173,3 +173,26 @@ TEST(SceneParse, EveryBundledSceneLoads) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(SceneParse, MeshFilesInPlyAndGltf) {
+  // square.ply: the unit square as 2 triangles. triangle.gltf: one triangle (0,0,0), (2,0,0),
+  // (0,2,0) under a node translated by (0,0,1): node transforms are applied at load.
+  const Scene s = test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+    "materials": {"m": {"type": "phong"}}, "objects": [
+      {"type": "mesh", "file": ")" + std::string(GLINT_TEST_DATA) +
+                                      R"(/square.ply", "material": "m"},
+      {"type": "mesh", "file": ")" + std::string(GLINT_TEST_DATA) +
+                                      R"(/triangle.gltf", "material": "m"}]})");
+  ASSERT_EQ(s.meshes.size(), 2u);
+  EXPECT_EQ(s.meshes[0].triangleCount(), 2u);
+  EXPECT_EQ(s.meshes[0].bounds().hi, (Vec3f{1, 1, 0}));
+  ASSERT_EQ(s.meshes[1].triangleCount(), 1u);
+  EXPECT_EQ(s.meshes[1].bounds().lo, (Vec3f{0, 0, 1}));
+  EXPECT_EQ(s.meshes[1].bounds().hi, (Vec3f{2, 2, 1}));
+}
+
+}  // namespace
+}  // namespace glint
