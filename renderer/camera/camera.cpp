@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/sampling.h"
+
 namespace glint {
 
 Camera::Camera(const CameraDesc& desc, int width, int height)
@@ -23,7 +25,7 @@ Camera::Camera(const CameraDesc& desc, int width, int height)
   halfWidth_ = halfHeight_ * aspect;
 }
 
-Ray Camera::generateRay(float x, float y) const {
+Ray Camera::generateRay(float x, float y, Vec2f lens) const {
   // Seed 000 eq. 4.1 with l = −halfWidth, r = halfWidth, b = −halfHeight, t = halfHeight.
   const float su = -halfWidth_ + 2 * halfWidth_ * x / static_cast<float>(width_);
   const float sv = halfHeight_ - 2 * halfHeight_ * y / static_cast<float>(height_);
@@ -31,6 +33,15 @@ Ray Camera::generateRay(float x, float y) const {
   if (desc_.projection == Projection::Perspective) {
     ray.o = desc_.eye;
     ray.d = normalize(su * u_ + sv * v_ - w_);
+    if (hasLens()) {
+      // Thin lens: every ray through the lens point meets the pinhole ray on the focus plane,
+      // at distance focus_distance along the view direction −w.
+      const Vec2f l = desc_.lensShape == LensShape::Disk ? squareToDiskConcentric(lens)
+                                                         : Vec2f{2 * lens.x - 1, 2 * lens.y - 1};
+      const Vec3f pFocus = ray.o + (desc_.focusDistance / dot(ray.d, -w_)) * ray.d;
+      ray.o = desc_.eye + desc_.apertureRadius * (l.x * u_ + l.y * v_);
+      ray.d = normalize(pFocus - ray.o);
+    }
   } else {
     ray.o = desc_.eye + su * u_ + sv * v_;
     ray.d = -w_;

@@ -1,19 +1,22 @@
 #pragma once
 // Viewing rays of seed 000 §4.3: perspective (vertical field of view) and orthographic (view
-// height), with the camera frame u, v, w built from eye, look_at and up.
+// height), with the camera frame u, v, w built from eye, look_at and up; and the thin lens of
+// seed 000 §13.4.3 (aperture radius, focus distance; disk or square lens).
 #include "core/ray.h"
 
 namespace glint {
 
 enum class Projection { Perspective, Orthographic };
+enum class LensShape { Disk, Square };
 
 struct CameraDesc {
   Projection projection = Projection::Perspective;
   Vec3f eye{0, 0, 0}, lookAt{0, 0, -1}, up{0, 1, 0};
   float vfovDegrees = 40;
   float orthoHeight = 2;
-  float apertureRadius = 0;
+  float apertureRadius = 0;  // 0 = pinhole
   float focusDistance = 1;
+  LensShape lensShape = LensShape::Disk;
   float shutterOpen = 0, shutterClose = 0;
 };
 
@@ -23,8 +26,11 @@ class Camera {
   // Throws std::invalid_argument when eye == look_at or up is parallel to the view direction.
   Camera(const CameraDesc& desc, int width, int height);
 
-  // A ray through film position (x, y) in pixels, y down from the top edge.
-  Ray generateRay(float x, float y) const;
+  // A ray through film position (x, y) in pixels, y down from the top edge; `lens` in [0, 1)²
+  // picks the point on the lens (ignored by a pinhole, which takes the same code path as
+  // before the lens existed, so aperture 0 is the pinhole image bit for bit).
+  Ray generateRay(float x, float y, Vec2f lens = {0.5f, 0.5f}) const;
+  bool hasLens() const { return desc_.apertureRadius > 0; }
 
   const CameraDesc& desc() const { return desc_; }
   Vec3f u() const { return u_; }

@@ -19,8 +19,14 @@ enum class SamplerKind {
 std::string_view samplerName(SamplerKind);
 bool parseSamplerKind(std::string_view name, SamplerKind& out);
 
-// Dimensions are named, so adding an effect never shifts another effect's numbers.
-enum class Dim : uint32_t { Pixel = 0, Lens = 1, Time = 2, LightBase = 16 };
+// Dimensions are named, so adding an effect never shifts another effect's numbers. Effects that
+// recur along a path (lights, gloss) take the bounce depth and an index into their key.
+enum class Dim : uint32_t { Pixel = 0, Lens = 1, Time = 2, Light = 3, Gloss = 4 };
+
+constexpr uint32_t dimension(Dim kind, int depth = 0, int index = 0) {
+  return static_cast<uint32_t>(kind) | (static_cast<uint32_t>(depth) << 8) |
+         (static_cast<uint32_t>(index) << 16);
+}
 
 class Sampler {
  public:

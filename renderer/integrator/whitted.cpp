@@ -11,6 +11,14 @@ namespace {
 // Shadow rays give up after this many dielectric interfaces and count the light as blocked.
 constexpr int kMaxShadowInterfaces = 64;
 
+// Seed 000 §13.4.4: perturb a unit direction r over a square of width `a` orthogonal to r.
+Vec3f perturb(const Vec3f& r, float a, Vec2f u) {
+  const Vec3f helper = std::fabs(r.x) > 0.9f ? Vec3f{0, 1, 0} : Vec3f{1, 0, 0};
+  const Vec3f e1 = normalize(cross(r, helper));
+  const Vec3f e2 = cross(r, e1);
+  return normalize(r + (a * (u.x - 0.5f)) * e1 + (a * (u.y - 0.5f)) * e2);
+}
+
 float fresnel(const DielectricMaterial& m, float cosI, float etaI, float etaT) {
   return m.fresnel == FresnelModel::Exact ? fresnelDielectric(cosI, etaI, etaT)
                                           : fresnelSchlick(cosI, etaI, etaT);
@@ -26,11 +34,14 @@ float WhittedIntegrator::iorOutside(const MediumStack& media) const {
   return media.empty() ? 1.0f : dielectric(media.innermostMaterial())->ior;
 }
 
-Radiance WhittedIntegrator::trace(const Ray& cameraRay, RayCounters& counters) const {
+Radiance WhittedIntegrator::trace(const Ray& cameraRay, const SampleKey& key,
+                                  RayCounters& counters) const {
   ++counters.camera;
   bool hit = false;
   Radiance r;
-  r.L = Li(cameraRay, Branch{}, counters, &hit);
+  Branch root;
+  root.key = &key;
+  r.L = Li(cameraRay, root, counters, &hit);
   r.alpha = hit ? 1.0f : 0.0f;
   return r;
 }
@@ -50,10 +61,10 @@ Rgb WhittedIntegrator::Li(const Ray& ray, const Branch& branch, RayCounters& cou
   const Material& material = scene_.materials[sp.materialId].material;
   Rgb L;
   if (const auto* phong = std::get_if<PhongMaterial>(&material)) {
-    L = shadePhong(*phong, sp, normalize(-ray.d), ray.time, counters);
-    L += reflectRay(phong->km, sp, ray, branch, counters);
+    L = shadePhong(*phong, sp, normalize(-ray.d), ray.time, branch, counters);
+    L += reflectRay(phong->km, phong->gloss, sp, ray, branch, counters);
   } else if (const auto* mirror = std::get_if<MirrorMaterial>(&material)) {
-    L = reflectRay(mirror->km, sp, ray, branch, counters);
+    L = reflectRay(mirror->km, mirror->gloss, sp, ray, branch, counters);
   } else {
     L = shadeDielectric(hit, std::get<DielectricMaterial>(material), sp, ray, branch, counters);
   }
@@ -61,25 +72,37 @@ Rgb WhittedIntegrator::Li(const Ray& ray, const Branch& branch, RayCounters& cou
 }
 
 Rgb WhittedIntegrator::shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo,
-                                  float time, RayCounters& counters) const {
+                                  float time, const Branch& branch, RayCounters& counters) const {
   // Seed 000 eq. 4.4 / seed 001 §5: surfaces are two-sided, so the normal faces the viewer.
   const Vec3f n = faceForward(sp.ns, wo);
   const Rgb kd = m.kd.eval(sp.p);
   Rgb L = m.ka.eval(sp.p) * scene_.render.ambient;
-  for (const Light& light : scene_.lights) {
-    const LightSample ls = sampleLight(light, sp.p);
-    const float cosL = dot(n, ls.wi);
-    if (cosL <= 0) continue;
-    const Rgb visible = shadowTransmission(sp, ls, time, counters);
-    if (visible.isBlack()) continue;
-    Rgb f = kd * cosL;
-    if (!m.ks.isBlack()) {
-      const float spec = m.specularModel == SpecularModel::BlinnPhong
-                             ? dot(n, normalize(ls.wi + wo))
-                             : dot(reflect(-ls.wi, n), wo);
-      f += m.ks * std::pow(std::max(0.0f, spec), m.exponent);
+  for (size_t li = 0; li < scene_.lights.size(); ++li) {
+    const Light& light = scene_.lights[li];
+    // Delta lights take one shadow ray and draw no sample; area lights average `samples`
+    // points from their own stratified, shuffled set (seed 000 §13.4.2).
+    const int count = lightSampleCount(light);
+    const bool delta = std::holds_alternative<PointLight>(light) ||
+                       std::holds_alternative<DirectionalLight>(light);
+    const uint32_t dim = dimension(Dim::Light, branch.depth, static_cast<int>(li));
+    Rgb sum;
+    for (int j = 0; j < count; ++j) {
+      const Vec2f u = delta ? Vec2f{0.5f, 0.5f} : branch.key->get2D(dim, j, count);
+      const LightSample ls = sampleLight(light, sp.p, u);
+      const float cosL = dot(n, ls.wi);
+      if (cosL <= 0 || ls.intensity.isBlack()) continue;
+      const Rgb visible = shadowTransmission(sp, ls, time, counters);
+      if (visible.isBlack()) continue;
+      Rgb f = kd * cosL;
+      if (!m.ks.isBlack()) {
+        const float spec = m.specularModel == SpecularModel::BlinnPhong
+                               ? dot(n, normalize(ls.wi + wo))
+                               : dot(reflect(-ls.wi, n), wo);
+        f += m.ks * std::pow(std::max(0.0f, spec), m.exponent);
+      }
+      sum += f * ls.intensity * visible;
     }
-    L += f * ls.intensity * visible;
+    L += count == 1 ? sum : sum * (1.0f / static_cast<float>(count));
   }
   return L;
 }
@@ -120,18 +143,25 @@ Rgb WhittedIntegrator::shadowTransmission(const ShadingPoint& sp, const LightSam
   return {};
 }
 
-Rgb WhittedIntegrator::reflectRay(const Rgb& km, const ShadingPoint& sp, const Ray& ray,
-                                  const Branch& branch, RayCounters& counters) const {
+Rgb WhittedIntegrator::reflectRay(const Rgb& km, float gloss, const ShadingPoint& sp,
+                                  const Ray& ray, const Branch& branch,
+                                  RayCounters& counters) const {
   // Seed 000 §4.8: no ray when k_m is black, past the depth limit, or when the branch's
   // throughput is negligible.
-  const Branch next{branch.depth + 1, branch.throughput * km, branch.media};
+  const Branch next = branch.next(km, branch.media);
   if (km.isBlack() || next.depth > scene_.render.maxDepth ||
       next.throughput.maxChannel() < minThroughput_)
     return {};
   const Vec3f d = normalize(ray.d);
   const Vec3f n = faceForward(sp.ns, -d);
+  Vec3f r = reflect(d, n);
+  if (gloss > 0) {
+    // Glossy reflection (seed 000 §13.4.4): a perturbed ray below the surface returns black.
+    r = perturb(r, gloss, branch.key->get2D(dimension(Dim::Gloss, branch.depth)));
+    if (dot(r, n) <= 0) return {};
+  }
   ++counters.reflection;
-  return km * Li(spawnRay(sp, reflect(d, n), ray.time), next, counters);
+  return km * Li(spawnRay(sp, r, ray.time), next, counters);
 }
 
 Rgb WhittedIntegrator::shadeDielectric(const Hit& hit, const DielectricMaterial& m,
@@ -152,15 +182,21 @@ Rgb WhittedIntegrator::shadeDielectric(const Hit& hit, const DielectricMaterial&
   const float R = fresnel(m, cosI, etaI, etaT);
 
   Rgb L;
-  const Branch reflected{branch.depth + 1, branch.throughput * R, branch.media};
+  const Branch reflected = branch.next(Rgb{R, R, R}, branch.media);
   if (reflected.throughput.maxChannel() >= minThroughput_) {
     ++counters.reflection;
     L += R * Li(spawnRay(sp, reflect(d, n), ray.time), reflected, counters);
   }
   Vec3f t;
-  const Branch refracted{branch.depth + 1, branch.throughput * (1 - R), across};
+  const Branch refracted = branch.next(Rgb{1 - R, 1 - R, 1 - R}, across);
   if (R < 1 && refracted.throughput.maxChannel() >= minThroughput_ &&
       refract(d, n, etaI / etaT, t)) {
+    if (m.blur > 0) {
+      // Blurred translucency (seed 002 §9.3): the same square perturbation around t; a ray
+      // that ends up on the incoming side returns black.
+      t = perturb(t, m.blur, branch.key->get2D(dimension(Dim::Gloss, branch.depth, 1)));
+      if (dot(t, n) >= 0) return L;
+    }
     ++counters.refraction;
     L += (1 - R) * Li(spawnRay(sp, t, ray.time), refracted, counters);
   }

@@ -5,6 +5,7 @@
 // here and nowhere else.
 #include "accel/accelerator.h"
 #include "core/rgb.h"
+#include "core/sampler.h"
 #include "integrator/medium_stack.h"
 #include "integrator/ray_counters.h"
 #include "scene/scene.h"
@@ -14,6 +15,16 @@ namespace glint {
 // A branch whose throughput falls below this in every channel is not traced: it could change
 // its pixel by at most this much times the radiance behind it (docs/shading.md).
 inline constexpr float kDefaultMinThroughput = 1.0f / 1024.0f;
+
+// Which camera sample is being traced: keys every random number drawn along its paths.
+struct SampleKey {
+  const Sampler* sampler = nullptr;
+  int px = 0, py = 0, index = 0;
+
+  Vec2f get2D(uint32_t dim, int sub = 0, int count = 1) const {
+    return sampler->get2D(px, py, index, dim, sub, count);
+  }
+};
 
 struct Radiance {
   Rgb L;
@@ -26,25 +37,30 @@ class WhittedIntegrator {
                     float minThroughput = kDefaultMinThroughput)
       : scene_(scene), accel_(accel), minThroughput_(minThroughput) {}
 
-  Radiance trace(const Ray& cameraRay, RayCounters& counters) const;
+  Radiance trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters) const;
 
  private:
   struct Branch {  // what travels with a ray down the recursion
     int depth = 0;
     Rgb throughput{1, 1, 1};
     MediumStack media;
+    const SampleKey* key = nullptr;
+
+    Branch next(const Rgb& weight, const MediumStack& m) const {
+      return {depth + 1, throughput * weight, m, key};
+    }
   };
 
   Rgb Li(const Ray& ray, const Branch& branch, RayCounters& counters,
          bool* hitSomething = nullptr) const;
   Rgb shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo, float time,
-                 RayCounters& counters) const;
+                 const Branch& branch, RayCounters& counters) const;
   // Fraction of a light's intensity that reaches sp along the shadow ray: 0 or 1, or with
   // transparent shadows the product of the dielectric transmissions met on the way.
   Rgb shadowTransmission(const ShadingPoint& sp, const LightSample& ls, float time,
                          RayCounters& counters) const;
-  Rgb reflectRay(const Rgb& km, const ShadingPoint& sp, const Ray& ray, const Branch& branch,
-                 RayCounters& counters) const;
+  Rgb reflectRay(const Rgb& km, float gloss, const ShadingPoint& sp, const Ray& ray,
+                 const Branch& branch, RayCounters& counters) const;
   Rgb shadeDielectric(const Hit& hit, const DielectricMaterial& m, const ShadingPoint& sp,
                       const Ray& ray, const Branch& branch, RayCounters& counters) const;
   float iorOutside(const MediumStack& media) const;

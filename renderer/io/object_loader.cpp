@@ -135,7 +135,7 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
   Scene& s = b.scene;
   const std::string type = obj.at("type").choice(
       {"sphere", "plane", "quad", "box", "triangle", "polygon", "mesh", "instance"});
-  if (auto m = obj.get("motion")) m->fail("motion blur is not supported yet");
+  if (auto m = obj.get("motion")) m->fail("motion blur is not supported yet (a later release)");
   const Transform xf = obj.has("transform") ? parseTransform(obj.at("transform")) : Transform{};
 
   if (type == "instance") {

@@ -10,10 +10,6 @@ namespace glint {
 
 namespace {
 
-[[noreturn]] void notYet(const JsonNode& n, const std::string& what) {
-  n.fail(what + " is not supported yet (it arrives with the distribution ray tracing work)");
-}
-
 void parseRender(const JsonNode& n, RenderSettings& r) {
   n.checkKeys({"width", "height", "spp", "max_depth", "seed", "sampler", "background", "ambient",
                "transparent_shadows"});
@@ -44,10 +40,9 @@ void parseCamera(const JsonNode& n, CameraDesc& c) {
   c.eye = n.at("eye").vec3();
   c.lookAt = n.at("look_at").vec3();
   c.up = n.vec3("up", {0, 1, 0});
-  if (auto v = n.get("aperture_radius")) {
-    c.apertureRadius = v->number(0, 3.4e38f);
-    if (c.apertureRadius > 0) notYet(*v, "depth of field");
-  }
+  if (auto v = n.get("aperture_radius")) c.apertureRadius = v->number(0, 3.4e38f);
+  if (auto v = n.get("lens"))
+    c.lensShape = v->choice({"disk", "square"}) == "disk" ? LensShape::Disk : LensShape::Square;
   c.focusDistance = length(c.lookAt - c.eye);
   if (auto v = n.get("focus_distance")) c.focusDistance = v->number(0, 3.4e38f, true);
   if (auto v = n.get("shutter")) {
@@ -94,20 +89,14 @@ Material parseMaterial(const JsonNode& n) {
     if (auto v = n.get("specular_model"))
       m.specularModel = v->choice({"blinn", "phong"}) == "blinn" ? SpecularModel::BlinnPhong
                                                                  : SpecularModel::Phong;
-    if (auto v = n.get("gloss")) {
-      m.gloss = v->number(0, 3.4e38f);
-      if (m.gloss > 0) notYet(*v, "glossy reflection");
-    }
+    if (auto v = n.get("gloss")) m.gloss = v->number(0, 3.4e38f);
     return m;
   }
   if (type == "mirror") {
     n.checkKeys({"type", "km", "gloss"});
     MirrorMaterial m;
     m.km = n.color("km", m.km);
-    if (auto v = n.get("gloss")) {
-      m.gloss = v->number(0, 3.4e38f);
-      if (m.gloss > 0) notYet(*v, "glossy reflection");
-    }
+    if (auto v = n.get("gloss")) m.gloss = v->number(0, 3.4e38f);
     return m;
   }
   n.checkKeys({"type", "ior", "attenuation", "fresnel", "blur"});
@@ -120,10 +109,7 @@ Material parseMaterial(const JsonNode& n) {
   if (auto v = n.get("fresnel"))
     m.fresnel =
         v->choice({"exact", "schlick"}) == "exact" ? FresnelModel::Exact : FresnelModel::Schlick;
-  if (auto v = n.get("blur")) {
-    m.blur = v->number(0, 3.4e38f);
-    if (m.blur > 0) notYet(*v, "blurred translucency");
-  }
+  if (auto v = n.get("blur")) m.blur = v->number(0, 3.4e38f);
   return m;
 }
 
@@ -146,7 +132,37 @@ Light parseLight(const JsonNode& n) {
     l.intensity = n.color("intensity", l.intensity);
     return l;
   }
-  notYet(n.at("type"), "the " + type + " area light");
+  const auto common = [&](auto& l) {
+    l.intensity = n.color("intensity", l.intensity);
+    if (auto v = n.get("samples")) l.samples = v->integer(1, 1 << 16);
+    if (auto v = n.get("falloff"))
+      l.falloff =
+          v->choice({"none", "inverse_square"}) == "none" ? Falloff::None : Falloff::InverseSquare;
+    if (auto v = n.get("emission"))
+      l.emission = v->choice({"seed", "radiance"}) == "seed" ? Emission::Seed : Emission::Radiance;
+    if (l.emission == Emission::Radiance && n.has("falloff"))
+      n.at("falloff").fail("radiance emission always falls off with 1/r²; remove \"falloff\"");
+  };
+  if (type == "quad") {
+    n.checkKeys(
+        {"type", "corner", "edge1", "edge2", "intensity", "samples", "falloff", "emission"});
+    QuadLight l;
+    l.corner = n.at("corner").vec3();
+    l.edge1 = n.at("edge1").vec3();
+    l.edge2 = n.at("edge2").vec3();
+    if (!(length(cross(l.edge1, l.edge2)) > 0))
+      n.fail("edge1 and edge2 must span a parallelogram (they are parallel or zero)");
+    common(l);
+    return l;
+  }
+  n.checkKeys(
+      {"type", "center", "normal", "radius", "intensity", "samples", "falloff", "emission"});
+  DiskLight l;
+  l.center = n.at("center").vec3();
+  l.normal = n.at("normal").direction();
+  l.radius = n.at("radius").number(0, 3.4e38f, true);
+  common(l);
+  return l;
 }
 
 void parseScene(SceneBuilder& b, const JsonNode& root) {

@@ -38,10 +38,13 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
       for (int x = tile.x0; x < tile.x1; ++x) {
         double sum[4] = {0, 0, 0, 0};
         for (int s = 0; s < rs.spp; ++s) {
+          const SampleKey key{&sampler, x, y, s};
           const Vec2f u = sampler.pixelSample(x, y, s);
+          // The lens dimension is drawn only when there is a lens (leave out what is unused).
+          const Vec2f lens = camera.hasLens() ? key.get2D(dimension(Dim::Lens)) : Vec2f{};
           const Ray ray =
-              camera.generateRay(static_cast<float>(x) + u.x, static_cast<float>(y) + u.y);
-          const Radiance r = integrator.trace(ray, counters);
+              camera.generateRay(static_cast<float>(x) + u.x, static_cast<float>(y) + u.y, lens);
+          const Radiance r = integrator.trace(ray, key, counters);
           if (!r.L.isFinite()) {
             // A non-finite sample never reaches the film: it counts as black.
             ++counters.nonfiniteSamples;

@@ -8,12 +8,21 @@ namespace glint {
 
 namespace {
 std::vector<std::pair<const char*, bool>> table(const Features& f) {
-  return {{"instancing", f.instancing},    {"planes", f.planes},
-          {"point_lights", f.pointLights}, {"directional_lights", f.directionalLights},
-          {"shadows", f.shadows},          {"specular", f.specular},
-          {"reflection", f.reflection},    {"refraction", f.refraction},
-          {"absorption", f.absorption},    {"textures", f.textures},
-          {"ambient", f.ambient},          {"transparent_shadows", f.transparentShadows}};
+  return {{"instancing", f.instancing},
+          {"planes", f.planes},
+          {"point_lights", f.pointLights},
+          {"directional_lights", f.directionalLights},
+          {"area_lights", f.areaLights},
+          {"depth_of_field", f.depthOfField},
+          {"gloss", f.gloss},
+          {"shadows", f.shadows},
+          {"specular", f.specular},
+          {"reflection", f.reflection},
+          {"refraction", f.refraction},
+          {"absorption", f.absorption},
+          {"textures", f.textures},
+          {"ambient", f.ambient},
+          {"transparent_shadows", f.transparentShadows}};
 }
 std::vector<std::string> pick(const Features& f, bool want) {
   std::vector<std::string> out;
@@ -33,19 +42,25 @@ Features computeFeatures(const Scene& scene) {
   for (const auto& l : scene.lights) {
     if (std::holds_alternative<PointLight>(l)) f.pointLights = true;
     if (std::holds_alternative<DirectionalLight>(l)) f.directionalLights = true;
+    if (std::holds_alternative<QuadLight>(l) || std::holds_alternative<DiskLight>(l))
+      f.areaLights = true;
   }
   f.shadows = !scene.lights.empty();
   f.ambient = !scene.render.ambient.isBlack();
+  f.depthOfField = scene.cameraDesc.apertureRadius > 0;
   for (const auto& nm : scene.materials) {
     if (const auto* ph = std::get_if<PhongMaterial>(&nm.material)) {
       f.specular |= !ph->ks.isBlack();
       f.reflection |= !ph->km.isBlack();
+      f.gloss |= !ph->km.isBlack() && ph->gloss > 0;
       f.textures |= ph->kd.checker || ph->ka.checker;
     } else if (const auto* m = std::get_if<MirrorMaterial>(&nm.material)) {
       f.reflection |= !m->km.isBlack();
+      f.gloss |= !m->km.isBlack() && m->gloss > 0;
     } else if (const auto* d = std::get_if<DielectricMaterial>(&nm.material)) {
       f.refraction = f.reflection = true;
       f.absorption |= !(d->attenuation == Rgb{1, 1, 1});
+      f.gloss |= d->blur > 0;
     }
   }
   f.transparentShadows = scene.render.transparentShadows && f.refraction && f.shadows;

@@ -11,6 +11,9 @@ struct Features {
   bool planes = false;
   bool pointLights = false;
   bool directionalLights = false;
+  bool areaLights = false;
+  bool depthOfField = false;
+  bool gloss = false;  // glossy reflection or blurred translucency
   bool shadows = false;
   bool specular = false;    // some Phong material has ks ≠ 0
   bool reflection = false;  // some material has km ≠ 0

@@ -13,7 +13,10 @@ struct Traced {
   std::unique_ptr<Accelerator> accel;
   Rgb trace(const Ray& ray, float minThroughput = kDefaultMinThroughput) const {
     RayCounters counters;
-    return WhittedIntegrator(scene, *accel, minThroughput).trace(ray, counters).L;
+    const Sampler sampler(SamplerKind::Stratified, 1, 0);
+    return WhittedIntegrator(scene, *accel, minThroughput)
+        .trace(ray, SampleKey{&sampler, 0, 0, 0}, counters)
+        .L;
   }
 };
 
@@ -187,11 +190,12 @@ TEST(Shading, GlassSphereConservesEnergy) {
   const auto accel = makeAccelerator(AccelKind::Embree, s);
   const WhittedIntegrator integrator(s, *accel, 0);
   RayCounters counters;
+  const Sampler sampler(SamplerKind::Stratified, 1, 0);
   float maxL = 0;
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) {
       Ray r = rayTo({0, 0, 4}, {-1.2f + 2.4f * float(x) / 63, -1.2f + 2.4f * float(y) / 63, 0});
-      const Rgb L = integrator.trace(r, counters).L;
+      const Rgb L = integrator.trace(r, SampleKey{&sampler, x, y, 0}, counters).L;
       maxL = std::max(maxL, L.maxChannel());
     }
   EXPECT_LE(maxL, 1.0f + 1e-4f);

@@ -109,12 +109,12 @@ TEST(SceneError, DegenerateShapesAndTransforms) {
 
 TEST(SceneError, UnbuiltFeaturesAreRefusedNotIgnored) {
   // A scene asking for an effect Glint cannot render yet must not render silently without it.
-  const std::string msg = errorOf(
-      "{\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0], \"aperture_radius\": 0.1},"
-      " \"objects\": []}");
+  const std::string msg = errorOf(std::string(kHead) +
+                                  "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0,0], "
+                                  "\"radius\": 1, \"material\": \"red\",\n"
+                                  "\"motion\": {\"center\": [[0,0,0], [1,0,0]]}}]}");
   EXPECT_EQ(msg,
-            "scene.json:1: camera.aperture_radius: depth of field is not supported yet (it "
-            "arrives with the distribution ray tracing work)");
+            "scene.json:5: objects[0].motion: motion blur is not supported yet (a later release)");
 }
 
 }  // namespace
