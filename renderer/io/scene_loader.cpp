@@ -30,8 +30,8 @@ void parseCamera(const JsonNode& n, CameraDesc& c) {
       n.has("type") ? n.at("type").choice({"perspective", "orthographic"}) : "perspective";
   c.projection = type == "perspective" ? Projection::Perspective : Projection::Orthographic;
   if (c.projection == Projection::Perspective) {
-    n.checkKeys(
-        {"type", "eye", "look_at", "up", "vfov", "aperture_radius", "focus_distance", "shutter"});
+    n.checkKeys({"type", "eye", "look_at", "up", "vfov", "aperture_radius", "focus_distance",
+                 "lens", "shutter"});
     if (auto v = n.get("vfov")) c.vfovDegrees = v->number(0, 179.9f, true);
   } else {
     n.checkKeys({"type", "eye", "look_at", "up", "height", "shutter"});
