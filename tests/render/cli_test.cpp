@@ -12,12 +12,17 @@ namespace {
 namespace fs = std::filesystem;
 using test::runGlint;
 
+// Every effect Glint has, so that determinism covers every sample dimension.
 const char* kSmallScene = R"({
-  "render": {"width": 40, "height": 30, "spp": 4, "seed": 3},
-  "camera": {"eye": [0,1,4], "look_at": [0,0.5,0]},
-  "materials": {"m": {"type": "phong", "kd": [0.7,0.3,0.2], "ks": [0.3,0.3,0.3]},
-                "g": {"type": "dielectric"}, "c": {"type": "mirror"}},
-  "lights": [{"type": "point", "position": [2,4,3]}],
+  "render": {"width": 40, "height": 30, "spp": 4, "seed": 3, "transparent_shadows": true},
+  "camera": {"eye": [0,1,4], "look_at": [0,0.5,0], "aperture_radius": 0.05},
+  "materials": {"m": {"type": "phong", "kd": [0.7,0.3,0.2], "ks": [0.3,0.3,0.3],
+                      "km": [0.2,0.2,0.2], "gloss": 0.2},
+                "g": {"type": "dielectric", "blur": 0.1}, "c": {"type": "mirror", "gloss": 0.05}},
+  "lights": [{"type": "point", "position": [2,4,3]},
+             {"type": "quad", "corner": [-1,3,0], "edge1": [0.5,0,0], "edge2": [0,0,0.5], "samples": 3},
+             {"type": "disk", "center": [0,3,2], "normal": [0,-1,0], "radius": 0.3,
+              "emission": "radiance", "samples": 2}],
   "objects": [{"type": "plane", "point": [0,0,0], "normal": [0,1,0], "material": "m"},
               {"type": "sphere", "center": [-0.6,0.5,0], "radius": 0.5, "material": "g"},
               {"type": "sphere", "center": [0.6,0.5,0], "radius": 0.5, "material": "c"}]})";
@@ -76,10 +81,10 @@ TEST(Cli, FailedWriteLeavesThePreviousFileAndNoTemporaries) {
 TEST(Cli, SameImageForAnyThreadCountTileSizeAndCrop) {
   const std::string scene = test::writeTemp("det.json", kSmallScene);
   const auto path = [](const char* n) { return (test::tempDir() / n).string(); };
-  ASSERT_EQ(runGlint("render " + scene + " --quiet --threads 1 --tile-size 32 -o " + path("a.exr"))
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --threads 1 --tile-size 64 -o " + path("a.exr"))
                 .exitCode,
             0);
-  ASSERT_EQ(runGlint("render " + scene + " --quiet --threads 2 --tile-size 7 -o " + path("b.exr"))
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --threads 2 --tile-size 8 -o " + path("b.exr"))
                 .exitCode,
             0);
   ASSERT_EQ(runGlint("render " + scene + " --quiet --crop 5 25 3 17 -o " + path("c.exr")).exitCode,
@@ -101,7 +106,7 @@ TEST(Cli, SameImageForAnyThreadCountTileSizeAndCrop) {
 
 TEST(Cli, BruteForceRendersTheSameImage) {
   // Both backends share every intersection routine except triangles and traversal; on this
-  // scene (no triangles) they must agree exactly.
+  // scene (no triangles) they must agree exactly, for every sampled effect too.
   const std::string scene = test::writeTemp("backends.json", kSmallScene);
   const auto path = [](const char* n) { return (test::tempDir() / n).string(); };
   ASSERT_EQ(runGlint("render " + scene + " --quiet --accel brute -o " + path("brute.exr")).exitCode,
