@@ -21,12 +21,13 @@ void BruteForce::intersectGroup(uint32_t groupId, const Ray& ray, uint32_t instI
       case GeomKind::Mesh: {
         const TriangleMesh& m = scene_.meshes[g.index];
         for (uint32_t tri = 0; tri < m.triangleCount(); ++tri)
-          record(intersectTriangle(m.vertex(tri, 0), m.vertex(tri, 1), m.vertex(tri, 2), r, u, v),
+          record(intersectTriangle(m.vertexAt(tri, 0, r.time), m.vertexAt(tri, 1, r.time),
+                                   m.vertexAt(tri, 2, r.time), r, u, v),
                  tri);
         break;
       }
       case GeomKind::Sphere:
-        record(intersectSphere(scene_.spheres[g.index], r), 0);
+        record(intersectSphere(scene_.sphereAt(g.index, r.time), r), 0);
         break;
       case GeomKind::Quad:
         record(intersectQuad(scene_.quads[g.index], r, u, v), 0);
@@ -36,7 +37,7 @@ void BruteForce::intersectGroup(uint32_t groupId, const Ray& ray, uint32_t instI
       case GeomKind::Instance: {
         // Same convention as Embree: the instanced ray keeps t, so d is not renormalised.
         const Instance& inst = scene_.instances[g.index];
-        const Transform objectFromWorld = inst.worldFromObject.inverse();
+        const Transform objectFromWorld = inst.transformAt(r.time).inverse();
         Ray local = r;
         local.o = objectFromWorld.point(r.o);
         local.d = objectFromWorld.vector(r.d);

@@ -6,6 +6,8 @@
 #include "core/error.h"
 #include "scene/scene.h"
 
+#include <embree3/rtcore_quaternion.h>
+
 namespace glint {
 
 namespace {
@@ -51,8 +53,8 @@ std::string embreeVersionString() {
 
 struct EmbreeAccel::UserShape {
   GeomKind kind;
-  const Sphere* sphere = nullptr;
-  const Quad* quad = nullptr;
+  const Scene* scene = nullptr;
+  uint32_t index = 0;  // into scene->spheres or scene->quads
 };
 
 namespace {
@@ -68,13 +70,22 @@ Ray toRay(RTCRayN* rays, unsigned N, unsigned i) {
 }
 
 float intersectUser(const EmbreeAccel::UserShape& s, const Ray& r, float& u, float& v) {
-  if (s.kind == GeomKind::Sphere) return intersectSphere(*s.sphere, r);
-  return intersectQuad(*s.quad, r, u, v);
+  if (s.kind == GeomKind::Sphere) return intersectSphere(s.scene->sphereAt(s.index, r.time), r);
+  return intersectQuad(s.scene->quads[s.index], r, u, v);
 }
 
 void userBounds(const RTCBoundsFunctionArguments* args) {
   const auto& s = *static_cast<const EmbreeAccel::UserShape*>(args->geometryUserPtr);
-  const Bounds3f b = s.kind == GeomKind::Sphere ? bounds(*s.sphere) : bounds(*s.quad);
+  Bounds3f b;
+  if (s.kind == GeomKind::Sphere) {
+    // Moving spheres: Embree asks for the bounds at each time step and interpolates them
+    // linearly, which contains a sphere whose centre moves linearly between the keys.
+    const auto& keys = s.scene->sphereCenterKeys[s.index];
+    const Sphere& sphere = s.scene->spheres[s.index];
+    b = bounds(keys.empty() ? sphere : Sphere{keys[args->timeStep], sphere.radius});
+  } else {
+    b = bounds(s.scene->quads[s.index]);
+  }
   *args->bounds_o = {b.lo.x, b.lo.y, b.lo.z, 0, b.hi.x, b.hi.y, b.hi.z, 0};
 }
 
@@ -135,21 +146,28 @@ RTCScene EmbreeAccel::buildGroup(uint32_t groupId) {
       case GeomKind::Mesh: {
         const TriangleMesh& m = scene_.meshes[g.index];
         geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                   m.positions.data(), 0, sizeof(Vec3f), m.positions.size());
+        if (m.deforming()) {
+          // One vertex buffer per key; Embree interpolates linearly at ray.time.
+          rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(m.positionKeys.size()));
+          for (unsigned k = 0; k < m.positionKeys.size(); ++k)
+            rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, k, RTC_FORMAT_FLOAT3,
+                                       m.positionKeys[k].data(), 0, sizeof(Vec3f),
+                                       m.positionKeys[k].size());
+        } else {
+          rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                     m.positions.data(), 0, sizeof(Vec3f), m.positions.size());
+        }
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                    m.indices.data(), 0, 3 * sizeof(uint32_t), m.triangleCount());
         break;
       }
       case GeomKind::Sphere:
       case GeomKind::Quad: {
-        auto shape = std::make_unique<UserShape>();
-        shape->kind = g.kind;
-        if (g.kind == GeomKind::Sphere)
-          shape->sphere = &scene_.spheres[g.index];
-        else
-          shape->quad = &scene_.quads[g.index];
+        auto shape = std::make_unique<UserShape>(UserShape{g.kind, &scene_, g.index});
         geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+        // Time steps only for what moves: a static scene gets none.
+        if (const size_t steps = scene_.timeSteps(g); steps > 1)
+          rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(steps));
         rtcSetGeometryUserPrimitiveCount(geom, 1);
         rtcSetGeometryUserData(geom, shape.get());
         rtcSetGeometryBoundsFunction(geom, userBounds, nullptr);
@@ -164,8 +182,25 @@ RTCScene EmbreeAccel::buildGroup(uint32_t groupId) {
         const Instance& inst = scene_.instances[g.index];
         geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(geom, groupScenes_[inst.groupId]);
-        rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR,
-                                inst.worldFromObject.matrix().m.data());
+        if (inst.motion.empty()) {
+          rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR,
+                                  inst.worldFromObject.matrix().m.data());
+          break;
+        }
+        // Quaternion motion: Embree interpolates scale and translation linearly and the
+        // rotation by slerp, the same as Instance::transformAt.
+        rtcSetGeometryTimeStepCount(geom, static_cast<unsigned>(inst.motion.size()));
+        for (unsigned k = 0; k < inst.motion.size(); ++k) {
+          const TrsKey& key = inst.motion[k];
+          RTCQuaternionDecomposition qd;
+          rtcInitQuaternionDecomposition(&qd);
+          rtcQuaternionDecompositionSetScale(&qd, key.scale.x, key.scale.y, key.scale.z);
+          rtcQuaternionDecompositionSetQuaternion(&qd, key.rotation.w, key.rotation.x,
+                                                  key.rotation.y, key.rotation.z);
+          rtcQuaternionDecompositionSetTranslation(&qd, key.translation.x, key.translation.y,
+                                                   key.translation.z);
+          rtcSetGeometryTransformQuaternion(geom, k, &qd);
+        }
         break;
       }
     }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/bounds.h"
+#include "core/motion.h"
 #include "core/vec.h"
 
 namespace glint {
@@ -12,18 +13,37 @@ namespace glint {
 struct TriangleMesh {
   std::vector<Vec3f> positions;   // capacity ≥ size + 1: see padForEmbree()
   std::vector<uint32_t> indices;  // 3 per triangle
+  // A deforming mesh: positions at K ≥ 2 keys spread evenly over [0, 1] (key 0 equals
+  // `positions`). Empty for a static mesh.
+  std::vector<std::vector<Vec3f>> positionKeys;
 
+  bool deforming() const { return !positionKeys.empty(); }
   size_t triangleCount() const { return indices.size() / 3; }
   Vec3f vertex(uint32_t tri, int corner) const {
     return positions[indices[3 * tri + static_cast<uint32_t>(corner)]];
   }
+  // Corner of a triangle at normalised time `time` (linear between keys, as Embree does).
+  Vec3f vertexAt(uint32_t tri, int corner, float time) const {
+    if (!deforming()) return vertex(tri, corner);
+    const uint32_t i = indices[3 * tri + static_cast<uint32_t>(corner)];
+    size_t seg;
+    float f;
+    motionSegment(positionKeys.size(), time, seg, f);
+    return (1 - f) * positionKeys[seg][i] + f * positionKeys[seg + 1][i];
+  }
+  // Bounds over the whole motion.
   Bounds3f bounds() const {
     Bounds3f b;
     for (const auto& p : positions) b.extend(p);
+    for (const auto& key : positionKeys)
+      for (const auto& p : key) b.extend(p);
     return b;
   }
   // Embree reads vertex buffers with 16-byte loads, so the last vertex needs 4 spare bytes.
-  void padForEmbree() { positions.reserve(positions.size() + 1); }
+  void padForEmbree() {
+    positions.reserve(positions.size() + 1);
+    for (auto& key : positionKeys) key.reserve(key.size() + 1);
+  }
 };
 
 }  // namespace glint

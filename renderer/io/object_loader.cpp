@@ -2,6 +2,7 @@
 // triangle, polygon, mesh) are baked into world (or group) space; analytic shapes keep their
 // exact form; a sphere under a non-similarity transform becomes an implicit instance.
 #include <filesystem>
+#include <optional>
 
 #include "core/error.h"
 #include "geometry/triangulate.h"
@@ -33,11 +34,15 @@ uint32_t push(Scene& s, uint32_t groupId, GeomKind kind, uint32_t index, uint32_
 
 void addMesh(SceneBuilder& b, TriangleMesh mesh, const Transform& xf, const JsonNode& where,
              uint32_t groupId, uint32_t material, uint32_t objectId) {
-  for (auto& p : mesh.positions) {
-    if (!isFinite(p)) where.fail("a vertex is not finite");
-    p = xf.point(p);
-    if (!isFinite(p)) where.fail("a transformed vertex is not finite");
-  }
+  const auto place = [&](std::vector<Vec3f>& points) {
+    for (auto& p : points) {
+      if (!isFinite(p)) where.fail("a vertex is not finite");
+      p = xf.point(p);
+      if (!isFinite(p)) where.fail("a transformed vertex is not finite");
+    }
+  };
+  place(mesh.positions);
+  for (auto& key : mesh.positionKeys) place(key);
   for (uint32_t idx : mesh.indices)
     if (idx >= mesh.positions.size())
       where.fail("index " + std::to_string(idx) + " is out of range (" +
@@ -131,53 +136,89 @@ Transform parseTransform(const JsonNode& n) {
   }
 }
 
-void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t objectId) {
-  Scene& s = b.scene;
-  const std::string type = obj.at("type").choice(
-      {"sphere", "plane", "quad", "box", "triangle", "polygon", "mesh", "instance"});
-  if (auto m = obj.get("motion")) m->fail("motion blur is not supported yet (a later release)");
-  const Transform xf = obj.has("transform") ? parseTransform(obj.at("transform")) : Transform{};
+namespace {
 
-  if (type == "instance") {
-    obj.checkKeys({"type", "group", "transform", "motion"});
-    if (groupId != 0)
-      obj.fail("instances inside groups are not supported (one level, like Embree's default)");
-    const JsonNode g = obj.at("group");
-    const auto it = b.groupIds.find(g.string());
-    if (it == b.groupIds.end()) {
-      std::vector<std::string> names;
-      for (const auto& [k, v] : b.groupIds) names.push_back(k);
-      const std::string hint = nearestName(g.string(), names);
-      g.fail("no group named \"" + g.string() + "\"" +
-             (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
-    }
-    s.instances.push_back({it->second, xf});
-    push(s, 0, GeomKind::Instance, static_cast<uint32_t>(s.instances.size() - 1), 0, objectId);
-    return;
+// A motion key: translate / rotate / scale only, since rotations are interpolated by slerp and a
+// general matrix has no unique rotation to interpolate.
+TrsKey parseTrsKey(const JsonNode& n) {
+  if (n.has("matrix"))
+    n.at("matrix").fail(
+        "motion keys take translate/rotate/scale (rotation is interpolated by "
+        "slerp), not a matrix");
+  n.checkKeys({"translate", "rotate", "scale"});
+  TrsKey k;
+  if (auto sc = n.get("scale")) {
+    k.scale = sc->vec3();
+    if (k.scale.x == 0 || k.scale.y == 0 || k.scale.z == 0)
+      sc->fail("scale factors must be non-zero");
   }
+  if (auto r = n.get("rotate")) {
+    if (r->size() != 4) r->fail("must be [axis x, axis y, axis z, angle in degrees]");
+    const Vec3f axis{(*r)[0].number(), (*r)[1].number(), (*r)[2].number()};
+    if (!(length(axis) > 0)) r->fail("the rotation axis has zero length");
+    k.rotation = Quat::fromAxisAngle(axis, (*r)[3].number());
+  }
+  if (auto t = n.get("translate")) k.translation = t->vec3();
+  return k;
+}
 
+template <typename T, typename Parse>
+std::vector<T> parseKeys(const JsonNode& n, Parse parse) {
+  if (!n.isArray() || n.size() < 2)
+    n.fail("must list at least 2 keys (spread evenly over the shutter)");
+  std::vector<T> keys;
+  for (const JsonNode& k : n.elements()) keys.push_back(parse(k));
+  return keys;
+}
+
+uint32_t addSphere(Scene& s, const Sphere& sphere, std::vector<Vec3f> centerKeys) {
+  s.spheres.push_back(sphere);
+  s.sphereCenterKeys.push_back(std::move(centerKeys));
+  return static_cast<uint32_t>(s.spheres.size() - 1);
+}
+
+uint32_t newImplicitGroup(Scene& s, const std::string& what, uint32_t objectId) {
+  s.groups.push_back({"<" + what + " objects[" + std::to_string(objectId) + "]>", {}});
+  return static_cast<uint32_t>(s.groups.size() - 1);
+}
+
+void addInstance(Scene& s, uint32_t groupId, const Transform& xf, std::vector<TrsKey> motion,
+                 uint32_t objectId) {
+  Instance inst{groupId, motion.empty() ? xf : motion[0].toTransform(), std::move(motion)};
+  s.instances.push_back(std::move(inst));
+  push(s, 0, GeomKind::Instance, static_cast<uint32_t>(s.instances.size() - 1), 0, objectId);
+}
+
+// Adds a shape (not an instance) under `xf`; `motion` may hold "center" (spheres) or
+// "positions" (meshes); "transform" motion has been taken care of by the caller.
+void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uint32_t groupId,
+              uint32_t objectId, const Transform& xf, const std::optional<JsonNode>& motion) {
+  Scene& s = b.scene;
+  if (motion && motion->has("center") && type != "sphere")
+    motion->at("center").fail("only spheres have centre keys; use \"transform\" keys");
+  if (motion && motion->has("positions") && type != "mesh")
+    motion->at("positions").fail("only meshes have position keys; use \"transform\" keys");
   const uint32_t material = materialOf(b, obj);
   if (type == "sphere") {
     obj.checkKeys({"type", "center", "radius", "material", "transform", "motion"});
     Sphere sp{obj.at("center").vec3(), obj.at("radius").number(0, 3.4e38f, true)};
+    std::vector<Vec3f> centers;
+    if (motion && motion->has("center"))
+      centers = parseKeys<Vec3f>(motion->at("center"), [](const JsonNode& k) { return k.vec3(); });
     float scale = 1;
     if (xf.isSimilarity(&scale)) {
-      sp = {xf.point(sp.center), sp.radius * scale};
-      s.spheres.push_back(sp);
-      push(s, groupId, GeomKind::Sphere, static_cast<uint32_t>(s.spheres.size() - 1), material,
-           objectId);
+      for (Vec3f& c : centers) c = xf.point(c);
+      sp = {centers.empty() ? xf.point(sp.center) : centers[0], sp.radius * scale};
+      push(s, groupId, GeomKind::Sphere, addSphere(s, sp, std::move(centers)), material, objectId);
       return;
     }
     // An ellipsoid: keep the exact sphere in a group of its own, placed by an instance.
     if (groupId != 0)
       obj.at("transform").fail("a non-uniformly scaled sphere cannot sit inside a group");
-    s.spheres.push_back(sp);
-    const auto implicitGroup = static_cast<uint32_t>(s.groups.size());
-    s.groups.push_back({"<sphere objects[" + std::to_string(objectId) + "]>", {}});
-    push(s, implicitGroup, GeomKind::Sphere, static_cast<uint32_t>(s.spheres.size() - 1), material,
-         objectId);
-    s.instances.push_back({implicitGroup, xf});
-    push(s, 0, GeomKind::Instance, static_cast<uint32_t>(s.instances.size() - 1), 0, objectId);
+    if (!centers.empty()) sp.center = centers[0];
+    const uint32_t g = newImplicitGroup(s, "sphere", objectId);
+    push(s, g, GeomKind::Sphere, addSphere(s, sp, std::move(centers)), material, objectId);
+    addInstance(s, g, xf, {}, objectId);
   } else if (type == "plane") {
     obj.checkKeys({"type", "point", "normal", "material", "transform"});
     if (groupId != 0) obj.fail("planes are unbounded and cannot be placed in groups");
@@ -221,8 +262,70 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
     if (obj.has("file") == obj.has("positions"))
       obj.fail("a mesh needs either \"file\" or \"positions\" with \"indices\"");
     TriangleMesh m = obj.has("file") ? fileMesh(b, obj.at("file")) : inlineMesh(obj);
+    if (motion && motion->has("positions")) {
+      // A deforming mesh (seed 000 §13.4.5): the same vertices at each key.
+      const JsonNode keys = motion->at("positions");
+      m.positionKeys = parseKeys<std::vector<Vec3f>>(keys, [&](const JsonNode& k) {
+        std::vector<Vec3f> key = parsePoints(k, 3);
+        if (key.size() != m.positions.size())
+          k.fail("has " + std::to_string(key.size()) + " positions; the mesh has " +
+                 std::to_string(m.positions.size()));
+        return key;
+      });
+      m.positions = m.positionKeys[0];
+    }
     addMesh(b, std::move(m), xf, obj, groupId, material, objectId);
   }
+}
+
+}  // namespace
+
+void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t objectId) {
+  Scene& s = b.scene;
+  const std::string type = obj.at("type").choice(
+      {"sphere", "plane", "quad", "box", "triangle", "polygon", "mesh", "instance"});
+  const std::optional<JsonNode> motion = obj.get("motion");
+  if (motion) motion->checkKeys({"center", "transform", "positions"});
+  std::vector<TrsKey> transformKeys;
+  if (motion && motion->has("transform")) {
+    if (obj.has("transform"))
+      obj.at("transform").fail("give either \"transform\" or \"motion.transform\", not both");
+    if (type == "plane") motion->fail("planes are unbounded and cannot move");
+    if (groupId != 0)
+      motion->at("transform")
+          .fail(
+              "objects inside groups cannot carry transform keys: move the "
+              "instance that places the group");
+    transformKeys = parseKeys<TrsKey>(motion->at("transform"), parseTrsKey);
+  }
+  const Transform xf = obj.has("transform") ? parseTransform(obj.at("transform")) : Transform{};
+
+  if (type == "instance") {
+    obj.checkKeys({"type", "group", "transform", "motion"});
+    if (groupId != 0)
+      obj.fail("instances inside groups are not supported (one level, like Embree's default)");
+    if (motion && (motion->has("center") || motion->has("positions")))
+      motion->fail("instances move by \"transform\" keys only");
+    const JsonNode g = obj.at("group");
+    const auto it = b.groupIds.find(g.string());
+    if (it == b.groupIds.end()) {
+      std::vector<std::string> names;
+      for (const auto& [k, v] : b.groupIds) names.push_back(k);
+      const std::string hint = nearestName(g.string(), names);
+      g.fail("no group named \"" + g.string() + "\"" +
+             (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
+    }
+    addInstance(s, it->second, xf, std::move(transformKeys), objectId);
+    return;
+  }
+  if (!transformKeys.empty()) {
+    // Any shape with transform keys becomes an implicit instance that moves.
+    const uint32_t g = newImplicitGroup(s, type, objectId);
+    addShape(b, obj, type, g, objectId, Transform{}, motion);
+    addInstance(s, g, Transform{}, std::move(transformKeys), objectId);
+    return;
+  }
+  addShape(b, obj, type, groupId, objectId, xf, motion);
 }
 
 }  // namespace glint

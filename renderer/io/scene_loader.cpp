@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/log.h"
 #include "io/scene_builder.h"
 
 namespace glint {
@@ -47,8 +48,8 @@ void parseCamera(const JsonNode& n, CameraDesc& c) {
   if (auto v = n.get("focus_distance")) c.focusDistance = v->number(0, 3.4e38f, true);
   if (auto v = n.get("shutter")) {
     if (v->size() != 2) v->fail("must be [open, close]");
-    c.shutterOpen = (*v)[0].number();
-    c.shutterClose = (*v)[1].number();
+    c.shutterOpen = (*v)[0].number(0, 1);
+    c.shutterClose = (*v)[1].number(0, 1);
     if (c.shutterClose < c.shutterOpen) v->fail("close must not be before open");
   }
   try {
@@ -196,6 +197,11 @@ void parseScene(SceneBuilder& b, const JsonNode& root) {
   const JsonNode objects = root.at("objects");
   for (size_t i = 0; i < objects.size(); ++i) addObject(b, objects[i], 0, static_cast<uint32_t>(i));
   s.features = computeFeatures(s);
+  if (s.features.motion && s.cameraDesc.shutterOpen == s.cameraDesc.shutterClose)
+    log::warning(b.scene.sourcePath + ": the scene has motion keys but camera.shutter is closed (" +
+                 "[" + std::to_string(s.cameraDesc.shutterOpen) + ", " +
+                 std::to_string(s.cameraDesc.shutterClose) +
+                 "]): it renders frozen at that time; set \"shutter\": [0, 1] for motion blur");
 }
 
 }  // namespace

@@ -26,6 +26,10 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   const Sampler sampler(rs.sampler, rs.spp, rs.seed);
   const WhittedIntegrator integrator(scene, accel);
 
+  const float shutterOpen = scene.cameraDesc.shutterOpen;
+  const float shutterClose = scene.cameraDesc.shutterClose;
+  const bool openShutter = scene.features.motion && shutterClose > shutterOpen;
+
   const std::vector<PixelWindow> tiles = makeTiles(window, opt.tileSize);
   std::vector<RayCounters> tileCounters(tiles.size());
   Progress progress(window.area(), opt.progress);
@@ -42,8 +46,12 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
           const Vec2f u = sampler.pixelSample(x, y, s);
           // The lens dimension is drawn only when there is a lens (leave out what is unused).
           const Vec2f lens = camera.hasLens() ? key.get2D(dimension(Dim::Lens)) : Vec2f{};
-          const Ray ray =
+          Ray ray =
               camera.generateRay(static_cast<float>(x) + u.x, static_cast<float>(y) + u.y, lens);
+          // The time dimension is drawn only when something moves and the shutter is open.
+          ray.time = openShutter ? shutterOpen + (shutterClose - shutterOpen) *
+                                                     key.get2D(dimension(Dim::Time)).x
+                                 : shutterOpen;
           const Radiance r = integrator.trace(ray, key, counters);
           if (!r.L.isFinite()) {
             // A non-finite sample never reaches the film: it counts as black.

@@ -13,6 +13,7 @@ std::vector<std::pair<const char*, bool>> table(const Features& f) {
           {"point_lights", f.pointLights},
           {"directional_lights", f.directionalLights},
           {"area_lights", f.areaLights},
+          {"motion_blur", f.motion},
           {"depth_of_field", f.depthOfField},
           {"gloss", f.gloss},
           {"shadows", f.shadows},
@@ -48,6 +49,9 @@ Features computeFeatures(const Scene& scene) {
   f.shadows = !scene.lights.empty();
   f.ambient = !scene.render.ambient.isBlack();
   f.depthOfField = scene.cameraDesc.apertureRadius > 0;
+  for (const auto& keys : scene.sphereCenterKeys) f.motion |= !keys.empty();
+  for (const auto& m : scene.meshes) f.motion |= m.deforming();
+  for (const auto& inst : scene.instances) f.motion |= !inst.motion.empty();
   for (const auto& nm : scene.materials) {
     if (const auto* ph = std::get_if<PhongMaterial>(&nm.material)) {
       f.specular |= !ph->ks.isBlack();

@@ -13,7 +13,8 @@ struct Features {
   bool directionalLights = false;
   bool areaLights = false;
   bool depthOfField = false;
-  bool gloss = false;  // glossy reflection or blurred translucency
+  bool motion = false;  // some object has keys (time steps for Embree, a time sample)
+  bool gloss = false;   // glossy reflection or blurred translucency
   bool shadows = false;
   bool specular = false;    // some Phong material has ks ≠ 0
   bool reflection = false;  // some material has km ≠ 0

@@ -1,5 +1,7 @@
 #include "scene/scene.h"
 
+#include <optional>
+
 #include "core/check.h"
 
 namespace glint {
@@ -10,6 +12,33 @@ const Geometry& Scene::geometry(const Hit& hit) const {
   return groups[instances[inst.index].groupId].geometries[hit.geomId];
 }
 
+Transform Instance::transformAt(float time) const {
+  if (motion.empty()) return worldFromObject;
+  size_t seg;
+  float f;
+  motionSegment(motion.size(), time, seg, f);
+  return lerp(motion[seg], motion[seg + 1], f).toTransform();
+}
+
+Sphere Scene::sphereAt(uint32_t index, float time) const {
+  const Sphere& s = spheres[index];
+  if (sphereCenterKeys[index].empty()) return s;
+  return {interpolateKeys(sphereCenterKeys[index], time), s.radius};
+}
+
+size_t Scene::timeSteps(const Geometry& g) const {
+  switch (g.kind) {
+    case GeomKind::Mesh:
+      return std::max<size_t>(1, meshes[g.index].positionKeys.size());
+    case GeomKind::Sphere:
+      return std::max<size_t>(1, sphereCenterKeys[g.index].size());
+    case GeomKind::Instance:
+      return std::max<size_t>(1, instances[g.index].motion.size());
+    default:
+      return 1;
+  }
+}
+
 ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit) const {
   GLINT_CHECK(bool(hit));
   const Geometry& g = geometry(hit);
@@ -18,9 +47,9 @@ ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit) const {
   sp.materialId = g.materialId;
   sp.objectId = g.objectId;
   // Object space = world space outside instances; inside, go through the instance transform.
-  const Transform* worldFromObject = nullptr;
+  std::optional<Transform> worldFromObject;
   if (hit.instId != kInvalidId)
-    worldFromObject = &instances[groups[0].geometries[hit.instId].index].worldFromObject;
+    worldFromObject = instances[groups[0].geometries[hit.instId].index].transformAt(ray.time);
   const Vec3f oObj = worldFromObject ? worldFromObject->inverse().point(ray.o) : ray.o;
   const Vec3f dObj = worldFromObject ? worldFromObject->inverse().vector(ray.d) : ray.d;
 
@@ -28,15 +57,16 @@ ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit) const {
   switch (g.kind) {
     case GeomKind::Mesh: {
       const TriangleMesh& m = meshes[g.index];
-      const Vec3f p0 = m.vertex(hit.primId, 0), p1 = m.vertex(hit.primId, 1),
-                  p2 = m.vertex(hit.primId, 2);
+      const Vec3f p0 = m.vertexAt(hit.primId, 0, ray.time),
+                  p1 = m.vertexAt(hit.primId, 1, ray.time),
+                  p2 = m.vertexAt(hit.primId, 2, ray.time);
       p = (1 - hit.u - hit.v) * p0 + hit.u * p1 + hit.v * p2;
       n = cross(p1 - p0, p2 - p0);
       break;
     }
     case GeomKind::Sphere: {
       // Re-project onto the sphere: removes the error of o + t·d along the ray.
-      const Sphere& s = spheres[g.index];
+      const Sphere s = sphereAt(g.index, ray.time);
       n = oObj + hit.t * dObj - s.center;
       p = s.center + n * (s.radius / length(n));
       break;
@@ -76,6 +106,8 @@ Bounds3f Scene::groupBounds(uint32_t groupId) const {
         break;
       case GeomKind::Sphere:
         b.extend(bounds(spheres[g.index]));
+        for (const Vec3f& c : sphereCenterKeys[g.index])
+          b.extend(bounds(Sphere{c, spheres[g.index].radius}));
         break;
       case GeomKind::Quad:
         b.extend(bounds(quads[g.index]));
@@ -83,13 +115,18 @@ Bounds3f Scene::groupBounds(uint32_t groupId) const {
       case GeomKind::Plane:
         break;
       case GeomKind::Instance: {
+        // Bounds at the keys: exact for static instances; for moving ones an estimate (slerp can
+        // sweep outside the key boxes), enough for what worldBounds is used for.
         const Instance& inst = instances[g.index];
         const Bounds3f ob = groupBounds(inst.groupId);
         if (ob.empty()) break;
-        for (int c = 0; c < 8; ++c)
-          b.extend(
-              inst.worldFromObject.point({(c & 1) ? ob.hi.x : ob.lo.x, (c & 2) ? ob.hi.y : ob.lo.y,
-                                          (c & 4) ? ob.hi.z : ob.lo.z}));
+        const size_t keys = std::max<size_t>(1, inst.motion.size());
+        for (size_t k = 0; k < keys; ++k) {
+          const Transform xf = inst.transformAt(keys == 1 ? 0.0f : float(k) / float(keys - 1));
+          for (int c = 0; c < 8; ++c)
+            b.extend(xf.point({(c & 1) ? ob.hi.x : ob.lo.x, (c & 2) ? ob.hi.y : ob.lo.y,
+                               (c & 4) ? ob.hi.z : ob.lo.z}));
+        }
         break;
       }
     }

@@ -7,6 +7,7 @@
 
 #include "camera/camera.h"
 #include "core/bounds.h"
+#include "core/motion.h"
 #include "core/sampler.h"
 #include "core/transform.h"
 #include "geometry/shading_point.h"
@@ -31,7 +32,11 @@ struct Geometry {
 
 struct Instance {
   uint32_t groupId = 0;
-  Transform worldFromObject;
+  Transform worldFromObject;   // when static
+  std::vector<TrsKey> motion;  // K ≥ 2 keys over [0, 1] when moving; empty when static
+
+  // worldFromObject at normalised time (slerp for rotation, as Embree's quaternion motion).
+  Transform transformAt(float time) const;
 };
 
 struct Group {
@@ -61,6 +66,8 @@ class Scene {
   std::vector<Group> groups;  // groups[0] is the world
   std::vector<TriangleMesh> meshes;
   std::vector<Sphere> spheres;
+  // Per sphere: centre keys over [0, 1] when it moves (seed 000 §13.4.5), else empty.
+  std::vector<std::vector<Vec3f>> sphereCenterKeys;
   std::vector<Quad> quads;
   std::vector<Plane> planes;
   std::vector<Instance> instances;
@@ -75,6 +82,9 @@ class Scene {
   size_t triangleCount() const;
 
   const Geometry& geometry(const Hit& hit) const;
+  Sphere sphereAt(uint32_t index, float time) const;
+  // Time steps the accelerators need for a geometry entry: 1 when static.
+  size_t timeSteps(const Geometry& g) const;
 };
 
 }  // namespace glint

@@ -107,14 +107,26 @@ TEST(SceneError, DegenerateShapesAndTransforms) {
       "scene.json:4: objects[0].transform.scale: scale factors must be non-zero");
 }
 
-TEST(SceneError, UnbuiltFeaturesAreRefusedNotIgnored) {
-  // A scene asking for an effect Glint cannot render yet must not render silently without it.
-  const std::string msg = errorOf(std::string(kHead) +
-                                  "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0,0], "
-                                  "\"radius\": 1, \"material\": \"red\",\n"
-                                  "\"motion\": {\"center\": [[0,0,0], [1,0,0]]}}]}");
-  EXPECT_EQ(msg,
-            "scene.json:5: objects[0].motion: motion blur is not supported yet (a later release)");
+TEST(SceneError, MotionKeysAreValidated) {
+  const auto sphereWith = [](const std::string& motion) {
+    return std::string(kHead) +
+           "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0,0], \"radius\": 1, "
+           "\"material\": \"red\",\n" +  // line 4
+           motion +
+           "}]}";  // line 5
+  };
+  EXPECT_EQ(errorOf(sphereWith("\"motion\": {\"center\": [[0,0,0]]}")),
+            "scene.json:5: objects[0].motion.center: must list at least 2 keys (spread evenly "
+            "over the shutter)");
+  EXPECT_EQ(errorOf(sphereWith("\"motion\": {\"transform\": [{\"matrix\": [1]}, {}]}")),
+            "scene.json:5: objects[0].motion.transform[0].matrix: motion keys take "
+            "translate/rotate/scale (rotation is interpolated by slerp), not a matrix");
+  EXPECT_EQ(errorOf(sphereWith("\"motion\": {\"positions\": [[[0,0,0]], [[1,0,0]]]}")),
+            "scene.json:5: objects[0].motion.positions: only meshes have position keys; use "
+            "\"transform\" keys");
+  EXPECT_EQ(errorOf("{\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0], \"shutter\": [0, 2]},"
+                    "\"objects\": []}"),
+            "scene.json:1: camera.shutter[1]: must be <= 1, got 2");
 }
 
 }  // namespace
