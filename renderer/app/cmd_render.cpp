@@ -163,7 +163,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--accel", args->accel, "Intersection backend")
       ->check(CLI::IsMember({"embree", "brute"}));
   cmd->add_option("--sampler", args->sampler, "Pixel sampler (overrides the scene)")
-      ->check(CLI::IsMember({"regular", "random", "stratified"}));
+      ->check(CLI::IsMember({"regular", "random", "stratified", "sobol"}));
   cmd->add_option("--crop", args->crop, "Pixel bounds X0 X1 Y0 Y1 ([X0,X1) x [Y0,Y1))")
       ->expected(4);
   cmd->add_option("--tile-size", args->tileSize, "Tile edge in pixels")->check(CLI::Range(1, 4096));

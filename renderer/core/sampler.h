@@ -14,6 +14,7 @@ enum class SamplerKind {
   Regular,     // n×n cell centres (seed 000 §13.4.1 "regular"); non-square spp: see docs
   Random,      // independent uniform samples
   Stratified,  // jittered: one random point per stratum; correlated multi-jitter for any spp
+  Sobol,       // Owen-scrambled Sobol (0,2)-sequence (Burley 2020): low discrepancy
 };
 
 std::string_view samplerName(SamplerKind);
@@ -44,6 +45,7 @@ class Sampler {
 
  private:
   Vec2f stratified2D(uint64_t pattern, int index, int n) const;
+  static Vec2f sobol2D(uint64_t pattern, int index);
 
   SamplerKind kind_;
   int spp_;

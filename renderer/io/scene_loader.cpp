@@ -20,7 +20,7 @@ void parseRender(const JsonNode& n, RenderSettings& r) {
   if (auto v = n.get("max_depth")) r.maxDepth = v->integer(0, 1000);
   if (auto v = n.get("seed")) r.seed = v->unsignedInteger();
   if (auto v = n.get("sampler"))
-    parseSamplerKind(v->choice({"regular", "random", "stratified"}), r.sampler);
+    parseSamplerKind(v->choice({"regular", "random", "stratified", "sobol"}), r.sampler);
   r.background = n.color("background", r.background);
   r.ambient = n.color("ambient", r.ambient);
   if (auto v = n.get("transparent_shadows")) r.transparentShadows = v->boolean();

@@ -133,6 +133,36 @@ TEST(AreaLights, ShrunkenSeedQuadConvergesToThePointLight) {
   EXPECT_LE(maxDiff, 1e-4);
 }
 
+TEST(AreaLights, PenumbraWidthMatchesGeometry) {
+  // A quad light 2 wide (x ∈ [−1, 1], long in z) at height H = 4 and an occluding half-plane
+  // (x < 0) at height h = 2: by similar triangles the floor sees the whole light for x ≥ 1,
+  // none of it for x ≤ −1, and part of it in between — a penumbra w·h/(H − h) = 2 wide. The
+  // orthographic view, from y = 1 below the occluder, is 8 units over 64 px (8 px per unit):
+  // umbra and full light must start within a pixel of x = ∓1.
+  const std::string head = R"({"render": {"width": 64, "height": 2, "spp": 4},
+    "camera": {"type": "orthographic", "eye": [0,1,0], "look_at": [0,0,0], "up": [0,0,-1], "height": 0.25},
+    "materials": {"m": {"type": "phong", "kd": [1,1,1], "ka": [0,0,0]}},
+    "lights": [{"type": "quad", "corner": [-1,4,-20], "edge1": [2,0,0], "edge2": [0,0,40], "samples": 64}],
+    "objects": [{"type": "plane", "point": [0,0,0], "normal": [0,1,0], "material": "m"})";
+  const Film open = render(load(head + "]}"));
+  const Film shadowed = render(load(head + R"(, {"type": "quad", "corner": [-30,2,-30],
+      "edge1": [30,0,0], "edge2": [0,0,60], "material": "m"}]})"));
+  for (int x = 0; x < 64; ++x) {
+    const double u = -4 + (x + 0.5) / 8;  // pixel centre; pixels span ±1/16
+    const double v = shadowed.pixel(x, 0)[0], lit = open.pixel(x, 0)[0];
+    if (u < -1 - 0.125) {
+      EXPECT_EQ(v, 0.0) << "umbra at u = " << u;
+    }
+    if (u > 1 + 0.125) {
+      EXPECT_EQ(v, lit) << "full light at u = " << u;
+    }
+    if (std::fabs(u) < 1 - 0.125) {
+      EXPECT_GT(v, 0.0) << "penumbra at u = " << u;
+      EXPECT_LT(v, lit) << "penumbra at u = " << u;
+    }
+  }
+}
+
 // A white half-plane (x ≥ 0, ambient 1 so it reads exactly 1) at depth z0 on black, seen
 // through a square lens of half-width a focused at f: the edge spreads into a linear ramp
 // 2a·|z0 − f|/z0 wide on the focus plane (seed 000 §13.4.3, similar triangles).

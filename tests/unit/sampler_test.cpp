@@ -78,5 +78,50 @@ TEST(Sampler, OtherDimensionsAreStratifiedAcrossTheirSubsamples) {
   for (int c : strataCounts(xs, 16)) EXPECT_EQ(c, 1);
 }
 
+TEST(Sampler, SobolPrefixesAreZeroTwoNets) {
+  // A (0,m,2)-net in base 2: each of the 2^m elementary intervals of every shape
+  // 2^-j × 2^-(m−j) holds exactly one of the first 2^m points — Owen scrambling of values
+  // and of the index must keep this, for every pixel's own scramble.
+  for (int m : {2, 4, 6, 8}) {
+    const int n = 1 << m;
+    const Sampler s(SamplerKind::Sobol, n, 5);
+    for (int px = 0; px < 8; ++px) {
+      std::vector<Vec2f> pts;
+      for (int i = 0; i < n; ++i) pts.push_back(s.pixelSample(px, 3, i));
+      for (int j = 0; j <= m; ++j) {
+        std::set<std::pair<int, int>> cells;
+        for (const Vec2f& p : pts)
+          cells.insert({int(p.x * float(1 << j)), int(p.y * float(1 << (m - j)))});
+        EXPECT_EQ(cells.size(), size_t(n)) << "m = " << m << ", shape 2^-" << j << " pixel " << px;
+      }
+      // The light/lens dimensions are nets too, over spp × count points.
+      std::set<int> strata;
+      for (int i = 0; i < n; ++i) strata.insert(int(s.get2D(px, 3, i, 40).x * float(n)));
+      EXPECT_EQ(strata.size(), size_t(n));
+    }
+  }
+}
+
+TEST(Sampler, OtherDimensionsAreNotCorrelatedWithPixelSamples) {
+  // The shuffle of seed 000 §13.4.2: without it, sample i of the lens set would sit in the same
+  // stratum as pixel sample i and the two would be almost perfectly correlated. Pooled Pearson
+  // correlation over 64 pixels × 16 samples = 1024 pairs; for independent pairs |ρ| stays below
+  // 3/√1024 ≈ 0.094 with probability 0.997.
+  for (SamplerKind kind : {SamplerKind::Stratified, SamplerKind::Sobol}) {
+    const Sampler s(kind, 16, 9);
+    double sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    int n = 0;
+    for (int px = 0; px < 64; ++px)
+      for (int i = 0; i < 16; ++i) {
+        const double a = s.pixelSample(px, 0, i).x;
+        const double b = s.get2D(px, 0, i, dimension(Dim::Lens)).x;
+        sx += a, sy += b, sxx += a * a, syy += b * b, sxy += a * b, ++n;
+      }
+    const double cov = sxy / n - (sx / n) * (sy / n);
+    const double rho = cov / std::sqrt((sxx / n - sx * sx / n / n) * (syy / n - sy * sy / n / n));
+    EXPECT_LT(std::fabs(rho), 3 / std::sqrt(1024.0)) << samplerName(kind);
+  }
+}
+
 }  // namespace
 }  // namespace glint
