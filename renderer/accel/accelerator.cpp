@@ -2,6 +2,7 @@
 
 #include "accel/brute_force.h"
 #include "accel/embree_accel.h"
+#include "accel/reference_bvh.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -10,6 +11,8 @@ std::string_view accelName(AccelKind k) {
   switch (k) {
     case AccelKind::Embree:
       return "embree";
+    case AccelKind::Bvh:
+      return "bvh";
     case AccelKind::BruteForce:
       return "brute";
   }
@@ -17,7 +20,7 @@ std::string_view accelName(AccelKind k) {
 }
 
 bool parseAccelKind(std::string_view name, AccelKind& out) {
-  for (auto k : {AccelKind::Embree, AccelKind::BruteForce})
+  for (auto k : {AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce})
     if (accelName(k) == name) {
       out = k;
       return true;
@@ -29,6 +32,8 @@ std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene)
   switch (kind) {
     case AccelKind::Embree:
       return std::make_unique<EmbreeAccel>(scene);
+    case AccelKind::Bvh:
+      return std::make_unique<ReferenceBvh>(scene);
     case AccelKind::BruteForce:
       return std::make_unique<BruteForce>(scene);
   }

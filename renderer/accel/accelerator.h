@@ -11,7 +11,7 @@ namespace glint {
 
 class Scene;
 
-enum class AccelKind { Embree, BruteForce };
+enum class AccelKind { Embree, Bvh, BruteForce };
 
 std::string_view accelName(AccelKind);
 bool parseAccelKind(std::string_view name, AccelKind& out);

@@ -161,7 +161,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--height", args->height, "Image height")->check(CLI::Range(1, 1 << 15));
   cmd->add_option("--max-depth", args->maxDepth, "Recursion limit")->check(CLI::Range(0, 1000));
   cmd->add_option("--accel", args->accel, "Intersection backend")
-      ->check(CLI::IsMember({"embree", "brute"}));
+      ->check(CLI::IsMember({"embree", "bvh", "brute"}));
   cmd->add_option("--sampler", args->sampler, "Pixel sampler (overrides the scene)")
       ->check(CLI::IsMember({"regular", "random", "stratified", "sobol"}));
   cmd->add_option("--crop", args->crop, "Pixel bounds X0 X1 Y0 Y1 ([X0,X1) x [Y0,Y1))")

@@ -107,7 +107,9 @@ TEST_P(Backends, OcclusionRespectsTheSegment) {
   EXPECT_TRUE(accel_->occluded(r));
 }
 
-INSTANTIATE_TEST_SUITE_P(All, Backends, ::testing::Values(AccelKind::Embree, AccelKind::BruteForce),
+INSTANTIATE_TEST_SUITE_P(All, Backends,
+                         ::testing::Values(AccelKind::Embree, AccelKind::Bvh,
+                                           AccelKind::BruteForce),
                          [](const auto& p) { return std::string(accelName(p.param)); });
 
 }  // namespace

@@ -1,0 +1,448 @@
+#include "accel/reference_bvh.h"
+
+#include <tbb/parallel_invoke.h>
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <numeric>
+
+#include "core/check.h"
+#include "scene/scene.h"
+
+namespace glint {
+
+namespace {
+
+constexpr float kMachineEpsilon = 0x1p-24f;
+// Ize 2013: multiplying the far slab distance by 1 + 2γ₃ makes the float slab test conservative.
+constexpr float kSlabPad = 1 + 2 * (3 * kMachineEpsilon) / (1 - 3 * kMachineEpsilon);
+
+float area(const Bounds3f& b) {
+  if (b.empty()) return 0;
+  const Vec3f d = b.diagonal();
+  return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
+}
+
+Vec3f centroid(const Bounds3f& b) { return 0.5f * (b.lo + b.hi); }
+
+bool contains(const Bounds3f& outer, const Bounds3f& inner) {
+  return inner.lo.x >= outer.lo.x && inner.lo.y >= outer.lo.y && inner.lo.z >= outer.lo.z &&
+         inner.hi.x <= outer.hi.x && inner.hi.y <= outer.hi.y && inner.hi.z <= outer.hi.z;
+}
+
+Bounds3f transformBox(const Transform& xf, const Bounds3f& b) {
+  Bounds3f out;
+  for (int c = 0; c < 8; ++c)
+    out.extend(xf.point(
+        {(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z}));
+  return out;
+}
+
+// Conservative bounds of a moving instance over the whole shutter. Without a change of
+// rotation every point moves linearly between keys, so the union of the key boxes bounds it.
+// With one, slerp can swing points outside the key boxes; every point stays within
+// max|scale|·|p| of the (linearly moving) translation, which gives a safe box.
+Bounds3f movingInstanceBounds(const Instance& inst, const Bounds3f& object) {
+  bool rotates = false;
+  for (const TrsKey& k : inst.motion) {
+    const Quat& a = inst.motion[0].rotation;
+    rotates |=
+        k.rotation.w != a.w || k.rotation.x != a.x || k.rotation.y != a.y || k.rotation.z != a.z;
+  }
+  Bounds3f out;
+  if (!rotates) {
+    for (const TrsKey& k : inst.motion) out.extend(transformBox(k.toTransform(), object));
+    return out;
+  }
+  float radius = 0;
+  for (int c = 0; c < 8; ++c)
+    radius = std::max(radius, length(Vec3f{(c & 1) ? object.hi.x : object.lo.x,
+                                           (c & 2) ? object.hi.y : object.lo.y,
+                                           (c & 4) ? object.hi.z : object.lo.z}));
+  float maxScale = 0;
+  for (const TrsKey& k : inst.motion) maxScale = std::max(maxScale, maxComponent(abs(k.scale)));
+  const Vec3f r{radius * maxScale, radius * maxScale, radius * maxScale};
+  for (const TrsKey& k : inst.motion) {
+    out.extend(k.translation - r);
+    out.extend(k.translation + r);
+  }
+  return out;
+}
+
+struct BuildPrim {
+  Bounds3f box;
+  Vec3f center;
+  ReferenceBvh::PrimRef ref;
+};
+
+struct BuildNode {
+  Bounds3f box;
+  std::unique_ptr<BuildNode> child[2];
+  int axis = 0;
+  size_t first = 0, count = 0;  // leaf range in the prims array
+};
+
+class Builder {
+ public:
+  Builder(std::vector<BuildPrim>& prims, BvhSplit split) : prims_(prims), split_(split) {}
+
+  std::unique_ptr<BuildNode> build(size_t begin, size_t end) {
+    auto node = std::make_unique<BuildNode>();
+    Bounds3f centers;
+    for (size_t i = begin; i < end; ++i) {
+      node->box.extend(prims_[i].box);
+      centers.extend(prims_[i].center);
+    }
+    const size_t count = end - begin;
+    size_t mid = begin;
+    int axis = 0;
+    if (count <= 1 || !chooseSplit(begin, end, centers, node->box, mid, axis)) {
+      node->first = begin;
+      node->count = count;
+      return node;
+    }
+    node->axis = axis;
+    // Build big subtrees in parallel; the split point is fixed, so the tree is the same.
+    if (count > 4096) {
+      tbb::parallel_invoke([&] { node->child[0] = build(begin, mid); },
+                           [&] { node->child[1] = build(mid, end); });
+    } else {
+      node->child[0] = build(begin, mid);
+      node->child[1] = build(mid, end);
+    }
+    return node;
+  }
+
+ private:
+  // Chooses a split; false means "make a leaf". Leaves hold at most kMaxLeafSize primitives.
+  bool chooseSplit(size_t begin, size_t end, const Bounds3f& centers, const Bounds3f& box,
+                   size_t& mid, int& axis) {
+    const size_t count = end - begin;
+    const Vec3f extent = centers.diagonal();
+    axis = extent.x > extent.y ? (extent.x > extent.z ? 0 : 2) : (extent.y > extent.z ? 1 : 2);
+    if (!(extent[axis] > 0)) {
+      // All centroids coincide: no plane separates them; split the list in half if too big.
+      if (count <= ReferenceBvh::kMaxLeafSize) return false;
+      mid = begin + count / 2;
+      return true;
+    }
+    if (split_ == BvhSplit::Sah && sahSplit(begin, end, centers, box, mid, axis)) return true;
+    if (split_ == BvhSplit::Sah && count <= ReferenceBvh::kMaxLeafSize) return false;
+    if (split_ == BvhSplit::Midpoint) {
+      const float plane = 0.5f * (centers.lo[axis] + centers.hi[axis]);
+      auto it = std::partition(prims_.begin() + long(begin), prims_.begin() + long(end),
+                               [&](const BuildPrim& p) { return p.center[axis] < plane; });
+      mid = static_cast<size_t>(it - prims_.begin());
+      if (mid != begin && mid != end) return count > 1;
+    }
+    if (count <= 1) return false;
+    // Object median (also the fallback when a midpoint or SAH split leaves a side empty).
+    mid = begin + count / 2;
+    std::nth_element(
+        prims_.begin() + long(begin), prims_.begin() + long(mid), prims_.begin() + long(end),
+        [&](const BuildPrim& a, const BuildPrim& b) { return a.center[axis] < b.center[axis]; });
+    return true;
+  }
+
+  // Binned SAH over all three axes (Wald 2007). Returns false when no split beats a leaf.
+  bool sahSplit(size_t begin, size_t end, const Bounds3f& centers, const Bounds3f& box, size_t& mid,
+                int& axis) {
+    constexpr int B = ReferenceBvh::kBins;
+    const size_t count = end - begin;
+    float bestCost = kInfinity;
+    int bestAxis = -1, bestBin = 0;
+    for (int a = 0; a < 3; ++a) {
+      const float lo = centers.lo[a], ext = centers.hi[a] - lo;
+      if (!(ext > 0)) continue;
+      Bounds3f bins[B];
+      size_t counts[B] = {};
+      const float scale = B / ext;
+      for (size_t i = begin; i < end; ++i) {
+        const int b = std::min(B - 1, static_cast<int>((prims_[i].center[a] - lo) * scale));
+        bins[b].extend(prims_[i].box);
+        ++counts[b];
+      }
+      float rightArea[B];
+      size_t rightCount[B];
+      Bounds3f acc;
+      size_t n = 0;
+      for (int b = B - 1; b > 0; --b) {
+        acc.extend(bins[b]);
+        n += counts[b];
+        rightArea[b] = area(acc);
+        rightCount[b] = n;
+      }
+      acc = Bounds3f{};
+      n = 0;
+      for (int b = 0; b < B - 1; ++b) {
+        acc.extend(bins[b]);
+        n += counts[b];
+        const float cost = area(acc) * float(n) + rightArea[b + 1] * float(rightCount[b + 1]);
+        if (n > 0 && rightCount[b + 1] > 0 && cost < bestCost) {
+          bestCost = cost;
+          bestAxis = a;
+          bestBin = b;
+        }
+      }
+    }
+    if (bestAxis < 0) return false;
+    // Leaf cost N·A(box) against traversal 1·A(box) + children (intersection cost 1).
+    const float leafCost = float(count) * area(box);
+    if (count <= ReferenceBvh::kMaxLeafSize && bestCost + area(box) >= leafCost) return false;
+    axis = bestAxis;
+    const float lo = centers.lo[axis], scale = B / (centers.hi[axis] - lo);
+    auto it = std::partition(
+        prims_.begin() + long(begin), prims_.begin() + long(end), [&](const BuildPrim& p) {
+          return std::min(B - 1, static_cast<int>((p.center[axis] - lo) * scale)) <= bestBin;
+        });
+    mid = static_cast<size_t>(it - prims_.begin());
+    return mid != begin && mid != end;
+  }
+
+  std::vector<BuildPrim>& prims_;
+  BvhSplit split_;
+};
+
+// Pre-order flattening: the first child follows its parent; `first` names the second child.
+void flatten(const BuildNode& n, const std::vector<BuildPrim>& prims, ReferenceBvh::Tree& tree,
+             BvhStats& stats, size_t depth, float rootArea) {
+  const auto index = static_cast<uint32_t>(tree.nodes.size());
+  tree.nodes.push_back({n.box, 0, 0, static_cast<uint16_t>(n.axis)});
+  stats.maxDepth = std::max(stats.maxDepth, depth);
+  const float rel = rootArea > 0 ? area(n.box) / rootArea : 1;
+  if (!n.child[0]) {
+    tree.nodes[index].first = static_cast<uint32_t>(tree.prims.size());
+    tree.nodes[index].count = static_cast<uint16_t>(n.count);
+    for (size_t i = n.first; i < n.first + n.count; ++i) tree.prims.push_back(prims[i].ref);
+    ++stats.leaves;
+    stats.primitives += n.count;
+    stats.sahCost += rel * double(n.count);
+    return;
+  }
+  stats.sahCost += rel;
+  flatten(*n.child[0], prims, tree, stats, depth + 1, rootArea);
+  tree.nodes[index].first = static_cast<uint32_t>(tree.nodes.size());
+  flatten(*n.child[1], prims, tree, stats, depth + 1, rootArea);
+}
+
+}  // namespace
+
+std::string_view bvhSplitName(BvhSplit s) {
+  switch (s) {
+    case BvhSplit::Sah:
+      return "sah";
+    case BvhSplit::Median:
+      return "median";
+    case BvhSplit::Midpoint:
+      return "midpoint";
+  }
+  return "?";
+}
+
+bool parseBvhSplit(std::string_view name, BvhSplit& out) {
+  for (auto s : {BvhSplit::Sah, BvhSplit::Median, BvhSplit::Midpoint})
+    if (bvhSplitName(s) == name) {
+      out = s;
+      return true;
+    }
+  return false;
+}
+
+ReferenceBvh::ReferenceBvh(const Scene& scene, BvhSplit split) : scene_(scene) {
+  const auto start = std::chrono::steady_clock::now();
+  trees_.resize(scene.groups.size());
+  // Instanced groups first: an instance's box is its group's root box, transformed.
+  for (size_t g = scene.groups.size(); g-- > 0;) {
+    std::vector<BuildPrim> prims;
+    const auto& geoms = scene.groups[g].geometries;
+    for (uint32_t gi = 0; gi < geoms.size(); ++gi) {
+      const Geometry& geom = geoms[gi];
+      const auto add = [&](const Bounds3f& b, uint32_t prim) {
+        if (!b.empty()) prims.push_back({b, centroid(b), {gi, prim}});
+      };
+      switch (geom.kind) {
+        case GeomKind::Mesh: {
+          const TriangleMesh& m = scene.meshes[geom.index];
+          for (uint32_t t = 0; t < m.triangleCount(); ++t) {
+            Bounds3f b;
+            for (int c = 0; c < 3; ++c) {
+              b.extend(m.vertex(t, c));
+              for (const auto& key : m.positionKeys) b.extend(key[m.indices[3 * t + uint32_t(c)]]);
+            }
+            add(b, t);
+          }
+          break;
+        }
+        case GeomKind::Sphere: {
+          Bounds3f b = bounds(scene.spheres[geom.index]);
+          for (const Vec3f& c : scene.sphereCenterKeys[geom.index])
+            b.extend(bounds(Sphere{c, scene.spheres[geom.index].radius}));
+          add(b, 0);
+          break;
+        }
+        case GeomKind::Quad:
+          add(bounds(scene.quads[geom.index]), 0);
+          break;
+        case GeomKind::Plane:
+          break;  // unbounded: the shared plane loop
+        case GeomKind::Instance: {
+          const Instance& inst = scene.instances[geom.index];
+          const Tree& child = trees_[inst.groupId];
+          if (child.nodes.empty()) break;
+          add(inst.motion.empty() ? transformBox(inst.worldFromObject, child.nodes[0].box)
+                                  : movingInstanceBounds(inst, child.nodes[0].box),
+              0);
+          break;
+        }
+      }
+    }
+    if (prims.empty()) continue;
+    Builder builder(prims, split);
+    const auto root = builder.build(0, prims.size());
+    flatten(*root, prims, trees_[g], stats_, 0, area(root->box));
+    stats_.nodes += trees_[g].nodes.size();
+    stats_.bytes +=
+        trees_[g].nodes.size() * sizeof(Node) + trees_[g].prims.size() * sizeof(PrimRef);
+  }
+  // The traversal stack holds at most one entry per level.
+  GLINT_CHECK(stats_.maxDepth < kMaxDepth);
+  stats_.buildSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+bool ReferenceBvh::intersectPrim(uint32_t groupId, const PrimRef& p, const Ray& ray,
+                                 uint32_t instId, Hit& hit) const {
+  const Geometry& g = scene_.groups[groupId].geometries[p.geom];
+  Ray r = ray;
+  r.tMax = std::min(ray.tMax, hit.t);
+  float u = 0, v = 0, t = kInfinity;
+  switch (g.kind) {
+    case GeomKind::Mesh: {
+      const TriangleMesh& m = scene_.meshes[g.index];
+      t = intersectTriangle(m.vertexAt(p.prim, 0, r.time), m.vertexAt(p.prim, 1, r.time),
+                            m.vertexAt(p.prim, 2, r.time), r, u, v);
+      break;
+    }
+    case GeomKind::Sphere:
+      t = intersectSphere(scene_.sphereAt(g.index, r.time), r);
+      break;
+    case GeomKind::Quad:
+      t = intersectQuad(scene_.quads[g.index], r, u, v);
+      break;
+    case GeomKind::Plane:
+      return false;
+    case GeomKind::Instance: {
+      // Embree's convention: the instanced ray keeps t, so its direction is not renormalised.
+      const Instance& inst = scene_.instances[g.index];
+      const Transform objectFromWorld = inst.transformAt(r.time).inverse();
+      Ray local = r;
+      local.o = objectFromWorld.point(r.o);
+      local.d = objectFromWorld.vector(r.d);
+      return traverse<false>(inst.groupId, local, p.geom, hit);
+    }
+  }
+  if (!(t < r.tMax)) return false;
+  hit = Hit{t, u, v, p.geom, p.prim, instId};
+  return true;
+}
+
+template <bool AnyHit>
+bool ReferenceBvh::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const {
+  const Tree& tree = trees_[groupId];
+  if (tree.nodes.empty()) return false;
+  // 1/±0 = ±∞ by IEEE; the 0·∞ = NaN of an origin exactly on a slab plane is resolved below.
+  const Vec3f inv{1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z};
+  const bool negative[3] = {inv.x < 0, inv.y < 0, inv.z < 0};
+  uint32_t stack[kMaxDepth];
+  int sp = 0;
+  uint32_t index = 0;
+  bool found = false;
+  while (true) {
+    const Node& node = tree.nodes[index];
+    float tNear = ray.tMin, tFar = std::min(ray.tMax, hit.t);
+    for (int a = 0; a < 3; ++a) {
+      const float t0 = (node.box.lo[a] - ray.o[a]) * inv[a];
+      const float t1 = (node.box.hi[a] - ray.o[a]) * inv[a];
+      // NaN only when the origin lies on the plane of a slab the ray runs parallel to: that
+      // slab does not constrain the ray, so NaN becomes −∞ for near and +∞ for far.
+      const float nearA = std::min(t0 != t0 ? -kInfinity : t0, t1 != t1 ? -kInfinity : t1);
+      const float farA = std::max(t0 != t0 ? kInfinity : t0, t1 != t1 ? kInfinity : t1);
+      tNear = std::max(tNear, nearA);
+      tFar = std::min(tFar, farA * kSlabPad);
+    }
+    if (tNear <= tFar) {
+      if (node.count > 0) {
+        for (uint32_t i = node.first; i < node.first + node.count; ++i)
+          if (intersectPrim(groupId, tree.prims[i], ray, instId, hit)) {
+            if constexpr (AnyHit) return true;
+            found = true;
+          }
+      } else {
+        // Near child first: the one on the side the ray comes from along the split axis.
+        const uint32_t first = index + 1, second = node.first;
+        const bool swap = negative[node.axis];
+        stack[sp++] = swap ? first : second;
+        index = swap ? second : first;
+        continue;
+      }
+    }
+    if (sp == 0) break;
+    index = stack[--sp];
+  }
+  return found;
+}
+
+Hit ReferenceBvh::intersect(const Ray& ray) const {
+  Hit hit;
+  traverse<false>(0, ray, kInvalidId, hit);
+  intersectPlanes(scene_, ray, hit);
+  return hit;
+}
+
+bool ReferenceBvh::occluded(const Ray& ray) const {
+  if (occludedByPlanes(scene_, ray)) return true;
+  Hit hit;
+  return traverse<true>(0, ray, kInvalidId, hit);
+}
+
+std::string ReferenceBvh::checkInvariants() const {
+  for (size_t g = 0; g < trees_.size(); ++g) {
+    const Tree& t = trees_[g];
+    std::vector<int> seen(t.prims.size(), 0);
+    for (size_t i = 0; i < t.nodes.size(); ++i) {
+      const Node& n = t.nodes[i];
+      const std::string where = "group " + std::to_string(g) + " node " + std::to_string(i);
+      if (n.count == 0) {
+        if (!contains(n.box, t.nodes[i + 1].box) || !contains(n.box, t.nodes[n.first].box))
+          return where + ": a child box is not inside its parent";
+        continue;
+      }
+      if (n.count > kMaxLeafSize * 4) return where + ": leaf too large";
+      for (uint32_t p = n.first; p < n.first + n.count; ++p) ++seen[p];
+    }
+    for (size_t p = 0; p < seen.size(); ++p)
+      if (seen[p] != 1)
+        return "group " + std::to_string(g) + " primitive slot " + std::to_string(p) + " is in " +
+               std::to_string(seen[p]) + " leaves";
+    std::vector<std::pair<uint32_t, uint32_t>> refs;
+    for (const PrimRef& r : t.prims) refs.push_back({r.geom, r.prim});
+    std::sort(refs.begin(), refs.end());
+    if (std::adjacent_find(refs.begin(), refs.end()) != refs.end())
+      return "group " + std::to_string(g) + ": a primitive is in two leaves";
+    // Every primitive of the group appears once among the slots.
+    size_t expected = 0;
+    for (const Geometry& geom : scene_.groups[g].geometries) {
+      if (geom.kind == GeomKind::Mesh)
+        expected += scene_.meshes[geom.index].triangleCount();
+      else if (geom.kind != GeomKind::Plane)
+        ++expected;
+    }
+    if (expected != t.prims.size())
+      return "group " + std::to_string(g) + ": " + std::to_string(t.prims.size()) +
+             " primitives in leaves, expected " + std::to_string(expected);
+  }
+  return {};
+}
+
+}  // namespace glint
