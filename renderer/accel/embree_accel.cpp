@@ -1,5 +1,7 @@
 #include "accel/embree_accel.h"
 
+#include <atomic>
+#include <chrono>
 #include <mutex>
 #include <string>
 
@@ -19,17 +21,27 @@ void onEmbreeError(void*, RTCError code, const char* str) {
                  (str ? str : "(no message)");
 }
 
+std::atomic<int64_t> gEmbreeBytes{0};
+
+bool onEmbreeMemory(void*, ssize_t bytes, bool) {
+  gEmbreeBytes += bytes;
+  return true;  // never refuse: out-of-memory surfaces as std::bad_alloc
+}
+
 struct DeviceHolder {
   RTCDevice device = nullptr;
   DeviceHolder() {
     device = rtcNewDevice(nullptr);
     if (!device) throw GlintError("cannot create the Embree device (rtcNewDevice failed)");
     rtcSetDeviceErrorFunction(device, onEmbreeError, nullptr);
+    rtcSetDeviceMemoryMonitorFunction(device, onEmbreeMemory, nullptr);
   }
   ~DeviceHolder() { rtcReleaseDevice(device); }
 };
 
 }  // namespace
+
+int64_t embreeMemoryBytes() { return gEmbreeBytes.load(); }
 
 RTCDevice embreeDevice() {
   static DeviceHolder holder;
@@ -124,10 +136,14 @@ void userOccluded(const RTCOccludedFunctionNArguments* args) {
 }  // namespace
 
 EmbreeAccel::EmbreeAccel(const Scene& scene) : scene_(scene) {
+  const auto start = std::chrono::steady_clock::now();
+  const int64_t bytesBefore = embreeMemoryBytes();
   groupScenes_.assign(scene.groups.size(), nullptr);
   // Instanced groups first: the world's instances refer to their committed scenes.
   for (uint32_t g = 1; g < scene.groups.size(); ++g) groupScenes_[g] = buildGroup(g);
   groupScenes_[0] = buildGroup(0);
+  buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  bytes_ = embreeMemoryBytes() - bytesBefore;
 }
 
 EmbreeAccel::~EmbreeAccel() {

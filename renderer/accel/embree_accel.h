@@ -15,6 +15,9 @@ namespace glint {
 RTCDevice embreeDevice();
 void throwIfEmbreeFailed(const char* what);
 std::string embreeVersionString();
+// Bytes Embree holds, as reported to its memory monitor (BVHs and internal buffers; shared
+// geometry buffers are ours and not counted).
+int64_t embreeMemoryBytes();
 
 class EmbreeAccel final : public Accelerator {
  public:
@@ -26,6 +29,8 @@ class EmbreeAccel final : public Accelerator {
   Hit intersect(const Ray& ray) const override;
   bool occluded(const Ray& ray) const override;
   std::string_view name() const override { return "embree"; }
+  double buildSeconds() const { return buildSeconds_; }
+  int64_t bytes() const { return bytes_; }
 
   struct UserShape;  // what a user-geometry callback needs, owned here
 
@@ -35,6 +40,8 @@ class EmbreeAccel final : public Accelerator {
   const Scene& scene_;
   std::vector<RTCScene> groupScenes_;  // index = group id; [0] is the world
   std::vector<std::unique_ptr<UserShape>> userShapes_;
+  double buildSeconds_ = 0;
+  int64_t bytes_ = 0;
 };
 
 }  // namespace glint

@@ -24,6 +24,7 @@ int runCli(int argc, char** argv) {
     runners[app.get_subcommands({}).back()] = std::move(runner);
   };
   add(addRenderCommand(app));
+  add(addValidateCommand(app));
   add(addInfoCommand(app));
 
   try {

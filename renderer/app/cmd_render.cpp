@@ -1,4 +1,3 @@
-#include <default_scene.h>
 #include <glint_version.h>
 
 #include <filesystem>
@@ -6,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/scene_source.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "film/atomic_file.h"
@@ -106,9 +106,7 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderSta
 
 int runRender(const RenderArgs& a) {
   if (a.quiet) log::setLevel(log::Level::Warning);
-  Scene scene = a.scenePath.empty()
-                    ? loadSceneText(kDefaultSceneJson, "<default scene>", kDefaultSceneDir)
-                    : loadSceneFile(a.scenePath);
+  Scene scene = loadSceneOrDefault(a.scenePath);
   applyOverrides(a, scene);
   RenderOptions opt;
   opt.threads = a.threads.value_or(0);

@@ -1,0 +1,148 @@
+// `glint validate`: renders the scene's own rays (camera, reflection, refraction, shadow) and
+// N random rays through Embree, the reference BVH and (for small scenes) brute force, and
+// reports how well they agree, hit by hit.
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "accel/brute_force.h"
+#include "accel/cross_check.h"
+#include "accel/embree_accel.h"
+#include "accel/reference_bvh.h"
+#include "app/commands.h"
+#include "app/scene_source.h"
+#include "core/error.h"
+#include "film/atomic_file.h"
+#include "render/render_job.h"
+
+namespace glint {
+
+namespace {
+
+struct ValidateArgs {
+  std::string scenePath;
+  int rays = 100000;
+  uint64_t seed = 1;
+  int spp = 1;
+  double minAgreement = 1 - 1e-6;
+  std::string json;
+  std::string ray;
+  bool occludedRay = false;
+  bool noBrute = false;
+};
+
+// Brute force is O(N) per ray: used when the scene has at most this many primitives.
+constexpr size_t kBruteForceLimit = 5000;
+
+size_t primitiveCount(const Scene& s) {
+  return s.triangleCount() + s.spheres.size() + s.quads.size() + s.planes.size();
+}
+
+int runValidate(const ValidateArgs& a) {
+  Scene scene = loadSceneOrDefault(a.scenePath);
+  const EmbreeAccel embree(scene);
+  const ReferenceBvh bvh(scene);
+  std::unique_ptr<BruteForce> brute;
+  if (!a.noBrute && primitiveCount(scene) <= kBruteForceLimit)
+    brute = std::make_unique<BruteForce>(scene);
+  std::vector<const Accelerator*> others{&bvh};
+  if (brute) others.push_back(brute.get());
+
+  if (!a.ray.empty()) {  // reproduce one ray from a report line
+    Ray r;
+    if (!parseRay(a.ray, r))
+      throw SceneError({"--ray", 0}, "", "expected 9 numbers: ox oy oz dx dy dz tmin tmax time");
+    std::printf("ray %s\n", formatRay(r).c_str());
+    for (const Accelerator* acc : std::vector<const Accelerator*>{&embree, &bvh, brute.get()})
+      if (acc)
+        std::printf("  %-7s %s\n", std::string(acc->name()).c_str(),
+                    a.occludedRay ? (acc->occluded(r) ? "occluded" : "clear")
+                                  : formatHit(acc->intersect(r)).c_str());
+    return kExitOk;
+  }
+
+  const CrossCheck check(embree, others);
+  scene.render.spp = a.spp;
+  RenderOptions opt;
+  opt.threads = 1;  // reproducible statistics and first disagreements
+  opt.progress = false;
+  renderScene(scene, check, opt);
+  castRandomRays(scene, check, a.rays, a.seed);
+
+  const CrossCheckStats& st = check.stats();
+  const BvhStats& bs = bvh.stats();
+  std::printf("backends       embree, bvh%s\n",
+              brute ? ", brute" : " (brute force skipped: scene too large)");
+  std::printf(
+      "queries        %llu closest-hit, %llu occlusion (scene rays at %d spp + %d random)\n",
+      (unsigned long long)st.rays, (unsigned long long)st.occlusionRays, a.spp, a.rays);
+  std::printf("hit/miss       %.9f agreement\n", st.hitAgreement());
+  std::printf("primitive      %.9f agreement (ties within %.0e count as agreement)\n",
+              st.primAgreement(), double(CrossCheck::kTieTolerance));
+  std::printf("occlusion      %.9f agreement\n", st.occlusionAgreement());
+  std::printf("|dt|/max(1,t)  max %.3g, 99.9th percentile %.3g\n", double(st.maxRelDt()),
+              double(st.quantileRelDt(0.999)));
+  std::printf("embree build   %.3f s, %.1f MiB\n", embree.buildSeconds(),
+              double(embree.bytes()) / (1 << 20));
+  std::printf(
+      "bvh build      %.3f s, %zu nodes, %zu leaves, %.2f prims/leaf, depth %zu, "
+      "SAH cost %.2f, %.1f MiB\n",
+      bs.buildSeconds, bs.nodes, bs.leaves, bs.primitivesPerLeaf(), bs.maxDepth, bs.sahCost,
+      double(bs.bytes) / (1 << 20));
+  if (!st.firstDisagreements.empty()) {
+    std::printf("first disagreements (reproduce with glint validate SCENE --ray ...):\n");
+    for (const auto& line : st.firstDisagreements) std::printf("  %s\n", line.c_str());
+  }
+  if (!a.json.empty()) {
+    nlohmann::json j;
+    j["rays"] = st.rays;
+    j["occlusion_rays"] = st.occlusionRays;
+    j["hit_agreement"] = st.hitAgreement();
+    j["prim_agreement"] = st.primAgreement();
+    j["occlusion_agreement"] = st.occlusionAgreement();
+    j["max_rel_dt"] = st.maxRelDt();
+    j["p999_rel_dt"] = st.quantileRelDt(0.999);
+    j["disagreements"] = st.firstDisagreements;
+    j["bvh"] = {
+        {"build_seconds", bs.buildSeconds},         {"nodes", bs.nodes},      {"leaves", bs.leaves},
+        {"prims_per_leaf", bs.primitivesPerLeaf()}, {"sah_cost", bs.sahCost}, {"bytes", bs.bytes}};
+    j["embree"] = {{"build_seconds", embree.buildSeconds()}, {"bytes", embree.bytes()}};
+    const std::string text = j.dump(2) + "\n";
+    writeFileAtomically(a.json, [&](const std::string& tmp) {
+      std::ofstream f(tmp);
+      f << text;
+      if (!f.flush()) throw GlintError("cannot write " + a.json);
+    });
+  }
+  if (st.hitAgreement() < a.minAgreement || st.occlusionAgreement() < a.minAgreement) {
+    std::fprintf(stderr, "glint: validation failed: agreement below %.9f\n", a.minAgreement);
+    return kExitRuntime;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+CommandRunner addValidateCommand(CLI::App& app) {
+  auto args = std::make_shared<ValidateArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "validate", "Cross-check Embree against the reference BVH (and brute force), hit by hit");
+  cmd->add_option("scene", args->scenePath, "Scene file (.json); omitted: the default scene")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--rays", args->rays, "Random rays besides the scene's own")
+      ->check(CLI::Range(0, 1 << 30));
+  cmd->add_option("--seed", args->seed, "Seed of the random rays");
+  cmd->add_option("--spp", args->spp, "Camera samples per pixel for the scene's rays")
+      ->check(CLI::Range(0, 1 << 16));
+  cmd->add_option("--min-agreement", args->minAgreement,
+                  "Fail (exit 1) when hit/miss or occlusion agreement is below this")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--json", args->json, "Write the figures as JSON");
+  cmd->add_option("--ray", args->ray, "Trace one ray \"ox oy oz dx dy dz tmin tmax time\"");
+  cmd->add_flag("--occluded", args->occludedRay, "With --ray: an occlusion query");
+  cmd->add_flag("--no-brute", args->noBrute, "Skip the brute-force oracle");
+  return [args] { return runValidate(*args); };
+}
+
+}  // namespace glint
