@@ -70,11 +70,13 @@ float intersectTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const
   const double det = U + V + W;
   if (det == 0) return kInfinity;
   const double T = U * (sz * a[kz]) + V * (sz * b[kz]) + W * (sz * c[kz]);
-  const double t = T / det;
+  // The interval test is on the float that is returned: testing the double would accept a t
+  // that rounds to tMin, and a query restarted at that t would find the same hit again.
+  const auto t = static_cast<float>(T / det);
   if (!(t > ray.tMin && t < ray.tMax)) return kInfinity;
   u = static_cast<float>(V / det);
   v = static_cast<float>(W / det);
-  return static_cast<float>(t);
+  return t;
 }
 
 Bounds3f bounds(const Sphere& s) {

@@ -104,16 +104,19 @@ TEST(Cli, SameImageForAnyThreadCountTileSizeAndCrop) {
                   a.pixels[(size_t(y + 3) * 40 + size_t(x + 5)) * 4 + size_t(ch)]);
 }
 
-TEST(Cli, BruteForceRendersTheSameImage) {
-  // Both backends share every intersection routine except triangles and traversal; on this
-  // scene (no triangles) they must agree exactly, for every sampled effect too.
+TEST(Cli, EveryBackendRendersTheSameImage) {
+  // The backends share every intersection routine (the scene has spheres, a plane and, in the
+  // area lights, no triangles) and differ only in traversal, so the images must agree exactly,
+  // for every sampled effect too.
   const std::string scene = test::writeTemp("backends.json", kSmallScene);
-  const auto path = [](const char* n) { return (test::tempDir() / n).string(); };
-  ASSERT_EQ(runGlint("render " + scene + " --quiet --accel brute -o " + path("brute.exr")).exitCode,
-            0);
-  ASSERT_EQ(
-      runGlint("render " + scene + " --quiet --accel embree -o " + path("embree.exr")).exitCode, 0);
-  EXPECT_EQ(readImage(path("brute.exr")).pixels, readImage(path("embree.exr")).pixels);
+  const auto path = [](const std::string& n) { return (test::tempDir() / (n + ".exr")).string(); };
+  for (const char* accel : {"embree", "bvh", "brute"})
+    ASSERT_EQ(
+        runGlint("render " + scene + " --quiet --accel " + accel + " -o " + path(accel)).exitCode,
+        0);
+  const auto embree = readImage(path("embree")).pixels;
+  EXPECT_EQ(readImage(path("bvh")).pixels, embree);
+  EXPECT_EQ(readImage(path("brute")).pixels, embree);
 }
 
 TEST(Cli, DefaultSceneRendersWithStats) {
