@@ -95,9 +95,10 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderSta
                {"glint:scene", scene.sourcePath},
                {"glint:sampler", std::string(samplerName(scene.render.sampler))},
                {"glint:accel", a.accel},
+               {"glint:seed", std::to_string(scene.render.seed)},  // 64-bit: kept exact as text
                {"glint:commandline", commandLine()}};
   m.ints = {{"glint:spp", scene.render.spp},
-            {"glint:seed", static_cast<int>(scene.render.seed)},
+
             {"glint:partial", 0}};
   m.floats = {{"glint:render_seconds", static_cast<float>(st.seconds)},
               {"glint:rays", static_cast<float>(st.rays.total())}};

@@ -92,6 +92,13 @@ Transform Transform::rotate(const Vec3f& axis, float degrees) {
   return Transform(m);
 }
 
+float Transform::determinant() const {
+  const Mat4& m = m_;
+  return m(0, 0) * (m(1, 1) * m(2, 2) - m(1, 2) * m(2, 1)) -
+         m(0, 1) * (m(1, 0) * m(2, 2) - m(1, 2) * m(2, 0)) +
+         m(0, 2) * (m(1, 0) * m(2, 1) - m(1, 1) * m(2, 0));
+}
+
 Transform Transform::inverse() const {
   Transform t;
   t.m_ = inv_;

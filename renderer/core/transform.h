@@ -33,6 +33,8 @@ class Transform {
   const Mat4& inverseMatrix() const { return inv_; }
   Transform inverse() const;
   bool isIdentity() const { return m_ == Mat4{}; }
+  // Of the linear part: negative for a mirroring transform.
+  float determinant() const;
   // True when the linear part is a rotation times a uniform scale (spheres stay spheres).
   bool isSimilarity(float* uniformScale = nullptr) const;
 

@@ -43,6 +43,11 @@ void addMesh(SceneBuilder& b, TriangleMesh mesh, const Transform& xf, const Json
   };
   place(mesh.positions);
   for (auto& key : mesh.positionKeys) place(key);
+  // A mirroring transform (negative determinant) reverses the winding, which would turn the
+  // geometric normals inward; swap two corners to keep them outward.
+  if (xf.determinant() < 0)
+    for (size_t i = 0; i < mesh.indices.size(); i += 3)
+      std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
   for (uint32_t idx : mesh.indices)
     if (idx >= mesh.positions.size())
       where.fail("index " + std::to_string(idx) + " is out of range (" +
@@ -165,7 +170,7 @@ TrsKey parseTrsKey(const JsonNode& n) {
 template <typename T, typename Parse>
 std::vector<T> parseKeys(const JsonNode& n, Parse parse) {
   if (!n.isArray() || n.size() < 2)
-    n.fail("must list at least 2 keys (spread evenly over the shutter)");
+    n.fail("must list at least 2 keys (spread evenly over normalised time [0, 1])");
   std::vector<T> keys;
   for (const JsonNode& k : n.elements()) keys.push_back(parse(k));
   return keys;
@@ -231,6 +236,9 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     obj.checkKeys({"type", "corner", "edge1", "edge2", "material", "transform", "motion"});
     Quad q{xf.point(obj.at("corner").vec3()), xf.vector(obj.at("edge1").vec3()),
            xf.vector(obj.at("edge2").vec3())};
+    // Under a mirroring transform edge1 × edge2 would point the other way: swap the edges (the
+    // same parallelogram) so the normal is the transformed normal.
+    if (xf.determinant() < 0) std::swap(q.edge1, q.edge2);
     if (!(length(cross(q.edge1, q.edge2)) > 0))
       obj.fail("edge1 and edge2 must span a parallelogram (they are parallel or zero)");
     s.quads.push_back(q);

@@ -117,7 +117,7 @@ TEST(SceneError, MotionKeysAreValidated) {
   };
   EXPECT_EQ(errorOf(sphereWith("\"motion\": {\"center\": [[0,0,0]]}")),
             "scene.json:5: objects[0].motion.center: must list at least 2 keys (spread evenly "
-            "over the shutter)");
+            "over normalised time [0, 1])");
   EXPECT_EQ(errorOf(sphereWith("\"motion\": {\"transform\": [{\"matrix\": [1]}, {}]}")),
             "scene.json:5: objects[0].motion.transform[0].matrix: motion keys take "
             "translate/rotate/scale (rotation is interpolated by slerp), not a matrix");

@@ -196,3 +196,27 @@ TEST(SceneParse, MeshFilesInPlyAndGltf) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(SceneParse, MirroringTransformsKeepNormalsOutward) {
+  // scale x by −1 mirrors: the box's triangles and the quad must keep their normals pointing
+  // away from the solid (box) and along the mirrored normal (quad: (0,0,1) stays (0,0,1)).
+  const Scene s = test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+    "materials": {"m": {"type": "phong"}}, "objects": [
+      {"type": "box", "min": [1,-1,-1], "max": [3,1,1], "material": "m", "transform": {"scale": [-1,1,1]}},
+      {"type": "quad", "corner": [0,0,0], "edge1": [1,0,0], "edge2": [0,1,0], "material": "m",
+       "transform": {"scale": [-1,1,1]}}]})");
+  const TriangleMesh& m = s.meshes[0];
+  const Vec3f centre{-2, 0, 0};
+  for (uint32_t t = 0; t < m.triangleCount(); ++t) {
+    const Vec3f c = (m.vertex(t, 0) + m.vertex(t, 1) + m.vertex(t, 2)) / 3.0f;
+    const Vec3f n = cross(m.vertex(t, 1) - m.vertex(t, 0), m.vertex(t, 2) - m.vertex(t, 0));
+    EXPECT_GT(dot(n, c - centre), 0) << "triangle " << t;
+  }
+  EXPECT_GT(cross(s.quads[0].edge1, s.quads[0].edge2).z, 0);
+}
+
+}  // namespace
+}  // namespace glint
