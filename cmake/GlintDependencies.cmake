@@ -9,6 +9,7 @@ find_package(nlohmann_json 3.11 REQUIRED)
 find_package(CLI11 REQUIRED)
 find_package(assimp REQUIRED)
 find_package(Threads REQUIRED)
+find_package(benchmark REQUIRED)  # glint bench
 
 # Debian's OpenImageIO targets name /usr/include/opencv4 as an include directory even when
 # OpenCV's headers are absent, and OpenColorIO's config, found outside its usual prefix, names

@@ -301,9 +301,20 @@ ReferenceBvh::ReferenceBvh(const Scene& scene, BvhSplit split) : scene_(scene) {
     Builder builder(prims, split);
     const auto root = builder.build(0, prims.size());
     flatten(*root, prims, trees_[g], stats_, 0, area(root->box));
+    Tree& tree = trees_[g];
+    tree.corners.resize(tree.prims.size());
+    tree.staticTriangle.assign(tree.prims.size(), 0);
+    for (size_t i = 0; i < tree.prims.size(); ++i) {
+      const Geometry& geom = geoms[tree.prims[i].geom];
+      if (geom.kind != GeomKind::Mesh || scene.meshes[geom.index].deforming()) continue;
+      const TriangleMesh& m = scene.meshes[geom.index];
+      tree.corners[i] = {m.vertex(tree.prims[i].prim, 0), m.vertex(tree.prims[i].prim, 1),
+                         m.vertex(tree.prims[i].prim, 2)};
+      tree.staticTriangle[i] = 1;
+    }
     stats_.nodes += trees_[g].nodes.size();
-    stats_.bytes +=
-        trees_[g].nodes.size() * sizeof(Node) + trees_[g].prims.size() * sizeof(PrimRef);
+    stats_.bytes += tree.nodes.size() * sizeof(Node) +
+                    tree.prims.size() * (sizeof(PrimRef) + sizeof(tree.corners[0]) + 1);
   }
   // The traversal stack holds at most one entry per level.
   GLINT_CHECK(stats_.maxDepth < kMaxDepth);
@@ -311,12 +322,21 @@ ReferenceBvh::ReferenceBvh(const Scene& scene, BvhSplit split) : scene_(scene) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-bool ReferenceBvh::intersectPrim(uint32_t groupId, const PrimRef& p, const Ray& ray,
-                                 uint32_t instId, Hit& hit) const {
-  const Geometry& g = scene_.groups[groupId].geometries[p.geom];
+bool ReferenceBvh::intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray, uint32_t instId,
+                                 Hit& hit) const {
+  const Tree& tree = trees_[groupId];
+  const PrimRef& p = tree.prims[slot];
   Ray r = ray;
   r.tMax = std::min(ray.tMax, hit.t);
   float u = 0, v = 0, t = kInfinity;
+  if (tree.staticTriangle[slot]) {
+    const auto& c = tree.corners[slot];
+    t = intersectTriangle(c[0], c[1], c[2], r, u, v);
+    if (!(t < r.tMax)) return false;
+    hit = Hit{t, u, v, p.geom, p.prim, instId};
+    return true;
+  }
+  const Geometry& g = scene_.groups[groupId].geometries[p.geom];
   switch (g.kind) {
     case GeomKind::Mesh: {
       const TriangleMesh& m = scene_.meshes[g.index];
@@ -351,37 +371,38 @@ template <bool AnyHit>
 bool ReferenceBvh::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const {
   const Tree& tree = trees_[groupId];
   if (tree.nodes.empty()) return false;
-  // 1/±0 = ±∞ by IEEE; the 0·∞ = NaN of an origin exactly on a slab plane is resolved below.
+  // Williams et al. 2005: 1/±0 = ±∞ by IEEE, and the slab planes are taken in the order the ray
+  // meets them (by the sign of its direction), so the near distance only ever raises tNear and
+  // the far one only lowers tFar. An origin exactly on a slab plane of a ray parallel to it
+  // gives 0·∞ = NaN; std::max(tNear, NaN) and std::min(tFar, NaN) keep their first argument, so
+  // that slab simply does not constrain the ray.
   const Vec3f inv{1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z};
-  const bool negative[3] = {inv.x < 0, inv.y < 0, inv.z < 0};
+  const int negative[3] = {std::signbit(inv.x), std::signbit(inv.y), std::signbit(inv.z)};
   uint32_t stack[kMaxDepth];
   int sp = 0;
   uint32_t index = 0;
   bool found = false;
   while (true) {
     const Node& node = tree.nodes[index];
+    const Vec3f* planes = &node.box.lo;  // planes[0] = lo, planes[1] = hi
     float tNear = ray.tMin, tFar = std::min(ray.tMax, hit.t);
     for (int a = 0; a < 3; ++a) {
-      const float t0 = (node.box.lo[a] - ray.o[a]) * inv[a];
-      const float t1 = (node.box.hi[a] - ray.o[a]) * inv[a];
-      // NaN only when the origin lies on the plane of a slab the ray runs parallel to: that
-      // slab does not constrain the ray, so NaN becomes −∞ for near and +∞ for far.
-      const float nearA = std::min(t0 != t0 ? -kInfinity : t0, t1 != t1 ? -kInfinity : t1);
-      const float farA = std::max(t0 != t0 ? kInfinity : t0, t1 != t1 ? kInfinity : t1);
-      tNear = std::max(tNear, nearA);
-      tFar = std::min(tFar, farA * kSlabPad);
+      const float tn = (planes[negative[a]][a] - ray.o[a]) * inv[a];
+      const float tf = (planes[1 - negative[a]][a] - ray.o[a]) * inv[a];
+      tNear = std::max(tNear, tn);
+      tFar = std::min(tFar, tf * kSlabPad);  // Ize 2013: conservative by 2 ulps
     }
     if (tNear <= tFar) {
       if (node.count > 0) {
         for (uint32_t i = node.first; i < node.first + node.count; ++i)
-          if (intersectPrim(groupId, tree.prims[i], ray, instId, hit)) {
+          if (intersectPrim(groupId, i, ray, instId, hit)) {
             if constexpr (AnyHit) return true;
             found = true;
           }
       } else {
         // Near child first: the one on the side the ray comes from along the split axis.
         const uint32_t first = index + 1, second = node.first;
-        const bool swap = negative[node.axis];
+        const bool swap = negative[node.axis] != 0;
         stack[sp++] = swap ? first : second;
         index = swap ? second : first;
         continue;

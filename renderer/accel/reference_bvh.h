@@ -5,6 +5,7 @@
 // comparison. Traversal is ordered (near child first) with a slab test that survives ±0
 // direction components and pads by 2 ulps (Ize 2013); primitives use the same intersection
 // routines as every other backend, the watertight triangle test among them.
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -57,12 +58,16 @@ class ReferenceBvh final : public Accelerator {
   struct Tree {
     std::vector<Node> nodes;
     std::vector<PrimRef> prims;
+    // Corners of static triangles in leaf order, so leaves read contiguous memory instead of
+    // chasing group → mesh → index → vertex; `staticTriangle[i]` says whether slot i has them.
+    std::vector<std::array<Vec3f, 3>> corners;
+    std::vector<uint8_t> staticTriangle;
   };
 
  private:
   template <bool AnyHit>
   bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const;
-  bool intersectPrim(uint32_t groupId, const PrimRef& p, const Ray& ray, uint32_t instId,
+  bool intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray, uint32_t instId,
                      Hit& hit) const;
 
   const Scene& scene_;

@@ -25,6 +25,7 @@ int runCli(int argc, char** argv) {
   };
   add(addRenderCommand(app));
   add(addValidateCommand(app));
+  add(addBenchCommand(app));
   add(addInfoCommand(app));
 
   try {

@@ -17,6 +17,7 @@ using CommandRunner = std::function<int()>;
 CommandRunner addRenderCommand(CLI::App& app);
 CommandRunner addInfoCommand(CLI::App& app);
 CommandRunner addValidateCommand(CLI::App& app);
+CommandRunner addBenchCommand(CLI::App& app);
 
 // The command line as typed, for EXR metadata.
 const std::string& commandLine();

@@ -63,19 +63,23 @@ float intersectTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const
   const float ax = a[kx] - sx * a[kz], ay = a[ky] - sy * a[kz];
   const float bx = b[kx] - sx * b[kz], by = b[ky] - sy * b[kz];
   const float cx = c[kx] - sx * c[kz], cy = c[ky] - sy * c[kz];
-  double U = double(cx) * by - double(cy) * bx;
-  double V = double(ax) * cy - double(ay) * cx;
-  double W = double(bx) * ay - double(by) * ax;
+  // Edge functions in float; exactly zero means the ray passes through an edge or vertex, where
+  // float rounding could disagree between neighbours, so those are recomputed in double.
+  float U = cx * by - cy * bx, V = ax * cy - ay * cx, W = bx * ay - by * ax;
+  if (U == 0 || V == 0 || W == 0) {
+    U = static_cast<float>(double(cx) * by - double(cy) * bx);
+    V = static_cast<float>(double(ax) * cy - double(ay) * cx);
+    W = static_cast<float>(double(bx) * ay - double(by) * ax);
+  }
   if ((U < 0 || V < 0 || W < 0) && (U > 0 || V > 0 || W > 0)) return kInfinity;
-  const double det = U + V + W;
+  const float det = U + V + W;
   if (det == 0) return kInfinity;
-  const double T = U * (sz * a[kz]) + V * (sz * b[kz]) + W * (sz * c[kz]);
-  // The interval test is on the float that is returned: testing the double would accept a t
-  // that rounds to tMin, and a query restarted at that t would find the same hit again.
-  const auto t = static_cast<float>(T / det);
+  const float T = U * (sz * a[kz]) + V * (sz * b[kz]) + W * (sz * c[kz]);
+  const float invDet = 1.0f / det;
+  const float t = T * invDet;
   if (!(t > ray.tMin && t < ray.tMax)) return kInfinity;
-  u = static_cast<float>(V / det);
-  v = static_cast<float>(W / det);
+  u = V * invDet;
+  v = W * invDet;
   return t;
 }
 

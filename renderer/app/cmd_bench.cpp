@@ -1,0 +1,197 @@
+// `glint bench`: ray rates of the intersection backends on a scene's own camera, shadow and
+// random rays, single-threaded and on all threads, timed by Google Benchmark.
+#include <benchmark/benchmark.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "accel/accelerator.h"
+#include "app/commands.h"
+#include "app/procedural_scene.h"
+#include "app/scene_source.h"
+#include "camera/camera.h"
+#include "core/error.h"
+#include "core/fp_env.h"
+#include "core/hash.h"
+#include "film/atomic_file.h"
+#include "render/tile_scheduler.h"
+
+namespace glint {
+
+namespace {
+
+struct BenchArgs {
+  std::string scenePath;
+  std::string accels = "embree,bvh";
+  size_t procedural = 0;
+  int threads = 0;
+  int randomRays = 1 << 20;
+  double minSeconds = 0.5;
+  std::string json;
+};
+
+struct RaySets {
+  std::vector<Ray> camera, shadow, random;
+};
+
+// Camera rays through every pixel centre; shadow rays from their hits towards the first light
+// (or straight up when there is none); random rays as in `glint validate`.
+RaySets makeRays(const Scene& scene, const Accelerator& accel, int randomCount) {
+  RaySets sets;
+  const Camera cam(scene.cameraDesc, scene.render.width, scene.render.height);
+  for (int y = 0; y < scene.render.height; ++y)
+    for (int x = 0; x < scene.render.width; ++x)
+      sets.camera.push_back(cam.generateRay(float(x) + 0.5f, float(y) + 0.5f));
+  for (const Ray& r : sets.camera) {
+    const Hit h = accel.intersect(r);
+    if (!h) continue;
+    const ShadingPoint sp = scene.shadingPoint(r, h);
+    const Vec3f target = scene.lights.empty()
+                             ? sp.p + Vec3f{0, 1e3f, 0}
+                             : sampleLight(scene.lights[0], sp.p, {0.5f, 0.5f}).target;
+    sets.shadow.push_back(spawnRayTo(sp, target, 0));
+  }
+  Bounds3f b = scene.worldBounds();
+  if (b.empty()) b = {{-1, -1, -1}, {1, 1, 1}};
+  for (int i = 0; i < randomCount; ++i) {
+    const auto u = [&](int k) { return toUnitFloat(hashKey(99, i, k)); };
+    const float z = 1 - 2 * u(3), phi = 2 * kPi * u(4), s = std::sqrt(std::max(0.0f, 1 - z * z));
+    sets.random.push_back({b.lo + mul(b.diagonal(), Vec3f{u(0), u(1), u(2)}),
+                           {s * std::cos(phi), s * std::sin(phi), z}});
+  }
+  return sets;
+}
+
+// Collects Google Benchmark's items-per-second by benchmark name.
+class RateCollector : public benchmark::BenchmarkReporter {
+ public:
+  bool ReportContext(const Context&) override { return true; }
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const Run& r : runs) {
+      const auto it = r.counters.find("items_per_second");
+      if (it != r.counters.end()) rates[r.run_name.function_name] = it->second.value;
+    }
+  }
+  std::map<std::string, double> rates;
+};
+
+int runBench(const BenchArgs& a) {
+  const Scene scene =
+      a.procedural ? makeProceduralScene(a.procedural) : loadSceneOrDefault(a.scenePath);
+  std::vector<AccelKind> kinds;
+  std::stringstream list(a.accels);
+  for (std::string name; std::getline(list, name, ',');) {
+    AccelKind k;
+    if (!parseAccelKind(name, k))
+      throw SceneError({"--accel", 0}, "", "unknown backend \"" + name + "\"");
+    kinds.push_back(k);
+  }
+  const int allThreads = a.threads > 0 ? a.threads : defaultThreadCount();
+  std::printf("scene          %s, %zu triangles\n", scene.sourcePath.c_str(),
+              scene.triangleCount());
+
+  std::vector<std::unique_ptr<Accelerator>> accels;
+  for (AccelKind k : kinds) accels.push_back(makeAccelerator(k, scene));
+  const RaySets rays = makeRays(scene, *accels[0], a.randomRays);
+  struct Set {
+    const char* name;
+    const std::vector<Ray>* rays;
+    bool occlusion;
+  };
+  const Set sets[] = {{"camera", &rays.camera, false},
+                      {"shadow", &rays.shadow, true},
+                      {"random", &rays.random, false}};
+  for (const auto& accel : accels)
+    for (const Set& set : sets)
+      for (int threads : {1, allThreads}) {
+        const std::string name =
+            std::string(accel->name()) + "/" + set.name + "/threads:" + std::to_string(threads);
+        const Accelerator* acc = accel.get();
+        benchmark::RegisterBenchmark(
+            name.c_str(),
+            [acc, set, threads](benchmark::State& state) {
+              tbb::task_arena arena(threads);
+              size_t hits = 0;
+              for (auto _ : state) {
+                arena.execute([&] {
+                  hits += tbb::parallel_reduce(
+                      tbb::blocked_range<size_t>(0, set.rays->size(), 4096), size_t(0),
+                      [&](const tbb::blocked_range<size_t>& r, size_t n) {
+                        enableFlushToZero();
+                        for (size_t i = r.begin(); i != r.end(); ++i)
+                          n += set.occlusion ? acc->occluded((*set.rays)[i])
+                                             : bool(acc->intersect((*set.rays)[i]));
+                        return n;
+                      },
+                      std::plus<>());
+                });
+              }
+              benchmark::DoNotOptimize(hits);
+              state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(set.rays->size()));
+            })
+            ->MinTime(0.1)
+            ->Unit(benchmark::kMillisecond)
+            ->UseRealTime();
+      }
+  RateCollector collector;
+  benchmark::RunSpecifiedBenchmarks(&collector);
+  benchmark::ClearRegisteredBenchmarks();
+
+  nlohmann::json j;
+  std::printf("%-8s %-7s %14s %14s %10s\n", "backend", "rays", "1 thread", "all threads",
+              "vs embree");
+  for (const auto& accel : accels)
+    for (const Set& set : sets) {
+      const auto rate = [&](const std::string& acc, int t) {
+        return collector.rates[acc + "/" + set.name + "/threads:" + std::to_string(t)] * 1e-6;
+      };
+      const std::string n(accel->name());
+      const double one = rate(n, 1), all = rate(n, allThreads), base = rate("embree", 1);
+      std::printf("%-8s %-7s %9.2f Mr/s %9.2f Mr/s %9.2fx\n", n.c_str(), set.name, one, all,
+                  base > 0 ? one / base : 0.0);
+      j["backends"][n][set.name] = {
+          {"mrays_per_s_1_thread", one}, {"mrays_per_s_all_threads", all}, {"threads", allThreads}};
+    }
+  j["scene"] = scene.sourcePath;
+  j["triangles"] = scene.triangleCount();
+  j["mrays_per_s"] = nullptr;  // whole-render figures come with the render benchmark
+  j["embree_limit_ratio"] = nullptr;
+  j["parallel_efficiency"] = nullptr;
+  j["bytes_per_triangle"] = nullptr;
+  if (!a.json.empty()) {
+    const std::string text = j.dump(2) + "\n";
+    writeFileAtomically(a.json, [&](const std::string& tmp) {
+      std::ofstream f(tmp);
+      f << text;
+      if (!f.flush()) throw GlintError("cannot write " + a.json);
+    });
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+CommandRunner addBenchCommand(CLI::App& app) {
+  auto args = std::make_shared<BenchArgs>();
+  CLI::App* cmd = app.add_subcommand("bench", "Ray rates of the intersection backends");
+  cmd->add_option("scene", args->scenePath, "Scene file (.json); omitted: the default scene")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--accel", args->accels, "Comma-separated backends (embree, bvh, brute)");
+  cmd->add_option("--procedural", args->procedural,
+                  "Benchmark a generated heightfield of about this many triangles instead");
+  cmd->add_option("--threads", args->threads, "Threads for the all-threads runs (default: all)")
+      ->check(CLI::Range(1, 4096));
+  cmd->add_option("--random-rays", args->randomRays, "Random rays per pass")
+      ->check(CLI::Range(1, 1 << 26));
+  cmd->add_option("--json", args->json, "Write the figures as JSON");
+  return [args] { return runBench(*args); };
+}
+
+}  // namespace glint
