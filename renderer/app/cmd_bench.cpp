@@ -5,6 +5,7 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include <sstream>
 
 #include "accel/accelerator.h"
+#include "accel/reference_bvh.h"
 #include "app/commands.h"
 #include "app/procedural_scene.h"
 #include "app/scene_source.h"
@@ -159,6 +161,25 @@ int runBench(const BenchArgs& a) {
       j["backends"][n][set.name] = {
           {"mrays_per_s_1_thread", one}, {"mrays_per_s_all_threads", all}, {"threads", allThreads}};
     }
+  // The three reference-BVH builds side by side (seed 000 §12.3.2 against Wald's binned SAH).
+  std::printf("\n%-9s %9s %9s %8s %10s %12s\n", "bvh build", "seconds", "nodes", "depth",
+              "SAH cost", "random Mr/s");
+  for (BvhSplit split : {BvhSplit::Sah, BvhSplit::Median, BvhSplit::Midpoint}) {
+    const ReferenceBvh bvh(scene, split);
+    const auto start = std::chrono::steady_clock::now();
+    size_t hits = 0;
+    for (const Ray& r : rays.random) hits += bool(bvh.intersect(r));
+    benchmark::DoNotOptimize(hits);
+    const double secs =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const BvhStats& st = bvh.stats();
+    const double rate = double(rays.random.size()) / secs * 1e-6;
+    std::printf("%-9s %9.3f %9zu %8zu %10.2f %12.2f\n", std::string(bvhSplitName(split)).c_str(),
+                st.buildSeconds, st.nodes, st.maxDepth, st.sahCost, rate);
+    j["bvh_builds"][std::string(bvhSplitName(split))] = {
+        {"build_seconds", st.buildSeconds}, {"nodes", st.nodes}, {"sah_cost", st.sahCost},
+        {"random_mrays_per_s_1_thread", rate}};
+  }
   j["scene"] = scene.sourcePath;
   j["triangles"] = scene.triangleCount();
   j["mrays_per_s"] = nullptr;  // whole-render figures come with the render benchmark

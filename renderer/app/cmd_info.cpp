@@ -7,6 +7,8 @@
 #include <cstdio>
 
 #include "accel/embree_accel.h"
+#include "accel/reference_bvh.h"
+#include "app/scene_source.h"
 #include "app/commands.h"
 #include "render/tile_scheduler.h"
 
@@ -33,10 +35,33 @@ std::string embreeWidths() {
 
 }  // namespace
 
+void printSceneStats(const std::string& path) {
+  const Scene scene = loadSceneOrDefault(path);
+  std::printf("scene        %s\n", scene.sourcePath.c_str());
+  std::printf("geometry     %zu triangles, %zu spheres, %zu quads, %zu planes, %zu instances, "
+              "%zu groups\n",
+              scene.triangleCount(), scene.spheres.size(), scene.quads.size(),
+              scene.planes.size(), scene.instances.size(), scene.groups.size() - 1);
+  const EmbreeAccel embree(scene);
+  std::printf("embree       build %.3f s, %.1f MiB\n", embree.buildSeconds(),
+              double(embree.bytes()) / (1 << 20));
+  const ReferenceBvh bvh(scene);
+  const BvhStats& b = bvh.stats();
+  std::printf("bvh          build %.3f s, %zu nodes, %zu leaves, %.2f prims/leaf, depth %zu, "
+              "SAH cost %.2f, %.1f MiB\n",
+              b.buildSeconds, b.nodes, b.leaves, b.primitivesPerLeaf(), b.maxDepth, b.sahCost,
+              double(b.bytes) / (1 << 20));
+}
+
 CommandRunner addInfoCommand(CLI::App& app) {
-  CLI::App* cmd = app.add_subcommand("info", "Version, libraries, ISA and thread count");
-  (void)cmd;
-  return [] {
+  auto scenePath = std::make_shared<std::string>();
+  auto withScene = std::make_shared<bool>(false);
+  CLI::App* cmd = app.add_subcommand(
+      "info", "Version, libraries, ISA and thread count; with SCENE, acceleration statistics");
+  cmd->add_option("scene", *scenePath, "Scene file: also print build statistics of both backends")
+      ->check(CLI::ExistingFile)
+      ->each([withScene](const std::string&) { *withScene = true; });
+  return [scenePath, withScene] {
     std::printf("glint        %s\n", GLINT_VERSION);
     std::printf("Embree       %s (native packets: %s)\n", embreeVersionString().c_str(),
                 embreeWidths().c_str());
@@ -45,6 +70,7 @@ CommandRunner addInfoCommand(CLI::App& app) {
     std::printf("OpenColorIO  %s\n", OCIO_NAMESPACE::GetVersion());
     std::printf("oneTBB       %s\n", TBB_runtime_version());
     std::printf("threads      %d\n", defaultThreadCount());
+    if (*withScene) printSceneStats(*scenePath);
     return kExitOk;
   };
 }
