@@ -176,9 +176,10 @@ int runBench(const BenchArgs& a) {
     const double rate = double(rays.random.size()) / secs * 1e-6;
     std::printf("%-9s %9.3f %9zu %8zu %10.2f %12.2f\n", std::string(bvhSplitName(split)).c_str(),
                 st.buildSeconds, st.nodes, st.maxDepth, st.sahCost, rate);
-    j["bvh_builds"][std::string(bvhSplitName(split))] = {
-        {"build_seconds", st.buildSeconds}, {"nodes", st.nodes}, {"sah_cost", st.sahCost},
-        {"random_mrays_per_s_1_thread", rate}};
+    j["bvh_builds"][std::string(bvhSplitName(split))] = {{"build_seconds", st.buildSeconds},
+                                                         {"nodes", st.nodes},
+                                                         {"sah_cost", st.sahCost},
+                                                         {"random_mrays_per_s_1_thread", rate}};
   }
   j["scene"] = scene.sourcePath;
   j["triangles"] = scene.triangleCount();
@@ -187,12 +188,7 @@ int runBench(const BenchArgs& a) {
   j["parallel_efficiency"] = nullptr;
   j["bytes_per_triangle"] = nullptr;
   if (!a.json.empty()) {
-    const std::string text = j.dump(2) + "\n";
-    writeFileAtomically(a.json, [&](const std::string& tmp) {
-      std::ofstream f(tmp);
-      f << text;
-      if (!f.flush()) throw GlintError("cannot write " + a.json);
-    });
+    writeTextFileAtomically(a.json, j.dump(2) + "\n");
   }
   return kExitOk;
 }

@@ -8,8 +8,8 @@
 
 #include "accel/embree_accel.h"
 #include "accel/reference_bvh.h"
-#include "app/scene_source.h"
 #include "app/commands.h"
+#include "app/scene_source.h"
 #include "render/tile_scheduler.h"
 
 namespace glint {
@@ -38,19 +38,21 @@ std::string embreeWidths() {
 void printSceneStats(const std::string& path) {
   const Scene scene = loadSceneOrDefault(path);
   std::printf("scene        %s\n", scene.sourcePath.c_str());
-  std::printf("geometry     %zu triangles, %zu spheres, %zu quads, %zu planes, %zu instances, "
-              "%zu groups\n",
-              scene.triangleCount(), scene.spheres.size(), scene.quads.size(),
-              scene.planes.size(), scene.instances.size(), scene.groups.size() - 1);
+  std::printf(
+      "geometry     %zu triangles, %zu spheres, %zu quads, %zu planes, %zu instances, "
+      "%zu groups\n",
+      scene.triangleCount(), scene.spheres.size(), scene.quads.size(), scene.planes.size(),
+      scene.instances.size(), scene.groups.size() - 1);
   const EmbreeAccel embree(scene);
   std::printf("embree       build %.3f s, %.1f MiB\n", embree.buildSeconds(),
               double(embree.bytes()) / (1 << 20));
   const ReferenceBvh bvh(scene);
   const BvhStats& b = bvh.stats();
-  std::printf("bvh          build %.3f s, %zu nodes, %zu leaves, %.2f prims/leaf, depth %zu, "
-              "SAH cost %.2f, %.1f MiB\n",
-              b.buildSeconds, b.nodes, b.leaves, b.primitivesPerLeaf(), b.maxDepth, b.sahCost,
-              double(b.bytes) / (1 << 20));
+  std::printf(
+      "bvh          build %.3f s, %zu nodes, %zu leaves, %.2f prims/leaf, depth %zu, "
+      "SAH cost %.2f, %.1f MiB\n",
+      b.buildSeconds, b.nodes, b.leaves, b.primitivesPerLeaf(), b.maxDepth, b.sahCost,
+      double(b.bytes) / (1 << 20));
 }
 
 CommandRunner addInfoCommand(CLI::App& app) {

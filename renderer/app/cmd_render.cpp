@@ -1,12 +1,16 @@
 #include <glint_version.h>
 
+#include <atomic>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
 #include "app/scene_source.h"
+#include "camera/camera.h"
 #include "core/error.h"
+#include "core/hash.h"
 #include "core/log.h"
 #include "film/atomic_file.h"
 #include "film/display.h"
@@ -29,9 +33,24 @@ struct RenderArgs {
   std::optional<uint64_t> seed;
   std::vector<int> crop;
   int tileSize = 32;
+  std::string tileOrder = "morton";
+  bool half = false;
+  std::string compression = "zip";
   bool stats = false;
   bool quiet = false;
 };
+
+// Set by SIGINT/SIGTERM: the render stops handing out tiles and writes what it has.
+std::atomic<bool> gInterrupted{false};
+static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
+
+extern "C" void onInterrupt(int) { gInterrupted.store(true); }
+
+std::string hex(uint64_t v) {
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
+  return buf;
+}
 
 void applyOverrides(const RenderArgs& a, Scene& scene) {
   RenderSettings& r = scene.render;
@@ -88,20 +107,38 @@ void printStats(const Scene& scene, const RenderStats& st) {
   std::printf("left out         %s\n", join(scene.features.leftOut()).c_str());
 }
 
-ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderStats& st) {
+// What must match for crops of one frame to merge: the scene's bytes and every setting that
+// changes pixels. Threads and tile size do not (the image is the same for any of them).
+uint64_t settingsHash(const Scene& scene, const std::string& accel) {
+  const RenderSettings& r = scene.render;
+  return hashKey(scene.sourceHash, uint64_t(r.width), uint64_t(r.height), uint64_t(r.spp), r.seed,
+                 uint64_t(r.sampler), uint64_t(r.maxDepth), hashBytes(accel));
+}
+
+ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderResult& result) {
+  const RenderStats& st = result.stats;
+  const PixelWindow& w = result.film.window();
+  const Camera camera(scene.cameraDesc, scene.render.width, scene.render.height);
   ExrMetadata m;
   m.strings = {{"Software", std::string("Glint ") + GLINT_VERSION},
                {"glint:version", GLINT_VERSION},
                {"glint:scene", scene.sourcePath},
+               {"glint:scene_hash", hex(scene.sourceHash)},
+               {"glint:settings_hash", hex(settingsHash(scene, a.accel))},
                {"glint:sampler", std::string(samplerName(scene.render.sampler))},
                {"glint:accel", a.accel},
                {"glint:seed", std::to_string(scene.render.seed)},  // 64-bit: kept exact as text
-               {"glint:commandline", commandLine()}};
+               {"glint:crop", std::to_string(w.x0) + " " + std::to_string(w.x1) + " " +
+                                  std::to_string(w.y0) + " " + std::to_string(w.y1)},
+               {"glint:commandline", commandLine()},
+               // The OCIO name of the rendering space in the bundled config.
+               {"glint:colorspace", "lin_rec709"}};
   m.ints = {{"glint:spp", scene.render.spp},
-
-            {"glint:partial", 0}};
+            {"glint:max_depth", scene.render.maxDepth},
+            {"glint:partial", result.partial ? 1 : 0}};
   m.floats = {{"glint:render_seconds", static_cast<float>(st.seconds)},
               {"glint:rays", static_cast<float>(st.rays.total())}};
+  m.matrices = {{"worldToCamera", camera.worldToCamera()}, {"worldToNDC", camera.worldToNdc()}};
   return m;
 }
 
@@ -114,6 +151,10 @@ int runRender(const RenderArgs& a) {
   opt.tileSize = a.tileSize;
   opt.crop = cropWindow(a, scene.render);
   opt.progress = !a.quiet;
+  opt.tileOrder = a.tileOrder == "row" ? TileOrder::RowMajor : TileOrder::Morton;
+  opt.cancel = &gInterrupted;
+  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGTERM, onInterrupt);
   AccelKind kind = AccelKind::Embree;
   parseAccelKind(a.accel, kind);
 
@@ -125,20 +166,20 @@ int runRender(const RenderArgs& a) {
     out = (a.scenePath.empty() ? std::string("default")
                                : std::filesystem::path(a.scenePath).stem().string()) +
           ".exr";
-  writeExr(out, result.film, exrMetadata(a, scene, result.stats));
+  writeExr(out, result.film, exrMetadata(a, scene, result), {a.half, a.compression});
   if (!a.display.empty()) writeDisplayPng(a.display, result.film);
   if (!a.statsJson.empty()) {
-    const std::string text = statsJson(scene, result.stats).dump(2) + "\n";
-    writeFileAtomically(a.statsJson, [&](const std::string& tmp) {
-      std::ofstream f(tmp);
-      f << text;
-      if (!f.flush()) throw GlintError("cannot write " + a.statsJson);
-    });
+    writeTextFileAtomically(a.statsJson, statsJson(scene, result.stats).dump(2) + "\n");
   }
   if (a.stats) printStats(scene, result.stats);
   if (result.stats.rays.nonfiniteSamples > 0)
     log::warning(std::to_string(result.stats.rays.nonfiniteSamples) +
                  " non-finite samples were dropped (written as black)");
+  if (result.partial) {
+    // CLI.md: interrupted → a valid partial EXR (unrendered pixels have alpha 0), exit 130.
+    log::warning("interrupted: wrote the partial frame " + out + " (glint:partial = 1)");
+    return kExitInterrupted;
+  }
   log::info("wrote " + out + (a.display.empty() ? "" : " and " + a.display));
   return kExitOk;
 }
@@ -166,6 +207,11 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--crop", args->crop, "Pixel bounds X0 X1 Y0 Y1 ([X0,X1) x [Y0,Y1))")
       ->expected(4);
   cmd->add_option("--tile-size", args->tileSize, "Tile edge in pixels")->check(CLI::Range(1, 4096));
+  cmd->add_option("--tile-order", args->tileOrder, "Tile order (the image is the same for any)")
+      ->check(CLI::IsMember({"morton", "row"}));
+  cmd->add_flag("--half", args->half, "Half-float beauty (default float)");
+  cmd->add_option("--compression", args->compression, "EXR compression (default zip)")
+      ->check(CLI::IsMember(exrCompressions()));
   cmd->add_flag("--stats", args->stats, "Print render statistics");
   cmd->add_option("--stats-json", args->statsJson, "Write render statistics as JSON");
   cmd->add_flag("--quiet", args->quiet, "No progress or info messages");

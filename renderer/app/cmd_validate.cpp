@@ -108,12 +108,7 @@ int runValidate(const ValidateArgs& a) {
         {"build_seconds", bs.buildSeconds},         {"nodes", bs.nodes},      {"leaves", bs.leaves},
         {"prims_per_leaf", bs.primitivesPerLeaf()}, {"sah_cost", bs.sahCost}, {"bytes", bs.bytes}};
     j["embree"] = {{"build_seconds", embree.buildSeconds()}, {"bytes", embree.bytes()}};
-    const std::string text = j.dump(2) + "\n";
-    writeFileAtomically(a.json, [&](const std::string& tmp) {
-      std::ofstream f(tmp);
-      f << text;
-      if (!f.flush()) throw GlintError("cannot write " + a.json);
-    });
+    writeTextFileAtomically(a.json, j.dump(2) + "\n");
   }
   if (st.hitAgreement() < a.minAgreement || st.occlusionAgreement() < a.minAgreement) {
     std::fprintf(stderr, "glint: validation failed: agreement below %.9f\n", a.minAgreement);

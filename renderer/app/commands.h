@@ -11,6 +11,7 @@ namespace glint {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitRuntime = 1;
 inline constexpr int kExitUsage = 2;
+inline constexpr int kExitInterrupted = 130;
 
 using CommandRunner = std::function<int()>;
 

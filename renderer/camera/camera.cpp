@@ -50,3 +50,33 @@ Ray Camera::generateRay(float x, float y, Vec2f lens) const {
 }
 
 }  // namespace glint
+
+namespace glint {
+
+Mat4 Camera::worldToCamera() const {
+  Mat4 m;
+  const Vec3f axes[3] = {u_, v_, w_};
+  for (int r = 0; r < 3; ++r) {
+    m(r, 0) = axes[r].x;
+    m(r, 1) = axes[r].y;
+    m(r, 2) = axes[r].z;
+    m(r, 3) = -dot(axes[r], desc_.eye);
+  }
+  return m;
+}
+
+Mat4 Camera::worldToNdc() const {
+  Mat4 p;
+  p(0, 0) = 1 / halfWidth_;
+  p(1, 1) = 1 / halfHeight_;
+  if (desc_.projection == Projection::Perspective) {
+    // x_ndc = x / (−z · halfWidth): w' = −z carries the perspective divide.
+    p(2, 2) = 0;
+    p(2, 3) = 1;
+    p(3, 2) = -1;
+    p(3, 3) = 0;
+  }
+  return p * worldToCamera();
+}
+
+}  // namespace glint

@@ -3,6 +3,7 @@
 // height), with the camera frame u, v, w built from eye, look_at and up; and the thin lens of
 // seed 000 §13.4.3 (aperture radius, focus distance; disk or square lens).
 #include "core/ray.h"
+#include "core/transform.h"
 
 namespace glint {
 
@@ -31,6 +32,12 @@ class Camera {
   // before the lens existed, so aperture 0 is the pinhole image bit for bit).
   Ray generateRay(float x, float y, Vec2f lens = {0.5f, 0.5f}) const;
   bool hasLens() const { return desc_.apertureRadius > 0; }
+
+  // World to camera space (x right, y up, the camera looking down −z) and world to normalised
+  // device coordinates (x, y in [−1, 1] across the image, y up; perspective needs the divide by
+  // w). Column-vector convention: p' = M·p.
+  Mat4 worldToCamera() const;
+  Mat4 worldToNdc() const;
 
   const CameraDesc& desc() const { return desc_; }
   Vec3f u() const { return u_; }

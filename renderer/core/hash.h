@@ -2,6 +2,7 @@
 // Stateless integer hashing: every random number in Glint is a pure function of its key, never
 // of a thread or of how many numbers were drawn before it.
 #include <cstdint>
+#include <string_view>
 
 namespace glint {
 
@@ -21,6 +22,13 @@ constexpr uint64_t hashKey(uint64_t first, Ts... rest) {
   uint64_t h = mix64(first + 0x9e3779b97f4a7c15ULL);
   ((h = hashCombine(h, static_cast<uint64_t>(rest))), ...);
   return h;
+}
+
+// FNV-1a over bytes, finished with mix64: a content hash (scene files, settings).
+inline uint64_t hashBytes(std::string_view bytes) {
+  uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char c : bytes) h = (h ^ c) * 0x100000001b3ULL;
+  return mix64(h);
 }
 
 // Top 24 bits as a float in [0, 1): exactly representable, never 1.

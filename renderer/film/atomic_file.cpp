@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "core/error.h"
 
@@ -52,6 +53,14 @@ void writeFileAtomically(const std::string& finalPath,
     throw;
   }
   fsyncPath(dir.string(), true);  // make the rename itself durable (best effort)
+}
+
+void writeTextFileAtomically(const std::string& finalPath, const std::string& text) {
+  writeFileAtomically(finalPath, [&](const std::string& tmp) {
+    std::ofstream f(tmp, std::ios::binary);
+    f << text;
+    if (!f.flush()) throw GlintError("cannot write " + finalPath + ": " + std::strerror(errno));
+  });
 }
 
 }  // namespace glint

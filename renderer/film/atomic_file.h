@@ -11,4 +11,7 @@ namespace glint {
 void writeFileAtomically(const std::string& finalPath,
                          const std::function<void(const std::string& tmpPath)>& write);
 
+// The same for a text file (JSON figures, CSV).
+void writeTextFileAtomically(const std::string& finalPath, const std::string& text);
+
 }  // namespace glint

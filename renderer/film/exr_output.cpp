@@ -7,9 +7,17 @@
 
 namespace glint {
 
-void writeExr(const std::string& path, const Film& film, const ExrMetadata& meta) {
+const std::vector<std::string>& exrCompressions() {
+  static const std::vector<std::string> names = {"none",  "rle", "zips", "zip",  "piz",
+                                                 "pxr24", "b44", "b44a", "dwaa", "dwab"};
+  return names;
+}
+
+void writeExr(const std::string& path, const Film& film, const ExrMetadata& meta,
+              const ExrOptions& options) {
   const PixelWindow& w = film.window();
-  OIIO::ImageSpec spec(w.width(), w.height(), 4, OIIO::TypeDesc::FLOAT);
+  OIIO::ImageSpec spec(w.width(), w.height(), 4,
+                       options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
   spec.x = w.x0;
   spec.y = w.y0;
   spec.full_x = 0;
@@ -18,10 +26,16 @@ void writeExr(const std::string& path, const Film& film, const ExrMetadata& meta
   spec.full_height = film.fullHeight();
   spec.channelnames = {"R", "G", "B", "A"};
   spec.alpha_channel = 3;
-  spec.attribute("compression", "zip");
+  spec.attribute("compression", options.compression);
   for (const auto& [k, v] : meta.strings) spec.attribute(k, v);
   for (const auto& [k, v] : meta.ints) spec.attribute(k, v);
   for (const auto& [k, v] : meta.floats) spec.attribute(k, v);
+  for (const auto& [k, m] : meta.matrices) {
+    float rowVector[16];
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) rowVector[4 * c + r] = m(r, c);
+    spec.attribute(k, OIIO::TypeMatrix44, rowVector);
+  }
   const std::vector<float> pixels = film.toFloatRgba();
 
   writeFileAtomically(path, [&](const std::string& tmp) {

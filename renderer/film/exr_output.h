@@ -5,6 +5,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/transform.h"
 #include "film/film.h"
 
 namespace glint {
@@ -13,9 +14,20 @@ struct ExrMetadata {
   std::vector<std::pair<std::string, std::string>> strings;  // e.g. {"glint:sampler", "..."}
   std::vector<std::pair<std::string, int>> ints;
   std::vector<std::pair<std::string, float>> floats;
+  // Written as OpenEXR M44f (Imath's row-vector convention, so transposed from Glint's).
+  std::vector<std::pair<std::string, Mat4>> matrices;
 };
 
-void writeExr(const std::string& path, const Film& film, const ExrMetadata& meta);
+struct ExrOptions {
+  bool half = false;                // half-float beauty instead of float
+  std::string compression = "zip";  // none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab
+};
+
+// The compression names OpenEXR (through OpenImageIO) accepts.
+const std::vector<std::string>& exrCompressions();
+
+void writeExr(const std::string& path, const Film& film, const ExrMetadata& meta,
+              const ExrOptions& options = {});
 
 // Reads an EXR's RGBA (full data window) as float; used by tests and `glint compare`.
 struct Image {

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "core/hash.h"
 #include "core/log.h"
 #include "io/scene_builder.h"
 
@@ -212,6 +213,7 @@ Scene loadSceneText(const std::string& text, const std::string& fileName,
   SceneBuilder b;
   b.baseDir = baseDir;
   b.scene.sourcePath = fileName;
+  b.scene.sourceHash = hashBytes(text);
   parseScene(b, JsonNode(doc, doc.root(), "", ""));
   return std::move(b.scene);
 }

@@ -30,12 +30,19 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   const float shutterClose = scene.cameraDesc.shutterClose;
   const bool openShutter = scene.features.motion && shutterClose > shutterOpen;
 
-  const std::vector<PixelWindow> tiles = makeTiles(window, opt.tileSize);
+  const int threads = opt.threads > 0 ? opt.threads : defaultThreadCount();
+  const int tileSize = effectiveTileSize(window, opt.tileSize, threads);
+  const std::vector<PixelWindow> tiles = makeTiles(window, tileSize, opt.tileOrder);
+  std::atomic<bool> skipped{false};
   std::vector<RayCounters> tileCounters(tiles.size());
   Progress progress(window.area(), opt.progress);
   std::atomic<int> loggedNonfinite{0};
 
-  runTiles(tiles, opt.threads, [&](size_t tileIndex) {
+  runTiles(tiles, threads, [&](size_t tileIndex) {
+    if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) {
+      skipped = true;
+      return;
+    }
     const PixelWindow& tile = tiles[tileIndex];
     RayCounters& counters = tileCounters[tileIndex];
     for (int y = tile.y0; y < tile.y1; ++y)
@@ -74,7 +81,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   });
   progress.finish();
 
-  RenderResult result{std::move(film), {}};
+  RenderResult result{std::move(film), {}, skipped.load(), tileSize};
   for (const RayCounters& c : tileCounters) result.stats.rays += c;
   result.stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

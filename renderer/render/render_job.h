@@ -1,20 +1,26 @@
 #pragma once
 // Renders a scene into a film: camera samples per pixel through the integrator, box filter,
 // non-finite samples counted and dropped, tiles on all cores, progress on stderr.
+#include <atomic>
 #include <optional>
 
 #include "accel/accelerator.h"
 #include "film/film.h"
 #include "integrator/ray_counters.h"
+#include "render/tile_scheduler.h"
 #include "scene/scene.h"
 
 namespace glint {
 
 struct RenderOptions {
-  int threads = 0;  // 0 = all cores
-  int tileSize = 32;
+  int threads = 0;    // 0 = all cores
+  int tileSize = 32;  // an upper bound: see effectiveTileSize
+  TileOrder tileOrder = TileOrder::Morton;
   std::optional<PixelWindow> crop;  // default: the full frame
   bool progress = true;
+  // When set to true (by a signal handler), no further tiles are started; tiles in flight
+  // finish, and the result is marked partial. Unrendered pixels stay at zero, alpha 0.
+  const std::atomic<bool>* cancel = nullptr;
 };
 
 struct RenderStats {
@@ -25,6 +31,8 @@ struct RenderStats {
 struct RenderResult {
   Film film;
   RenderStats stats;
+  bool partial = false;  // cancelled before every tile was rendered
+  int tileSize = 0;      // the effective tile edge
 };
 
 RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt);

@@ -5,18 +5,50 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
+#include <cstdint>
+
 #include "core/fp_env.h"
 
 namespace glint {
 
-std::vector<PixelWindow> makeTiles(const PixelWindow& window, int tileSize) {
-  // Row-major tile order: neighbouring tasks share scanlines of the scene, which is what
-  // primary-ray coherence needs; a space-filling order is left to the scheduler issue.
+namespace {
+
+// Interleaves the bits of x and y (x in the even bits): the Morton code of a tile.
+uint64_t morton(uint32_t x, uint32_t y) {
+  uint64_t code = 0;
+  for (int b = 0; b < 32; ++b)
+    code |= (uint64_t((x >> b) & 1) << (2 * b)) | (uint64_t((y >> b) & 1) << (2 * b + 1));
+  return code;
+}
+
+}  // namespace
+
+std::vector<PixelWindow> makeTiles(const PixelWindow& window, int tileSize, TileOrder order) {
+  struct Keyed {
+    uint64_t key;
+    PixelWindow tile;
+  };
+  std::vector<Keyed> keyed;
+  for (int y = window.y0, ty = 0; y < window.y1; y += tileSize, ++ty)
+    for (int x = window.x0, tx = 0; x < window.x1; x += tileSize, ++tx)
+      keyed.push_back(
+          {order == TileOrder::Morton ? morton(uint32_t(tx), uint32_t(ty)) : keyed.size(),
+           {x, std::min(x + tileSize, window.x1), y, std::min(y + tileSize, window.y1)}});
+  std::stable_sort(keyed.begin(), keyed.end(),
+                   [](const Keyed& a, const Keyed& b) { return a.key < b.key; });
   std::vector<PixelWindow> tiles;
-  for (int y = window.y0; y < window.y1; y += tileSize)
-    for (int x = window.x0; x < window.x1; x += tileSize)
-      tiles.push_back({x, std::min(x + tileSize, window.x1), y, std::min(y + tileSize, window.y1)});
+  for (const Keyed& k : keyed) tiles.push_back(k.tile);
   return tiles;
+}
+
+int effectiveTileSize(const PixelWindow& window, int requested, int threads) {
+  int size = requested;
+  const auto tilesAt = [&](int s) {
+    return int64_t((window.width() + s - 1) / s) * ((window.height() + s - 1) / s);
+  };
+  while (size > 8 && tilesAt(size) < 8 * int64_t(threads)) size = std::max(8, size / 2);
+  return size;
 }
 
 int defaultThreadCount() { return tbb::info::default_concurrency(); }

@@ -9,7 +9,17 @@
 
 namespace glint {
 
-std::vector<PixelWindow> makeTiles(const PixelWindow& window, int tileSize);
+// Row-major, or Morton (Z-order) over the tile grid: consecutive tiles are neighbours in the
+// image, and TBB hands each thread a contiguous run of tile indices, so a thread keeps working
+// on one region of the scene (its BVH nodes and triangles stay in cache).
+enum class TileOrder { RowMajor, Morton };
+
+std::vector<PixelWindow> makeTiles(const PixelWindow& window, int tileSize,
+                                   TileOrder order = TileOrder::Morton);
+
+// The tile edge actually used: `requested`, halved (not below 8) until there are at least
+// 8 tiles per thread, so that no thread idles at the end of a frame.
+int effectiveTileSize(const PixelWindow& window, int requested, int threads);
 
 // Runs renderTile(tileIndex) for every tile on `threads` threads (0 = all cores).
 void runTiles(const std::vector<PixelWindow>& tiles, int threads,

@@ -57,7 +57,8 @@ struct RenderSettings {
 
 class Scene {
  public:
-  std::string sourcePath;  // the scene file, or "<default>"
+  std::string sourcePath;   // the scene file, or "<default>"
+  uint64_t sourceHash = 0;  // of the scene file's bytes
   RenderSettings render;
   CameraDesc cameraDesc;
   std::vector<NamedMaterial> materials;
