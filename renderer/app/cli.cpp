@@ -25,6 +25,7 @@ int runCli(int argc, char** argv) {
   };
   add(addRenderCommand(app));
   add(addValidateCommand(app));
+  add(addMergeCommand(app));
   add(addBenchCommand(app));
   add(addInfoCommand(app));
 
@@ -38,6 +39,9 @@ int runCli(int argc, char** argv) {
     for (auto& [sub, run] : runners)
       if (sub->parsed()) return run();
   } catch (const SceneError& e) {
+    log::error(e.what());
+    return kExitUsage;
+  } catch (const UsageError& e) {
     log::error(e.what());
     return kExitUsage;
   } catch (const GlintError& e) {

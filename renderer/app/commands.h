@@ -19,6 +19,7 @@ CommandRunner addRenderCommand(CLI::App& app);
 CommandRunner addInfoCommand(CLI::App& app);
 CommandRunner addValidateCommand(CLI::App& app);
 CommandRunner addBenchCommand(CLI::App& app);
+CommandRunner addMergeCommand(CLI::App& app);
 
 // The command line as typed, for EXR metadata.
 const std::string& commandLine();

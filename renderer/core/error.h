@@ -11,6 +11,13 @@ class GlintError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Inputs that cannot work together (crops of different frames, a bad option combination):
+// reported like scene errors, with exit code 2.
+class UsageError : public GlintError {
+ public:
+  using GlintError::GlintError;
+};
+
 struct FileLoc {
   std::string file;  // as the user named it
   int line = 0;      // 1-based; 0 when unknown

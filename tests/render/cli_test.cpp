@@ -84,7 +84,8 @@ TEST(Cli, SameImageForAnyThreadCountTileSizeAndCrop) {
   ASSERT_EQ(runGlint("render " + scene + " --quiet --threads 1 --tile-size 64 -o " + path("a.exr"))
                 .exitCode,
             0);
-  ASSERT_EQ(runGlint("render " + scene + " --quiet --threads 2 --tile-size 8 -o " + path("b.exr"))
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --threads 2 --tile-size 8 --tile-order row -o " +
+                     path("b.exr"))
                 .exitCode,
             0);
   ASSERT_EQ(runGlint("render " + scene + " --quiet --crop 5 25 3 17 -o " + path("c.exr")).exitCode,

@@ -1,0 +1,130 @@
+#include "film/merge.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include "core/error.h"
+#include "film/atomic_file.h"
+
+namespace glint {
+
+namespace {
+
+struct Crop {
+  std::string path;
+  OIIO::ImageSpec spec;
+  std::vector<float> pixels;  // RGBA
+};
+
+Crop readCrop(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw GlintError("cannot read " + path + ": " + OIIO::geterror());
+  Crop c{path, in->spec(), {}};
+  if (c.spec.nchannels != 4)
+    throw UsageError(path + ": expected an RGBA Glint render, found " +
+                     std::to_string(c.spec.nchannels) + " channels");
+  c.pixels.resize(size_t(c.spec.width) * size_t(c.spec.height) * 4);
+  if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, c.pixels.data()))
+    throw GlintError("cannot read " + path + ": " + in->geterror());
+  return c;
+}
+
+std::string window(const PixelWindow& w) {
+  return "--crop " + std::to_string(w.x0) + " " + std::to_string(w.x1) + " " +
+         std::to_string(w.y0) + " " + std::to_string(w.y1);
+}
+
+}  // namespace
+
+std::vector<PixelWindow> missingRegions(const std::vector<bool>& coveredIn, int width, int height) {
+  std::vector<bool> covered = coveredIn;
+  std::vector<PixelWindow> out;
+  const auto at = [&](int x, int y) { return covered[size_t(y) * size_t(width) + size_t(x)]; };
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      if (at(x, y)) continue;
+      int x1 = x;
+      while (x1 < width && !at(x1, y)) ++x1;
+      int y1 = y + 1;
+      const auto rowMissing = [&](int row) {
+        for (int i = x; i < x1; ++i)
+          if (at(i, row)) return false;
+        return true;
+      };
+      while (y1 < height && rowMissing(y1)) ++y1;
+      for (int j = y; j < y1; ++j)
+        for (int i = x; i < x1; ++i) covered[size_t(j) * size_t(width) + size_t(i)] = true;
+      out.push_back({x, x1, y, y1});
+    }
+  return out;
+}
+
+MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string>& cropPaths) {
+  if (cropPaths.empty()) throw UsageError("merge needs at least one crop");
+  std::vector<Crop> crops;
+  for (const auto& p : cropPaths) crops.push_back(readCrop(p));
+  const Crop& first = crops[0];
+  const auto settingsHash = [](const Crop& c) {
+    return std::string(c.spec.get_string_attribute("glint:settings_hash"));
+  };
+  const std::string hash = settingsHash(first);
+  if (hash.empty()) throw UsageError(first.path + ": not a Glint render (no glint:settings_hash)");
+  const int W = first.spec.full_width, H = first.spec.full_height;
+  for (const Crop& c : crops) {
+    if (settingsHash(c) != hash)
+      throw UsageError(c.path + " comes from a different scene or settings than " + first.path +
+                       " (glint:settings_hash " + settingsHash(c) + " vs " + hash + ")");
+    if (c.spec.full_width != W || c.spec.full_height != H)
+      throw UsageError(c.path + ": frame " + std::to_string(c.spec.full_width) + "x" +
+                       std::to_string(c.spec.full_height) + " differs from " + first.path);
+    if (c.spec.get_int_attribute("glint:partial", 0) != 0)
+      throw UsageError(c.path + " is a partial (interrupted) render: render its crop again");
+  }
+
+  std::vector<int> owner(size_t(W) * size_t(H), -1);
+  Film film(W, H, {0, W, 0, H});
+  for (size_t k = 0; k < crops.size(); ++k) {
+    const OIIO::ImageSpec& s = crops[k].spec;
+    if (s.x < 0 || s.y < 0 || s.x + s.width > W || s.y + s.height > H)
+      throw UsageError(crops[k].path + ": data window lies outside the frame");
+    for (int y = 0; y < s.height; ++y)
+      for (int x = 0; x < s.width; ++x) {
+        const int fx = s.x + x, fy = s.y + y;
+        int& o = owner[size_t(fy) * size_t(W) + size_t(fx)];
+        if (o >= 0)
+          throw UsageError(crops[k].path + " and " + crops[size_t(o)].path + " overlap at pixel (" +
+                           std::to_string(fx) + ", " + std::to_string(fy) + ")");
+        o = int(k);
+        const float* p = &crops[k].pixels[(size_t(y) * size_t(s.width) + size_t(x)) * 4];
+        film.setPixel(fx, fy, p[0], p[1], p[2], p[3]);
+      }
+  }
+  std::vector<bool> covered(owner.size());
+  for (size_t i = 0; i < owner.size(); ++i) covered[i] = owner[i] >= 0;
+  const std::vector<PixelWindow> holes = missingRegions(covered, W, H);
+  if (!holes.empty()) {
+    std::string msg = "the crops leave " + std::to_string(holes.size()) +
+                      " region(s) of the frame unrendered; render them with:";
+    for (const PixelWindow& h : holes) msg += "\n  " + window(h);
+    throw UsageError(msg);
+  }
+
+  // The merged frame keeps the first crop's metadata (scene, settings, hashes) over the full
+  // data window.
+  OIIO::ImageSpec spec = first.spec;
+  spec.x = spec.y = 0;
+  spec.width = W;
+  spec.height = H;
+  spec.attribute("glint:crop", "0 " + std::to_string(W) + " 0 " + std::to_string(H));
+  spec.attribute("glint:merged_crops", int(crops.size()));
+  const std::vector<float> pixels = film.toFloatRgba();
+  writeFileAtomically(outPath, [&](const std::string& tmp) {
+    auto out = OIIO::ImageOutput::create("openexr");
+    if (!out || !out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
+        !out->close())
+      throw GlintError("cannot write " + outPath + ": " +
+                       (out ? out->geterror() : OIIO::geterror()));
+  });
+  return {W, H, crops.size()};
+}
+
+}  // namespace glint

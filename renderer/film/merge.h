@@ -1,0 +1,26 @@
+#pragma once
+// Assembles crop renders (`glint render --crop`) into the full frame. Crops must come from the
+// same scene and settings (glint:settings_hash), be complete (not interrupted), tile the frame
+// without overlaps and without holes; the result's pixels are the crops' pixels, bit for bit.
+#include <string>
+#include <vector>
+
+#include "film/film.h"
+
+namespace glint {
+
+struct MergeReport {
+  int fullWidth = 0, fullHeight = 0;
+  size_t crops = 0;
+};
+
+// Throws UsageError naming the offending files, the overlapping pixel, or the missing regions
+// as `--crop X0 X1 Y0 Y1` lines that re-render exactly them.
+MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string>& cropPaths);
+
+// Missing pixels of a coverage mask (row-major, width × height, true = covered) as disjoint
+// rectangles, greedily: each starts at the first missing pixel in row order, runs right while
+// pixels are missing and grows down while the whole run is missing.
+std::vector<PixelWindow> missingRegions(const std::vector<bool>& covered, int width, int height);
+
+}  // namespace glint

@@ -1,0 +1,148 @@
+// Frame output: EXR options and metadata, interrupted renders, crops merged into the frame.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include "film/exr_output.h"
+#include "film/merge.h"
+#include "test_util.h"
+
+namespace glint {
+namespace {
+
+using test::runGlint;
+namespace fs = std::filesystem;
+
+const char* kScene = R"({
+  "render": {"width": 48, "height": 32, "spp": 4, "seed": 5},
+  "camera": {"eye": [0,0,5], "look_at": [0,0,0], "vfov": 40},
+  "materials": {"m": {"type": "phong", "kd": [0.6,0.4,0.3], "ks": [0.3,0.3,0.3]},
+                "g": {"type": "dielectric"}},
+  "lights": [{"type": "quad", "corner": [-1,3,1], "edge1": [1,0,0], "edge2": [0,0,1], "samples": 2}],
+  "objects": [{"type": "plane", "point": [0,-1,0], "normal": [0,1,0], "material": "m"},
+              {"type": "sphere", "center": [-0.6,0,0], "radius": 0.7, "material": "g"},
+              {"type": "sphere", "center": [0.8,-0.3,0.5], "radius": 0.5, "material": "m"}]})";
+
+std::string tmp(const std::string& name) { return (test::tempDir() / name).string(); }
+
+OIIO::ImageSpec specOf(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  EXPECT_TRUE(in) << path;
+  return in ? in->spec() : OIIO::ImageSpec{};
+}
+
+TEST(Output, MetadataHalfAndCompression) {
+  const std::string scene = test::writeTemp("out_scene.json", kScene);
+  ASSERT_EQ(runGlint("render " + scene + " --quiet -o " + tmp("meta.exr")).exitCode, 0);
+  const OIIO::ImageSpec s = specOf(tmp("meta.exr"));
+  EXPECT_EQ(s.format, OIIO::TypeDesc::FLOAT);
+  EXPECT_EQ(s.get_string_attribute("compression"), "zip");
+  EXPECT_EQ(s.get_int_attribute("glint:spp"), 4);
+  EXPECT_EQ(s.get_string_attribute("glint:seed"), "5");
+  EXPECT_EQ(s.get_string_attribute("glint:sampler"), "stratified");
+  EXPECT_EQ(s.get_string_attribute("glint:crop"), "0 48 0 32");
+  EXPECT_EQ(s.get_int_attribute("glint:partial", -1), 0);
+  EXPECT_EQ(s.get_string_attribute("glint:colorspace"), "lin_rec709");
+  EXPECT_EQ(s.get_string_attribute("glint:settings_hash").size(), 16u);
+  EXPECT_NE(s.get_string_attribute("glint:commandline").find("--quiet"), std::string::npos);
+  // Camera at (0,0,5) looking at the origin: world → camera is a translation by (0,0,−5).
+  // Imath's M44f is row-vector, so the translation sits in the last row (elements 12–14).
+  const OIIO::ParamValue* w2c = s.find_attribute("worldToCamera", OIIO::TypeMatrix44);
+  ASSERT_NE(w2c, nullptr);
+  const float* m = static_cast<const float*>(w2c->data());
+  EXPECT_FLOAT_EQ(m[0], 1);
+  EXPECT_FLOAT_EQ(m[14], -5);
+  EXPECT_NE(s.find_attribute("worldToNDC", OIIO::TypeMatrix44), nullptr);
+
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --half --compression piz -o " + tmp("half.exr"))
+                .exitCode,
+            0);
+  const OIIO::ImageSpec h = specOf(tmp("half.exr"));
+  EXPECT_EQ(h.format, OIIO::TypeDesc::HALF);
+  EXPECT_EQ(h.get_string_attribute("compression"), "piz");
+  EXPECT_EQ(runGlint("render " + scene + " --quiet --compression lzma -o " + tmp("x.exr")).exitCode,
+            2);
+}
+
+TEST(Output, InterruptedRenderLeavesAValidPartialExr) {
+  // A render of several seconds interrupted after 1 s: exit 130 (CLI.md), an EXR that reads
+  // back, marked glint:partial = 1, with unrendered pixels at alpha 0 and rendered ones at 1.
+  // A backdrop behind everything: every camera ray hits, so rendered pixels have alpha 1.
+  std::string text = kScene;
+  text.insert(text.rfind(']'), R"(, {"type": "quad", "corner": [-50,-50,-3], "edge1": [100,0,0],
+      "edge2": [0,100,0], "material": "m"})");
+  const std::string scene = test::writeTemp("slow.json", text);
+  const std::string out = tmp("partial.exr");
+  const std::string cmd = "bash -c '" + std::string(GLINT_BINARY) + " render " + scene +
+                          " --quiet --spp 4096 --width 96 --height 64 --threads 1 -o " + out +
+                          " & pid=$!; sleep 1; kill -INT $pid; wait $pid; exit $?' >/dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  ASSERT_EQ(WEXITSTATUS(status), 130);
+  const OIIO::ImageSpec s = specOf(out);
+  EXPECT_EQ(s.get_int_attribute("glint:partial", -1), 1);
+  const Image img = readImage(out);
+  int rendered = 0, empty = 0;
+  for (size_t i = 3; i < img.pixels.size(); i += 4) {
+    rendered += img.pixels[i] == 1.0f;
+    empty += img.pixels[i] == 0.0f;
+  }
+  EXPECT_GT(rendered, 0);
+  EXPECT_GT(empty, 0);
+  EXPECT_EQ(rendered + empty, 96 * 64);
+}
+
+TEST(Output, CropsMergeIntoTheFullFrameByteForByte) {
+  const std::string scene = test::writeTemp("merge.json", kScene);
+  ASSERT_EQ(runGlint("render " + scene + " --quiet -o " + tmp("full.exr")).exitCode, 0);
+  // Three crops of different shapes, thread counts, tile sizes and orders.
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --crop 0 20 0 32 -o " + tmp("c1.exr")).exitCode,
+            0);
+  ASSERT_EQ(runGlint("render " + scene +
+                     " --quiet --crop 20 48 0 13 --threads 1 --tile-order row -o " + tmp("c2.exr"))
+                .exitCode,
+            0);
+  ASSERT_EQ(
+      runGlint("render " + scene + " --quiet --crop 20 48 13 32 --tile-size 5 -o " + tmp("c3.exr"))
+          .exitCode,
+      0);
+  const auto merge = [](const std::string& args) { return runGlint("merge " + args); };
+  ASSERT_EQ(merge(tmp("m.exr") + " " + tmp("c1.exr") + " " + tmp("c2.exr") + " " + tmp("c3.exr"))
+                .exitCode,
+            0);
+  EXPECT_EQ(readImage(tmp("m.exr")).pixels, readImage(tmp("full.exr")).pixels);
+
+  // A hole is named as the crop that fills it.
+  const auto hole = merge(tmp("h.exr") + " " + tmp("c1.exr") + " " + tmp("c3.exr"));
+  EXPECT_EQ(hole.exitCode, 2);
+  EXPECT_NE(hole.output.find("--crop 20 48 0 13"), std::string::npos) << hole.output;
+  EXPECT_FALSE(fs::exists(tmp("h.exr")));
+  // Overlaps and other settings are refused.
+  const auto overlap = merge(tmp("o.exr") + " " + tmp("c1.exr") + " " + tmp("full.exr"));
+  EXPECT_EQ(overlap.exitCode, 2);
+  EXPECT_NE(overlap.output.find("overlap at pixel (0, 0)"), std::string::npos) << overlap.output;
+  ASSERT_EQ(
+      runGlint("render " + scene + " --quiet --seed 6 --crop 20 48 13 32 -o " + tmp("other.exr"))
+          .exitCode,
+      0);
+  const auto other =
+      merge(tmp("x.exr") + " " + tmp("c1.exr") + " " + tmp("c2.exr") + " " + tmp("other.exr"));
+  EXPECT_EQ(other.exitCode, 2);
+  EXPECT_NE(other.output.find("different scene or settings"), std::string::npos) << other.output;
+}
+
+TEST(Output, MissingRegionsAreDisjointRectangles) {
+  // 4 × 3 frame, covered except an L: column 3 (all rows) and row 2 (columns 0–2).
+  std::vector<bool> covered(12, true);
+  for (int y = 0; y < 3; ++y) covered[size_t(y) * 4 + 3] = false;
+  for (int x = 0; x < 3; ++x) covered[8 + size_t(x)] = false;
+  const auto regions = missingRegions(covered, 4, 3);
+  ASSERT_EQ(regions.size(), 2u);
+  EXPECT_EQ(regions[0].x0, 3);  // the column, found first in row order
+  EXPECT_EQ(regions[0].y1, 3);
+  EXPECT_EQ(regions[1].x0, 0);
+  EXPECT_EQ(regions[1].x1, 3);
+  EXPECT_EQ(regions[1].y0, 2);
+}
+
+}  // namespace
+}  // namespace glint
