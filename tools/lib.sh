@@ -10,7 +10,7 @@ GLINT_BUILD="${GLINT_BUILD:-$GLINT_ROOT/build}"
 GLINT_PACKAGES=(
   build-essential cmake clang-format
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev
-  libopencolorio-dev nlohmann-json3-dev libcli11-dev libassimp-dev
+  libopencolorio-dev opencolorio-tools nlohmann-json3-dev libcli11-dev libassimp-dev
   libgtest-dev libbenchmark-dev
 )
 

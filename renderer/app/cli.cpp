@@ -26,6 +26,7 @@ int runCli(int argc, char** argv) {
   add(addRenderCommand(app));
   add(addValidateCommand(app));
   add(addMergeCommand(app));
+  add(addConvertCommand(app));
   add(addBenchCommand(app));
   add(addInfoCommand(app));
 

@@ -58,12 +58,16 @@ void printSceneStats(const std::string& path) {
 CommandRunner addInfoCommand(CLI::App& app) {
   auto scenePath = std::make_shared<std::string>();
   auto withScene = std::make_shared<bool>(false);
+  auto ocio = std::make_shared<bool>(false);
+  auto ocioConfig = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
       "info", "Version, libraries, ISA and thread count; with SCENE, acceleration statistics");
   cmd->add_option("scene", *scenePath, "Scene file: also print build statistics of both backends")
       ->check(CLI::ExistingFile)
       ->each([withScene](const std::string&) { *withScene = true; });
-  return [scenePath, withScene] {
+  cmd->add_flag("--ocio", *ocio, "List the active OCIO config's displays, views and colour spaces");
+  cmd->add_option("--ocio-config", *ocioConfig, "OCIO config (default: $OCIO, else bundled)");
+  return [scenePath, withScene, ocio, ocioConfig] {
     std::printf("glint        %s\n", GLINT_VERSION);
     std::printf("Embree       %s (native packets: %s)\n", embreeVersionString().c_str(),
                 embreeWidths().c_str());
@@ -72,6 +76,7 @@ CommandRunner addInfoCommand(CLI::App& app) {
     std::printf("OpenColorIO  %s\n", OCIO_NAMESPACE::GetVersion());
     std::printf("oneTBB       %s\n", TBB_runtime_version());
     std::printf("threads      %d\n", defaultThreadCount());
+    if (*ocio) std::printf("%s", describeOcioConfig(*ocioConfig).c_str());
     if (*withScene) printSceneStats(*scenePath);
     return kExitOk;
   };

@@ -26,6 +26,7 @@ struct RenderArgs {
   std::string scenePath;
   std::string output;
   std::string display;
+  DisplaySettings ocio;
   std::string accel = "embree";
   std::string sampler;
   std::string statsJson;
@@ -167,7 +168,7 @@ int runRender(const RenderArgs& a) {
                                : std::filesystem::path(a.scenePath).stem().string()) +
           ".exr";
   writeExr(out, result.film, exrMetadata(a, scene, result), {a.half, a.compression});
-  if (!a.display.empty()) writeDisplayPng(a.display, result.film);
+  if (!a.display.empty()) writeDisplayImage(a.display, result.film, a.ocio);
   if (!a.statsJson.empty()) {
     writeTextFileAtomically(a.statsJson, statsJson(scene, result.stats).dump(2) + "\n");
   }
@@ -192,7 +193,9 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("scene", args->scenePath, "Scene file (.json); omitted: the default scene")
       ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->output, "Output EXR (default: SCENE_NAME.exr)");
-  cmd->add_option("--display", args->display, "Also write an sRGB PNG for viewing");
+  cmd->add_option("--display", args->display,
+                  "Also write a display image (.png, .jpg, .tif) through OCIO");
+  addDisplayOptions(*cmd, args->ocio);
   cmd->add_option("--spp", args->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--seed", args->seed, "Scene seed");
   cmd->add_option("--threads", args->threads, "Render threads (default: all cores)")

@@ -5,6 +5,8 @@
 
 #include <functional>
 
+#include "film/display.h"
+
 namespace glint {
 
 // Exit codes of CLI.md.
@@ -20,6 +22,12 @@ CommandRunner addInfoCommand(CLI::App& app);
 CommandRunner addValidateCommand(CLI::App& app);
 CommandRunner addBenchCommand(CLI::App& app);
 CommandRunner addMergeCommand(CLI::App& app);
+
+// --view, --ocio-display, --look, --ocio-config: how a display image is made (film/display.h).
+// CLI.md's --display names the output image, so the OCIO display is --ocio-display.
+void addDisplayOptions(CLI::App& cmd, DisplaySettings& settings);
+
+CommandRunner addConvertCommand(CLI::App& app);
 
 // The command line as typed, for EXR metadata.
 const std::string& commandLine();

@@ -1,41 +1,175 @@
 #include "film/display.h"
 
+#include <OpenColorIO/OpenColorIO.h>
 #include <OpenImageIO/imageio.h>
+#include <glint_ocio_config.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
 
 #include "core/error.h"
 #include "film/atomic_file.h"
 
+namespace OCIO = OCIO_NAMESPACE;
+
 namespace glint {
 
-float srgbEncode(float x) {
-  if (!(x > 0)) return 0;  // also maps NaN to 0
-  if (x >= 1) return 1;
-  return x <= 0.0031308f ? 12.92f * x : 1.055f * std::pow(x, 1 / 2.4f) - 0.055f;
+namespace {
+
+OCIO::ConstConfigRcPtr loadConfig(const std::string& path, std::string& source) {
+  try {
+    if (!path.empty()) {
+      if (!std::filesystem::is_regular_file(path))
+        throw GlintError("OCIO config not found: " + path);
+      source = path;
+      return OCIO::Config::CreateFromFile(path.c_str());
+    }
+    if (const char* env = std::getenv("OCIO"); env && *env) {
+      if (!std::filesystem::is_regular_file(env))
+        throw GlintError("the OCIO config named by $OCIO was not found: " + std::string(env));
+      source = std::string("$OCIO = ") + env;
+      return OCIO::Config::CreateFromFile(env);
+    }
+    source = "bundled (ocio/config.ocio)";
+    std::istringstream in(kBundledOcioConfig);
+    return OCIO::Config::CreateFromStream(in);
+  } catch (const OCIO::Exception& e) {
+    throw GlintError("cannot load the OCIO config " + source + ": " + e.what());
+  }
 }
 
-void writeDisplayPng(const std::string& path, const Film& film) {
-  const PixelWindow& w = film.window();
-  std::vector<unsigned char> bytes(static_cast<size_t>(w.area()) * 3);
-  size_t i = 0;
-  for (int y = w.y0; y < w.y1; ++y)
-    for (int x = w.x0; x < w.x1; ++x) {
-      const double* p = film.pixel(x, y);
-      for (int c = 0; c < 3; ++c)
-        bytes[i++] =
-            static_cast<unsigned char>(std::lround(255.0f * srgbEncode(static_cast<float>(p[c]))));
+}  // namespace
+
+struct DisplayTransform::Impl {
+  OCIO::ConstCPUProcessorRcPtr cpu;
+};
+
+DisplayTransform::DisplayTransform(const DisplaySettings& s) : impl_(new Impl) {
+  try {
+    const OCIO::ConstConfigRcPtr config = loadConfig(s.configPath, source_);
+    const std::string display = s.display.empty() ? config->getDefaultDisplay() : s.display;
+    std::string displays;
+    bool knownDisplay = false;
+    for (int d = 0; d < config->getNumDisplays(); ++d) {
+      displays += (d ? ", " : "") + std::string(config->getDisplay(d));
+      knownDisplay |= display == config->getDisplay(d);
     }
-  OIIO::ImageSpec spec(w.width(), w.height(), 3, OIIO::TypeDesc::UINT8);
+    if (!knownDisplay)
+      throw GlintError("OCIO (" + source_ + "): no display \"" + display +
+                       "\"; displays: " + displays);
+    const std::string view = s.view.empty() ? config->getDefaultView(display.c_str()) : s.view;
+    std::string views;
+    bool knownView = false;
+    for (int v = 0; v < config->getNumViews(display.c_str()); ++v) {
+      views += (v ? ", " : "") + std::string(config->getView(display.c_str(), v));
+      knownView |= view == config->getView(display.c_str(), v);
+    }
+    if (!knownView)
+      throw GlintError("OCIO (" + source_ + "): display \"" + display + "\" has no view \"" + view +
+                       "\"; views: " + views);
+    const auto group = OCIO::GroupTransform::Create();
+    if (!s.look.empty()) {
+      const auto look = OCIO::LookTransform::Create();
+      look->setSrc(OCIO::ROLE_SCENE_LINEAR);
+      look->setDst(OCIO::ROLE_SCENE_LINEAR);
+      look->setLooks(s.look.c_str());
+      group->appendTransform(look);
+    }
+    const auto dv = OCIO::DisplayViewTransform::Create();
+    dv->setSrc(OCIO::ROLE_SCENE_LINEAR);
+    dv->setDisplay(display.c_str());
+    dv->setView(view.c_str());
+    group->appendTransform(dv);
+    impl_->cpu = config->getProcessor(group)->getDefaultCPUProcessor();
+  } catch (const OCIO::Exception& e) {
+    delete impl_;
+    throw GlintError("OCIO (" + source_ + "): " + e.what());
+  } catch (...) {
+    delete impl_;
+    throw;
+  }
+}
+
+DisplayTransform::~DisplayTransform() { delete impl_; }
+
+void DisplayTransform::apply(float* pixels, int width, int height, int channels) const {
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y) {
+      OCIO::PackedImageDesc row(pixels + size_t(y) * size_t(width) * size_t(channels), width, 1,
+                                channels);
+      impl_->cpu->apply(row);
+    }
+  });
+}
+
+void writeDisplayImage(const std::string& path, std::vector<float> rgba, int width, int height,
+                       const DisplaySettings& settings) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  const bool tiff = ext == ".tif" || ext == ".tiff";
+  if (!tiff && ext != ".png" && ext != ".jpg" && ext != ".jpeg")
+    throw UsageError("display image " + path + ": use .png, .jpg or .tif");
+  const DisplayTransform transform(settings);
+  transform.apply(rgba.data(), width, height, 4);
+  // Display-referred code values: clamp to [0, 1] (NaN → 0), drop alpha (the display image
+  // shows the background the render already composited).
+  const double scale = tiff ? 65535.0 : 255.0;
+  std::vector<uint16_t> codes(size_t(width) * size_t(height) * 3);
+  for (size_t i = 0, p = 0; p < rgba.size(); p += 4)
+    for (int c = 0; c < 3; ++c) {
+      const float v = rgba[p + size_t(c)];
+      codes[i++] = static_cast<uint16_t>(std::lround(scale * (v > 0 ? std::min(v, 1.0f) : 0.0f)));
+    }
+  OIIO::ImageSpec spec(width, height, 3, tiff ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8);
+  std::vector<uint8_t> bytes;
+  if (!tiff) bytes.assign(codes.begin(), codes.end());
   writeFileAtomically(path, [&](const std::string& tmp) {
     auto out = OIIO::ImageOutput::create(path);
     if (!out) throw GlintError("cannot write " + path + ": " + OIIO::geterror());
-    if (!out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) ||
-        !out->close())
-      throw GlintError("cannot write " + path + ": " + out->geterror());
+    const bool ok = out->open(tmp, spec) &&
+                    (tiff ? out->write_image(OIIO::TypeDesc::UINT16, codes.data())
+                          : out->write_image(OIIO::TypeDesc::UINT8, bytes.data())) &&
+                    out->close();
+    if (!ok) throw GlintError("cannot write " + path + ": " + out->geterror());
   });
+}
+
+void writeDisplayImage(const std::string& path, const Film& film, const DisplaySettings& settings) {
+  writeDisplayImage(path, film.toFloatRgba(), film.window().width(), film.window().height(),
+                    settings);
+}
+
+std::string describeOcioConfig(const std::string& configPath) {
+  std::string source;
+  const OCIO::ConstConfigRcPtr config = loadConfig(configPath, source);
+  std::ostringstream out;
+  out << "OCIO config  " << source << "\n";
+  out << "scene_linear " << config->getColorSpace(OCIO::ROLE_SCENE_LINEAR)->getName() << "\n";
+  for (int d = 0; d < config->getNumDisplays(); ++d) {
+    const char* display = config->getDisplay(d);
+    out << "display      " << display
+        << (std::string(display) == config->getDefaultDisplay() ? " (default)" : "") << "\n";
+    for (int v = 0; v < config->getNumViews(display); ++v) {
+      const char* view = config->getView(display, v);
+      out << "  view       " << view
+          << (std::string(view) == config->getDefaultView(display) ? " (default)" : "") << "\n";
+    }
+  }
+  out << "colorspaces ";
+  for (int c = 0; c < config->getNumColorSpaces(); ++c)
+    out << (c ? ", " : " ") << config->getColorSpaceNameByIndex(c);
+  out << "\nlooks       ";
+  for (int l = 0; l < config->getNumLooks(); ++l)
+    out << (l ? ", " : " ") << config->getLookNameByIndex(l);
+  if (config->getNumLooks() == 0) out << " (none)";
+  out << "\n";
+  return out.str();
 }
 
 }  // namespace glint

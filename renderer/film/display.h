@@ -1,13 +1,48 @@
 #pragma once
-// A display image for people: the film's scene-linear RGB clamped to [0, 1] and encoded with
-// the sRGB transfer function into an 8-bit PNG (OpenColorIO views replace this later).
+// Display images for people, made through OpenColorIO: scene-linear film → (look) → display /
+// view → 8-bit PNG/JPEG or 16-bit TIFF. The config is --ocio-config, else $OCIO, else the config
+// bundled in the repository (ocio/config.ocio, compiled in), so a display image never depends
+// on what happens to be installed.
 #include <string>
+#include <vector>
 
 #include "film/film.h"
 
 namespace glint {
 
-float srgbEncode(float linear);
-void writeDisplayPng(const std::string& path, const Film& film);
+struct DisplaySettings {
+  std::string configPath;  // empty: $OCIO, else the bundled config
+  std::string display;     // empty: the config's default display
+  std::string view;        // empty: the display's default view
+  std::string look;        // optional, applied in scene-linear before the view
+};
+
+// One OCIO CPU processor, built once, applied to RGB rows in parallel.
+class DisplayTransform {
+ public:
+  // Throws GlintError naming the config and the display, view or look that is wrong.
+  explicit DisplayTransform(const DisplaySettings& settings);
+  ~DisplayTransform();
+  DisplayTransform(const DisplayTransform&) = delete;
+  DisplayTransform& operator=(const DisplayTransform&) = delete;
+
+  // In place, on width × height pixels of `channels` floats (RGB first); alpha is untouched.
+  void apply(float* pixels, int width, int height, int channels) const;
+  const std::string& configSource() const { return source_; }
+
+ private:
+  struct Impl;
+  Impl* impl_;
+  std::string source_;
+};
+
+// Writes `rgba` (width × height × 4, scene-linear) as a display image; the format comes from the
+// extension: .png and .jpg/.jpeg 8-bit, .tif/.tiff 16-bit.
+void writeDisplayImage(const std::string& path, std::vector<float> rgba, int width, int height,
+                       const DisplaySettings& settings);
+void writeDisplayImage(const std::string& path, const Film& film, const DisplaySettings& settings);
+
+// The active config's source, displays, their views, and colour spaces, for `glint info --ocio`.
+std::string describeOcioConfig(const std::string& configPath);
 
 }  // namespace glint
