@@ -36,6 +36,8 @@ struct RenderArgs {
   int tileSize = 32;
   std::string tileOrder = "morton";
   bool half = false;
+  bool multipart = false;
+  std::string aovs;
   std::string compression = "zip";
   bool stats = false;
   bool quiet = false;
@@ -154,6 +156,7 @@ int runRender(const RenderArgs& a) {
   opt.progress = !a.quiet;
   opt.tileOrder = a.tileOrder == "row" ? TileOrder::RowMajor : TileOrder::Morton;
   opt.cancel = &gInterrupted;
+  opt.aovs = AovSet::parse(a.aovs);
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
   AccelKind kind = AccelKind::Embree;
@@ -167,7 +170,7 @@ int runRender(const RenderArgs& a) {
     out = (a.scenePath.empty() ? std::string("default")
                                : std::filesystem::path(a.scenePath).stem().string()) +
           ".exr";
-  writeExr(out, result.film, exrMetadata(a, scene, result), {a.half, a.compression});
+  writeExr(out, result.film, exrMetadata(a, scene, result), {a.half, a.compression, a.multipart});
   if (!a.display.empty()) writeDisplayImage(a.display, result.film, a.ocio);
   if (!a.statsJson.empty()) {
     writeTextFileAtomically(a.statsJson, statsJson(scene, result.stats).dump(2) + "\n");
@@ -213,6 +216,10 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--tile-order", args->tileOrder, "Tile order (the image is the same for any)")
       ->check(CLI::IsMember({"morton", "row"}));
   cmd->add_flag("--half", args->half, "Half-float beauty (default float)");
+  cmd->add_option("--aov", args->aovs,
+                  "AOVs, comma separated: depth,normal,albedo,position,objectid,direct,indirect,"
+                  "lights,variance");
+  cmd->add_flag("--multipart", args->multipart, "One EXR part per AOV (default: layers in one)");
   cmd->add_option("--compression", args->compression, "EXR compression (default zip)")
       ->check(CLI::IsMember(exrCompressions()));
   cmd->add_flag("--stats", args->stats, "Print render statistics");

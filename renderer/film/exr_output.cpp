@@ -1,6 +1,10 @@
 #include "film/exr_output.h"
 
+#include <Imath/half.h>
 #include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstring>
 
 #include "core/error.h"
 #include "film/atomic_file.h"
@@ -13,37 +17,118 @@ const std::vector<std::string>& exrCompressions() {
   return names;
 }
 
+namespace {
+
+// One part of the file: its channels, each from the beauty or an AOV plane, in its own type.
+struct Channel {
+  std::string name;
+  OIIO::TypeDesc type;
+  const std::vector<double>* source;  // interleaved values
+  size_t stride, offset;              // channels per pixel in `source`, and this one's index
+};
+
+struct Part {
+  std::string name;
+  std::vector<Channel> channels;
+};
+
+std::vector<Part> layoutParts(const Film& film, const std::vector<double>& rgba, bool half,
+                              bool multipart) {
+  const OIIO::TypeDesc beautyType = half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+  std::vector<Part> parts(1);
+  parts[0].name = "rgba";
+  const char* rgbaNames[] = {"R", "G", "B", "A"};
+  for (size_t c = 0; c < 4; ++c)
+    parts[0].channels.push_back({rgbaNames[c], beautyType, &rgba, 4, c});
+  for (const FilmPlane& plane : film.planes()) {
+    if (multipart) parts.push_back({plane.name, {}});
+    for (size_t c = 0; c < plane.channels.size(); ++c)
+      parts.back().channels.push_back({plane.channels[c],
+                                       plane.isUint ? OIIO::TypeDesc::UINT : OIIO::TypeDesc::FLOAT,
+                                       &plane.values, plane.channels.size(), c});
+  }
+  return parts;
+}
+
+// The pixels of a part in its native per-channel types, interleaved.
+std::vector<unsigned char> packPart(const Part& part, size_t pixels) {
+  size_t bytesPerPixel = 0;
+  for (const Channel& c : part.channels) bytesPerPixel += c.type.size();
+  std::vector<unsigned char> out(pixels * bytesPerPixel);
+  unsigned char* dst = out.data();
+  for (size_t p = 0; p < pixels; ++p)
+    for (const Channel& c : part.channels) {
+      const double v = (*c.source)[p * c.stride + c.offset];
+      if (c.type == OIIO::TypeDesc::HALF) {
+        const Imath::half h(static_cast<float>(v));
+        std::memcpy(dst, &h, 2);
+      } else if (c.type == OIIO::TypeDesc::UINT) {
+        const auto u = static_cast<uint32_t>(v);
+        std::memcpy(dst, &u, 4);
+      } else {
+        const auto f = static_cast<float>(v);
+        std::memcpy(dst, &f, 4);
+      }
+      dst += c.type.size();
+    }
+  return out;
+}
+
+}  // namespace
+
 void writeExr(const std::string& path, const Film& film, const ExrMetadata& meta,
               const ExrOptions& options) {
   const PixelWindow& w = film.window();
-  OIIO::ImageSpec spec(w.width(), w.height(), 4,
-                       options.half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT);
-  spec.x = w.x0;
-  spec.y = w.y0;
-  spec.full_x = 0;
-  spec.full_y = 0;
-  spec.full_width = film.fullWidth();
-  spec.full_height = film.fullHeight();
-  spec.channelnames = {"R", "G", "B", "A"};
-  spec.alpha_channel = 3;
-  spec.attribute("compression", options.compression);
-  for (const auto& [k, v] : meta.strings) spec.attribute(k, v);
-  for (const auto& [k, v] : meta.ints) spec.attribute(k, v);
-  for (const auto& [k, v] : meta.floats) spec.attribute(k, v);
-  for (const auto& [k, m] : meta.matrices) {
-    float rowVector[16];
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) rowVector[4 * c + r] = m(r, c);
-    spec.attribute(k, OIIO::TypeMatrix44, rowVector);
+  std::vector<double> rgba(static_cast<size_t>(w.area()) * 4);
+  for (int y = w.y0; y < w.y1; ++y)
+    for (int x = w.x0; x < w.x1; ++x)
+      std::copy_n(film.pixel(x, y), 4,
+                  &rgba[(size_t(y - w.y0) * size_t(w.width()) + size_t(x - w.x0)) * 4]);
+  const std::vector<Part> parts = layoutParts(film, rgba, options.half, options.multipart);
+
+  std::vector<OIIO::ImageSpec> specs;
+  for (const Part& part : parts) {
+    OIIO::ImageSpec spec(w.width(), w.height(), int(part.channels.size()), part.channels[0].type);
+    spec.channelnames.clear();
+    spec.channelformats.clear();
+    for (const Channel& c : part.channels) {
+      spec.channelnames.push_back(c.name);
+      spec.channelformats.push_back(c.type);
+    }
+    spec.alpha_channel = part.name == "rgba" ? 3 : -1;
+    spec.x = w.x0;
+    spec.y = w.y0;
+    spec.full_x = 0;
+    spec.full_y = 0;
+    spec.full_width = film.fullWidth();
+    spec.full_height = film.fullHeight();
+    spec.attribute("compression", options.compression);
+    if (parts.size() > 1) spec.attribute("name", part.name);
+    for (const auto& [k, v] : meta.strings) spec.attribute(k, v);
+    for (const auto& [k, v] : meta.ints) spec.attribute(k, v);
+    for (const auto& [k, v] : meta.floats) spec.attribute(k, v);
+    for (const auto& [k, m] : meta.matrices) {
+      float rowVector[16];
+      for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) rowVector[4 * c + r] = m(r, c);
+      spec.attribute(k, OIIO::TypeMatrix44, rowVector);
+    }
+    specs.push_back(std::move(spec));
   }
-  const std::vector<float> pixels = film.toFloatRgba();
 
   writeFileAtomically(path, [&](const std::string& tmp) {
     auto out = OIIO::ImageOutput::create("openexr");
     if (!out) throw GlintError("OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
-    if (!out->open(tmp, spec)) throw GlintError("cannot write " + path + ": " + out->geterror());
-    if (!out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) || !out->close())
+    if (!out->open(tmp, int(specs.size()), specs.data()))
       throw GlintError("cannot write " + path + ": " + out->geterror());
+    for (size_t i = 0; i < parts.size(); ++i) {
+      if (i > 0 && !out->open(tmp, specs[i], OIIO::ImageOutput::AppendSubimage))
+        throw GlintError("cannot write " + path + ": " + out->geterror());
+      const std::vector<unsigned char> data = packPart(parts[i], size_t(w.area()));
+      if (!out->write_image(OIIO::TypeDesc::UNKNOWN, data.data()))
+        throw GlintError("cannot write " + path + ": " + out->geterror());
+    }
+    if (!out->close()) throw GlintError("cannot write " + path + ": " + out->geterror());
   });
 }
 

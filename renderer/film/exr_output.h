@@ -21,6 +21,7 @@ struct ExrMetadata {
 struct ExrOptions {
   bool half = false;                // half-float beauty instead of float
   std::string compression = "zip";  // none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab
+  bool multipart = false;           // one part per AOV instead of layered channels in one part
 };
 
 // The compression names OpenEXR (through OpenImageIO) accepts.

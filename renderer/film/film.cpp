@@ -35,4 +35,18 @@ std::vector<float> Film::toFloatRgba() const {
   return out;
 }
 
+size_t Film::addPlane(std::string name, std::vector<std::string> channels, bool isUint) {
+  FilmPlane p{std::move(name), std::move(channels), isUint, {}};
+  p.values.assign(static_cast<size_t>(window_.area()) * p.channels.size(), 0.0);
+  planes_.push_back(std::move(p));
+  return planes_.size() - 1;
+}
+
+void Film::setPlanePixel(size_t plane, int x, int y, const double* values) {
+  FilmPlane& p = planes_[plane];
+  const size_t n = p.channels.size();
+  const size_t at = offset(x, y) / 4 * n;
+  for (size_t c = 0; c < n; ++c) p.values[at + c] = values[c];
+}
+
 }  // namespace glint

@@ -3,6 +3,7 @@
 // double. Each pixel is written by exactly one tile task, so no synchronisation is needed.
 #include <cstddef>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace glint {
@@ -13,6 +14,14 @@ struct PixelWindow {
   int width() const { return x1 - x0; }
   int height() const { return y1 - y0; }
   int64_t area() const { return int64_t(width()) * height(); }
+};
+
+// An extra image plane (AOV): named channels per pixel, float or uint32 in the file.
+struct FilmPlane {
+  std::string name;                   // e.g. "normal"; the part name in multi-part EXRs
+  std::vector<std::string> channels;  // e.g. {"N.X", "N.Y", "N.Z"}
+  bool isUint = false;                // written as UINT (object ids), else FLOAT
+  std::vector<double> values;         // window area × channels
 };
 
 class Film {
@@ -30,11 +39,17 @@ class Film {
   // Row-major float RGBA of the window, for image output.
   std::vector<float> toFloatRgba() const;
 
+  // AOV planes, added before rendering; each pixel is written by the task that owns it.
+  size_t addPlane(std::string name, std::vector<std::string> channels, bool isUint = false);
+  void setPlanePixel(size_t plane, int x, int y, const double* values);
+  const std::vector<FilmPlane>& planes() const { return planes_; }
+
  private:
   size_t offset(int x, int y) const;
   int fullWidth_, fullHeight_;
   PixelWindow window_;
   std::vector<double> rgba_;
+  std::vector<FilmPlane> planes_;
 };
 
 }  // namespace glint

@@ -34,20 +34,38 @@ float WhittedIntegrator::iorOutside(const MediumStack& media) const {
   return media.empty() ? 1.0f : dielectric(media.innermostMaterial())->ior;
 }
 
-Radiance WhittedIntegrator::trace(const Ray& cameraRay, const SampleKey& key,
-                                  RayCounters& counters) const {
+Radiance WhittedIntegrator::trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
+                                  AovSample* aov) const {
   ++counters.camera;
   bool hit = false;
   Radiance r;
   Branch root;
   root.key = &key;
-  r.L = Li(cameraRay, root, counters, &hit);
+  r.L = Li(cameraRay, root, counters, &hit, aov);
   r.alpha = hit ? 1.0f : 0.0f;
   return r;
 }
 
+void WhittedIntegrator::recordAov(const Ray& ray, const Hit& hit, const ShadingPoint& sp,
+                                  const Material& material, AovSample& aov) const {
+  aov.hit = true;
+  aov.depth = dot(sp.p - ray.o, aov.viewAxis);
+  aov.normal = faceForward(sp.ns, -ray.d);
+  aov.position = sp.p;
+  // The top-level object: for a hit inside an instance, the instance's entry in `objects`.
+  const Geometry& top =
+      scene_.groups[0].geometries[hit.instId != kInvalidId ? hit.instId : hit.geomId];
+  aov.objectId = top.objectId + 1;
+  if (const auto* phong = std::get_if<PhongMaterial>(&material))
+    aov.albedo = phong->kd.eval(sp.p);
+  else if (const auto* mirror = std::get_if<MirrorMaterial>(&material))
+    aov.albedo = mirror->km;
+  else
+    aov.albedo = {1, 1, 1};
+}
+
 Rgb WhittedIntegrator::Li(const Ray& ray, const Branch& branch, RayCounters& counters,
-                          bool* hitSomething) const {
+                          bool* hitSomething, AovSample* aov) const {
   const Hit hit = accel_.intersect(ray);
   // Beer's law over the segment just travelled, in the medium the ray was inside.
   Rgb absorbed{1, 1, 1};
@@ -59,9 +77,12 @@ Rgb WhittedIntegrator::Li(const Ray& ray, const Branch& branch, RayCounters& cou
 
   const ShadingPoint sp = scene_.shadingPoint(ray, hit);
   const Material& material = scene_.materials[sp.materialId].material;
+  if (aov) recordAov(ray, hit, sp, material, *aov);
   Rgb L;
   if (const auto* phong = std::get_if<PhongMaterial>(&material)) {
-    L = shadePhong(*phong, sp, normalize(-ray.d), ray.time, branch, counters);
+    L = shadePhong(*phong, sp, normalize(-ray.d), ray.time, branch, counters,
+                   aov ? aov->perLight : nullptr);
+    if (aov) aov->direct = L;
     L += reflectRay(phong->km, phong->gloss, sp, ray, branch, counters);
   } else if (const auto* mirror = std::get_if<MirrorMaterial>(&material)) {
     L = reflectRay(mirror->km, mirror->gloss, sp, ray, branch, counters);
@@ -72,7 +93,8 @@ Rgb WhittedIntegrator::Li(const Ray& ray, const Branch& branch, RayCounters& cou
 }
 
 Rgb WhittedIntegrator::shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo,
-                                  float time, const Branch& branch, RayCounters& counters) const {
+                                  float time, const Branch& branch, RayCounters& counters,
+                                  Rgb* perLight) const {
   // Seed 000 eq. 4.4 / seed 001 §5: surfaces are two-sided, so the normal faces the viewer.
   const Vec3f n = faceForward(sp.ns, wo);
   const Rgb kd = m.kd.eval(sp.p);
@@ -102,7 +124,9 @@ Rgb WhittedIntegrator::shadePhong(const PhongMaterial& m, const ShadingPoint& sp
       }
       sum += f * ls.intensity * visible;
     }
-    L += count == 1 ? sum : sum * (1.0f / static_cast<float>(count));
+    const Rgb contribution = count == 1 ? sum : sum * (1.0f / static_cast<float>(count));
+    L += contribution;
+    if (perLight && li < size_t(AovSet::kMaxLights)) perLight[li] = contribution;
   }
   return L;
 }

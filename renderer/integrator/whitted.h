@@ -6,6 +6,7 @@
 #include "accel/accelerator.h"
 #include "core/rgb.h"
 #include "core/sampler.h"
+#include "integrator/aov.h"
 #include "integrator/medium_stack.h"
 #include "integrator/ray_counters.h"
 #include "scene/scene.h"
@@ -28,7 +29,8 @@ struct SampleKey {
 
 struct Radiance {
   Rgb L;
-  float alpha = 0;  // 1 when the camera ray hit geometry
+  float alpha = 0;    // 1 when the camera ray hit geometry
+  bool valid = true;  // false for a non-finite sample, which the film counts as black
 };
 
 class WhittedIntegrator {
@@ -37,7 +39,10 @@ class WhittedIntegrator {
                     float minThroughput = kDefaultMinThroughput)
       : scene_(scene), accel_(accel), minThroughput_(minThroughput) {}
 
-  Radiance trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters) const;
+  // With `aov`, also records what the camera ray hit (its viewAxis must be set: the camera's
+  // unit view direction, for depth).
+  Radiance trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
+                 AovSample* aov = nullptr) const;
 
  private:
   struct Branch {  // what travels with a ray down the recursion
@@ -51,10 +56,13 @@ class WhittedIntegrator {
     }
   };
 
-  Rgb Li(const Ray& ray, const Branch& branch, RayCounters& counters,
-         bool* hitSomething = nullptr) const;
+  Rgb Li(const Ray& ray, const Branch& branch, RayCounters& counters, bool* hitSomething = nullptr,
+         AovSample* aov = nullptr) const;
+  // `perLight`, when given, receives each light's contribution (AOVs of the camera hit).
   Rgb shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo, float time,
-                 const Branch& branch, RayCounters& counters) const;
+                 const Branch& branch, RayCounters& counters, Rgb* perLight = nullptr) const;
+  void recordAov(const Ray& ray, const Hit& hit, const ShadingPoint& sp, const Material& material,
+                 AovSample& aov) const;
   // Fraction of a light's intensity that reaches sp along the shadow ray: 0 or 1, or with
   // transparent shadows the product of the dielectric transmissions met on the way.
   Rgb shadowTransmission(const ShadingPoint& sp, const LightSample& ls, float time,

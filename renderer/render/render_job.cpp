@@ -8,6 +8,7 @@
 #include "core/log.h"
 #include "core/sampler.h"
 #include "integrator/whitted.h"
+#include "render/aov_accumulator.h"
 #include "render/progress.h"
 #include "render/tile_scheduler.h"
 
@@ -37,6 +38,11 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   std::vector<RayCounters> tileCounters(tiles.size());
   Progress progress(window.area(), opt.progress);
   std::atomic<int> loggedNonfinite{0};
+  // AOV work happens only when AOVs are asked for (leave out what is not needed).
+  const AovLayout aovLayout = AovLayout::create(opt.aovs, scene.lights.size(), film);
+  const bool aovs = opt.aovs.any();
+  const bool aovSamples = opt.aovs.needsSamples();
+  const Vec3f viewAxis = -camera.w();
 
   runTiles(tiles, threads, [&](size_t tileIndex) {
     if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) {
@@ -45,9 +51,11 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
     }
     const PixelWindow& tile = tiles[tileIndex];
     RayCounters& counters = tileCounters[tileIndex];
+    PixelAovs pixelAovs(aovLayout);
     for (int y = tile.y0; y < tile.y1; ++y)
       for (int x = tile.x0; x < tile.x1; ++x) {
         double sum[4] = {0, 0, 0, 0};
+        if (aovs) pixelAovs.begin();
         for (int s = 0; s < rs.spp; ++s) {
           const SampleKey key{&sampler, x, y, s};
           const Vec2f u = sampler.pixelSample(x, y, s);
@@ -59,8 +67,12 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
           ray.time = openShutter ? shutterOpen + (shutterClose - shutterOpen) *
                                                      key.get2D(dimension(Dim::Time)).x
                                  : shutterOpen;
-          const Radiance r = integrator.trace(ray, key, counters);
-          if (!r.L.isFinite()) {
+          AovSample aov;
+          aov.viewAxis = viewAxis;
+          Radiance r = integrator.trace(ray, key, counters, aovSamples ? &aov : nullptr);
+          if (!r.L.isFinite()) r.L = {}, r.valid = false;
+          if (aovs) pixelAovs.add(r, aov);
+          if (!r.valid) {
             // A non-finite sample never reaches the film: it counts as black.
             ++counters.nonfiniteSamples;
             if (loggedNonfinite.fetch_add(1) < kMaxLoggedNonfinite)
@@ -76,6 +88,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
         }
         const double inv = 1.0 / rs.spp;
         film.setPixel(x, y, sum[0] * inv, sum[1] * inv, sum[2] * inv, sum[3] * inv);
+        if (aovs) pixelAovs.end(film, x, y);
       }
     progress.advance(tile.area(), counters.total());
   });

@@ -6,6 +6,7 @@
 
 #include "accel/accelerator.h"
 #include "film/film.h"
+#include "integrator/aov.h"
 #include "integrator/ray_counters.h"
 #include "render/tile_scheduler.h"
 #include "scene/scene.h"
@@ -21,6 +22,7 @@ struct RenderOptions {
   // When set to true (by a signal handler), no further tiles are started; tiles in flight
   // finish, and the result is marked partial. Unrendered pixels stay at zero, alpha 0.
   const std::atomic<bool>* cancel = nullptr;
+  AovSet aovs;  // none by default
 };
 
 struct RenderStats {

@@ -1,0 +1,118 @@
+#include "render/aov_accumulator.h"
+
+#include <algorithm>
+
+#include "core/error.h"
+
+namespace glint {
+
+AovLayout AovLayout::create(const AovSet& set, size_t lightCount, Film& film) {
+  AovLayout l;
+  l.set = set;
+  l.lights = lightCount;
+  const auto rgb = [](const std::string& layer) {
+    return std::vector<std::string>{layer + ".R", layer + ".G", layer + ".B"};
+  };
+  if (set.has(Aov::Depth)) l.depth = film.addPlane("depth", {"Z"});
+  if (set.has(Aov::Normal)) l.normal = film.addPlane("normal", {"N.X", "N.Y", "N.Z"});
+  if (set.has(Aov::Albedo)) l.albedo = film.addPlane("albedo", rgb("albedo"));
+  if (set.has(Aov::Position)) l.position = film.addPlane("position", {"P.X", "P.Y", "P.Z"});
+  if (set.has(Aov::ObjectId)) l.objectId = film.addPlane("objectid", {"id"}, true);
+  if (set.has(Aov::Direct)) l.direct = film.addPlane("direct", rgb("direct"));
+  if (set.has(Aov::Indirect)) l.indirect = film.addPlane("indirect", rgb("indirect"));
+  if (set.has(Aov::Lights)) {
+    if (lightCount > size_t(AovSet::kMaxLights))
+      throw UsageError("--aov lights: the scene has " + std::to_string(lightCount) +
+                       " lights; per-light AOVs support at most " +
+                       std::to_string(AovSet::kMaxLights));
+    for (size_t i = 0; i < lightCount; ++i) {
+      const size_t p = film.addPlane("light" + std::to_string(i), rgb("light" + std::to_string(i)));
+      if (i == 0) l.firstLight = p;
+    }
+  }
+  if (set.has(Aov::Variance)) l.variance = film.addPlane("variance", rgb("variance"));
+  return l;
+}
+
+void PixelAovs::begin() {
+  n_ = 0;
+  anyHit_ = false;
+  minDepth_ = 0;
+  std::fill(std::begin(normal_), std::end(normal_), 0.0);
+  std::fill(std::begin(position_), std::end(position_), 0.0);
+  std::fill(std::begin(albedo_), std::end(albedo_), 0.0);
+  std::fill(std::begin(direct_), std::end(direct_), 0.0);
+  std::fill(std::begin(indirect_), std::end(indirect_), 0.0);
+  std::fill(std::begin(lights_), std::end(lights_), 0.0);
+  std::fill(std::begin(mean_), std::end(mean_), 0.0);
+  std::fill(std::begin(m2_), std::end(m2_), 0.0);
+  ids_.clear();
+}
+
+void PixelAovs::add(const Radiance& r, const AovSample& s) {
+  ++n_;
+  const double L[3] = {r.L.r, r.L.g, r.L.b};
+  for (int c = 0; c < 3; ++c) {  // Welford: numerically stable running mean and M2
+    const double d = L[c] - mean_[c];
+    mean_[c] += d / n_;
+    m2_[c] += d * (L[c] - mean_[c]);
+  }
+  if (!s.hit) return;
+  if (!anyHit_ || s.depth < minDepth_) minDepth_ = s.depth;
+  anyHit_ = true;
+  const auto addVec = [](double* acc, const Vec3f& v) {
+    acc[0] += v.x, acc[1] += v.y, acc[2] += v.z;
+  };
+  const auto addRgb = [](double* acc, const Rgb& v) {
+    acc[0] += v.r, acc[1] += v.g, acc[2] += v.b;
+  };
+  addVec(normal_, s.normal);
+  addVec(position_, s.position);
+  addRgb(albedo_, s.albedo);
+  addRgb(direct_, s.direct);
+  addRgb(indirect_, {r.L.r - s.direct.r, r.L.g - s.direct.g, r.L.b - s.direct.b});
+  for (size_t i = 0; i < layout_.lights && i < size_t(AovSet::kMaxLights); ++i)
+    addRgb(&lights_[3 * i], s.perLight[i]);
+  auto it =
+      std::find_if(ids_.begin(), ids_.end(), [&](const auto& e) { return e.first == s.objectId; });
+  if (it == ids_.end())
+    ids_.push_back({s.objectId, 1});
+  else
+    ++it->second;
+}
+
+void PixelAovs::end(Film& film, int x, int y) const {
+  const double inv = n_ > 0 ? 1.0 / n_ : 0;
+  const auto put = [&](size_t plane, const double* acc) {
+    if (plane == SIZE_MAX) return;
+    const double v[3] = {acc[0] * inv, acc[1] * inv, acc[2] * inv};
+    film.setPlanePixel(plane, x, y, v);
+  };
+  if (layout_.depth != SIZE_MAX) film.setPlanePixel(layout_.depth, x, y, &minDepth_);
+  put(layout_.normal, normal_);
+  put(layout_.position, position_);
+  put(layout_.albedo, albedo_);
+  put(layout_.direct, direct_);
+  put(layout_.indirect, indirect_);
+  if (layout_.firstLight != SIZE_MAX)
+    for (size_t i = 0; i < layout_.lights; ++i) put(layout_.firstLight + i, &lights_[3 * i]);
+  if (layout_.objectId != SIZE_MAX) {
+    double id = 0;
+    int best = 0;
+    for (const auto& [objectId, count] : ids_)
+      if (count > best || (count == best && objectId < id)) {
+        best = count;
+        id = objectId;
+      }
+    film.setPlanePixel(layout_.objectId, x, y, &id);
+  }
+  if (layout_.variance != SIZE_MAX) {
+    // Variance of the mean: the sample variance m2/(n − 1) divided by n.
+    const double denom = n_ > 1 ? double(n_) * double(n_ - 1) : 0;
+    const double v[3] = {denom > 0 ? m2_[0] / denom : 0, denom > 0 ? m2_[1] / denom : 0,
+                         denom > 0 ? m2_[2] / denom : 0};
+    film.setPlanePixel(layout_.variance, x, y, v);
+  }
+}
+
+}  // namespace glint

@@ -1,0 +1,133 @@
+// AOVs through the EXR round trip, with exact expected values.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <map>
+
+#include "test_util.h"
+
+namespace glint {
+namespace {
+
+// Reads every channel of every part by name, as float values (ids are exact below 2^24).
+std::map<std::string, std::vector<float>> readChannels(
+    const std::string& path, std::vector<std::string>* partNames = nullptr,
+    std::map<std::string, OIIO::TypeDesc>* types = nullptr) {
+  std::map<std::string, std::vector<float>> out;
+  auto in = OIIO::ImageInput::open(path);
+  EXPECT_TRUE(in) << path;
+  for (int sub = 0; in && in->seek_subimage(sub, 0); ++sub) {
+    const OIIO::ImageSpec& s = in->spec();
+    if (partNames) partNames->push_back(s.get_string_attribute("name"));
+    for (int c = 0; c < s.nchannels; ++c) {
+      std::vector<float> v(size_t(s.width) * size_t(s.height));
+      if (s.channelformat(c) == OIIO::TypeDesc::UINT) {
+        // Read ids as integers: OIIO would normalise a uint read as float by 2^-32.
+        std::vector<uint32_t> u(v.size());
+        EXPECT_TRUE(in->read_image(sub, 0, c, c + 1, OIIO::TypeDesc::UINT, u.data()));
+        std::copy(u.begin(), u.end(), v.begin());
+      } else {
+        EXPECT_TRUE(in->read_image(sub, 0, c, c + 1, OIIO::TypeDesc::FLOAT, v.data()));
+      }
+      out[s.channelnames[size_t(c)]] = v;
+      if (types) (*types)[s.channelnames[size_t(c)]] = s.channelformat(c);
+    }
+  }
+  return out;
+}
+
+// Looking straight down at a Lambert plane from y = 5: pixel centres at x = u ∈ {−1.5, −0.5,
+// 0.5, 1.5}, z = −v with v ∈ {0.5, −0.5}. Light 0 is directional along (0,−1,−1)/√2 (cosθ = 1/√2),
+// light 1 a point light at (0, 2, 0) of intensity 2 (cosθ = 2/√(x² + z² + 4)), no falloff.
+const char* kScene = R"({
+  "render": {"width": 4, "height": 2, "spp": 1, "sampler": "regular"},
+  "camera": {"type": "orthographic", "eye": [0,5,0], "look_at": [0,0,0], "up": [0,0,-1], "height": 2},
+  "materials": {"m": {"type": "phong", "kd": [0.5,0.4,0.2], "ka": [0,0,0]}},
+  "lights": [{"type": "directional", "direction": [0,-1,-1]},
+             {"type": "point", "position": [0,2,0], "intensity": [2,2,2]}],
+  "objects": [{"type": "plane", "point": [0,0,0], "normal": [0,1,0], "material": "m"}]})";
+
+TEST(Aov, EveryAovRoundTripsWithExactValues) {
+  const std::string scene = test::writeTemp("aov.json", kScene);
+  const std::string out = (test::tempDir() / "aov.exr").string();
+  ASSERT_EQ(
+      test::runGlint("render " + scene + " --quiet -o " + out +
+                     " --aov depth,normal,albedo,position,objectid,direct,indirect,lights,variance")
+          .exitCode,
+      0);
+  std::map<std::string, OIIO::TypeDesc> types;
+  const auto ch = readChannels(out, nullptr, &types);
+  EXPECT_EQ(types["id"], OIIO::TypeDesc::UINT);
+  EXPECT_EQ(types["Z"], OIIO::TypeDesc::FLOAT);
+  const float kd[3] = {0.5f, 0.4f, 0.2f};
+  const char* rgb[3] = {"R", "G", "B"};
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 4; ++x) {
+      const size_t i = size_t(y) * 4 + size_t(x);
+      const float px = -1.5f + float(x), pz = -(0.5f - float(y));
+      EXPECT_FLOAT_EQ(ch.at("Z")[i], 5);
+      EXPECT_FLOAT_EQ(ch.at("N.Y")[i], 1);
+      EXPECT_FLOAT_EQ(ch.at("N.X")[i], 0);
+      EXPECT_FLOAT_EQ(ch.at("P.X")[i], px);
+      EXPECT_FLOAT_EQ(ch.at("P.Y")[i], 0);
+      EXPECT_FLOAT_EQ(ch.at("P.Z")[i], pz);
+      EXPECT_EQ(ch.at("id")[i], 1.0f);  // objects[0] + 1
+      const float cos1 = 2 / std::sqrt(px * px + pz * pz + 4);
+      for (int c = 0; c < 3; ++c) {
+        const std::string C = rgb[c];
+        const float l0 = kd[c] * std::sqrt(0.5f), l1 = kd[c] * 2 * cos1;
+        EXPECT_FLOAT_EQ(ch.at("albedo." + C)[i], kd[c]);
+        EXPECT_NEAR(ch.at("light0." + C)[i], l0, 1e-6);
+        EXPECT_NEAR(ch.at("light1." + C)[i], l1, 1e-6);
+        EXPECT_NEAR(ch.at("direct." + C)[i], l0 + l1, 1e-6);
+        EXPECT_NEAR(ch.at(C)[i], l0 + l1, 1e-6);  // the beauty is all direct here
+        EXPECT_EQ(ch.at("indirect." + C)[i], 0.0f);
+        EXPECT_EQ(ch.at("variance." + C)[i], 0.0f);  // one sample: no variance estimate
+      }
+    }
+}
+
+TEST(Aov, VarianceOfAHalfCoveredPixel) {
+  // One pixel, 2 × 2 regular samples at (±0.25, ±0.25); a white (ambient-only, L = 1) quad
+  // covers x > 0, the background is 0: samples 1, 0, 1, 0. Mean 0.5, sample variance
+  // 4·0.25/3 = 1/3, variance of the mean 1/12. Alpha 0.5; the id of the hits is 1.
+  const std::string scene = test::writeTemp("var.json", R"({
+    "render": {"width": 1, "height": 1, "spp": 4, "sampler": "regular", "ambient": [1,1,1]},
+    "camera": {"type": "orthographic", "eye": [0,0,5], "look_at": [0,0,0], "height": 1},
+    "materials": {"w": {"type": "phong", "ka": [1,1,1], "kd": [0,0,0]}},
+    "objects": [{"type": "quad", "corner": [0,-1,0], "edge1": [1,0,0], "edge2": [0,2,0], "material": "w"}]})");
+  const std::string out = (test::tempDir() / "var.exr").string();
+  ASSERT_EQ(test::runGlint("render " + scene + " --quiet -o " + out + " --aov variance,objectid")
+                .exitCode,
+            0);
+  const auto ch = readChannels(out);
+  EXPECT_FLOAT_EQ(ch.at("R")[0], 0.5f);
+  EXPECT_FLOAT_EQ(ch.at("A")[0], 0.5f);
+  EXPECT_NEAR(ch.at("variance.R")[0], 1.0 / 12, 1e-7);
+  EXPECT_EQ(ch.at("id")[0], 1.0f);
+}
+
+TEST(Aov, MultipartWritesOnePartPerAovWithItsOwnType) {
+  const std::string scene = test::writeTemp("mp.json", kScene);
+  const std::string out = (test::tempDir() / "mp.exr").string();
+  ASSERT_EQ(test::runGlint("render " + scene + " --quiet --half -o " + out +
+                           " --aov depth,objectid,lights --multipart")
+                .exitCode,
+            0);
+  std::vector<std::string> parts;
+  std::map<std::string, OIIO::TypeDesc> types;
+  const auto ch = readChannels(out, &parts, &types);
+  EXPECT_EQ(parts, (std::vector<std::string>{"rgba", "depth", "objectid", "light0", "light1"}));
+  EXPECT_EQ(types["R"], OIIO::TypeDesc::HALF);
+  EXPECT_EQ(types["Z"], OIIO::TypeDesc::FLOAT);
+  EXPECT_EQ(types["id"], OIIO::TypeDesc::UINT);
+  EXPECT_FLOAT_EQ(ch.at("Z")[0], 5);
+  // An unknown AOV is a usage error that lists the known ones.
+  const auto bad = test::runGlint("render " + scene + " --quiet -o " + out + " --aov depth,motion");
+  EXPECT_EQ(bad.exitCode, 2);
+  EXPECT_NE(bad.output.find("unknown AOV \"motion\""), std::string::npos) << bad.output;
+}
+
+}  // namespace
+}  // namespace glint
