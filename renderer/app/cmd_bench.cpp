@@ -23,6 +23,7 @@
 #include "core/fp_env.h"
 #include "core/hash.h"
 #include "film/atomic_file.h"
+#include "render/render_job.h"
 #include "render/tile_scheduler.h"
 
 namespace glint {
@@ -36,6 +37,7 @@ struct BenchArgs {
   int threads = 0;
   int randomRays = 1 << 20;
   double minSeconds = 0.5;
+  int renderRuns = 3;
   std::string json;
 };
 
@@ -181,11 +183,40 @@ int runBench(const BenchArgs& a) {
                                                          {"sah_cost", st.sahCost},
                                                          {"random_mrays_per_s_1_thread", rate}};
   }
+  // Whole renders through the tile scheduler: parallel efficiency 1 → N threads, and tile
+  // sizes (each the best of `renderRuns` runs, since the machine is shared).
+  if (a.renderRuns > 0) {
+    const auto embree = makeAccelerator(AccelKind::Embree, scene);
+    const auto timeRender = [&](int threads, int tile) {
+      double best = 1e30;
+      for (int run = 0; run < a.renderRuns; ++run) {
+        RenderOptions opt;
+        opt.threads = threads;
+        opt.tileSize = tile;
+        opt.progress = false;
+        best = std::min(best, renderScene(scene, *embree, opt).stats.seconds);
+      }
+      return best;
+    };
+    const double t1 = timeRender(1, 32), tn = timeRender(allThreads, 32);
+    const double efficiency = t1 / (allThreads * tn);
+    std::printf("\nrender         1 thread %.3f s, %d threads %.3f s: parallel efficiency %.3f\n",
+                t1, allThreads, tn, efficiency);
+    j["parallel_efficiency"] = efficiency;
+    j["render_seconds"] = {{"1_thread", t1}, {"all_threads", tn}};
+    std::printf("tile size     ");
+    for (int tile : {8, 16, 32, 64}) {
+      const double t = timeRender(allThreads, tile);
+      std::printf(" %d: %.3f s ", tile, t);
+      j["tile_seconds"][std::to_string(tile)] = t;
+    }
+    std::printf("\n");
+  }
   j["scene"] = scene.sourcePath;
   j["triangles"] = scene.triangleCount();
   j["mrays_per_s"] = nullptr;  // whole-render figures come with the render benchmark
   j["embree_limit_ratio"] = nullptr;
-  j["parallel_efficiency"] = nullptr;
+  if (!j.contains("parallel_efficiency")) j["parallel_efficiency"] = nullptr;
   j["bytes_per_triangle"] = nullptr;
   if (!a.json.empty()) {
     writeTextFileAtomically(a.json, j.dump(2) + "\n");
@@ -207,6 +238,9 @@ CommandRunner addBenchCommand(CLI::App& app) {
       ->check(CLI::Range(1, 4096));
   cmd->add_option("--random-rays", args->randomRays, "Random rays per pass")
       ->check(CLI::Range(1, 1 << 26));
+  cmd->add_option("--render-runs", args->renderRuns,
+                  "Whole renders per configuration for efficiency and tile sizes (0: skip)")
+      ->check(CLI::Range(0, 100));
   cmd->add_option("--json", args->json, "Write the figures as JSON");
   return [args] { return runBench(*args); };
 }
