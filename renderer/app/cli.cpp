@@ -25,6 +25,8 @@ int runCli(int argc, char** argv) {
   };
   add(addRenderCommand(app));
   add(addValidateCommand(app));
+  add(addCompareCommand(app));
+  add(addConvergeCommand(app));
   add(addMergeCommand(app));
   add(addConvertCommand(app));
   add(addBenchCommand(app));

@@ -199,7 +199,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--display", args->display,
                   "Also write a display image (.png, .jpg, .tif) through OCIO");
   addDisplayOptions(*cmd, args->ocio);
-  cmd->add_option("--spp", args->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 20));
+  cmd->add_option("--spp", args->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 30));
   cmd->add_option("--seed", args->seed, "Scene seed");
   cmd->add_option("--threads", args->threads, "Render threads (default: all cores)")
       ->check(CLI::Range(1, 4096));

@@ -22,6 +22,8 @@ CommandRunner addInfoCommand(CLI::App& app);
 CommandRunner addValidateCommand(CLI::App& app);
 CommandRunner addBenchCommand(CLI::App& app);
 CommandRunner addMergeCommand(CLI::App& app);
+CommandRunner addCompareCommand(CLI::App& app);
+CommandRunner addConvergeCommand(CLI::App& app);
 
 // --view, --ocio-display, --look, --ocio-config: how a display image is made (film/display.h).
 // CLI.md's --display names the output image, so the OCIO display is --ocio-display.

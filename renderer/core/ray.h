@@ -1,6 +1,6 @@
 #pragma once
 // A ray o + t·d valid for t in (tMin, tMax), at a shutter time in [0, 1] (Embree's range).
-#include <bit>
+#include <cmath>
 #include <cstdint>
 
 #include "core/vec.h"
@@ -17,23 +17,30 @@ struct Ray {
   Vec3f at(float t) const { return o + t * d; }
 };
 
-// Moves p off its surface along the geometric normal ng (towards the side the new ray leaves
-// on), by an amount that scales with |p|: a fixed number of ulps of each coordinate, and a
-// small absolute step near the origin where ulps vanish. This is Wächter & Binder, "A Fast and
-// Robust Method for Avoiding Self-Intersection" (Ray Tracing Gems, ch. 6). It assumes p was
-// computed from the primitive (barycentrics, re-projection), not from o + t·d.
-inline Vec3f offsetRayOrigin(const Vec3f& p, const Vec3f& ng) {
-  constexpr float kOrigin = 1.0f / 32.0f;
-  constexpr float kFloatScale = 1.0f / 65536.0f;
-  constexpr float kIntScale = 256.0f;
-  Vec3f out;
+// γ(n) = nε/(1 − nε), ε = 2⁻²⁴: the relative error bound of n float operations (Higham;
+// pbrt-v4 §6.8). Error bounds on computed points are built from it.
+constexpr float gamma(int n) {
+  constexpr float kEps = 0x1p-24f;
+  return (float(n) * kEps) / (1 - float(n) * kEps);
+}
+
+// Moves p off its surface so that a ray leaving towards `w` cannot hit that surface again:
+// the offset along the geometric normal ng is the projection of p's error bound pError onto
+// ng, and each coordinate is then rounded one more ulp away (pbrt-v4's OffsetRayOrigin). The
+// offset scales with the magnitudes that produced p, so it is as small as the numbers allow at
+// every scale and distance from the origin.
+inline Vec3f offsetRayOrigin(const Vec3f& p, const Vec3f& pError, const Vec3f& ng, const Vec3f& w) {
+  const float d = dot(abs(ng), pError);
+  Vec3f offset = d * ng;
+  if (dot(w, ng) < 0) offset = -offset;
+  Vec3f po = p + offset;
   for (int i = 0; i < 3; ++i) {
-    const auto ulps = static_cast<int32_t>(kIntScale * ng[i]);
-    const auto bits = std::bit_cast<int32_t>(p[i]);
-    const float stepped = std::bit_cast<float>(bits + (p[i] < 0 ? -ulps : ulps));
-    out[i] = std::fabs(p[i]) < kOrigin ? p[i] + kFloatScale * ng[i] : stepped;
+    if (offset[i] > 0)
+      po[i] = std::nextafter(po[i], kInfinity);
+    else if (offset[i] < 0)
+      po[i] = std::nextafter(po[i], -kInfinity);
   }
-  return out;
+  return po;
 }
 
 }  // namespace glint

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "core/ray.h"
+
 namespace glint {
 
 Mat4 operator*(const Mat4& a, const Mat4& b) {
@@ -123,6 +125,18 @@ Vec3f Transform::point(const Vec3f& p) const {
   return {m_(0, 0) * p.x + m_(0, 1) * p.y + m_(0, 2) * p.z + m_(0, 3),
           m_(1, 0) * p.x + m_(1, 1) * p.y + m_(1, 2) * p.z + m_(1, 3),
           m_(2, 0) * p.x + m_(2, 1) * p.y + m_(2, 2) * p.z + m_(2, 3)};
+}
+
+Vec3f Transform::pointError(const Vec3f& p, const Vec3f& e) const {
+  Vec3f out;
+  for (int r = 0; r < 3; ++r) {
+    const float absMp = std::fabs(m_(r, 0) * p.x) + std::fabs(m_(r, 1) * p.y) +
+                        std::fabs(m_(r, 2) * p.z) + std::fabs(m_(r, 3));
+    const float absMe =
+        std::fabs(m_(r, 0)) * e.x + std::fabs(m_(r, 1)) * e.y + std::fabs(m_(r, 2)) * e.z;
+    out[r] = gamma(3) * absMp + (gamma(3) + 1) * absMe;
+  }
+  return out;
 }
 
 Vec3f Transform::vector(const Vec3f& v) const {

@@ -39,6 +39,9 @@ class Transform {
   bool isSimilarity(float* uniformScale = nullptr) const;
 
   Vec3f point(const Vec3f& p) const;
+  // The transformed point's error bound, given p's (pbrt-v4 §6.8.6): the rounding of the
+  // transform itself plus the propagated input error.
+  Vec3f pointError(const Vec3f& p, const Vec3f& pError) const;
   Vec3f vector(const Vec3f& v) const;
   // Normals transform by the inverse transpose; the result is not normalised.
   Vec3f normal(const Vec3f& n) const;

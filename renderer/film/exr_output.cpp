@@ -150,4 +150,18 @@ Image readImage(const std::string& path) {
   return img;
 }
 
+Image imageFromFilm(const Film& film) {
+  const PixelWindow& w = film.window();
+  Image img;
+  img.width = w.width();
+  img.height = w.height();
+  img.channels = 4;
+  img.x = w.x0;
+  img.y = w.y0;
+  img.fullWidth = film.fullWidth();
+  img.fullHeight = film.fullHeight();
+  img.pixels = film.toFloatRgba();
+  return img;
+}
+
 }  // namespace glint

@@ -37,5 +37,7 @@ struct Image {
   std::vector<float> pixels;
 };
 Image readImage(const std::string& path);
+// The film's window as an RGBA image (float), as it would read back from its EXR.
+Image imageFromFilm(const Film& film);
 
 }  // namespace glint

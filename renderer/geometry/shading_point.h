@@ -9,19 +9,20 @@
 namespace glint {
 
 struct ShadingPoint {
-  Vec3f p;   // on the surface, computed from the primitive (not from o + t·d)
-  Vec3f ng;  // unit geometric normal, as the primitive defines it (not flipped)
-  Vec3f ns;  // unit shading normal, same side as ng
+  Vec3f p;       // on the surface, computed from the primitive (not from o + t·d)
+  Vec3f pError;  // per-coordinate bound on |p − true point| (float rounding)
+  Vec3f ng;      // unit geometric normal, as the primitive defines it (not flipped)
+  Vec3f ns;      // unit shading normal, same side as ng
   float t = 0;
   uint32_t materialId = 0;
   uint32_t objectId = 0;
 };
 
 // The one way to make a secondary or shadow ray: leaves the surface on the side `dir` points
-// to, with the scale-aware offset of offsetRayOrigin.
+// to, offset by p's error bound (offsetRayOrigin).
 inline Ray spawnRay(const ShadingPoint& sp, const Vec3f& dir, float time) {
   Ray r;
-  r.o = offsetRayOrigin(sp.p, faceForward(sp.ng, dir));
+  r.o = offsetRayOrigin(sp.p, sp.pError, sp.ng, dir);
   r.d = dir;
   r.time = time;
   return r;

@@ -4,6 +4,7 @@
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
+#include <cmath>
 #include <filesystem>
 
 #include "core/error.h"
@@ -18,10 +19,22 @@ TriangleMesh loadMeshFile(const std::string& path) {
                                                           aiComponent_TEXCOORDS |
                                                           aiComponent_MATERIALS);
   const aiScene* s = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                aiProcess_PreTransformVertices | aiProcess_RemoveComponent | aiProcess_SortByPType);
+      path, aiProcess_Triangulate | aiProcess_RemoveComponent | aiProcess_SortByPType);
   if (!s || !s->mRootNode)
     throw GlintError("cannot read mesh " + path + ": " + importer.GetErrorString());
+  // Check for NaN and Inf before Assimp joins vertices: its vertex welding compares positions
+  // and would silently merge or drop non-finite ones.
+  for (unsigned mi = 0; mi < s->mNumMeshes; ++mi)
+    for (unsigned v = 0; v < s->mMeshes[mi]->mNumVertices; ++v) {
+      const aiVector3D& p = s->mMeshes[mi]->mVertices[v];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+        throw GlintError("mesh " + path + ": vertex " + std::to_string(v) + " of mesh " +
+                         std::to_string(mi) + " is not finite (" + std::to_string(p.x) + ", " +
+                         std::to_string(p.y) + ", " + std::to_string(p.z) + ")");
+    }
+  s = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices |
+                                   aiProcess_PreTransformVertices);
+  if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
   TriangleMesh mesh;
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
     const aiMesh* m = s->mMeshes[mi];

@@ -17,7 +17,7 @@ void parseRender(const JsonNode& n, RenderSettings& r) {
                "transparent_shadows"});
   if (auto v = n.get("width")) r.width = v->integer(1, 1 << 15);
   if (auto v = n.get("height")) r.height = v->integer(1, 1 << 15);
-  if (auto v = n.get("spp")) r.spp = v->integer(1, 1 << 20);
+  if (auto v = n.get("spp")) r.spp = v->integer(1, 1 << 30);
   if (auto v = n.get("max_depth")) r.maxDepth = v->integer(0, 1000);
   if (auto v = n.get("seed")) r.seed = v->unsignedInteger();
   if (auto v = n.get("sampler"))
@@ -87,7 +87,7 @@ Material parseMaterial(const JsonNode& n) {
     if (auto v = n.get("ka")) m.ka = parseColorTexture(*v);
     m.ks = n.color("ks", m.ks);
     m.km = n.color("km", m.km);
-    if (auto v = n.get("exponent")) m.exponent = v->number(0, 1e6f);
+    if (auto v = n.get("exponent")) m.exponent = v->number(0, 1e9f);
     if (auto v = n.get("specular_model"))
       m.specularModel = v->choice({"blinn", "phong"}) == "blinn" ? SpecularModel::BlinnPhong
                                                                  : SpecularModel::Phong;

@@ -70,6 +70,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
           AovSample aov;
           aov.viewAxis = viewAxis;
           Radiance r = integrator.trace(ray, key, counters, aovSamples ? &aov : nullptr);
+          if (opt.sampleHook) opt.sampleHook(x, y, r);
           if (!r.L.isFinite()) r.L = {}, r.valid = false;
           if (aovs) pixelAovs.add(r, aov);
           if (!r.valid) {

@@ -2,12 +2,14 @@
 // Renders a scene into a film: camera samples per pixel through the integrator, box filter,
 // non-finite samples counted and dropped, tiles on all cores, progress on stderr.
 #include <atomic>
+#include <functional>
 #include <optional>
 
 #include "accel/accelerator.h"
 #include "film/film.h"
 #include "integrator/aov.h"
 #include "integrator/ray_counters.h"
+#include "integrator/whitted.h"
 #include "render/tile_scheduler.h"
 #include "scene/scene.h"
 
@@ -23,6 +25,9 @@ struct RenderOptions {
   // finish, and the result is marked partial. Unrendered pixels stay at zero, alpha 0.
   const std::atomic<bool>* cancel = nullptr;
   AovSet aovs;  // none by default
+  // Test hook: sees (and may alter) every camera sample before it reaches the film, so tests
+  // can force a NaN through the real path. Never set in production.
+  std::function<void(int x, int y, Radiance& sample)> sampleHook;
 };
 
 struct RenderStats {

@@ -53,14 +53,19 @@ ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit) const {
   const Vec3f oObj = worldFromObject ? worldFromObject->inverse().point(ray.o) : ray.o;
   const Vec3f dObj = worldFromObject ? worldFromObject->inverse().vector(ray.d) : ray.d;
 
-  Vec3f p, n;
+  Vec3f p, n, pError;
   switch (g.kind) {
     case GeomKind::Mesh: {
       const TriangleMesh& m = meshes[g.index];
       const Vec3f p0 = m.vertexAt(hit.primId, 0, ray.time),
                   p1 = m.vertexAt(hit.primId, 1, ray.time),
                   p2 = m.vertexAt(hit.primId, 2, ray.time);
-      p = (1 - hit.u - hit.v) * p0 + hit.u * p1 + hit.v * p2;
+      const float b0 = 1 - hit.u - hit.v;
+      p = b0 * p0 + hit.u * p1 + hit.v * p2;
+      pError = gamma(7) * (abs(b0 * p0) + abs(hit.u * p1) + abs(hit.v * p2));
+      // Embree interpolates deforming vertices in its own order of operations: allow for the
+      // difference to our vertexAt.
+      if (m.deforming()) pError += gamma(4) * (abs(p0) + abs(p1) + abs(p2));
       n = cross(p1 - p0, p2 - p0);
       break;
     }
@@ -68,19 +73,26 @@ ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit) const {
       // Re-project onto the sphere: removes the error of o + t·d along the ray.
       const Sphere s = sphereAt(g.index, ray.time);
       n = oObj + hit.t * dObj - s.center;
-      p = s.center + n * (s.radius / length(n));
+      const Vec3f q = n * (s.radius / length(n));
+      p = s.center + q;
+      pError = gamma(5) * abs(q) + gamma(1) * abs(p);
       break;
     }
     case GeomKind::Quad: {
       const Quad& q = quads[g.index];
       p = q.corner + hit.u * q.edge1 + hit.v * q.edge2;
+      pError = gamma(4) * (abs(q.corner) + abs(hit.u * q.edge1) + abs(hit.v * q.edge2));
       n = cross(q.edge1, q.edge2);
       break;
     }
     case GeomKind::Plane: {
       const Plane& pl = planes[g.index];
       const Vec3f onRay = oObj + hit.t * dObj;
-      p = onRay - dot(onRay - pl.point, pl.normal) * pl.normal;
+      const Vec3f rel = onRay - pl.point;
+      p = onRay - dot(rel, pl.normal) * pl.normal;
+      // The projection cancels the along-normal error of o + t·d; what is left is rounding of
+      // the subtraction and the dot product, relative to the magnitudes involved.
+      pError = gamma(6) * (abs(onRay) + abs(pl.point) + abs(rel));
       n = pl.normal;
       break;
     }
@@ -88,10 +100,16 @@ ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit) const {
       GLINT_CHECK(false);
   }
   if (worldFromObject) {
+    pError = worldFromObject->pointError(p, pError);
     p = worldFromObject->point(p);
     n = worldFromObject->normal(n);
+    // A moving instance's transform is interpolated by Embree (its slerp) and by transformAt
+    // (ours); the two agree to a few ulps of the matrix, which moves points by that much.
+    if (!instances[groups[0].geometries[hit.instId].index].motion.empty())
+      pError += gamma(16) * abs(p);
   }
   sp.p = p;
+  sp.pError = pError;
   sp.ng = normalize(n);
   sp.ns = sp.ng;
   return sp;

@@ -1,0 +1,50 @@
+// `glint compare A.exr B.exr`: error metrics of A against the reference B.
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "film/atomic_file.h"
+#include "film/compare.h"
+
+namespace glint {
+
+nlohmann::json errorsJson(const ImageErrors& e) {
+  const auto finite = [](double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+  };
+  return {{"rmse", finite(e.rmse)}, {"relmse", finite(e.relmse)},
+          {"mae", finite(e.mae)},   {"max_abs", finite(e.maxAbs)},
+          {"psnr", finite(e.psnr)}, {"share_above_threshold", e.aboveThreshold},
+          {"pixels", e.pixels}};
+}
+
+CommandRunner addCompareCommand(CLI::App& app) {
+  struct Args {
+    std::string test, reference, diff, json;
+    double threshold = 1e-2;
+  };
+  auto a = std::make_shared<Args>();
+  CLI::App* cmd = app.add_subcommand("compare", "Error metrics between an image and a reference");
+  cmd->add_option("image", a->test, "Image to measure (EXR)")->required()->check(CLI::ExistingFile);
+  cmd->add_option("reference", a->reference, "Reference image (EXR)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--threshold", a->threshold,
+                  "Per-pixel error counted in share_above_threshold (default 0.01)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--diff", a->diff, "Write a false-colour difference image (PNG)");
+  cmd->add_option("--json", a->json, "Write the figures as JSON");
+  return [a] {
+    const Image test = readImage(a->test), ref = readImage(a->reference);
+    const ImageErrors e = compareImages(test, ref, a->threshold);
+    std::printf(
+        "rmse      %.6g\nrelmse    %.6g\nmae       %.6g\nmax_abs   %.6g\npsnr      %.3f dB\n"
+        "above     %.4f%% of pixels over %.3g\n",
+        e.rmse, e.relmse, e.mae, e.maxAbs, e.psnr, 100 * e.aboveThreshold, a->threshold);
+    if (!a->diff.empty()) writeDifferenceImage(a->diff, test, ref);
+    if (!a->json.empty()) writeTextFileAtomically(a->json, errorsJson(e).dump(2) + "\n");
+    return kExitOk;
+  };
+}
+
+}  // namespace glint

@@ -1,0 +1,182 @@
+// `glint converge SCENE`: error against run time over a series of sample counts, per sampler and
+// backend, against a reference rendered with an independent seed (or given as an EXR).
+#include <cstdio>
+#include <ctime>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "app/commands.h"
+#include "app/convergence_plot.h"
+#include "app/scene_source.h"
+#include "core/error.h"
+#include "core/hash.h"
+#include "core/log.h"
+#include "film/atomic_file.h"
+#include "film/compare.h"
+#include "render/render_job.h"
+
+namespace glint {
+
+namespace {
+
+struct ConvergeArgs {
+  std::string scenePath;
+  std::string spp = "1,2,4,8,16,32,64";
+  std::string samplers;  // default: the scene's
+  std::string accels = "embree";
+  std::string reference;
+  int referenceSpp = 0;  // default: 16 × the largest spp
+  std::optional<int> width, height;
+  int threads = 0;
+  std::string csv, plot, json;
+};
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string t; std::getline(in, t, ',');)
+    if (!t.empty()) out.push_back(t);
+  return out;
+}
+
+Image renderImage(const Scene& scene, const Accelerator& accel, int threads, double& wall,
+                  double& cpu) {
+  RenderOptions opt;
+  opt.threads = threads;
+  opt.progress = false;
+  const std::clock_t c0 = std::clock();
+  const RenderResult r = renderScene(scene, accel, opt);
+  cpu = double(std::clock() - c0) / CLOCKS_PER_SEC;
+  wall = r.stats.seconds;
+  return imageFromFilm(r.film);
+}
+
+int runConverge(const ConvergeArgs& a) {
+  Scene scene = loadSceneOrDefault(a.scenePath);
+  if (a.width) scene.render.width = *a.width;
+  if (a.height) scene.render.height = *a.height;
+  std::vector<int> spps;
+  for (const auto& s : split(a.spp)) {
+    try {
+      spps.push_back(std::stoi(s));
+    } catch (const std::exception&) {
+      throw UsageError("--spp: \"" + s + "\" is not a sample count");
+    }
+    if (spps.back() < 1) throw UsageError("--spp: sample counts must be ≥ 1");
+  }
+  std::vector<SamplerKind> samplers;
+  for (const auto& s : split(a.samplers)) {
+    SamplerKind k;
+    if (!parseSamplerKind(s, k)) throw UsageError("--sampler: unknown sampler \"" + s + "\"");
+    samplers.push_back(k);
+  }
+  if (samplers.empty()) samplers.push_back(scene.render.sampler);
+  std::vector<AccelKind> accels;
+  for (const auto& s : split(a.accels)) {
+    AccelKind k;
+    if (!parseAccelKind(s, k)) throw UsageError("--accel: unknown backend \"" + s + "\"");
+    accels.push_back(k);
+  }
+
+  // The reference: given, or rendered with an independent seed so that it shares no samples
+  // with the renders being measured.
+  Image reference;
+  if (!a.reference.empty()) {
+    reference = readImage(a.reference);
+  } else {
+    Scene refScene = scene;
+    refScene.render.seed = mix64(scene.render.seed ^ 0x5eedf00dULL);
+    refScene.render.spp =
+        a.referenceSpp > 0 ? a.referenceSpp : 16 * *std::max_element(spps.begin(), spps.end());
+    refScene.render.sampler = SamplerKind::Stratified;
+    log::info("rendering the reference at " + std::to_string(refScene.render.spp) + " spp");
+    const auto accel = makeAccelerator(AccelKind::Embree, refScene);
+    double wall, cpu;
+    reference = renderImage(refScene, *accel, a.threads, wall, cpu);
+  }
+
+  std::vector<ConvergenceSeries> series;
+  for (AccelKind ak : accels) {
+    const auto accel = makeAccelerator(ak, scene);
+    for (SamplerKind sk : samplers) {
+      ConvergenceSeries s;
+      s.name = std::string(samplerName(sk)) +
+               (accels.size() > 1 ? "/" + std::string(accelName(ak)) : "");
+      for (int spp : spps) {
+        scene.render.sampler = sk;
+        scene.render.spp = spp;
+        ConvergencePoint p;
+        p.spp = spp;
+        const Image img = renderImage(scene, *accel, a.threads, p.seconds, p.cpuSeconds);
+        const ImageErrors e = compareImages(img, reference);
+        p.rmse = e.rmse;
+        p.relmse = e.relmse;
+        s.points.push_back(p);
+        std::printf("%-18s spp %6d  %9.4f s wall %9.4f s cpu  rmse %.6g  relmse %.6g\n",
+                    s.name.c_str(), spp, p.seconds, p.cpuSeconds, p.rmse, p.relmse);
+      }
+      fitSlopes(s);
+      std::printf("%-18s slope %.3f against seconds, %.3f against spp\n", s.name.c_str(), s.slope,
+                  s.sppSlope);
+      series.push_back(std::move(s));
+    }
+  }
+
+  if (!a.csv.empty()) {
+    std::string csv = "series,spp,seconds,cpu_seconds,rmse,relmse\n";
+    for (const auto& s : series)
+      for (const auto& p : s.points) {
+        char line[256];
+        std::snprintf(line, sizeof line, "%s,%d,%.6f,%.6f,%.8g,%.8g\n", s.name.c_str(), p.spp,
+                      p.seconds, p.cpuSeconds, p.rmse, p.relmse);
+        csv += line;
+      }
+    writeTextFileAtomically(a.csv, csv);
+  }
+  if (!a.plot.empty())
+    writeConvergenceSvg(a.plot, "Error against time: " + scene.sourcePath, series);
+  if (!a.json.empty()) {
+    nlohmann::json j;
+    j["scene"] = scene.sourcePath;
+    for (const auto& s : series) {
+      nlohmann::json js{{"name", s.name}, {"slope", s.slope}, {"spp_slope", s.sppSlope}};
+      for (const auto& p : s.points)
+        js["points"].push_back({{"spp", p.spp},
+                                {"seconds", p.seconds},
+                                {"cpu_seconds", p.cpuSeconds},
+                                {"rmse", p.rmse},
+                                {"relmse", p.relmse}});
+      j["series"].push_back(js);
+    }
+    writeTextFileAtomically(a.json, j.dump(2) + "\n");
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+CommandRunner addConvergeCommand(CLI::App& app) {
+  auto a = std::make_shared<ConvergeArgs>();
+  CLI::App* cmd = app.add_subcommand("converge", "Error against run time over sample counts");
+  cmd->add_option("scene", a->scenePath, "Scene file (.json); omitted: the default scene")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--spp", a->spp, "Sample counts, comma separated (default 1,2,4,...,64)");
+  cmd->add_option("--sampler", a->samplers, "Samplers to compare, comma separated");
+  cmd->add_option("--accel", a->accels, "Backends to compare, comma separated");
+  cmd->add_option("--reference", a->reference, "Reference EXR (default: rendered)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--reference-spp", a->referenceSpp,
+                  "Samples of the rendered reference (default 16 × the largest spp)")
+      ->check(CLI::Range(1, 1 << 20));
+  cmd->add_option("--width", a->width, "Override the scene's width")->check(CLI::Range(1, 1 << 15));
+  cmd->add_option("--height", a->height, "Override the scene's height")
+      ->check(CLI::Range(1, 1 << 15));
+  cmd->add_option("--threads", a->threads, "Render threads (default: all)")
+      ->check(CLI::Range(1, 4096));
+  cmd->add_option("--csv", a->csv, "Write every point as CSV");
+  cmd->add_option("--plot", a->plot, "Write the log-log plot (SVG)");
+  cmd->add_option("--json", a->json, "Write the series as JSON");
+  return [a] { return runConverge(*a); };
+}
+
+}  // namespace glint

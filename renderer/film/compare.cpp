@@ -1,0 +1,91 @@
+#include "film/compare.h"
+
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "film/atomic_file.h"
+
+namespace glint {
+
+namespace {
+
+void checkSameShape(const Image& a, const Image& b) {
+  if (a.width != b.width || a.height != b.height)
+    throw UsageError("images differ in size: " + std::to_string(a.width) + "x" +
+                     std::to_string(a.height) + " against " + std::to_string(b.width) + "x" +
+                     std::to_string(b.height));
+  if (a.channels < 3 || b.channels < 3) throw UsageError("images need at least RGB channels");
+}
+
+double channel(const Image& img, size_t pixel, int c) {
+  return img.pixels[pixel * size_t(img.channels) + size_t(c)];
+}
+
+double pixelError(const Image& a, const Image& b, size_t p) {
+  double e = 0;
+  for (int c = 0; c < 3; ++c) {
+    const double d = std::fabs(channel(a, p, c) - channel(b, p, c));
+    e = std::max(e, std::isfinite(d) ? d : std::numeric_limits<double>::infinity());
+  }
+  return e;
+}
+
+}  // namespace
+
+ImageErrors compareImages(const Image& a, const Image& b, double threshold) {
+  checkSameShape(a, b);
+  ImageErrors e;
+  e.pixels = size_t(a.width) * size_t(a.height);
+  double se = 0, rel = 0, ae = 0;
+  size_t above = 0;
+  for (size_t p = 0; p < e.pixels; ++p) {
+    for (int c = 0; c < 3; ++c) {
+      const double ref = channel(b, p, c);
+      const double d = channel(a, p, c) - ref;
+      const double ad = std::isfinite(d) ? std::fabs(d) : std::numeric_limits<double>::infinity();
+      se += ad * ad;
+      rel += ad * ad / (ref * ref + kRelMseEpsilon);
+      ae += ad;
+      e.maxAbs = std::max(e.maxAbs, ad);
+    }
+    above += pixelError(a, b, p) > threshold;
+  }
+  const double n = double(e.pixels) * 3;
+  const double mse = se / n;
+  e.rmse = std::sqrt(mse);
+  e.relmse = rel / n;
+  e.mae = ae / n;
+  e.psnr = mse > 0 ? 10 * std::log10(1 / mse) : std::numeric_limits<double>::infinity();
+  e.aboveThreshold = double(above) / double(e.pixels);
+  return e;
+}
+
+void writeDifferenceImage(const std::string& path, const Image& a, const Image& b) {
+  checkSameShape(a, b);
+  // Stops of the ramp at log10(error) = −4, −3, −2, −1, 0.
+  static const float kRamp[5][3] = {
+      {0, 0, 0}, {0.1f, 0.2f, 0.9f}, {0.1f, 0.8f, 0.3f}, {1, 0.85f, 0.1f}, {1, 1, 1}};
+  std::vector<unsigned char> rgb(size_t(a.width) * size_t(a.height) * 3);
+  for (size_t p = 0; p < size_t(a.width) * size_t(a.height); ++p) {
+    const double err = pixelError(a, b, p);
+    const double s = std::clamp(std::log10(std::max(err, 1e-4)) + 4, 0.0, 4.0);
+    const int i = std::min(3, static_cast<int>(s));
+    const double f = s - i;
+    for (int c = 0; c < 3; ++c)
+      rgb[p * 3 + size_t(c)] = static_cast<unsigned char>(
+          std::lround(255 * ((1 - f) * kRamp[i][c] + f * kRamp[i + 1][c])));
+  }
+  OIIO::ImageSpec spec(a.width, a.height, 3, OIIO::TypeDesc::UINT8);
+  writeFileAtomically(path, [&](const std::string& tmp) {
+    auto out = OIIO::ImageOutput::create(path);
+    if (!out || !out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
+        !out->close())
+      throw GlintError("cannot write " + path + ": " + (out ? out->geterror() : OIIO::geterror()));
+  });
+}
+
+}  // namespace glint

@@ -1,0 +1,29 @@
+#pragma once
+// The one image-comparison routine: error metrics between a test image and a reference, used by
+// `glint compare`, `glint converge` and the tests. RGB channels only (alpha is coverage).
+#include <string>
+
+#include "film/exr_output.h"
+
+namespace glint {
+
+struct ImageErrors {
+  double rmse = 0;    // √(mean over pixels and channels of (a − b)²)
+  double relmse = 0;  // mean of (a − b)² / (b² + ε), ε = 1e-2 (pbrt's relative MSE)
+  double mae = 0;     // mean |a − b|
+  double maxAbs = 0;  // max |a − b|
+  double psnr = 0;    // 10·log10(1 / MSE), peak 1 (display white); +∞ for identical images
+  double aboveThreshold = 0;  // share of pixels whose largest channel error exceeds the threshold
+  size_t pixels = 0;
+};
+
+inline constexpr double kRelMseEpsilon = 1e-2;
+
+// Throws UsageError when the sizes differ. Non-finite values count as an error of +∞.
+ImageErrors compareImages(const Image& test, const Image& reference, double threshold = 1e-2);
+
+// A false-colour image of the per-pixel error (largest channel |a − b|), on a logarithmic ramp
+// from 1e-4 (black) through blue, green, yellow to 1 and above (white); PNG.
+void writeDifferenceImage(const std::string& path, const Image& test, const Image& reference);
+
+}  // namespace glint

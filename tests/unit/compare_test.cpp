@@ -1,0 +1,74 @@
+// The one image-comparison routine against hand-computed metrics.
+#include <gtest/gtest.h>
+
+#include "film/compare.h"
+#include "test_util.h"
+
+namespace glint {
+namespace {
+
+Image constant(int w, int h, float r, float g, float b) {
+  Image img;
+  img.width = w;
+  img.height = h;
+  img.channels = 4;
+  for (int i = 0; i < w * h; ++i) img.pixels.insert(img.pixels.end(), {r, g, b, 1});
+  return img;
+}
+
+TEST(Compare, ConstantOffset) {
+  // Every channel off by 0.1 against a reference of 0.4: RMSE = MAE = max = 0.1;
+  // relMSE = 0.01 / (0.16 + 0.01); PSNR = 10·log10(1/0.01) = 20 dB; every pixel above 0.05.
+  const ImageErrors e =
+      compareImages(constant(4, 3, 0.5f, 0.5f, 0.5f), constant(4, 3, 0.4f, 0.4f, 0.4f), 0.05);
+  EXPECT_NEAR(e.rmse, 0.1, 1e-7);
+  EXPECT_NEAR(e.mae, 0.1, 1e-7);
+  EXPECT_NEAR(e.maxAbs, 0.1, 1e-7);
+  EXPECT_NEAR(e.relmse, 0.01 / 0.17, 1e-6);
+  EXPECT_NEAR(e.psnr, 20, 1e-5);
+  EXPECT_EQ(e.aboveThreshold, 1.0);
+  EXPECT_EQ(e.pixels, 12u);
+}
+
+TEST(Compare, OnePixelOffAndIdentical) {
+  Image a = constant(2, 2, 0, 0, 0), b = a;
+  EXPECT_EQ(compareImages(a, b).rmse, 0.0);
+  EXPECT_TRUE(std::isinf(compareImages(a, b).psnr));
+  a.pixels[0] = 1;  // one channel of one pixel off by 1: MSE = 1/12, share above = 1/4
+  const ImageErrors e = compareImages(a, b);
+  EXPECT_NEAR(e.rmse, std::sqrt(1.0 / 12), 1e-12);
+  EXPECT_NEAR(e.maxAbs, 1, 0);
+  EXPECT_EQ(e.aboveThreshold, 0.25);
+  a.pixels[4] = std::nanf("");  // a non-finite value is an infinite error, not a silent pass
+  EXPECT_TRUE(std::isinf(compareImages(a, b).maxAbs));
+}
+
+TEST(Compare, SizeMismatchIsAUsageError) {
+  EXPECT_THROW(compareImages(constant(2, 2, 0, 0, 0), constant(2, 3, 0, 0, 0)), UsageError);
+}
+
+TEST(Compare, CommandLineWritesJsonAndDiff) {
+  const auto dir = test::tempDir();
+  const std::string scene =
+      test::writeTemp("cmp.json", R"({"render": {"width": 16, "height": 8, "spp": 1},
+    "camera": {"eye": [0,0,5], "look_at": [0,0,0]}, "materials": {"m": {"type": "phong"}},
+    "lights": [{"type": "point", "position": [1,2,3]}],
+    "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})");
+  ASSERT_EQ(test::runGlint("render " + scene + " --quiet -o " + (dir / "a.exr").string()).exitCode,
+            0);
+  ASSERT_EQ(test::runGlint("render " + scene + " --quiet --spp 4 -o " + (dir / "b.exr").string())
+                .exitCode,
+            0);
+  const auto r = test::runGlint("compare " + (dir / "a.exr").string() + " " +
+                                (dir / "b.exr").string() + " --json " + (dir / "c.json").string() +
+                                " --diff " + (dir / "d.png").string());
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_TRUE(std::filesystem::exists(dir / "d.png"));
+  std::ifstream f(dir / "c.json");
+  const std::string json((std::istreambuf_iterator<char>(f)), {});
+  for (const char* key : {"\"rmse\"", "\"relmse\"", "\"mae\"", "\"max_abs\"", "\"psnr\""})
+    EXPECT_NE(json.find(key), std::string::npos) << key;
+}
+
+}  // namespace
+}  // namespace glint
