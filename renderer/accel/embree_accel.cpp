@@ -139,9 +139,16 @@ EmbreeAccel::EmbreeAccel(const Scene& scene) : scene_(scene) {
   const auto start = std::chrono::steady_clock::now();
   const int64_t bytesBefore = embreeMemoryBytes();
   groupScenes_.assign(scene.groups.size(), nullptr);
-  // Instanced groups first: the world's instances refer to their committed scenes.
-  for (uint32_t g = 1; g < scene.groups.size(); ++g) groupScenes_[g] = buildGroup(g);
-  groupScenes_[0] = buildGroup(0);
+  try {
+    // Instanced groups first: the world's instances refer to their committed scenes.
+    for (uint32_t g = 1; g < scene.groups.size(); ++g) groupScenes_[g] = buildGroup(g);
+    groupScenes_[0] = buildGroup(0);
+  } catch (...) {
+    // The destructor does not run for a constructor that throws: release what was built.
+    for (RTCScene built : groupScenes_)
+      if (built) rtcReleaseScene(built);
+    throw;
+  }
   buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   bytes_ = embreeMemoryBytes() - bytesBefore;
 }
@@ -154,6 +161,17 @@ EmbreeAccel::~EmbreeAccel() {
 RTCScene EmbreeAccel::buildGroup(uint32_t groupId) {
   RTCDevice device = embreeDevice();
   RTCScene rtcScene = rtcNewScene(device);
+  try {
+    addGeometries(rtcScene, groupId);
+  } catch (...) {
+    rtcReleaseScene(rtcScene);
+    throw;
+  }
+  return rtcScene;
+}
+
+void EmbreeAccel::addGeometries(RTCScene rtcScene, uint32_t groupId) {
+  RTCDevice device = embreeDevice();
   const auto& geoms = scene_.groups[groupId].geometries;
   for (uint32_t gi = 0; gi < geoms.size(); ++gi) {
     const Geometry& g = geoms[gi];
@@ -227,7 +245,6 @@ RTCScene EmbreeAccel::buildGroup(uint32_t groupId) {
   }
   rtcCommitScene(rtcScene);
   throwIfEmbreeFailed("committing the Embree scene");
-  return rtcScene;
 }
 
 Hit EmbreeAccel::intersect(const Ray& ray) const {

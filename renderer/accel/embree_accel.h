@@ -36,6 +36,7 @@ class EmbreeAccel final : public Accelerator {
 
  private:
   RTCScene buildGroup(uint32_t groupId);
+  void addGeometries(RTCScene rtcScene, uint32_t groupId);
 
   const Scene& scene_;
   std::vector<RTCScene> groupScenes_;  // index = group id; [0] is the world

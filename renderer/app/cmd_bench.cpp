@@ -93,10 +93,10 @@ int runBench(const BenchArgs& a) {
   std::stringstream list(a.accels);
   for (std::string name; std::getline(list, name, ',');) {
     AccelKind k;
-    if (!parseAccelKind(name, k))
-      throw SceneError({"--accel", 0}, "", "unknown backend \"" + name + "\"");
+    if (!parseAccelKind(name, k)) throw UsageError("--accel: unknown backend \"" + name + "\"");
     kinds.push_back(k);
   }
+  if (kinds.empty()) throw UsageError("--accel: name at least one backend");
   const int allThreads = a.threads > 0 ? a.threads : defaultThreadCount();
   std::printf("scene          %s, %zu triangles\n", scene.sourcePath.c_str(),
               scene.triangleCount());

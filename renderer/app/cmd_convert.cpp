@@ -25,10 +25,15 @@ CommandRunner addConvertCommand(CLI::App& app) {
   addDisplayOptions(*cmd, *settings);
   return [in, out, settings] {
     const Image img = readImage(*in);
+    // One channel is grey, two are grey and alpha, three or more are RGB(A).
+    const int nc = img.channels;
     std::vector<float> rgba(size_t(img.width) * size_t(img.height) * 4, 1.0f);
-    for (size_t p = 0; p < size_t(img.width) * size_t(img.height); ++p)
-      for (int c = 0; c < std::min(img.channels, 4); ++c)
-        rgba[p * 4 + size_t(c)] = img.pixels[p * size_t(img.channels) + size_t(c)];
+    for (size_t p = 0; p < size_t(img.width) * size_t(img.height); ++p) {
+      const float* src = &img.pixels[p * size_t(nc)];
+      float* dst = &rgba[p * 4];
+      for (int c = 0; c < 3; ++c) dst[c] = src[nc >= 3 ? c : 0];
+      if (nc == 2 || nc >= 4) dst[3] = src[nc == 2 ? 1 : 3];
+    }
     writeDisplayImage(*out, std::move(rgba), img.width, img.height, *settings);
     log::info("wrote " + *out);
     return kExitOk;

@@ -15,7 +15,7 @@ CommandRunner addMergeCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   return [out, crops] {
-    const MergeReport r = mergeCrops(*out, *crops);
+    const MergeReport r = mergeCrops(*out, *crops, commandLine());
     log::info("merged " + std::to_string(r.crops) + " crops into " + *out + " (" +
               std::to_string(r.fullWidth) + "x" + std::to_string(r.fullHeight) + ")");
     return kExitOk;

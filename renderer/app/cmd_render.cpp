@@ -47,7 +47,12 @@ struct RenderArgs {
 std::atomic<bool> gInterrupted{false};
 static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
 
-extern "C" void onInterrupt(int) { gInterrupted.store(true); }
+// The first signal asks for a clean stop; the handler then steps aside, so a second one ends
+// the process at once (for a write that hangs, say).
+extern "C" void onInterrupt(int sig) {
+  gInterrupted.store(true);
+  std::signal(sig, SIG_DFL);
+}
 
 std::string hex(uint64_t v) {
   char buf[17];
@@ -112,10 +117,10 @@ void printStats(const Scene& scene, const RenderStats& st) {
 
 // What must match for crops of one frame to merge: the scene's bytes and every setting that
 // changes pixels. Threads and tile size do not (the image is the same for any of them).
-uint64_t settingsHash(const Scene& scene, const std::string& accel) {
+uint64_t settingsHash(const Scene& scene, const std::string& accel, const std::string& extras) {
   const RenderSettings& r = scene.render;
   return hashKey(scene.sourceHash, uint64_t(r.width), uint64_t(r.height), uint64_t(r.spp), r.seed,
-                 uint64_t(r.sampler), uint64_t(r.maxDepth), hashBytes(accel));
+                 uint64_t(r.sampler), uint64_t(r.maxDepth), hashBytes(accel), hashBytes(extras));
 }
 
 ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderResult& result) {
@@ -123,19 +128,20 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
   const PixelWindow& w = result.film.window();
   const Camera camera(scene.cameraDesc, scene.render.width, scene.render.height);
   ExrMetadata m;
-  m.strings = {{"Software", std::string("Glint ") + GLINT_VERSION},
-               {"glint:version", GLINT_VERSION},
-               {"glint:scene", scene.sourcePath},
-               {"glint:scene_hash", hex(scene.sourceHash)},
-               {"glint:settings_hash", hex(settingsHash(scene, a.accel))},
-               {"glint:sampler", std::string(samplerName(scene.render.sampler))},
-               {"glint:accel", a.accel},
-               {"glint:seed", std::to_string(scene.render.seed)},  // 64-bit: kept exact as text
-               {"glint:crop", std::to_string(w.x0) + " " + std::to_string(w.x1) + " " +
-                                  std::to_string(w.y0) + " " + std::to_string(w.y1)},
-               {"glint:commandline", commandLine()},
-               // The OCIO name of the rendering space in the bundled config.
-               {"glint:colorspace", "lin_rec709"}};
+  m.strings = {
+      {"Software", std::string("Glint ") + GLINT_VERSION},
+      {"glint:version", GLINT_VERSION},
+      {"glint:scene", scene.sourcePath},
+      {"glint:scene_hash", hex(scene.sourceHash)},
+      {"glint:settings_hash", hex(settingsHash(scene, a.accel, a.aovs + (a.half ? " half" : "")))},
+      {"glint:sampler", std::string(samplerName(scene.render.sampler))},
+      {"glint:accel", a.accel},
+      {"glint:seed", std::to_string(scene.render.seed)},  // 64-bit: kept exact as text
+      {"glint:crop", std::to_string(w.x0) + " " + std::to_string(w.x1) + " " +
+                         std::to_string(w.y0) + " " + std::to_string(w.y1)},
+      {"glint:commandline", commandLine()},
+      // The OCIO name of the rendering space in the bundled config.
+      {"glint:colorspace", "lin_rec709"}};
   m.ints = {{"glint:spp", scene.render.spp},
             {"glint:max_depth", scene.render.maxDepth},
             {"glint:partial", result.partial ? 1 : 0}};
@@ -162,6 +168,12 @@ int runRender(const RenderArgs& a) {
   AccelKind kind = AccelKind::Embree;
   parseAccelKind(a.accel, kind);
 
+  if (!a.display.empty()) {
+    // Check the display image's format and the OCIO config, display, view and look before
+    // spending the render on them.
+    checkDisplayImagePath(a.display);
+    DisplayTransform check(a.ocio);
+  }
   const auto accel = makeAccelerator(kind, scene);
   const RenderResult result = renderScene(scene, *accel, opt);
 

@@ -52,7 +52,7 @@ int runValidate(const ValidateArgs& a) {
   if (!a.ray.empty()) {  // reproduce one ray from a report line
     Ray r;
     if (!parseRay(a.ray, r))
-      throw SceneError({"--ray", 0}, "", "expected 9 numbers: ox oy oz dx dy dz tmin tmax time");
+      throw UsageError("--ray: expected 9 numbers: ox oy oz dx dy dz tmin tmax time");
     std::printf("ray %s\n", formatRay(r).c_str());
     for (const Accelerator* acc : std::vector<const Accelerator*>{&embree, &bvh, brute.get()})
       if (acc)

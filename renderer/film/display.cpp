@@ -107,14 +107,26 @@ void DisplayTransform::apply(float* pixels, int width, int height, int channels)
   });
 }
 
-void writeDisplayImage(const std::string& path, std::vector<float> rgba, int width, int height,
-                       const DisplaySettings& settings) {
+namespace {
+std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  const bool tiff = ext == ".tif" || ext == ".tiff";
-  if (!tiff && ext != ".png" && ext != ".jpg" && ext != ".jpeg")
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+}  // namespace
+
+void checkDisplayImagePath(const std::string& path) {
+  const std::string ext = lowerExtension(path);
+  if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".tif" && ext != ".tiff")
     throw UsageError("display image " + path + ": use .png, .jpg or .tif");
+}
+
+void writeDisplayImage(const std::string& path, std::vector<float> rgba, int width, int height,
+                       const DisplaySettings& settings) {
+  checkDisplayImagePath(path);
+  const std::string ext = lowerExtension(path);
+  const bool tiff = ext == ".tif" || ext == ".tiff";
   const DisplayTransform transform(settings);
   transform.apply(rgba.data(), width, height, 4);
   // Display-referred code values: clamp to [0, 1] (NaN → 0), drop alpha (the display image

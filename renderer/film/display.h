@@ -36,6 +36,9 @@ class DisplayTransform {
   std::string source_;
 };
 
+// Throws UsageError unless `path` ends in .png, .jpg/.jpeg or .tif/.tiff.
+void checkDisplayImagePath(const std::string& path);
+
 // Writes `rgba` (width × height × 4, scene-linear) as a display image; the format comes from the
 // extension: .png and .jpg/.jpeg 8-bit, .tif/.tiff 16-bit.
 void writeDisplayImage(const std::string& path, std::vector<float> rgba, int width, int height,

@@ -1,6 +1,7 @@
 #pragma once
-// Writes the film as an OpenEXR file through OpenImageIO: float RGBA (alpha = coverage), ZIP
-// compression, data window = the crop inside the full display window, and Glint's metadata.
+// Writes the film as an OpenEXR file through OpenImageIO: RGBA (float or half; alpha =
+// coverage) and AOV planes, layered in one part or one part each, the chosen compression, the
+// data window = the crop inside the full display window, and Glint's metadata (docs/output.md).
 #include <string>
 #include <utility>
 #include <vector>

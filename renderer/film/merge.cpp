@@ -2,6 +2,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <cstring>
+
 #include "core/error.h"
 #include "film/atomic_file.h"
 
@@ -12,18 +14,20 @@ namespace {
 struct Crop {
   std::string path;
   OIIO::ImageSpec spec;
-  std::vector<float> pixels;  // RGBA
+  std::vector<unsigned char> pixels;  // every channel, in its native type
 };
 
 Crop readCrop(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw GlintError("cannot read " + path + ": " + OIIO::geterror());
   Crop c{path, in->spec(), {}};
-  if (c.spec.nchannels != 4)
-    throw UsageError(path + ": expected an RGBA Glint render, found " +
-                     std::to_string(c.spec.nchannels) + " channels");
-  c.pixels.resize(size_t(c.spec.width) * size_t(c.spec.height) * 4);
-  if (!in->read_image(0, 0, 0, 4, OIIO::TypeDesc::FLOAT, c.pixels.data()))
+  if (in->seek_subimage(1, 0))
+    throw UsageError(path +
+                     " has several parts: merge takes single-part crops (render them "
+                     "without --multipart)");
+  in->seek_subimage(0, 0);
+  c.pixels.resize(c.spec.image_bytes(/*native=*/true));
+  if (!in->read_image(0, 0, 0, c.spec.nchannels, OIIO::TypeDesc::UNKNOWN, c.pixels.data()))
     throw GlintError("cannot read " + path + ": " + in->geterror());
   return c;
 }
@@ -58,7 +62,8 @@ std::vector<PixelWindow> missingRegions(const std::vector<bool>& coveredIn, int 
   return out;
 }
 
-MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string>& cropPaths) {
+MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string>& cropPaths,
+                       const std::string& commandLine) {
   if (cropPaths.empty()) throw UsageError("merge needs at least one crop");
   std::vector<Crop> crops;
   for (const auto& p : cropPaths) crops.push_back(readCrop(p));
@@ -76,12 +81,16 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
     if (c.spec.full_width != W || c.spec.full_height != H)
       throw UsageError(c.path + ": frame " + std::to_string(c.spec.full_width) + "x" +
                        std::to_string(c.spec.full_height) + " differs from " + first.path);
+    if (c.spec.channelnames != first.spec.channelnames ||
+        c.spec.channelformats != first.spec.channelformats || c.spec.format != first.spec.format)
+      throw UsageError(c.path + " has other channels or pixel types than " + first.path);
     if (c.spec.get_int_attribute("glint:partial", 0) != 0)
       throw UsageError(c.path + " is a partial (interrupted) render: render its crop again");
   }
 
   std::vector<int> owner(size_t(W) * size_t(H), -1);
-  Film film(W, H, {0, W, 0, H});
+  const size_t pixelBytes = first.spec.pixel_bytes(/*native=*/true);
+  std::vector<unsigned char> frame(size_t(W) * size_t(H) * pixelBytes, 0);
   for (size_t k = 0; k < crops.size(); ++k) {
     const OIIO::ImageSpec& s = crops[k].spec;
     if (s.x < 0 || s.y < 0 || s.x + s.width > W || s.y + s.height > H)
@@ -89,13 +98,15 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
     for (int y = 0; y < s.height; ++y)
       for (int x = 0; x < s.width; ++x) {
         const int fx = s.x + x, fy = s.y + y;
-        int& o = owner[size_t(fy) * size_t(W) + size_t(fx)];
-        if (o >= 0)
-          throw UsageError(crops[k].path + " and " + crops[size_t(o)].path + " overlap at pixel (" +
-                           std::to_string(fx) + ", " + std::to_string(fy) + ")");
-        o = int(k);
-        const float* p = &crops[k].pixels[(size_t(y) * size_t(s.width) + size_t(x)) * 4];
-        film.setPixel(fx, fy, p[0], p[1], p[2], p[3]);
+        const size_t at = size_t(fy) * size_t(W) + size_t(fx);
+        if (owner[at] >= 0)
+          throw UsageError(crops[k].path + " and " + crops[size_t(owner[at])].path +
+                           " overlap at pixel (" + std::to_string(fx) + ", " + std::to_string(fy) +
+                           ")");
+        owner[at] = int(k);
+        std::memcpy(&frame[at * pixelBytes],
+                    &crops[k].pixels[(size_t(y) * size_t(s.width) + size_t(x)) * pixelBytes],
+                    pixelBytes);
       }
   }
   std::vector<bool> covered(owner.size());
@@ -109,17 +120,24 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
   }
 
   // The merged frame keeps the first crop's metadata (scene, settings, hashes) over the full
-  // data window.
+  // data window; time and rays become the sums over the crops.
   OIIO::ImageSpec spec = first.spec;
   spec.x = spec.y = 0;
   spec.width = W;
   spec.height = H;
+  float seconds = 0, rays = 0;
+  for (const Crop& c : crops) {
+    seconds += c.spec.get_float_attribute("glint:render_seconds", 0);
+    rays += c.spec.get_float_attribute("glint:rays", 0);
+  }
+  spec.attribute("glint:render_seconds", seconds);
+  spec.attribute("glint:rays", rays);
   spec.attribute("glint:crop", "0 " + std::to_string(W) + " 0 " + std::to_string(H));
   spec.attribute("glint:merged_crops", int(crops.size()));
-  const std::vector<float> pixels = film.toFloatRgba();
+  spec.attribute("glint:commandline", commandLine);
   writeFileAtomically(outPath, [&](const std::string& tmp) {
     auto out = OIIO::ImageOutput::create("openexr");
-    if (!out || !out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) ||
+    if (!out || !out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UNKNOWN, frame.data()) ||
         !out->close())
       throw GlintError("cannot write " + outPath + ": " +
                        (out ? out->geterror() : OIIO::geterror()));

@@ -1,7 +1,8 @@
 #pragma once
 // Assembles crop renders (`glint render --crop`) into the full frame. Crops must come from the
-// same scene and settings (glint:settings_hash), be complete (not interrupted), tile the frame
-// without overlaps and without holes; the result's pixels are the crops' pixels, bit for bit.
+// same scene and settings (glint:settings_hash), have the same channels (beauty and layered
+// AOVs) in the same types, be complete (not interrupted), and tile the frame without overlaps
+// or holes; the result's pixels are the crops' bytes.
 #include <string>
 #include <vector>
 
@@ -16,7 +17,9 @@ struct MergeReport {
 
 // Throws UsageError naming the offending files, the overlapping pixel, or the missing regions
 // as `--crop X0 X1 Y0 Y1` lines that re-render exactly them.
-MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string>& cropPaths);
+// `commandLine` is recorded as the merged file's glint:commandline.
+MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string>& cropPaths,
+                       const std::string& commandLine);
 
 // Missing pixels of a coverage mask (row-major, width × height, true = covered) as disjoint
 // rectangles, greedily: each starts at the first missing pixel in row order, runs right while

@@ -2,9 +2,11 @@
 // triangle, polygon, mesh) are baked into world (or group) space; analytic shapes keep their
 // exact form; a sphere under a non-similarity transform becomes an implicit instance.
 #include <filesystem>
+#include <fstream>
 #include <optional>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "geometry/triangulate.h"
 #include "io/mesh_io.h"
 #include "io/scene_builder.h"
@@ -99,6 +101,11 @@ TriangleMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
   const std::filesystem::path full =
       rel.is_absolute() ? rel : std::filesystem::path(b.baseDir) / rel;
   try {
+    // The file's bytes join the scene hash, so crops rendered after the mesh changed are not
+    // merged with ones rendered before.
+    std::ifstream in(full, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    b.scene.sourceHash = hashCombine(b.scene.sourceHash, hashBytes(bytes));
     return loadMeshFile(full.lexically_normal().string());
   } catch (const GlintError& e) {
     fileNode.fail(e.what());
@@ -269,6 +276,9 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     obj.checkKeys({"type", "file", "positions", "indices", "material", "transform", "motion"});
     if (obj.has("file") == obj.has("positions"))
       obj.fail("a mesh needs either \"file\" or \"positions\" with \"indices\"");
+    if (obj.has("file") && obj.has("indices"))
+      obj.at("indices").fail(
+          "a mesh from a file takes its triangles from the file; remove \"indices\"");
     TriangleMesh m = obj.has("file") ? fileMesh(b, obj.at("file")) : inlineMesh(obj);
     if (motion && motion->has("positions")) {
       // A deforming mesh (seed 000 §13.4.5): the same vertices at each key.

@@ -1,6 +1,6 @@
 #pragma once
 // Lights of seed 000 §4.5 and §13.4.2: point and directional lights, and parallelogram (quad)
-// and disk area lights. Area lights emit in one of two modes (docs/lights.md):
+// and disk area lights. Area lights emit in one of two modes (docs/effects.md):
 //  - Seed (default): the average of point lights spread over the area, each with the light's
 //    intensity and falloff rule, so a shrinking light converges to the point light.
 //  - Radiance ("emission": "radiance"): a one-sided emitter of radiance `intensity`, with the

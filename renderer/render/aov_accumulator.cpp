@@ -57,7 +57,9 @@ void PixelAovs::add(const Radiance& r, const AovSample& s) {
     mean_[c] += d / n_;
     m2_[c] += d * (L[c] - mean_[c]);
   }
-  if (!s.hit) return;
+  // A non-finite sample counts as black in every plane: its record (which may hold the
+  // non-finite values) is not used, so nothing non-finite reaches the EXR.
+  if (!s.hit || !r.valid) return;
   if (!anyHit_ || s.depth < minDepth_) minDepth_ = s.depth;
   anyHit_ = true;
   const auto addVec = [](double* acc, const Vec3f& v) {

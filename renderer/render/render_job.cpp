@@ -72,7 +72,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
           Radiance r = integrator.trace(ray, key, counters, aovSamples ? &aov : nullptr);
           if (opt.sampleHook) opt.sampleHook(x, y, r);
           if (!r.L.isFinite()) r.L = {}, r.valid = false;
-          if (aovs) pixelAovs.add(r, aov);
+          if (aovs) pixelAovs.add(r, aov);  // an invalid sample adds no AOV record
           if (!r.valid) {
             // A non-finite sample never reaches the film: it counts as black.
             ++counters.nonfiniteSamples;

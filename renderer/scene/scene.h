@@ -57,7 +57,7 @@ struct RenderSettings {
 
 class Scene {
  public:
-  std::string sourcePath;   // the scene file, or "<default>"
+  std::string sourcePath;   // the scene file, or "<default scene>"
   uint64_t sourceHash = 0;  // of the scene file's bytes
   RenderSettings render;
   CameraDesc cameraDesc;
