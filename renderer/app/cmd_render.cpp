@@ -147,7 +147,10 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
             {"glint:partial", result.partial ? 1 : 0}};
   m.floats = {{"glint:render_seconds", static_cast<float>(st.seconds)},
               {"glint:rays", static_cast<float>(st.rays.total())}};
-  m.matrices = {{"worldToCamera", camera.worldToCamera()}, {"worldToNDC", camera.worldToNdc()}};
+  // The camera works in render space (world − worldOrigin); compositors want world space.
+  const Vec3d toRender = Vec3d{} - scene.worldOrigin;
+  m.matrices = {{"worldToCamera", afterTranslation(camera.worldToCamera(), toRender)},
+                {"worldToNDC", afterTranslation(camera.worldToNdc(), toRender)}};
   return m;
 }
 

@@ -14,6 +14,7 @@ struct Quat {
 
   static Quat fromAxisAngle(const Vec3f& axis, float degrees);
   Mat4 toMatrix() const;
+  friend bool operator==(const Quat&, const Quat&) = default;
 };
 
 // Spherical linear interpolation along the shorter arc; falls back to normalised lerp when the
@@ -26,6 +27,7 @@ struct TrsKey {
   Vec3f translation;
 
   Transform toTransform() const;  // translate · rotate · scale
+  friend bool operator==(const TrsKey&, const TrsKey&) = default;
 };
 
 TrsKey lerp(const TrsKey& a, const TrsKey& b, float t);

@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "core/affine.h"
 #include "core/ray.h"
 
 namespace glint {
@@ -71,27 +72,8 @@ Transform Transform::scale(const Vec3f& s) {
 }
 
 Transform Transform::rotate(const Vec3f& axis, float degrees) {
-  // Rodrigues' rotation in double so that 90° turns land on exact zeros where they can.
-  const double len =
-      std::sqrt(double(axis.x) * axis.x + double(axis.y) * axis.y + double(axis.z) * axis.z);
-  if (!(len > 0)) throw std::invalid_argument("the rotation axis has zero length");
-  const double x = axis.x / len, y = axis.y / len, z = axis.z / len;
-  const double rad = double(degrees) * 3.14159265358979323846 / 180.0;
-  double s = std::sin(rad), c = std::cos(rad);
-  if (std::fabs(s) < 1e-15) s = 0;
-  if (std::fabs(c) < 1e-15) c = 0;
-  const double t = 1 - c;
-  Mat4 m;
-  m(0, 0) = float(t * x * x + c);
-  m(0, 1) = float(t * x * y - s * z);
-  m(0, 2) = float(t * x * z + s * y);
-  m(1, 0) = float(t * x * y + s * z);
-  m(1, 1) = float(t * y * y + c);
-  m(1, 2) = float(t * y * z - s * x);
-  m(2, 0) = float(t * x * z - s * y);
-  m(2, 1) = float(t * y * z + s * x);
-  m(2, 2) = float(t * z * z + c);
-  return Transform(m);
+  // Built in double (Rodrigues), so 90° turns land on exact zeros where they can.
+  return Affine::rotate(toDouble(axis), degrees).toTransform();
 }
 
 float Transform::determinant() const {

@@ -51,7 +51,7 @@ void WhittedIntegrator::recordAov(const Ray& ray, const Hit& hit, const ShadingP
   aov.hit = true;
   aov.depth = dot(sp.p - ray.o, aov.viewAxis);
   aov.normal = faceForward(sp.ns, -ray.d);
-  aov.position = sp.p;
+  aov.position = toFloat(toDouble(sp.p) + scene_.worldOrigin);  // world, not render space
   // The top-level object: for a hit inside an instance, the instance's entry in `objects`.
   const Geometry& top =
       scene_.groups[0].geometries[hit.instId != kInvalidId ? hit.instId : hit.geomId];

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <iterator>
 
+#include "core/hash.h"
+
 namespace glint {
 
 namespace {
@@ -50,14 +52,33 @@ std::string escapePointerToken(const std::string& key) {
   return out;
 }
 
+// A scene nests at most 8 deep (groups.NAME[i].motion.positions[k][v]); far deeper input is a
+// mistake or an attack, and nlohmann's dump() in error messages recurses once per level.
+constexpr size_t kMaxNesting = 64;
+// Every JsonNode carries its path, keys included, and arrays are expanded into nodes at once, so
+// a group name of 200 kB over 8000 motion keys took 4 GB. Names need nothing like this length.
+constexpr size_t kMaxKeyLength = 256;
+
+// Lines are keyed by a hash of the JSON pointer, extended token by token, so the map grows with
+// the number of values and not with their depth or key lengths (whole pointer strings made
+// 80 kB of nested brackets cost 2 GB).
+constexpr uint64_t kRootPointer = 0;
+uint64_t childPointer(uint64_t parent, std::string_view escapedToken) {
+  return hashCombine(parent, hashBytes(escapedToken));
+}
+
 // Records the line of every key and array element. nlohmann calls each callback right after
 // scanning the token it reports (numbers read one character ahead), so the last consumed
 // character lies on the token's line.
 class LineRecorder : public nlohmann::json_sax<json> {
  public:
   LineRecorder(const std::vector<size_t>& lineStarts, const size_t& consumed,
-               std::unordered_map<std::string, int>& lines)
+               std::unordered_map<uint64_t, int>& lines)
       : lineStarts_(lineStarts), consumed_(consumed), lines_(lines) {}
+
+  // What exceeded kMaxNesting or kMaxKeyLength and its line; empty and 0 if nothing did.
+  const std::string& limitProblem() const { return limitProblem_; }
+  int limitLine() const { return limitLine_; }
 
   bool null() override { return scalar(1); }
   bool boolean(bool) override { return scalar(1); }
@@ -66,19 +87,16 @@ class LineRecorder : public nlohmann::json_sax<json> {
   bool number_float(number_float_t, const string_t&) override { return scalar(2); }
   bool string(string_t&) override { return scalar(1); }
   bool binary(binary_t&) override { return scalar(1); }
-  bool start_object(std::size_t) override {
-    stack_.push_back({false, 0, {}, beginValue(1)});
-    return true;
-  }
+  bool start_object(std::size_t) override { return startContainer(false); }
   bool end_object() override { return endContainer(); }
-  bool start_array(std::size_t) override {
-    stack_.push_back({true, 0, {}, beginValue(1)});
-    return true;
-  }
+  bool start_array(std::size_t) override { return startContainer(true); }
   bool end_array() override { return endContainer(); }
   bool key(string_t& k) override {
-    stack_.back().key = k;
-    lines_.emplace(stack_.back().pointer + "/" + escapePointerToken(k), lineNow(1));
+    if (k.size() > kMaxKeyLength)
+      return stop("a key is " + std::to_string(k.size()) + " characters long; keys and names " +
+                  "may have at most " + std::to_string(kMaxKeyLength));
+    stack_.back().key = childPointer(stack_.back().pointer, escapePointerToken(k));
+    lines_.emplace(stack_.back().key, lineNow(1));
     return true;
   }
   bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
@@ -89,8 +107,8 @@ class LineRecorder : public nlohmann::json_sax<json> {
   struct Frame {
     bool isArray;
     size_t index;
-    std::string key;
-    std::string pointer;
+    uint64_t key;  // pointer of the current member, in objects
+    uint64_t pointer;
   };
 
   int lineNow(size_t back) const {
@@ -98,16 +116,28 @@ class LineRecorder : public nlohmann::json_sax<json> {
     const auto it = std::upper_bound(lineStarts_.begin(), lineStarts_.end(), offset);
     return static_cast<int>(it - lineStarts_.begin());
   }
-  std::string beginValue(size_t back) {
+  uint64_t beginValue(size_t back) {
     if (stack_.empty()) {
-      lines_.emplace("", lineNow(back));
-      return "";
+      lines_.emplace(kRootPointer, lineNow(back));
+      return kRootPointer;
     }
     Frame& top = stack_.back();
-    if (!top.isArray) return top.pointer + "/" + escapePointerToken(top.key);
-    std::string ptr = top.pointer + "/" + std::to_string(top.index++);
+    if (!top.isArray) return top.key;
+    const uint64_t ptr = childPointer(top.pointer, std::to_string(top.index++));
     lines_.emplace(ptr, lineNow(back));
     return ptr;
+  }
+  bool startContainer(bool isArray) {
+    if (stack_.size() >= kMaxNesting)
+      return stop("arrays and objects nest more than " + std::to_string(kMaxNesting) +
+                  " deep (a scene needs at most 8)");
+    stack_.push_back({isArray, 0, 0, beginValue(1)});
+    return true;
+  }
+  bool stop(std::string problem) {
+    limitProblem_ = std::move(problem);
+    limitLine_ = lineNow(1);
+    return false;  // ends the parse
   }
   bool scalar(size_t back) {
     beginValue(back);
@@ -120,8 +150,10 @@ class LineRecorder : public nlohmann::json_sax<json> {
 
   const std::vector<size_t>& lineStarts_;
   const size_t& consumed_;
-  std::unordered_map<std::string, int>& lines_;
+  std::unordered_map<uint64_t, int>& lines_;
   std::vector<Frame> stack_;
+  std::string limitProblem_;
+  int limitLine_ = 0;
 };
 
 std::string joinPath(const std::string& path, const std::string& key) {
@@ -169,10 +201,19 @@ JsonDocument::JsonDocument(const std::string& text, std::string fileName)
   LineRecorder recorder(lineStarts, consumed, lines_);
   CountingIterator first{text.data(), &consumed}, last{text.data() + text.size(), &consumed};
   json::sax_parse(first, last, &recorder, nlohmann::detail::input_format_t::json, true, true);
+  if (!recorder.limitProblem().empty())
+    throw SceneError({fileName_, recorder.limitLine()}, "", recorder.limitProblem());
 }
 
 int JsonDocument::lineOf(const std::string& pointer) const {
-  const auto it = lines_.find(pointer);
+  // `pointer` is "" (the root) or "/token/token...", tokens escaped as the recorder hashed them.
+  uint64_t hash = kRootPointer;
+  for (size_t slash = 0; slash < pointer.size();) {
+    const size_t next = std::min(pointer.find('/', slash + 1), pointer.size());
+    hash = childPointer(hash, std::string_view(pointer).substr(slash + 1, next - slash - 1));
+    slash = next;
+  }
+  const auto it = lines_.find(hash);
   return it == lines_.end() ? 0 : it->second;
 }
 
@@ -234,13 +275,15 @@ std::vector<JsonNode> JsonNode::elements() const {
   return out;
 }
 
-float JsonNode::number() const {
+double JsonNode::real() const {
   if (!isNumber()) fail("must be a number, got " + typeName());
   const double v = value_->get<double>();
   if (!std::isfinite(v)) fail("must be finite, got " + formatNumber(v));
   if (std::fabs(v) > 3.4e38) fail("is out of the float range, got " + formatNumber(v));
-  return static_cast<float>(v);
+  return v;
 }
+
+float JsonNode::number() const { return static_cast<float>(real()); }
 
 float JsonNode::number(float lo, float hi, bool loOpen) const {
   const float v = number();
@@ -286,10 +329,12 @@ std::string JsonNode::choice(std::initializer_list<std::string_view> options) co
        (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
 }
 
-Vec3f JsonNode::vec3() const {
+Vec3d JsonNode::vec3d() const {
   if (!isArray() || value_->size() != 3) fail("must be an array of 3 numbers, got " + raw().dump());
-  return {(*this)[0].number(), (*this)[1].number(), (*this)[2].number()};
+  return {(*this)[0].real(), (*this)[1].real(), (*this)[2].real()};
 }
+
+Vec3f JsonNode::vec3() const { return toFloat(vec3d()); }
 
 Vec3f JsonNode::direction() const {
   const Vec3f v = vec3();

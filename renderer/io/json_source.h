@@ -10,6 +10,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "core/affine.h"
 #include "core/error.h"
 #include "core/rgb.h"
 #include "core/vec.h"
@@ -29,7 +30,7 @@ class JsonDocument {
  private:
   std::string fileName_;
   nlohmann::json root_;
-  std::unordered_map<std::string, int> lines_;
+  std::unordered_map<uint64_t, int> lines_;  // by a hash of the JSON pointer (json_source.cpp)
 };
 
 // A located view of one JSON value with typed, validated accessors. Every failure throws
@@ -62,6 +63,7 @@ class JsonNode {
   JsonNode operator[](size_t i) const;
   std::vector<JsonNode> elements() const;
 
+  double real() const;   // finite and within float range
   float number() const;  // finite
   float number(float lo, float hi, bool loOpen = false) const;
   int integer(int lo, int hi) const;
@@ -70,6 +72,7 @@ class JsonNode {
   std::string string() const;
   std::string choice(std::initializer_list<std::string_view> options) const;
   Vec3f vec3() const;
+  Vec3d vec3d() const;      // for positions: placed in double, rounded once (io/placement.h)
   Vec3f direction() const;  // non-zero, normalised
   Rgb color() const;        // every channel ≥ 0
 

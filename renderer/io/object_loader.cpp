@@ -1,6 +1,7 @@
 // Turns entries of `objects` and `groups` into scene geometry. Triangle-based shapes (box,
 // triangle, polygon, mesh) are baked into world (or group) space; analytic shapes keep their
 // exact form; a sphere under a non-similarity transform becomes an implicit instance.
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -34,20 +35,32 @@ uint32_t push(Scene& s, uint32_t groupId, GeomKind kind, uint32_t index, uint32_
   return static_cast<uint32_t>(geoms.size() - 1);
 }
 
-void addMesh(SceneBuilder& b, TriangleMesh mesh, const Transform& xf, const JsonNode& where,
+// A mesh in the object's local coordinates, kept in double until it is placed.
+struct LocalMesh {
+  std::vector<Vec3d> positions;
+  std::vector<std::vector<Vec3d>> positionKeys;  // a deforming mesh's vertices per motion key
+  std::vector<uint32_t> indices;
+};
+
+void addMesh(SceneBuilder& b, const LocalMesh& local, const Placement& place, const JsonNode& where,
              uint32_t groupId, uint32_t material, uint32_t objectId) {
-  const auto place = [&](std::vector<Vec3f>& points) {
-    for (auto& p : points) {
-      if (!isFinite(p)) where.fail("a vertex is not finite");
-      p = xf.point(p);
-      if (!isFinite(p)) where.fail("a transformed vertex is not finite");
+  const auto placed = [&](const std::vector<Vec3d>& points) {
+    std::vector<Vec3f> out;
+    out.reserve(points.size());
+    for (const Vec3d& p : points) {
+      if (!isFinite(toFloat(p))) where.fail("a vertex is not finite");
+      out.push_back(place.point(p));
+      if (!isFinite(out.back())) where.fail("a transformed vertex is not finite");
     }
+    return out;
   };
-  place(mesh.positions);
-  for (auto& key : mesh.positionKeys) place(key);
+  TriangleMesh mesh;
+  mesh.indices = local.indices;
+  mesh.positions = placed(local.positions);
+  for (const auto& key : local.positionKeys) mesh.positionKeys.push_back(placed(key));
   // A mirroring transform (negative determinant) reverses the winding, which would turn the
   // geometric normals inward; swap two corners to keep them outward.
-  if (xf.determinant() < 0)
+  if (place.transform().determinant() < 0)
     for (size_t i = 0; i < mesh.indices.size(); i += 3)
       std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
   for (uint32_t idx : mesh.indices)
@@ -60,16 +73,16 @@ void addMesh(SceneBuilder& b, TriangleMesh mesh, const Transform& xf, const Json
        objectId);
 }
 
-std::vector<Vec3f> parsePoints(const JsonNode& n, size_t minCount) {
+std::vector<Vec3d> parsePoints(const JsonNode& n, size_t minCount) {
   if (!n.isArray() || n.size() < minCount)
     n.fail("must be an array of at least " + std::to_string(minCount) + " points");
-  std::vector<Vec3f> out;
-  for (const JsonNode& p : n.elements()) out.push_back(p.vec3());
+  std::vector<Vec3d> out;
+  for (const JsonNode& p : n.elements()) out.push_back(p.vec3d());
   return out;
 }
 
-TriangleMesh boxMesh(const Vec3f& lo, const Vec3f& hi) {
-  TriangleMesh m;
+LocalMesh boxMesh(const Vec3d& lo, const Vec3d& hi) {
+  LocalMesh m;
   for (int c = 0; c < 8; ++c)
     m.positions.push_back({(c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z});
   // Counter-clockwise seen from outside, so normals point out (dielectric boxes need that).
@@ -78,8 +91,8 @@ TriangleMesh boxMesh(const Vec3f& lo, const Vec3f& hi) {
   return m;
 }
 
-TriangleMesh inlineMesh(const JsonNode& obj) {
-  TriangleMesh m;
+LocalMesh inlineMesh(const JsonNode& obj) {
+  LocalMesh m;
   m.positions = parsePoints(obj.at("positions"), 3);
   const JsonNode idx = obj.at("indices");
   for (const JsonNode& tri : idx.elements()) {
@@ -96,7 +109,7 @@ TriangleMesh inlineMesh(const JsonNode& obj) {
   return m;
 }
 
-TriangleMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
+LocalMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
   const std::filesystem::path rel(fileNode.string());
   const std::filesystem::path full =
       rel.is_absolute() ? rel : std::filesystem::path(b.baseDir) / rel;
@@ -106,7 +119,11 @@ TriangleMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
     std::ifstream in(full, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), {});
     b.scene.sourceHash = hashCombine(b.scene.sourceHash, hashBytes(bytes));
-    return loadMeshFile(full.lexically_normal().string());
+    const TriangleMesh loaded = loadMeshFile(full.lexically_normal().string());
+    LocalMesh m;
+    for (const Vec3f& p : loaded.positions) m.positions.push_back(toDouble(p));
+    m.indices = loaded.indices;
+    return m;
   } catch (const GlintError& e) {
     fileNode.fail(e.what());
   }
@@ -114,45 +131,48 @@ TriangleMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
 
 }  // namespace
 
-Transform parseTransform(const JsonNode& n) {
+Affine parseTransform(const JsonNode& n) {
   n.checkKeys({"translate", "rotate", "scale", "matrix"});
-  try {
-    if (auto m = n.get("matrix")) {
-      if (n.has("translate") || n.has("rotate") || n.has("scale"))
-        n.fail("\"matrix\" replaces translate/rotate/scale; give one or the other");
-      if (m->size() != 16) m->fail("must hold 16 numbers (row-major 4×4)");
-      Mat4 mat;
-      for (size_t i = 0; i < 16; ++i) mat.m[i] = (*m)[i].number();
-      try {
-        return Transform(mat);
-      } catch (const std::invalid_argument& e) {
-        m->fail(e.what());
-      }
-    }
-    Transform t;
+  Affine t;
+  if (auto m = n.get("matrix")) {
+    if (n.has("translate") || n.has("rotate") || n.has("scale"))
+      n.fail("\"matrix\" replaces translate/rotate/scale; give one or the other");
+    if (m->size() != 16) m->fail("must hold 16 numbers (row-major 4×4)");
+    std::array<double, 12> rows;
+    for (size_t i = 0; i < 12; ++i) rows[i] = (*m)[i].real();
+    for (size_t i = 12; i < 16; ++i)
+      if ((*m)[i].real() != (i == 15 ? 1 : 0))
+        m->fail("the last row must be [0, 0, 0, 1] (affine transforms only)");
+    t = Affine::fromRows(rows);
+  } else {
     if (auto s = n.get("scale")) {
-      const Vec3f v = s->vec3();
+      const Vec3d v = s->vec3d();
       if (v.x == 0 || v.y == 0 || v.z == 0) s->fail("scale factors must be non-zero");
-      t = Transform::scale(v);
+      t = Affine::scale(v);
     }
     if (auto r = n.get("rotate")) {
       if (r->size() != 4) r->fail("must be [axis x, axis y, axis z, angle in degrees]");
-      const Vec3f axis{(*r)[0].number(), (*r)[1].number(), (*r)[2].number()};
-      if (!(length(axis) > 0)) r->fail("the rotation axis has zero length");
-      t = Transform::rotate(axis, (*r)[3].number()) * t;
+      const Vec3d axis{(*r)[0].real(), (*r)[1].real(), (*r)[2].real()};
+      if (!(axis.x != 0 || axis.y != 0 || axis.z != 0))
+        r->fail("the rotation axis has zero length");
+      t = Affine::rotate(axis, (*r)[3].real()) * t;
     }
-    if (auto tr = n.get("translate")) t = Transform::translate(tr->vec3()) * t;
-    return t;
-  } catch (const std::invalid_argument& e) {
-    n.fail(e.what());
+    if (auto tr = n.get("translate")) t = Affine::translate(tr->vec3d()) * t;
   }
+  try {
+    t.toTransform();  // singular, or singular once rounded to float
+  } catch (const std::invalid_argument& e) {
+    (n.has("matrix") ? n.at("matrix") : n).fail(e.what());
+  }
+  return t;
 }
 
 namespace {
 
 // A motion key: translate / rotate / scale only, since rotations are interpolated by slerp and a
 // general matrix has no unique rotation to interpolate.
-TrsKey parseTrsKey(const JsonNode& n) {
+// `origin` shifts the translation into render space (io/placement.h).
+TrsKey parseTrsKey(const JsonNode& n, const Vec3d& origin) {
   if (n.has("matrix"))
     n.at("matrix").fail(
         "motion keys take translate/rotate/scale (rotation is interpolated by "
@@ -170,21 +190,27 @@ TrsKey parseTrsKey(const JsonNode& n) {
     if (!(length(axis) > 0)) r->fail("the rotation axis has zero length");
     k.rotation = Quat::fromAxisAngle(axis, (*r)[3].number());
   }
-  if (auto t = n.get("translate")) k.translation = t->vec3();
+  k.translation = toFloat((n.has("translate") ? n.at("translate").vec3d() : Vec3d{}) - origin);
   return k;
 }
 
+// Keys that are all equal describe no motion: they come back as the one key, so the object is
+// built static (no time steps, no time dimension) and renders exactly as if it had no keys —
+// interpolating between equal keys in float would not always return the key itself.
 template <typename T, typename Parse>
 std::vector<T> parseKeys(const JsonNode& n, Parse parse) {
   if (!n.isArray() || n.size() < 2)
     n.fail("must list at least 2 keys (spread evenly over normalised time [0, 1])");
   std::vector<T> keys;
   for (const JsonNode& k : n.elements()) keys.push_back(parse(k));
+  if (std::all_of(keys.begin(), keys.end(), [&](const T& k) { return k == keys[0]; }))
+    keys.resize(1);
   return keys;
 }
 
 uint32_t addSphere(Scene& s, const Sphere& sphere, std::vector<Vec3f> centerKeys) {
   s.spheres.push_back(sphere);
+  if (centerKeys.size() == 1) centerKeys.clear();  // equal keys: a sphere that does not move
   s.sphereCenterKeys.push_back(std::move(centerKeys));
   return static_cast<uint32_t>(s.spheres.size() - 1);
 }
@@ -196,7 +222,9 @@ uint32_t newImplicitGroup(Scene& s, const std::string& what, uint32_t objectId) 
 
 void addInstance(Scene& s, uint32_t groupId, const Transform& xf, std::vector<TrsKey> motion,
                  uint32_t objectId) {
+  // One key (parseKeys collapsed equal keys): placed, not moving.
   Instance inst{groupId, motion.empty() ? xf : motion[0].toTransform(), std::move(motion)};
+  if (inst.motion.size() == 1) inst.motion.clear();
   s.instances.push_back(std::move(inst));
   push(s, 0, GeomKind::Instance, static_cast<uint32_t>(s.instances.size() - 1), 0, objectId);
 }
@@ -204,7 +232,8 @@ void addInstance(Scene& s, uint32_t groupId, const Transform& xf, std::vector<Tr
 // Adds a shape (not an instance) under `xf`; `motion` may hold "center" (spheres) or
 // "positions" (meshes); "transform" motion has been taken care of by the caller.
 void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uint32_t groupId,
-              uint32_t objectId, const Transform& xf, const std::optional<JsonNode>& motion) {
+              uint32_t objectId, const Placement& place, const std::optional<JsonNode>& motion) {
+  const Transform& xf = place.transform();
   Scene& s = b.scene;
   if (motion && motion->has("center") && type != "sphere")
     motion->at("center").fail("only spheres have centre keys; use \"transform\" keys");
@@ -213,35 +242,39 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
   const uint32_t material = materialOf(b, obj);
   if (type == "sphere") {
     obj.checkKeys({"type", "center", "radius", "material", "transform", "motion"});
-    Sphere sp{obj.at("center").vec3(), obj.at("radius").number(0, 3.4e38f, true)};
-    std::vector<Vec3f> centers;
-    if (motion && motion->has("center"))
-      centers = parseKeys<Vec3f>(motion->at("center"), [](const JsonNode& k) { return k.vec3(); });
+    const float radius = obj.at("radius").number(0, 3.4e38f, true);
+    const auto centersPlacedBy = [&](const Placement& p) {
+      std::vector<Vec3f> keys;
+      if (motion && motion->has("center"))
+        keys =
+            parseKeys<Vec3f>(motion->at("center"), [&](const JsonNode& k) { return p.point(k); });
+      return keys;
+    };
     float scale = 1;
     if (xf.isSimilarity(&scale)) {
-      for (Vec3f& c : centers) c = xf.point(c);
-      sp = {centers.empty() ? xf.point(sp.center) : centers[0], sp.radius * scale};
+      std::vector<Vec3f> centers = centersPlacedBy(place);
+      const Sphere sp{centers.empty() ? place.point(obj.at("center")) : centers[0], radius * scale};
       push(s, groupId, GeomKind::Sphere, addSphere(s, sp, std::move(centers)), material, objectId);
       return;
     }
     // An ellipsoid: keep the exact sphere in a group of its own, placed by an instance.
     if (groupId != 0)
       obj.at("transform").fail("a non-uniformly scaled sphere cannot sit inside a group");
-    if (!centers.empty()) sp.center = centers[0];
+    std::vector<Vec3f> centers = centersPlacedBy(Placement{});
+    const Sphere sp{centers.empty() ? obj.at("center").vec3() : centers[0], radius};
     const uint32_t g = newImplicitGroup(s, "sphere", objectId);
     push(s, g, GeomKind::Sphere, addSphere(s, sp, std::move(centers)), material, objectId);
     addInstance(s, g, xf, {}, objectId);
   } else if (type == "plane") {
     obj.checkKeys({"type", "point", "normal", "material", "transform"});
     if (groupId != 0) obj.fail("planes are unbounded and cannot be placed in groups");
-    const Vec3f p = obj.at("point").vec3();
     const Vec3f n = obj.at("normal").direction();
-    s.planes.push_back({xf.point(p), normalize(xf.normal(n))});
+    s.planes.push_back({place.point(obj.at("point")), normalize(xf.normal(n))});
     push(s, groupId, GeomKind::Plane, static_cast<uint32_t>(s.planes.size() - 1), material,
          objectId);
   } else if (type == "quad") {
     obj.checkKeys({"type", "corner", "edge1", "edge2", "material", "transform", "motion"});
-    Quad q{xf.point(obj.at("corner").vec3()), xf.vector(obj.at("edge1").vec3()),
+    Quad q{place.point(obj.at("corner")), xf.vector(obj.at("edge1").vec3()),
            xf.vector(obj.at("edge2").vec3())};
     // Under a mirroring transform edge1 × edge2 would point the other way: swap the edges (the
     // same parallelogram) so the normal is the transformed normal.
@@ -252,26 +285,28 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     push(s, groupId, GeomKind::Quad, static_cast<uint32_t>(s.quads.size() - 1), material, objectId);
   } else if (type == "box") {
     obj.checkKeys({"type", "min", "max", "material", "transform", "motion"});
-    const Vec3f lo = obj.at("min").vec3(), hi = obj.at("max").vec3();
+    const Vec3d lo = obj.at("min").vec3d(), hi = obj.at("max").vec3d();
     if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
       obj.at("max").fail("must exceed min in x, y and z");
-    addMesh(b, boxMesh(lo, hi), xf, obj, groupId, material, objectId);
+    addMesh(b, boxMesh(lo, hi), place, obj, groupId, material, objectId);
   } else if (type == "triangle") {
     obj.checkKeys({"type", "vertices", "material", "transform", "motion"});
     const JsonNode v = obj.at("vertices");
     if (v.size() != 3) v.fail("must hold exactly 3 points");
-    TriangleMesh m;
+    LocalMesh m;
     m.positions = parsePoints(v, 3);
     m.indices = {0, 1, 2};
-    addMesh(b, std::move(m), xf, obj, groupId, material, objectId);
+    addMesh(b, m, place, obj, groupId, material, objectId);
   } else if (type == "polygon") {
     obj.checkKeys({"type", "vertices", "material", "transform", "motion"});
     const JsonNode v = obj.at("vertices");
-    TriangleMesh m;
+    LocalMesh m;
     m.positions = parsePoints(v, 3);
-    if (!triangulatePolygon(m.positions, m.indices))
+    std::vector<Vec3f> outline;
+    for (const Vec3d& p : m.positions) outline.push_back(toFloat(p));
+    if (!triangulatePolygon(outline, m.indices))
       v.fail("cannot triangulate: the polygon is degenerate or self-intersecting");
-    addMesh(b, std::move(m), xf, obj, groupId, material, objectId);
+    addMesh(b, m, place, obj, groupId, material, objectId);
   } else {  // mesh
     obj.checkKeys({"type", "file", "positions", "indices", "material", "transform", "motion"});
     if (obj.has("file") == obj.has("positions"))
@@ -279,20 +314,21 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     if (obj.has("file") && obj.has("indices"))
       obj.at("indices").fail(
           "a mesh from a file takes its triangles from the file; remove \"indices\"");
-    TriangleMesh m = obj.has("file") ? fileMesh(b, obj.at("file")) : inlineMesh(obj);
+    LocalMesh m = obj.has("file") ? fileMesh(b, obj.at("file")) : inlineMesh(obj);
     if (motion && motion->has("positions")) {
       // A deforming mesh (seed 000 §13.4.5): the same vertices at each key.
       const JsonNode keys = motion->at("positions");
-      m.positionKeys = parseKeys<std::vector<Vec3f>>(keys, [&](const JsonNode& k) {
-        std::vector<Vec3f> key = parsePoints(k, 3);
+      m.positionKeys = parseKeys<std::vector<Vec3d>>(keys, [&](const JsonNode& k) {
+        std::vector<Vec3d> key = parsePoints(k, 3);
         if (key.size() != m.positions.size())
           k.fail("has " + std::to_string(key.size()) + " positions; the mesh has " +
                  std::to_string(m.positions.size()));
         return key;
       });
       m.positions = m.positionKeys[0];
+      if (m.positionKeys.size() == 1) m.positionKeys.clear();  // equal keys: no deformation
     }
-    addMesh(b, std::move(m), xf, obj, groupId, material, objectId);
+    addMesh(b, m, place, obj, groupId, material, objectId);
   }
 }
 
@@ -314,9 +350,17 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
           .fail(
               "objects inside groups cannot carry transform keys: move the "
               "instance that places the group");
-    transformKeys = parseKeys<TrsKey>(motion->at("transform"), parseTrsKey);
+    transformKeys = parseKeys<TrsKey>(
+        motion->at("transform"), [&](const JsonNode& k) { return parseTrsKey(k, s.worldOrigin); });
   }
-  const Transform xf = obj.has("transform") ? parseTransform(obj.at("transform")) : Transform{};
+  const Placement place = [&] {
+    const Affine local = obj.has("transform") ? parseTransform(obj.at("transform")) : Affine{};
+    try {
+      return Placement(b.placementOf(groupId, local));
+    } catch (const std::invalid_argument& e) {
+      obj.at("transform").fail(e.what());
+    }
+  }();
 
   if (type == "instance") {
     obj.checkKeys({"type", "group", "transform", "motion"});
@@ -333,17 +377,17 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
       g.fail("no group named \"" + g.string() + "\"" +
              (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
     }
-    addInstance(s, it->second, xf, std::move(transformKeys), objectId);
+    addInstance(s, it->second, place.transform(), std::move(transformKeys), objectId);
     return;
   }
   if (!transformKeys.empty()) {
     // Any shape with transform keys becomes an implicit instance that moves.
     const uint32_t g = newImplicitGroup(s, type, objectId);
-    addShape(b, obj, type, g, objectId, Transform{}, motion);
+    addShape(b, obj, type, g, objectId, Placement{}, motion);
     addInstance(s, g, Transform{}, std::move(transformKeys), objectId);
     return;
   }
-  addShape(b, obj, type, groupId, objectId, xf, motion);
+  addShape(b, obj, type, groupId, objectId, place, motion);
 }
 
 }  // namespace glint

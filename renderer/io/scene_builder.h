@@ -4,6 +4,7 @@
 #include <string>
 
 #include "io/json_source.h"
+#include "io/placement.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -13,10 +14,21 @@ struct SceneBuilder {
   std::string baseDir;
   std::map<std::string, uint32_t> materialIds;
   std::map<std::string, uint32_t> groupIds;
+
+  // World → render space (io/placement.h); set from the camera before anything is placed.
+  Vec3f toRender(const JsonNode& worldPoint) const {
+    return toFloat(worldPoint.vec3d() - scene.worldOrigin);
+  }
+  // An object's own transform followed by the shift into render space; groups keep their own
+  // local space (the instance that places them is shifted instead).
+  Affine placementOf(uint32_t groupId, const Affine& local) const {
+    return groupId == 0 ? Affine::translate(Vec3d{} - scene.worldOrigin) * local : local;
+  }
 };
 
 // Adds one entry of `objects` (groupId 0) or of a group to the scene (object_loader.cpp).
 void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t objectId);
-Transform parseTransform(const JsonNode& node);
+// In double; validated as a float transform (non-singular, affine).
+Affine parseTransform(const JsonNode& node);
 
 }  // namespace glint

@@ -27,7 +27,7 @@ void parseRender(const JsonNode& n, RenderSettings& r) {
   if (auto v = n.get("transparent_shadows")) r.transparentShadows = v->boolean();
 }
 
-void parseCamera(const JsonNode& n, CameraDesc& c) {
+void parseCamera(const JsonNode& n, CameraDesc& c, Vec3d& origin) {
   const std::string type =
       n.has("type") ? n.at("type").choice({"perspective", "orthographic"}) : "perspective";
   c.projection = type == "perspective" ? Projection::Perspective : Projection::Orthographic;
@@ -39,8 +39,10 @@ void parseCamera(const JsonNode& n, CameraDesc& c) {
     n.checkKeys({"type", "eye", "look_at", "up", "height", "shutter"});
     c.orthoHeight = n.at("height").number(0, 3.4e38f, true);
   }
-  c.eye = n.at("eye").vec3();
-  c.lookAt = n.at("look_at").vec3();
+  // Render space puts the eye at the origin (io/placement.h).
+  origin = n.at("eye").vec3d();
+  c.eye = {0, 0, 0};
+  c.lookAt = toFloat(n.at("look_at").vec3d() - origin);
   c.up = n.vec3("up", {0, 1, 0});
   if (auto v = n.get("aperture_radius")) c.apertureRadius = v->number(0, 3.4e38f);
   if (auto v = n.get("lens"))
@@ -115,12 +117,12 @@ Material parseMaterial(const JsonNode& n) {
   return m;
 }
 
-Light parseLight(const JsonNode& n) {
+Light parseLight(const SceneBuilder& b, const JsonNode& n) {
   const std::string type = n.at("type").choice({"point", "directional", "quad", "disk"});
   if (type == "point") {
     n.checkKeys({"type", "position", "intensity", "falloff"});
     PointLight l;
-    l.position = n.at("position").vec3();
+    l.position = b.toRender(n.at("position"));
     l.intensity = n.color("intensity", l.intensity);
     if (auto v = n.get("falloff"))
       l.falloff =
@@ -149,7 +151,7 @@ Light parseLight(const JsonNode& n) {
     n.checkKeys(
         {"type", "corner", "edge1", "edge2", "intensity", "samples", "falloff", "emission"});
     QuadLight l;
-    l.corner = n.at("corner").vec3();
+    l.corner = b.toRender(n.at("corner"));
     l.edge1 = n.at("edge1").vec3();
     l.edge2 = n.at("edge2").vec3();
     if (!(length(cross(l.edge1, l.edge2)) > 0))
@@ -160,7 +162,7 @@ Light parseLight(const JsonNode& n) {
   n.checkKeys(
       {"type", "center", "normal", "radius", "intensity", "samples", "falloff", "emission"});
   DiskLight l;
-  l.center = n.at("center").vec3();
+  l.center = b.toRender(n.at("center"));
   l.normal = n.at("normal").direction();
   l.radius = n.at("radius").number(0, 3.4e38f, true);
   common(l);
@@ -171,7 +173,7 @@ void parseScene(SceneBuilder& b, const JsonNode& root) {
   root.checkKeys({"render", "camera", "materials", "lights", "objects", "groups"});
   Scene& s = b.scene;
   if (auto n = root.get("render")) parseRender(*n, s.render);
-  parseCamera(root.at("camera"), s.cameraDesc);
+  parseCamera(root.at("camera"), s.cameraDesc, s.worldOrigin);
 
   if (auto mats = root.get("materials"))
     for (const std::string& name : mats->keys()) {
@@ -179,7 +181,7 @@ void parseScene(SceneBuilder& b, const JsonNode& root) {
       s.materials.push_back({name, parseMaterial(mats->at(name))});
     }
   if (auto lights = root.get("lights"))
-    for (const JsonNode& l : lights->elements()) s.lights.push_back(parseLight(l));
+    for (const JsonNode& l : lights->elements()) s.lights.push_back(parseLight(b, l));
 
   s.groups.push_back({"", {}});
   // Groups are registered before objects so instances can name them in any order.

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "camera/camera.h"
+#include "core/affine.h"
 #include "core/bounds.h"
 #include "core/motion.h"
 #include "core/sampler.h"
@@ -61,6 +62,9 @@ class Scene {
   uint64_t sourceHash = 0;  // of the scene file's bytes
   RenderSettings render;
   CameraDesc cameraDesc;
+  // Everything below lives in render space: world space minus this point, the camera's eye
+  // (io/placement.h). Add it back to name a world position.
+  Vec3d worldOrigin;
   std::vector<NamedMaterial> materials;
   std::vector<Light> lights;
 

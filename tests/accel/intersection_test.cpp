@@ -19,8 +19,10 @@ class Backends : public ::testing::TestWithParam<AccelKind> {
   std::unique_ptr<Accelerator> accel_;
 };
 
+// The eye sits at the world origin, so render space (world − eye, io/placement.h) is world
+// space and the rays below are written in world coordinates.
 Scene oneObject(const std::string& obj) {
-  return test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+  return test::sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
       "materials": {"m": {"type": "phong"}}, "objects": [)" +
                              obj + "]}");
 }

@@ -24,8 +24,9 @@ std::string vec(float x, float y, float z) {
   return s.str();
 }
 
+// The eye at the world origin: render space (world − eye, io/placement.h) is world space.
 std::string sceneWith(const std::string& objects, const std::string& groups = "") {
-  return R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+  return R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
     "materials": {"m": {"type": "phong"}}, )" +
          (groups.empty() ? "" : "\"groups\": {" + groups + "}, ") + "\"objects\": [" + objects +
          "]}";

@@ -20,9 +20,12 @@ struct Traced {
   }
 };
 
+// The eye sits at the world origin, so render space (world − eye, io/placement.h) is world
+// space and the rays below are written in world coordinates.
 Traced load(const std::string& body) {
-  Traced t{test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]}, )" + body + "}"),
-           nullptr};
+  Traced t{
+      test::sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]}, )" + body + "}"),
+      nullptr};
   t.accel = makeAccelerator(AccelKind::Embree, t.scene);
   return t;
 }

@@ -12,7 +12,13 @@ Image constant(int w, int h, float r, float g, float b) {
   img.width = w;
   img.height = h;
   img.channels = 4;
-  for (int i = 0; i < w * h; ++i) img.pixels.insert(img.pixels.end(), {r, g, b, 1});
+  img.pixels.resize(size_t(w) * size_t(h) * 4);
+  for (size_t i = 0; i < img.pixels.size(); i += 4) {
+    img.pixels[i] = r;
+    img.pixels[i + 1] = g;
+    img.pixels[i + 2] = b;
+    img.pixels[i + 3] = 1;
+  }
   return img;
 }
 

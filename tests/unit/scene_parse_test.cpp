@@ -7,8 +7,10 @@ namespace {
 
 using test::sceneFromText;
 
+// The eye at the world origin: scenes load into render space, world minus the eye
+// (io/placement.h), so here render space is world space and positions read as written.
 const char* kHeader = R"(
-  "camera": { "eye": [0, 0, 5], "look_at": [0, 0, 0] },
+  "camera": { "eye": [0, 0, 0], "look_at": [0, 0, -5] },
   "materials": { "m": { "type": "phong", "kd": [0.5, 0.5, 0.5] } },
 )";
 
@@ -51,7 +53,7 @@ TEST(SceneParse, BothCameraTypes) {
 }
 
 TEST(SceneParse, MaterialsKeepEveryKey) {
-  const Scene s = sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+  const Scene s = sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
     "materials": {
       "p": {"type": "phong", "ka": [0.1,0,0], "kd": {"checker": {"scale": 2, "a": [1,1,1], "b": [0,0,0]}},
             "ks": [0.3,0.3,0.3], "exponent": 100, "specular_model": "phong", "km": [0.2,0.2,0.2]},
@@ -180,7 +182,7 @@ namespace {
 TEST(SceneParse, MeshFilesInPlyAndGltf) {
   // square.ply: the unit square as 2 triangles. triangle.gltf: one triangle (0,0,0), (2,0,0),
   // (0,2,0) under a node translated by (0,0,1): node transforms are applied at load.
-  const Scene s = test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+  const Scene s = test::sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
     "materials": {"m": {"type": "phong"}}, "objects": [
       {"type": "mesh", "file": ")" + std::string(GLINT_TEST_DATA) +
                                       R"(/square.ply", "material": "m"},
@@ -203,7 +205,7 @@ namespace {
 TEST(SceneParse, MirroringTransformsKeepNormalsOutward) {
   // scale x by −1 mirrors: the box's triangles and the quad must keep their normals pointing
   // away from the solid (box) and along the mirrored normal (quad: (0,0,1) stays (0,0,1)).
-  const Scene s = test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+  const Scene s = test::sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
     "materials": {"m": {"type": "phong"}}, "objects": [
       {"type": "box", "min": [1,-1,-1], "max": [3,1,1], "material": "m", "transform": {"scale": [-1,1,1]}},
       {"type": "quad", "corner": [0,0,0], "edge1": [1,0,0], "edge2": [0,1,0], "material": "m",
@@ -216,6 +218,60 @@ TEST(SceneParse, MirroringTransformsKeepNormalsOutward) {
     EXPECT_GT(dot(n, c - centre), 0) << "triangle " << t;
   }
   EXPECT_GT(cross(s.quads[0].edge1, s.quads[0].edge2).z, 0);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(SceneParse, PositionsLoadIntoRenderSpaceAroundTheEye) {
+  // Everything is placed in double and shifted by −eye before rounding to float
+  // (io/placement.h). At 1e5 float spacing is 0.0078, so without the shift 0.3 would come back
+  // as 0.296875 or 0.3046875; with it every offset below is exact in float.
+  const Scene s = test::sceneFromText(R"({
+    "camera": {"eye": [100000.25, 0, 0], "look_at": [100000.25, 0, -1]},
+    "materials": {"m": {"type": "phong"}},
+    "lights": [{"type": "point", "position": [100000.5, 2, 0]}],
+    "groups": {"g": [{"type": "sphere", "center": [0.5, 0, 0], "radius": 0.1, "material": "m"}]},
+    "objects": [
+      {"type": "sphere", "center": [100000.75, 0, -3], "radius": 0.1, "material": "m"},
+      {"type": "quad", "corner": [100000, 1, -2], "edge1": [0.3, 0, 0], "edge2": [0, 0.3, 0],
+       "material": "m"},
+      {"type": "triangle", "vertices": [[0.5,0,0],[0,0.5,0],[0,0,0.5]], "material": "m",
+       "transform": {"translate": [100000, 0, 0]}},
+      {"type": "instance", "group": "g", "transform": {"translate": [100001, 0, 0]}},
+      {"type": "instance", "group": "g",
+       "motion": {"transform": [{"translate": [100001, 0, 0]}, {"translate": [100002, 0, 0]}]}}]})");
+  EXPECT_EQ(s.worldOrigin, (Vec3d{100000.25, 0, 0}));
+  EXPECT_EQ(s.cameraDesc.eye, (Vec3f{0, 0, 0}));
+  EXPECT_EQ(s.cameraDesc.lookAt, (Vec3f{0, 0, -1}));
+  EXPECT_EQ(std::get<PointLight>(s.lights[0]).position, (Vec3f{0.25f, 2, 0}));
+  EXPECT_EQ(s.spheres[1].center, (Vec3f{0.5f, 0, -3}));  // spheres[0] is the group's
+  EXPECT_EQ(s.quads[0].corner, (Vec3f{-0.25f, 1, -2}));
+  EXPECT_EQ(s.meshes[0].positions[0], (Vec3f{0.25f, 0, 0}));  // 100000.5 − 100000.25
+  // Groups keep their own space; the instances that place them are shifted.
+  EXPECT_EQ(s.spheres[0].center, (Vec3f{0.5f, 0, 0}));
+  EXPECT_EQ(s.instances[0].worldFromObject.matrix()(0, 3), 0.75f);
+  EXPECT_EQ(s.instances[1].motion[0].translation, (Vec3f{0.75f, 0, 0}));
+  EXPECT_EQ(s.instances[1].motion[1].translation, (Vec3f{1.75f, 0, 0}));
+}
+
+TEST(SceneParse, EqualMotionKeysLoadAsAStaticObject) {
+  // Interpolating between equal keys in float need not return the key itself, so equal keys
+  // are collapsed at load: no motion, no time steps, the static image bit for bit.
+  const Scene s = test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+    "materials": {"m": {"type": "phong"}},
+    "objects": [{"type": "sphere", "center": [0.3,0,0], "radius": 1, "material": "m",
+                 "motion": {"center": [[0.3,0,0], [0.3,0,0], [0.3,0,0]]}},
+                {"type": "quad", "corner": [0,0,0], "edge1": [1,0,0], "edge2": [0,1,0],
+                 "material": "m", "motion": {"transform": [{"rotate": [0,1,0,30]},
+                                                           {"rotate": [0,1,0,30]}]}}]})");
+  EXPECT_TRUE(s.sphereCenterKeys[0].empty());
+  ASSERT_EQ(s.instances.size(), 1u);
+  EXPECT_TRUE(s.instances[0].motion.empty());
+  EXPECT_FALSE(s.features.motion);
 }
 
 }  // namespace
