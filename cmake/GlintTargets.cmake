@@ -11,8 +11,27 @@ endfunction()
 function(glint_warnings target)
   # -Wno-restrict: GCC 12 reports false positives on `"literal" + std::string` (GCC bug 105651).
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
-                                           -Wno-sign-conversion -Wno-restrict -Werror=return-type)
+                                           -Wno-sign-conversion -Werror=return-type
+                                           $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
   if(GLINT_NATIVE_ARCH)
     target_compile_options(${target} PRIVATE -march=native)
   endif()
 endfunction()
+
+# Hardening builds (docs/hardening.md). Directory-wide, so every Glint target is instrumented;
+# the Debian libraries (Embree, TBB, OIIO, ...) stay as built, which ASan and UBSan tolerate.
+if(GLINT_SANITIZE)
+  # No recovery: a UBSan report must fail the test that triggered it, not scroll past.
+  add_compile_options(-fsanitize=${GLINT_SANITIZE} -fno-sanitize-recover=all
+                      -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=${GLINT_SANITIZE})
+endif()
+if(GLINT_FUZZ)
+  if(NOT CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+    message(FATAL_ERROR "GLINT_FUZZ needs clang (libFuzzer): -DCMAKE_CXX_COMPILER=clang++")
+  endif()
+  # Coverage feedback from every library the loader calls; the no-link runtime satisfies the
+  # instrumentation in executables other than the fuzzer.
+  add_compile_options(-fsanitize=fuzzer-no-link)
+  add_link_options(-fsanitize=fuzzer-no-link)
+endif()

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <memory>
 #include <numeric>
 
@@ -24,7 +25,26 @@ float area(const Bounds3f& b) {
   return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
-Vec3f centroid(const Bounds3f& b) { return 0.5f * (b.lo + b.hi); }
+// Halving before adding is exact and cannot overflow, unlike lo + hi near ±3.4e38.
+Vec3f centroid(const Bounds3f& b) { return 0.5f * b.lo + 0.5f * b.hi; }
+
+// Maps a centroid coordinate in [lo, hi] to one of the SAH bins. It works on halved coordinates:
+// for centroids near ±3.4e38, hi − lo overflowed, (c − lo)·B/∞ was NaN and the NaN, cast to int,
+// indexed outside the bins (found by tests/fuzz). Halving is exact, so every bin is the one that
+// (c − lo)·B/(hi − lo) gives whenever that is finite.
+class CentroidBins {
+ public:
+  CentroidBins(float lo, float hi)
+      : halfLo_(0.5f * lo), scale_(ReferenceBvh::kBins / (0.5f * hi - halfLo_)) {}
+  // False when the bins cannot separate anything: a zero or non-finite extent.
+  bool usable() const { return std::isfinite(scale_) && scale_ > 0; }
+  int operator()(float c) const {
+    return std::min(ReferenceBvh::kBins - 1, static_cast<int>((0.5f * c - halfLo_) * scale_));
+  }
+
+ private:
+  float halfLo_, scale_;
+};
 
 bool contains(const Bounds3f& outer, const Bounds3f& inner) {
   return inner.lo.x >= outer.lo.x && inner.lo.y >= outer.lo.y && inner.lo.z >= outer.lo.z &&
@@ -130,7 +150,7 @@ class Builder {
     if (split_ == BvhSplit::Sah && sahSplit(begin, end, centers, box, mid, axis)) return true;
     if (split_ == BvhSplit::Sah && count <= ReferenceBvh::kMaxLeafSize) return false;
     if (split_ == BvhSplit::Midpoint) {
-      const float plane = 0.5f * (centers.lo[axis] + centers.hi[axis]);
+      const float plane = 0.5f * centers.lo[axis] + 0.5f * centers.hi[axis];
       auto it = std::partition(prims_.begin() + long(begin), prims_.begin() + long(end),
                                [&](const BuildPrim& p) { return p.center[axis] < plane; });
       mid = static_cast<size_t>(it - prims_.begin());
@@ -153,13 +173,12 @@ class Builder {
     float bestCost = kInfinity;
     int bestAxis = -1, bestBin = 0;
     for (int a = 0; a < 3; ++a) {
-      const float lo = centers.lo[a], ext = centers.hi[a] - lo;
-      if (!(ext > 0)) continue;
+      const CentroidBins binOf(centers.lo[a], centers.hi[a]);
+      if (!binOf.usable()) continue;
       Bounds3f bins[B];
       size_t counts[B] = {};
-      const float scale = B / ext;
       for (size_t i = begin; i < end; ++i) {
-        const int b = std::min(B - 1, static_cast<int>((prims_[i].center[a] - lo) * scale));
+        const int b = binOf(prims_[i].center[a]);
         bins[b].extend(prims_[i].box);
         ++counts[b];
       }
@@ -191,11 +210,9 @@ class Builder {
     const float leafCost = float(count) * area(box);
     if (count <= ReferenceBvh::kMaxLeafSize && bestCost + area(box) >= leafCost) return false;
     axis = bestAxis;
-    const float lo = centers.lo[axis], scale = B / (centers.hi[axis] - lo);
-    auto it = std::partition(
-        prims_.begin() + long(begin), prims_.begin() + long(end), [&](const BuildPrim& p) {
-          return std::min(B - 1, static_cast<int>((p.center[axis] - lo) * scale)) <= bestBin;
-        });
+    const CentroidBins binOf(centers.lo[axis], centers.hi[axis]);
+    auto it = std::partition(prims_.begin() + long(begin), prims_.begin() + long(end),
+                             [&](const BuildPrim& p) { return binOf(p.center[axis]) <= bestBin; });
     mid = static_cast<size_t>(it - prims_.begin());
     return mid != begin && mid != end;
   }

@@ -28,6 +28,7 @@ int runCli(int argc, char** argv) {
   add(addCompareCommand(app));
   add(addConvergeCommand(app));
   add(addMergeCommand(app));
+  add(addPlanCommand(app));
   add(addConvertCommand(app));
   add(addBenchCommand(app));
   add(addInfoCommand(app));

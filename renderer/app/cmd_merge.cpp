@@ -8,14 +8,17 @@ namespace glint {
 CommandRunner addMergeCommand(CLI::App& app) {
   auto out = std::make_shared<std::string>();
   auto crops = std::make_shared<std::vector<std::string>>();
+  auto sceneHash = std::make_shared<std::string>();
   CLI::App* cmd = app.add_subcommand(
       "merge", "Assemble crop renders into the full frame (same scene and settings, no holes)");
   cmd->add_option("output", *out, "Merged EXR")->required();
   cmd->add_option("crops", *crops, "Crop EXRs from glint render --crop")
       ->required()
       ->check(CLI::ExistingFile);
-  return [out, crops] {
-    const MergeReport r = mergeCrops(*out, *crops, commandLine());
+  cmd->add_option("--scene-hash", *sceneHash,
+                  "Refuse crops whose glint:scene_hash differs (a farm passes the planned hash)");
+  return [out, crops, sceneHash] {
+    const MergeReport r = mergeCrops(*out, *crops, commandLine(), *sceneHash);
     log::info("merged " + std::to_string(r.crops) + " crops into " + *out + " (" +
               std::to_string(r.fullWidth) + "x" + std::to_string(r.fullHeight) + ")");
     return kExitOk;

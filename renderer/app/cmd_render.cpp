@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "app/farm_plan.h"
 #include "app/scene_source.h"
 #include "camera/camera.h"
 #include "core/error.h"
@@ -32,6 +33,7 @@ struct RenderArgs {
   std::string statsJson;
   std::optional<int> spp, width, height, maxDepth, threads;
   std::optional<uint64_t> seed;
+  std::optional<int> frame;
   std::vector<int> crop;
   int tileSize = 32;
   std::string tileOrder = "morton";
@@ -40,6 +42,7 @@ struct RenderArgs {
   std::string aovs;
   std::string compression = "zip";
   bool stats = false;
+  bool noSpecialize = false;
   bool quiet = false;
 };
 
@@ -93,6 +96,7 @@ nlohmann::json statsJson(const Scene& scene, const RenderStats& st) {
   j["nonfinite_samples"] = st.rays.nonfiniteSamples;
   j["features_used"] = scene.features.used();
   j["features_left_out"] = scene.features.leftOut();
+  j["kernel"] = kernelName(st.kernelCaps);
   return j;
 }
 
@@ -113,14 +117,20 @@ void printStats(const Scene& scene, const RenderStats& st) {
   std::printf("non-finite       %llu samples\n", (unsigned long long)st.rays.nonfiniteSamples);
   std::printf("features used    %s\n", join(scene.features.used()).c_str());
   std::printf("left out         %s\n", join(scene.features.leftOut()).c_str());
+  std::printf("kernel           %s (integrator compiled for these capabilities only)\n",
+              kernelName(st.kernelCaps).c_str());
 }
 
 // What must match for crops of one frame to merge: the scene's bytes and every setting that
 // changes pixels. Threads and tile size do not (the image is the same for any of them).
 uint64_t settingsHash(const Scene& scene, const std::string& accel, const std::string& extras) {
   const RenderSettings& r = scene.render;
+  // An animated scene's frames share its file but not its pixels.
+  const std::string frame =
+      scene.animation ? " frame " + std::to_string(scene.animation->frame) : "";
   return hashKey(scene.sourceHash, uint64_t(r.width), uint64_t(r.height), uint64_t(r.spp), r.seed,
-                 uint64_t(r.sampler), uint64_t(r.maxDepth), hashBytes(accel), hashBytes(extras));
+                 uint64_t(r.sampler), uint64_t(r.maxDepth), hashBytes(accel),
+                 hashBytes(extras + frame));
 }
 
 ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderResult& result) {
@@ -145,6 +155,7 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
   m.ints = {{"glint:spp", scene.render.spp},
             {"glint:max_depth", scene.render.maxDepth},
             {"glint:partial", result.partial ? 1 : 0}};
+  if (scene.animation) m.ints.push_back({"glint:frame", scene.animation->frame});
   m.floats = {{"glint:render_seconds", static_cast<float>(st.seconds)},
               {"glint:rays", static_cast<float>(st.rays.total())}};
   // The camera works in render space (world − worldOrigin); compositors want world space.
@@ -156,11 +167,12 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
 
 int runRender(const RenderArgs& a) {
   if (a.quiet) log::setLevel(log::Level::Warning);
-  Scene scene = loadSceneOrDefault(a.scenePath);
+  Scene scene = loadSceneOrDefault(a.scenePath, a.frame);
   applyOverrides(a, scene);
   RenderOptions opt;
   opt.threads = a.threads.value_or(0);
   opt.tileSize = a.tileSize;
+  opt.specialize = !a.noSpecialize;
   opt.crop = cropWindow(a, scene.render);
   opt.progress = !a.quiet;
   opt.tileOrder = a.tileOrder == "row" ? TileOrder::RowMajor : TileOrder::Morton;
@@ -184,7 +196,8 @@ int runRender(const RenderArgs& a) {
   if (out.empty())
     out = (a.scenePath.empty() ? std::string("default")
                                : std::filesystem::path(a.scenePath).stem().string()) +
-          ".exr";
+          (scene.animation ? ".####.exr" : ".exr");
+  if (scene.animation) out = frameFileName(out, scene.animation->frame);
   writeExr(out, result.film, exrMetadata(a, scene, result), {a.half, a.compression, a.multipart});
   if (!a.display.empty()) writeDisplayImage(a.display, result.film, a.ocio);
   if (!a.statsJson.empty()) {
@@ -216,6 +229,9 @@ CommandRunner addRenderCommand(CLI::App& app) {
   addDisplayOptions(*cmd, args->ocio);
   cmd->add_option("--spp", args->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 30));
   cmd->add_option("--seed", args->seed, "Scene seed");
+  cmd->add_option("--frame", args->frame,
+                  "Frame of an animated scene (default: its first); -o NAME.####.exr numbers "
+                  "the file");
   cmd->add_option("--threads", args->threads, "Render threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   cmd->add_option("--width", args->width, "Image width")->check(CLI::Range(1, 1 << 15));
@@ -237,6 +253,9 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_flag("--multipart", args->multipart, "One EXR part per AOV (default: layers in one)");
   cmd->add_option("--compression", args->compression, "EXR compression (default zip)")
       ->check(CLI::IsMember(exrCompressions()));
+  cmd->add_flag("--no-specialize", args->noSpecialize,
+                "Run the general integrator instead of the one compiled for the scene's "
+                "capabilities (same image; for benchmarks)");
   cmd->add_flag("--stats", args->stats, "Print render statistics");
   cmd->add_option("--stats-json", args->statsJson, "Write render statistics as JSON");
   cmd->add_flag("--quiet", args->quiet, "No progress or info messages");

@@ -22,6 +22,7 @@ CommandRunner addInfoCommand(CLI::App& app);
 CommandRunner addValidateCommand(CLI::App& app);
 CommandRunner addBenchCommand(CLI::App& app);
 CommandRunner addMergeCommand(CLI::App& app);
+CommandRunner addPlanCommand(CLI::App& app);
 CommandRunner addCompareCommand(CLI::App& app);
 CommandRunner addConvergeCommand(CLI::App& app);
 

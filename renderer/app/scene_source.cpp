@@ -6,9 +6,9 @@
 
 namespace glint {
 
-Scene loadSceneOrDefault(const std::string& path) {
-  return path.empty() ? loadSceneText(kDefaultSceneJson, "<default scene>", kDefaultSceneDir)
-                      : loadSceneFile(path);
+Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame) {
+  return path.empty() ? loadSceneText(kDefaultSceneJson, "<default scene>", kDefaultSceneDir, frame)
+                      : loadSceneFile(path, frame);
 }
 
 }  // namespace glint

@@ -103,11 +103,14 @@ bool parseSamplerKind(std::string_view name, SamplerKind& out) {
 }
 
 Vec2f Sampler::stratified2D(uint64_t pattern, int index, int n) const {
-  // Correlated multi-jitter: an m×k grid with m·k ≥ n whose samples are also stratified in
-  // each 1D projection; works for any n, not only squares.
+  // Correlated multi-jitter: an m×k grid with m·k = n exactly, whose samples are also
+  // stratified in each 1D projection (n-rooks). m is the largest divisor of n not above √n, so
+  // every cell holds one sample for any n (a prime n gives a 1×n grid, still n-rooks): a grid
+  // with m·k > n would leave the same cells empty in every pixel, a bias no spp removes.
   const auto N = static_cast<uint32_t>(n);
-  const auto m = static_cast<uint32_t>(std::max(1.0, std::floor(std::sqrt(double(N)))));
-  const uint32_t k = (N + m - 1) / m;
+  auto m = static_cast<uint32_t>(std::max(1.0, std::floor(std::sqrt(double(N)))));
+  while (N % m != 0) --m;
+  const uint32_t k = N / m;
   const uint32_t p = key32(pattern);
   const uint32_t s = permute(static_cast<uint32_t>(index), N, p * 0x51633e2d);
   const uint32_t sx = permute(s % m, m, p * 0xa511e9b3);

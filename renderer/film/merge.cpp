@@ -63,7 +63,7 @@ std::vector<PixelWindow> missingRegions(const std::vector<bool>& coveredIn, int 
 }
 
 MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string>& cropPaths,
-                       const std::string& commandLine) {
+                       const std::string& commandLine, const std::string& expectedSceneHash) {
   if (cropPaths.empty()) throw UsageError("merge needs at least one crop");
   std::vector<Crop> crops;
   for (const auto& p : cropPaths) crops.push_back(readCrop(p));
@@ -84,6 +84,11 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
     if (c.spec.channelnames != first.spec.channelnames ||
         c.spec.channelformats != first.spec.channelformats || c.spec.format != first.spec.format)
       throw UsageError(c.path + " has other channels or pixel types than " + first.path);
+    const std::string sceneHash = c.spec.get_string_attribute("glint:scene_hash");
+    if (!expectedSceneHash.empty() && sceneHash != expectedSceneHash)
+      throw UsageError(c.path + " was rendered from another scene file (glint:scene_hash " +
+                       sceneHash + ", expected " + expectedSceneHash +
+                       "): the scene changed after the job was planned");
     if (c.spec.get_int_attribute("glint:partial", 0) != 0)
       throw UsageError(c.path + " is a partial (interrupted) render: render its crop again");
   }

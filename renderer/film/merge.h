@@ -17,9 +17,11 @@ struct MergeReport {
 
 // Throws UsageError naming the offending files, the overlapping pixel, or the missing regions
 // as `--crop X0 X1 Y0 Y1` lines that re-render exactly them.
-// `commandLine` is recorded as the merged file's glint:commandline.
+// `commandLine` is recorded as the merged file's glint:commandline. A non-empty
+// `expectedSceneHash` (hex, as in glint:scene_hash) refuses crops of any other scene file: a farm
+// passes the hash it planned with, so a scene edited while the job ran is caught.
 MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string>& cropPaths,
-                       const std::string& commandLine);
+                       const std::string& commandLine, const std::string& expectedSceneHash = {});
 
 // Missing pixels of a coverage mask (row-major, width × height, true = covered) as disjoint
 // rectangles, greedily: each starts at the first missing pixel in row order, runs right while

@@ -26,16 +26,19 @@ float fresnel(const DielectricMaterial& m, float cosI, float etaI, float etaT) {
 
 }  // namespace
 
-const DielectricMaterial* WhittedIntegrator::dielectric(uint32_t materialId) const {
+template <unsigned C>
+const DielectricMaterial* WhittedKernel<C>::dielectric(uint32_t materialId) const {
   return std::get_if<DielectricMaterial>(&scene_.materials[materialId].material);
 }
 
-float WhittedIntegrator::iorOutside(const MediumStack& media) const {
+template <unsigned C>
+float WhittedKernel<C>::iorOutside(const MediumStack& media) const {
   return media.empty() ? 1.0f : dielectric(media.innermostMaterial())->ior;
 }
 
-Radiance WhittedIntegrator::trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
-                                  AovSample* aov) const {
+template <unsigned C>
+Radiance WhittedKernel<C>::trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
+                                 AovSample* aov) const {
   ++counters.camera;
   bool hit = false;
   Radiance r;
@@ -46,8 +49,9 @@ Radiance WhittedIntegrator::trace(const Ray& cameraRay, const SampleKey& key, Ra
   return r;
 }
 
-void WhittedIntegrator::recordAov(const Ray& ray, const Hit& hit, const ShadingPoint& sp,
-                                  const Material& material, AovSample& aov) const {
+template <unsigned C>
+void WhittedKernel<C>::recordAov(const Ray& ray, const Hit& hit, const ShadingPoint& sp,
+                                 const Material& material, AovSample& aov) const {
   aov.hit = true;
   aov.depth = dot(sp.p - ray.o, aov.viewAxis);
   aov.normal = faceForward(sp.ns, -ray.d);
@@ -64,19 +68,22 @@ void WhittedIntegrator::recordAov(const Ray& ray, const Hit& hit, const ShadingP
     aov.albedo = {1, 1, 1};
 }
 
-Rgb WhittedIntegrator::Li(const Ray& ray, const Branch& branch, RayCounters& counters,
-                          bool* hitSomething, AovSample* aov) const {
+template <unsigned C>
+Rgb WhittedKernel<C>::Li(const Ray& ray, const Branch& branch, RayCounters& counters,
+                         bool* hitSomething, AovSample* aov) const {
   const Hit hit = accel_.intersect(ray);
   // Beer's law over the segment just travelled, in the medium the ray was inside.
   Rgb absorbed{1, 1, 1};
-  if (!branch.media.empty())
-    absorbed =
-        beer(dielectric(branch.media.innermostMaterial())->attenuation, hit.t * length(ray.d));
+  if constexpr (kMedia)
+    if (!branch.media.empty())
+      absorbed =
+          beer(dielectric(branch.media.innermostMaterial())->attenuation, hit.t * length(ray.d));
   if (!hit) return scene_.render.background * absorbed;
   if (hitSomething) *hitSomething = true;
 
   const ShadingPoint sp = scene_.shadingPoint(ray, hit);
   const Material& material = scene_.materials[sp.materialId].material;
+  if constexpr (!kAovs) aov = nullptr;
   if (aov) recordAov(ray, hit, sp, material, *aov);
   Rgb L;
   if (const auto* phong = std::get_if<PhongMaterial>(&material)) {
@@ -86,15 +93,16 @@ Rgb WhittedIntegrator::Li(const Ray& ray, const Branch& branch, RayCounters& cou
     L += reflectRay(phong->km, phong->gloss, sp, ray, branch, counters);
   } else if (const auto* mirror = std::get_if<MirrorMaterial>(&material)) {
     L = reflectRay(mirror->km, mirror->gloss, sp, ray, branch, counters);
-  } else {
+  } else if constexpr (kMedia) {
     L = shadeDielectric(hit, std::get<DielectricMaterial>(material), sp, ray, branch, counters);
   }
   return L * absorbed;
 }
 
-Rgb WhittedIntegrator::shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo,
-                                  float time, const Branch& branch, RayCounters& counters,
-                                  Rgb* perLight) const {
+template <unsigned C>
+Rgb WhittedKernel<C>::shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo,
+                                 float time, const Branch& branch, RayCounters& counters,
+                                 Rgb* perLight) const {
   // Seed 000 eq. 4.4 / seed 001 §5: surfaces are two-sided, so the normal faces the viewer.
   const Vec3f n = faceForward(sp.ns, wo);
   const Rgb kd = m.kd.eval(sp.p);
@@ -103,8 +111,9 @@ Rgb WhittedIntegrator::shadePhong(const PhongMaterial& m, const ShadingPoint& sp
     const Light& light = scene_.lights[li];
     // Delta lights take one shadow ray and draw no sample; area lights average `samples`
     // points from their own stratified, shuffled set (seed 000 §13.4.2).
-    const int count = lightSampleCount(light);
-    const bool delta = std::holds_alternative<PointLight>(light) ||
+    // Without area lights every light is a delta light: one ray, no sample drawn.
+    const int count = kAreaLights ? lightSampleCount(light) : 1;
+    const bool delta = !kAreaLights || std::holds_alternative<PointLight>(light) ||
                        std::holds_alternative<DirectionalLight>(light);
     const uint32_t dim = dimension(Dim::Light, branch.depth, static_cast<int>(li));
     Rgb sum;
@@ -131,11 +140,14 @@ Rgb WhittedIntegrator::shadePhong(const PhongMaterial& m, const ShadingPoint& sp
   return L;
 }
 
-Rgb WhittedIntegrator::shadowTransmission(const ShadingPoint& sp, const LightSample& ls, float time,
-                                          RayCounters& counters) const {
+template <unsigned C>
+Rgb WhittedKernel<C>::shadowTransmission(const ShadingPoint& sp, const LightSample& ls, float time,
+                                         RayCounters& counters) const {
   ++counters.shadow;
   Ray shadow = ls.atInfinity ? spawnRay(sp, ls.wi, time) : spawnRayTo(sp, ls.target, time);
-  if (!scene_.render.transparentShadows) return accel_.occluded(shadow) ? Rgb{} : Rgb{1, 1, 1};
+  // Shadows are see-through only where there are dielectrics to see through.
+  if (!kMedia || !scene_.render.transparentShadows)
+    return accel_.occluded(shadow) ? Rgb{} : Rgb{1, 1, 1};
 
   // Seed 002 §9.1: the shadow ray carries the product of the transmissions of the dielectrics
   // it passes (Fresnel at each interface, Beer inside); refraction of the shadow ray itself is
@@ -167,9 +179,9 @@ Rgb WhittedIntegrator::shadowTransmission(const ShadingPoint& sp, const LightSam
   return {};
 }
 
-Rgb WhittedIntegrator::reflectRay(const Rgb& km, float gloss, const ShadingPoint& sp,
-                                  const Ray& ray, const Branch& branch,
-                                  RayCounters& counters) const {
+template <unsigned C>
+Rgb WhittedKernel<C>::reflectRay(const Rgb& km, float gloss, const ShadingPoint& sp, const Ray& ray,
+                                 const Branch& branch, RayCounters& counters) const {
   // Seed 000 §4.8: no ray when k_m is black, past the depth limit, or when the branch's
   // throughput is negligible.
   const Branch next = branch.next(km, branch.media);
@@ -179,7 +191,7 @@ Rgb WhittedIntegrator::reflectRay(const Rgb& km, float gloss, const ShadingPoint
   const Vec3f d = normalize(ray.d);
   const Vec3f n = faceForward(sp.ns, -d);
   Vec3f r = reflect(d, n);
-  if (gloss > 0) {
+  if (kGloss && gloss > 0) {
     // Glossy reflection (seed 000 §13.4.4): a perturbed ray below the surface returns black.
     r = perturb(r, gloss, branch.key->get2D(dimension(Dim::Gloss, branch.depth)));
     if (dot(r, n) <= 0) return {};
@@ -188,43 +200,65 @@ Rgb WhittedIntegrator::reflectRay(const Rgb& km, float gloss, const ShadingPoint
   return km * Li(spawnRay(sp, r, ray.time), next, counters);
 }
 
-Rgb WhittedIntegrator::shadeDielectric(const Hit& hit, const DielectricMaterial& m,
-                                       const ShadingPoint& sp, const Ray& ray, const Branch& branch,
-                                       RayCounters& counters) const {
-  if (branch.depth + 1 > scene_.render.maxDepth) return {};
-  const Vec3f d = normalize(ray.d);
-  // Entering or leaving from the geometric normal and the ray, never the shading normal; the
-  // interior list says which medium lies on the other side.
-  const uint64_t key = objectKey(hit);
-  const bool entering = dot(d, sp.ng) < 0;
-  const Vec3f n = dot(d, sp.ng) < 0 ? sp.ng : -sp.ng;
-  const MediumStack across =
-      entering ? branch.media.entered(key, sp.materialId) : branch.media.left(key);
-  const float etaI = entering ? iorOutside(branch.media) : m.ior;
-  const float etaT = entering ? m.ior : iorOutside(across);
-  const float cosI = -dot(d, n);
-  const float R = fresnel(m, cosI, etaI, etaT);
+template <unsigned C>
+Rgb WhittedKernel<C>::shadeDielectric(const Hit& hit, const DielectricMaterial& m,
+                                      const ShadingPoint& sp, const Ray& ray, const Branch& branch,
+                                      RayCounters& counters) const {
+  if constexpr (!kMedia) {
+    return {};  // never called: without the capability there are no dielectrics
+  } else {
+    if (branch.depth + 1 > scene_.render.maxDepth) return {};
+    const Vec3f d = normalize(ray.d);
+    // Entering or leaving from the geometric normal and the ray, never the shading normal; the
+    // interior list says which medium lies on the other side.
+    const uint64_t key = objectKey(hit);
+    const bool entering = dot(d, sp.ng) < 0;
+    const Vec3f n = dot(d, sp.ng) < 0 ? sp.ng : -sp.ng;
+    const MediumStack across =
+        entering ? branch.media.entered(key, sp.materialId) : branch.media.left(key);
+    const float etaI = entering ? iorOutside(branch.media) : m.ior;
+    const float etaT = entering ? m.ior : iorOutside(across);
+    const float cosI = -dot(d, n);
+    const float R = fresnel(m, cosI, etaI, etaT);
 
-  Rgb L;
-  const Branch reflected = branch.next(Rgb{R, R, R}, branch.media);
-  if (reflected.throughput.maxChannel() >= minThroughput_) {
-    ++counters.reflection;
-    L += R * Li(spawnRay(sp, reflect(d, n), ray.time), reflected, counters);
-  }
-  Vec3f t;
-  const Branch refracted = branch.next(Rgb{1 - R, 1 - R, 1 - R}, across);
-  if (R < 1 && refracted.throughput.maxChannel() >= minThroughput_ &&
-      refract(d, n, etaI / etaT, t)) {
-    if (m.blur > 0) {
-      // Blurred translucency (seed 002 §9.3): the same square perturbation around t; a ray
-      // that ends up on the incoming side returns black.
-      t = perturb(t, m.blur, branch.key->get2D(dimension(Dim::Gloss, branch.depth, 1)));
-      if (dot(t, n) >= 0) return L;
+    Rgb L;
+    const Branch reflected = branch.next(Rgb{R, R, R}, branch.media);
+    if (reflected.throughput.maxChannel() >= minThroughput_) {
+      ++counters.reflection;
+      L += R * Li(spawnRay(sp, reflect(d, n), ray.time), reflected, counters);
     }
-    ++counters.refraction;
-    L += (1 - R) * Li(spawnRay(sp, t, ray.time), refracted, counters);
+    Vec3f t;
+    const Branch refracted = branch.next(Rgb{1 - R, 1 - R, 1 - R}, across);
+    if (R < 1 && refracted.throughput.maxChannel() >= minThroughput_ &&
+        refract(d, n, etaI / etaT, t)) {
+      if (kGloss && m.blur > 0) {
+        // Blurred translucency (seed 002 §9.3): the same square perturbation around t; a ray
+        // that ends up on the incoming side returns black.
+        t = perturb(t, m.blur, branch.key->get2D(dimension(Dim::Gloss, branch.depth, 1)));
+        if (dot(t, n) >= 0) return L;
+      }
+      ++counters.refraction;
+      L += (1 - R) * Li(spawnRay(sp, t, ray.time), refracted, counters);
+    }
+    return L;
   }
-  return L;
 }
+
+// Every capability set, so render_job.cpp can pick any of them (kernel_caps.h).
+static_assert(cap::kAll == 31, "instantiate every capability set below");
+#define GLINT_KERNELS_4(base)               \
+  template class WhittedKernel<(base)>;     \
+  template class WhittedKernel<(base) + 1>; \
+  template class WhittedKernel<(base) + 2>; \
+  template class WhittedKernel<(base) + 3>;
+GLINT_KERNELS_4(0)
+GLINT_KERNELS_4(4)
+GLINT_KERNELS_4(8)
+GLINT_KERNELS_4(12)
+GLINT_KERNELS_4(16)
+GLINT_KERNELS_4(20)
+GLINT_KERNELS_4(24)
+GLINT_KERNELS_4(28)
+#undef GLINT_KERNELS_4
 
 }  // namespace glint

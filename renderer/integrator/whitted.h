@@ -3,10 +3,13 @@
 // ambient light and shadows (optionally transparent), ideal mirror reflection, and dielectrics
 // with Fresnel, total internal reflection, Beer's law and nesting. Materials are dispatched
 // here and nowhere else.
+#include <type_traits>
+
 #include "accel/accelerator.h"
 #include "core/rgb.h"
 #include "core/sampler.h"
 #include "integrator/aov.h"
+#include "integrator/kernel_caps.h"
 #include "integrator/medium_stack.h"
 #include "integrator/ray_counters.h"
 #include "scene/scene.h"
@@ -33,25 +36,40 @@ struct Radiance {
   bool valid = true;  // false for a non-finite sample, which the film counts as black
 };
 
-class WhittedIntegrator {
+// Compiled once per capability set (integrator/kernel_caps.h): code for a capability the set
+// lacks is left out, not skipped at run time. Any instantiation renders the scenes whose
+// kernelCaps() it covers; WhittedIntegrator, the general path, renders every scene.
+template <unsigned Caps>
+class WhittedKernel {
  public:
-  WhittedIntegrator(const Scene& scene, const Accelerator& accel,
-                    float minThroughput = kDefaultMinThroughput)
+  WhittedKernel(const Scene& scene, const Accelerator& accel,
+                float minThroughput = kDefaultMinThroughput)
       : scene_(scene), accel_(accel), minThroughput_(minThroughput) {}
 
-  // With `aov`, also records what the camera ray hit (its viewAxis must be set: the camera's
-  // unit view direction, for depth).
+  // With `aov` (only where Caps has cap::kAovs), also records what the camera ray hit (its
+  // viewAxis must be set: the camera's unit view direction, for depth).
   Radiance trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
                  AovSample* aov = nullptr) const;
 
  private:
+  static constexpr bool kMedia = (Caps & cap::kDielectrics) != 0;
+  static constexpr bool kAreaLights = (Caps & cap::kAreaLights) != 0;
+  static constexpr bool kGloss = (Caps & cap::kGloss) != 0;
+  static constexpr bool kAovs = (Caps & cap::kAovs) != 0;
+
+  // Without dielectrics a ray is always in the outside world: no interior list to carry.
+  struct NoMedia {
+    bool empty() const { return true; }
+  };
+  using Media = std::conditional_t<kMedia, MediumStack, NoMedia>;
+
   struct Branch {  // what travels with a ray down the recursion
     int depth = 0;
     Rgb throughput{1, 1, 1};
-    MediumStack media;
+    [[no_unique_address]] Media media;
     const SampleKey* key = nullptr;
 
-    Branch next(const Rgb& weight, const MediumStack& m) const {
+    Branch next(const Rgb& weight, const Media& m) const {
       return {depth + 1, throughput * weight, m, key};
     }
   };
@@ -78,5 +96,7 @@ class WhittedIntegrator {
   const Accelerator& accel_;
   float minThroughput_;
 };
+
+using WhittedIntegrator = WhittedKernel<cap::kAll>;
 
 }  // namespace glint

@@ -6,6 +6,7 @@
 
 #include "core/hash.h"
 #include "core/log.h"
+#include "io/animation.h"
 #include "io/scene_builder.h"
 
 namespace glint {
@@ -27,23 +28,26 @@ void parseRender(const JsonNode& n, RenderSettings& r) {
   if (auto v = n.get("transparent_shadows")) r.transparentShadows = v->boolean();
 }
 
-void parseCamera(const JsonNode& n, CameraDesc& c, Vec3d& origin) {
+void parseCamera(const JsonNode& n, const std::optional<Animation>& animation, CameraDesc& c,
+                 Vec3d& origin) {
   const std::string type =
       n.has("type") ? n.at("type").choice({"perspective", "orthographic"}) : "perspective";
   c.projection = type == "perspective" ? Projection::Perspective : Projection::Orthographic;
   if (c.projection == Projection::Perspective) {
     n.checkKeys({"type", "eye", "look_at", "up", "vfov", "aperture_radius", "focus_distance",
-                 "lens", "shutter"});
+                 "lens", "shutter", "keys"});
     if (auto v = n.get("vfov")) c.vfovDegrees = v->number(0, 179.9f, true);
   } else {
-    n.checkKeys({"type", "eye", "look_at", "up", "height", "shutter"});
+    n.checkKeys({"type", "eye", "look_at", "up", "height", "shutter", "keys"});
     c.orthoHeight = n.at("height").number(0, 3.4e38f, true);
   }
-  // Render space puts the eye at the origin (io/placement.h).
-  origin = n.at("eye").vec3d();
+  // Render space puts the eye at the origin (io/placement.h): an animated camera's eye at this
+  // frame, so each frame is rendered around its own viewpoint.
+  const CameraPose pose = parseCameraPose(n, animation);
+  origin = pose.eye;
   c.eye = {0, 0, 0};
-  c.lookAt = toFloat(n.at("look_at").vec3d() - origin);
-  c.up = n.vec3("up", {0, 1, 0});
+  c.lookAt = toFloat(pose.lookAt - origin);
+  c.up = pose.up;
   if (auto v = n.get("aperture_radius")) c.apertureRadius = v->number(0, 3.4e38f);
   if (auto v = n.get("lens"))
     c.lensShape = v->choice({"disk", "square"}) == "disk" ? LensShape::Disk : LensShape::Square;
@@ -169,11 +173,12 @@ Light parseLight(const SceneBuilder& b, const JsonNode& n) {
   return l;
 }
 
-void parseScene(SceneBuilder& b, const JsonNode& root) {
-  root.checkKeys({"render", "camera", "materials", "lights", "objects", "groups"});
+void parseScene(SceneBuilder& b, const JsonNode& root, std::optional<int> frame) {
+  root.checkKeys({"animation", "render", "camera", "materials", "lights", "objects", "groups"});
   Scene& s = b.scene;
+  s.animation = parseAnimation(root.get("animation"), frame);
   if (auto n = root.get("render")) parseRender(*n, s.render);
-  parseCamera(root.at("camera"), s.cameraDesc, s.worldOrigin);
+  parseCamera(root.at("camera"), s.animation, s.cameraDesc, s.worldOrigin);
 
   if (auto mats = root.get("materials"))
     for (const std::string& name : mats->keys()) {
@@ -199,8 +204,10 @@ void parseScene(SceneBuilder& b, const JsonNode& root) {
     }
   const JsonNode objects = root.at("objects");
   for (size_t i = 0; i < objects.size(); ++i) addObject(b, objects[i], 0, static_cast<uint32_t>(i));
+  // An animated scene's keys span its frames: keep just this frame's shutter of them.
+  if (s.animation) resampleMotionToFrame(s, *s.animation);
   s.features = computeFeatures(s);
-  if (s.features.motion && s.cameraDesc.shutterOpen == s.cameraDesc.shutterClose)
+  if (!s.animation && s.features.motion && s.cameraDesc.shutterOpen == s.cameraDesc.shutterClose)
     log::warning(b.scene.sourcePath + ": the scene has motion keys but camera.shutter is closed (" +
                  "[" + std::to_string(s.cameraDesc.shutterOpen) + ", " +
                  std::to_string(s.cameraDesc.shutterClose) +
@@ -210,23 +217,23 @@ void parseScene(SceneBuilder& b, const JsonNode& root) {
 }  // namespace
 
 Scene loadSceneText(const std::string& text, const std::string& fileName,
-                    const std::string& baseDir) {
+                    const std::string& baseDir, std::optional<int> frame) {
   const JsonDocument doc(text, fileName);
   SceneBuilder b;
   b.baseDir = baseDir;
   b.scene.sourcePath = fileName;
   b.scene.sourceHash = hashBytes(text);
-  parseScene(b, JsonNode(doc, doc.root(), "", ""));
+  parseScene(b, JsonNode(doc, doc.root(), "", ""), frame);
   return std::move(b.scene);
 }
 
-Scene loadSceneFile(const std::string& path) {
+Scene loadSceneFile(const std::string& path, std::optional<int> frame) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError({path, 0}, "", "cannot open the scene file");
   std::stringstream ss;
   ss << in.rdbuf();
   const std::filesystem::path p(path);
-  return loadSceneText(ss.str(), path, p.parent_path().string());
+  return loadSceneText(ss.str(), path, p.parent_path().string(), frame);
 }
 
 }  // namespace glint

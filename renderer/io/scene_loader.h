@@ -1,15 +1,18 @@
 #pragma once
 // Scene files (../shared/SCENE_FORMAT.md, docs/scene-format.md) → an immutable Scene. Every
 // user mistake throws SceneError naming file:line, the JSON path and the problem.
+#include <optional>
 #include <string>
 
 #include "scene/scene.h"
 
 namespace glint {
 
-Scene loadSceneFile(const std::string& path);
+// `frame`: which frame of an animated scene (default: its first); asking a still scene for one
+// is a UsageError (io/animation.h).
+Scene loadSceneFile(const std::string& path, std::optional<int> frame = std::nullopt);
 // `fileName` is used in messages; relative mesh paths resolve against `baseDir`.
 Scene loadSceneText(const std::string& text, const std::string& fileName,
-                    const std::string& baseDir);
+                    const std::string& baseDir, std::optional<int> frame = std::nullopt);
 
 }  // namespace glint

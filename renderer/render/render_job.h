@@ -25,6 +25,9 @@ struct RenderOptions {
   // finish, and the result is marked partial. Unrendered pixels stay at zero, alpha 0.
   const std::atomic<bool>* cancel = nullptr;
   AovSet aovs;  // none by default
+  // Run the integrator compiled for exactly the scene's capabilities (integrator/kernel_caps.h);
+  // false forces the general path (`--no-specialize`), which gives the same bytes, slower.
+  bool specialize = true;
   // Test hook: sees (and may alter) every camera sample before it reaches the film, so tests
   // can force a NaN through the real path. Never set in production.
   std::function<void(int x, int y, Radiance& sample)> sampleHook;
@@ -33,6 +36,7 @@ struct RenderOptions {
 struct RenderStats {
   double seconds = 0;
   RayCounters rays;
+  unsigned kernelCaps = 0;  // the capability set the integrator was compiled for
 };
 
 struct RenderResult {

@@ -2,6 +2,7 @@
 // The immutable scene every later stage reads: geometry in groups (group 0 is the world;
 // others are placed by instances), materials, lights, camera and render settings.
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,12 +57,19 @@ struct RenderSettings {
   bool transparentShadows = false;
 };
 
+// An animated scene's frames, first … last, and the frame this Scene is (io/animation.h).
+struct Animation {
+  int first = 0, last = 0;
+  int frame = 0;
+};
+
 class Scene {
  public:
   std::string sourcePath;   // the scene file, or "<default scene>"
   uint64_t sourceHash = 0;  // of the scene file's bytes
   RenderSettings render;
   CameraDesc cameraDesc;
+  std::optional<Animation> animation;  // absent for a still scene
   // Everything below lives in render space: world space minus this point, the camera's eye
   // (io/placement.h). Add it back to name a world position.
   Vec3d worldOrigin;

@@ -1,0 +1,84 @@
+#include "app/farm_plan.h"
+
+#include <charconv>
+#include <cmath>
+
+#include "core/error.h"
+
+namespace glint {
+
+std::vector<PixelWindow> farmTiles(int width, int height, int count, int* columnsOut,
+                                   int* rowsOut) {
+  if (count < 1) throw UsageError("--tiles must be at least 1, got " + std::to_string(count));
+  // Square tiles keep a tile's share of the scene (and of its cost) close to its share of
+  // the pixels, and keep the crop edges, which every task pays for in BVH traversal, short.
+  int columns = 0, rows = 0;
+  double best = 0;
+  for (int c = 1; c <= count; ++c) {
+    if (count % c != 0) continue;
+    const int r = count / c;
+    if (c > width || r > height) continue;
+    const double cost = std::abs(std::log((double(width) / c) / (double(height) / r)));
+    if (columns == 0 || cost < best) columns = c, rows = r, best = cost;
+  }
+  if (columns == 0)
+    throw UsageError(std::to_string(count) + " tiles do not fit a " + std::to_string(width) + "x" +
+                     std::to_string(height) + " frame as a grid of non-empty tiles");
+  if (columnsOut) *columnsOut = columns;
+  if (rowsOut) *rowsOut = rows;
+  // 64-bit products: i · W overflows int for 32768-pixel frames cut into many tiles.
+  const auto edge = [](int i, int size, int parts) {
+    return int(int64_t(i) * int64_t(size) / int64_t(parts));
+  };
+  std::vector<PixelWindow> tiles;
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < columns; ++i)
+      tiles.push_back({edge(i, width, columns), edge(i + 1, width, columns), edge(j, height, rows),
+                       edge(j + 1, height, rows)});
+  return tiles;
+}
+
+namespace {
+
+bool parseFrame(std::string_view s, int& out) {
+  if (s.empty()) return false;
+  const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+  return ec == std::errc() && end == s.data() + s.size() && out >= 0;
+}
+
+}  // namespace
+
+FrameRange parseFrameRange(const std::string& text, const std::string& what) {
+  const auto bad = [&](const std::string& why) {
+    return UsageError(what + ": " + why + ", got \"" + text + "\" (write A-B or A)");
+  };
+  const size_t dash = text.find('-');
+  FrameRange r;
+  if (dash == std::string::npos) {
+    if (!parseFrame(text, r.first)) throw bad("frames are non-negative integers");
+    r.last = r.first;
+    return r;
+  }
+  if (!parseFrame(std::string_view(text).substr(0, dash), r.first) ||
+      !parseFrame(std::string_view(text).substr(dash + 1), r.last))
+    throw bad("frames are non-negative integers");
+  if (r.first > r.last) throw bad("the first frame must not come after the last");
+  return r;
+}
+
+bool hasFrameDigits(const std::string& pattern) {
+  const size_t slash = pattern.find_last_of('/');
+  return pattern.find('#', slash == std::string::npos ? 0 : slash + 1) != std::string::npos;
+}
+
+std::string frameFileName(const std::string& pattern, int frame) {
+  if (!hasFrameDigits(pattern)) return pattern;
+  const size_t end = pattern.find_last_of('#') + 1;
+  size_t begin = end - 1;
+  while (begin > 0 && pattern[begin - 1] == '#') --begin;
+  std::string digits = std::to_string(frame);
+  if (digits.size() < end - begin) digits.insert(0, end - begin - digits.size(), '0');
+  return pattern.substr(0, begin) + digits + pattern.substr(end);
+}
+
+}  // namespace glint

@@ -1,0 +1,193 @@
+#include "app/render_bench.h"
+
+#include <benchmark/benchmark.h>
+#include <sys/resource.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+
+#include "accel/ray_recorder.h"
+#include "camera/camera.h"
+#include "core/fp_env.h"
+#include "core/sampler.h"
+#include "render/render_job.h"
+
+namespace glint {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+template <typename F>
+double bestOf(int runs, F&& f) {
+  double best = 1e300;
+  for (int i = 0; i < runs; ++i) best = std::min(best, f());
+  return best;
+}
+
+RenderResult render(const Scene& scene, const Accelerator& accel, int threads, bool specialize,
+                    int tileSize = 32) {
+  RenderOptions opt;
+  opt.threads = threads;
+  opt.tileSize = tileSize;
+  opt.progress = false;
+  opt.specialize = specialize;
+  return renderScene(scene, accel, opt);
+}
+
+// The rays the render traced, through Embree with no shading, on the same threads.
+double replaySeconds(const Accelerator& embree, const std::vector<RecordedRay>& rays, int threads) {
+  tbb::task_arena arena(threads);
+  const auto start = Clock::now();
+  size_t hits = 0;
+  arena.execute([&] {
+    hits = tbb::parallel_reduce(
+        tbb::blocked_range<size_t>(0, rays.size(), 4096), size_t(0),
+        [&](const tbb::blocked_range<size_t>& r, size_t n) {
+          enableFlushToZero();
+          for (size_t i = r.begin(); i != r.end(); ++i)
+            n += rays[i].occlusion ? embree.occluded(rays[i].ray)
+                                   : bool(embree.intersect(rays[i].ray));
+          return n;
+        },
+        std::plus<>());
+  });
+  benchmark::DoNotOptimize(hits);
+  return secondsSince(start);
+}
+
+// Camera sampling alone: every pixel sample, lens and time draw and camera ray the render
+// makes, with nothing traced.
+double samplingSeconds(const Scene& scene, int threads) {
+  const RenderSettings& rs = scene.render;
+  const Camera camera(scene.cameraDesc, rs.width, rs.height);
+  const Sampler sampler(rs.sampler, rs.spp, rs.seed);
+  const PixelWindow window{0, rs.width, 0, rs.height};
+  const auto tiles = makeTiles(window, effectiveTileSize(window, 32, threads));
+  std::vector<float> sink(tiles.size());
+  const auto start = Clock::now();
+  runTiles(tiles, threads, [&](size_t t) {
+    float acc = 0;
+    for (int y = tiles[t].y0; y < tiles[t].y1; ++y)
+      for (int x = tiles[t].x0; x < tiles[t].x1; ++x)
+        for (int s = 0; s < rs.spp; ++s) {
+          const SampleKey key{&sampler, x, y, s};
+          const Vec2f u = sampler.pixelSample(x, y, s);
+          const Vec2f lens = camera.hasLens() ? key.get2D(dimension(Dim::Lens)) : Vec2f{};
+          const float time = scene.features.motion ? key.get2D(dimension(Dim::Time)).x : 0;
+          acc += camera.generateRay(float(x) + u.x, float(y) + u.y, lens).d.x + time;
+        }
+    sink[t] = acc;
+  });
+  benchmark::DoNotOptimize(sink.data());
+  return secondsSince(start);
+}
+
+// The film's share: every pixel written once, as the render does.
+double filmSeconds(const Scene& scene) {
+  const RenderSettings& rs = scene.render;
+  Film film(rs.width, rs.height, {0, rs.width, 0, rs.height});
+  const auto start = Clock::now();
+  for (int y = 0; y < rs.height; ++y)
+    for (int x = 0; x < rs.width; ++x) film.setPixel(x, y, x, y, 0, 1);
+  return secondsSince(start);
+}
+
+double share(double part, double whole) { return whole > 0 ? 100 * part / whole : 0; }
+
+}  // namespace
+
+int64_t sceneGeometryBytes(const Scene& scene, const EmbreeAccel& embree) {
+  int64_t bytes = embree.bytes();
+  for (const TriangleMesh& m : scene.meshes) {
+    bytes += int64_t(m.positions.capacity() * sizeof(Vec3f) + m.indices.capacity() * 4);
+    for (const auto& key : m.positionKeys) bytes += int64_t(key.capacity() * sizeof(Vec3f));
+  }
+  return bytes;
+}
+
+int64_t peakResidentBytes() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return int64_t(u.ru_maxrss) * 1024;  // Linux reports kilobytes
+}
+
+nlohmann::json benchWholeRender(const Scene& scene, const EmbreeAccel& embree,
+                                const RenderBenchOptions& opt) {
+  nlohmann::json j;
+  const int n = opt.threads;
+  // Interleave specialised and general runs so drift on a shared machine hits both alike.
+  double special = 1e300, general = 1e300;
+  RenderStats stats;
+  for (int run = 0; run < opt.runs; ++run) {
+    const RenderResult r = render(scene, embree, n, true);
+    special = std::min(special, r.stats.seconds);
+    stats = r.stats;
+    general = std::min(general, render(scene, embree, n, false).stats.seconds);
+  }
+  const RayCounters& rays = stats.rays;
+  const double mrays = double(rays.total()) / special * 1e-6;
+  std::printf("\nwhole render   %d threads, best of %d, kernel %s\n", n, opt.runs,
+              kernelName(stats.kernelCaps).c_str());
+  std::printf("rays           %llu: camera %llu, shadow %llu, reflection %llu, refraction %llu\n",
+              (unsigned long long)rays.total(), (unsigned long long)rays.camera,
+              (unsigned long long)rays.shadow, (unsigned long long)rays.reflection,
+              (unsigned long long)rays.refraction);
+  std::printf("rate           %.2f Mrays/s, %.2f Mrays/s per thread\n", mrays, mrays / n);
+  std::printf("specialised    %.3f s, general %.3f s: gain %.3fx\n", special, general,
+              general / special);
+
+  // The Embree limit: the render's rays, recorded in an untimed render (a fixed subset of at
+  // most ~kMaxRecorded), replayed through Embree alone and scaled to the whole render.
+  constexpr uint64_t kMaxRecorded = 1 << 21;
+  const uint64_t stride = std::max<uint64_t>(1, (rays.total() + kMaxRecorded - 1) / kMaxRecorded);
+  RayRecorder recorder(embree, stride);
+  render(scene, recorder, n, true);
+  const std::vector<RecordedRay> recorded = recorder.take();
+  const double replay = bestOf(opt.runs, [&] { return replaySeconds(embree, recorded, n); });
+  const double replayRate = double(recorded.size()) / replay;
+  const double traversal = double(rays.total()) / replayRate;
+  const double ratio = traversal / special;
+  std::printf(
+      "embree limit   %zu of the rays (every %llu-th) replayed through Embree alone at %.2f "
+      "Mrays/s: ratio %.3f\n",
+      recorded.size(), (unsigned long long)stride, replayRate * 1e-6, ratio);
+
+  const double sampling = bestOf(opt.runs, [&] { return samplingSeconds(scene, n); });
+  const double film = bestOf(opt.runs, [&] { return filmSeconds(scene); });
+  const double rest = std::max(0.0, special - traversal - sampling - film);
+  std::printf(
+      "time split     traversal %.3f s (%.0f%%), camera sampling %.3f s (%.0f%%), film %.4f s "
+      "(%.1f%%), shading and the rest %.3f s (%.0f%%)\n",
+      traversal, share(traversal, special), sampling, share(sampling, special), film,
+      share(film, special), rest, share(rest, special));
+
+  j["kernel"] = kernelName(stats.kernelCaps);
+  j["threads"] = n;
+  j["render_seconds"] = special;
+  j["general_seconds"] = general;
+  j["specialization_gain"] = general / special;
+  j["rays"] = {{"camera", rays.camera},
+               {"shadow", rays.shadow},
+               {"reflection", rays.reflection},
+               {"refraction", rays.refraction}};
+  j["mrays_per_s"] = mrays;
+  j["mrays_per_s_per_thread"] = mrays / n;
+  j["embree_limit_ratio"] = ratio;
+  j["embree_replay_mrays_per_s"] = replayRate * 1e-6;
+  j["time_split_seconds"] = {{"traversal", traversal},
+                             {"camera_sampling", sampling},
+                             {"film", film},
+                             {"shading_and_rest", rest}};
+  return j;
+}
+
+}  // namespace glint

@@ -1,0 +1,26 @@
+#pragma once
+// Whole-render figures for `glint bench`: rays by kind and rates, the Embree-limit ratio (the
+// render's rays replayed through Embree alone), a time split, the gain of the specialised
+// integrator over the general one, memory per triangle, and parallel efficiency.
+#include <nlohmann/json.hpp>
+
+#include "accel/embree_accel.h"
+#include "scene/scene.h"
+
+namespace glint {
+
+struct RenderBenchOptions {
+  int threads = 1;  // for the timed renders and replays
+  int runs = 3;     // each figure is the best of this many (the machine is shared)
+};
+
+// Prints the figures and returns them as JSON (keys in docs/performance.md).
+nlohmann::json benchWholeRender(const Scene& scene, const EmbreeAccel& embree,
+                                const RenderBenchOptions& opt);
+
+// Bytes the scene's triangle meshes hold (positions, keys, indices) plus Embree's BVHs.
+int64_t sceneGeometryBytes(const Scene& scene, const EmbreeAccel& embree);
+// Peak resident memory of this process so far (getrusage), in bytes.
+int64_t peakResidentBytes();
+
+}  // namespace glint

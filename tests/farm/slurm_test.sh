@@ -1,0 +1,149 @@
+#!/usr/bin/env bash
+# Farm tests (docs/farm.md) on a real one-node Slurm cluster started here (tools/slurm-local.sh):
+# munged, slurmctld and slurmd with their own key, config, ports and directories, stopped by pid
+# when the test ends, whether it passes or fails.
+#
+#   slurm_test.sh tiles_and_animation GLINT   a 4-tile still and a 3-frame animation (2 tiles
+#                                             each) through tools/glint-farm; every merged frame
+#                                             equals the single-machine render byte for byte
+#   slurm_test.sh missing_task GLINT          one task is cancelled while it renders; the merge
+#                                             names exactly that tile, and re-running that task
+#                                             alone completes the frame
+#
+# Exit 77 (ctest: skipped) with the reason where a cluster cannot run: not root, or slurm-wlm or
+# munge missing (tools/run-tests.sh installs them).
+set -euo pipefail
+
+readonly kRoot="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+readonly kCase=${1:?usage: slurm_test.sh CASE GLINT}
+GLINT=$(cd "$(dirname "${2:?usage: slurm_test.sh CASE GLINT}")" && pwd)/$(basename "$2")
+readonly GLINT
+readonly kFarm="$kRoot/tools/glint-farm"
+readonly kLocal="$kRoot/tools/slurm-local.sh"
+
+rc=0
+"$kLocal" check || rc=$?
+if [ "$rc" -ne 0 ]; then
+  echo "SKIPPED: this machine cannot run a local Slurm cluster (reason above)"
+  exit "$rc"
+fi
+
+WORK=$(mktemp -d /tmp/glint-slurm-test.XXXXXX)
+cleanup() {
+  local status=$?
+  "$kLocal" stop "$WORK/cluster" || true
+  if [ "$status" -ne 0 ]; then
+    # Keep what explains the failure in the test log.
+    for f in "$WORK"/cluster/log/*.log "$WORK"/*.farm/logs/*.out; do
+      [ -f "$f" ] && { echo "---- $f"; tail -n 30 "$f"; }
+    done
+  fi
+  rm -rf "$WORK"
+  exit "$status"
+}
+trap cleanup EXIT
+trap 'exit 130' INT TERM
+
+failures=0
+check() { # DESCRIPTION COMMAND...
+  local what=$1
+  shift
+  if "$@"; then
+    echo "ok: $what"
+  else
+    echo "FAILED: $what"
+    failures=$((failures + 1))
+  fi
+}
+
+# SHA-1 of the pixel data only (iinfo --hash): metadata such as the command line and the render
+# time differ between a farm frame and a single-machine frame; the pixels must not.
+pixels() { iinfo --hash "$1" | sed -n 's/^ *SHA-1: *//p'; }
+same_pixels() { [ -n "$(pixels "$1")" ] && [ "$(pixels "$1")" = "$(pixels "$2")" ]; }
+attribute() { iinfo -v "$1" | sed -n "s/^ *$2: *//p" | tr -d '"'; }
+
+eval "$("$kLocal" start "$WORK/cluster")"
+echo "cluster up: $SLURM_CONF"
+
+# Small frames keep the test short; the images' content is covered by the render suite. Two
+# one-CPU tasks run side by side on a two-core machine.
+readonly kStill="$kRoot/scenes/whitted.json"
+readonly kAnim="$kRoot/scenes/animation.json"
+readonly kSize=(--width 96 --height 64)
+
+tiles_and_animation() {
+  local t0=$SECONDS
+  "$kFarm" submit "$kStill" -o "$WORK/still.exr" --tiles 4 --cpus-per-task 1 --spp 4 \
+    "${kSize[@]}" --glint "$GLINT" --wait
+  echo "4-tile still through Slurm: $((SECONDS - t0)) s"
+  "$GLINT" render "$kStill" --quiet --spp 4 "${kSize[@]}" -o "$WORK/still-ref.exr"
+  check "the merged 4-tile frame equals the single-machine render byte for byte" \
+    same_pixels "$WORK/still.exr" "$WORK/still-ref.exr"
+  check "the merged frame records its 4 crops" [ "$(attribute "$WORK/still.exr" glint:merged_crops)" = 4 ]
+  # SLURM_CPUS_PER_TASK=1 → --threads 1 in every task.
+  check "each task rendered with the CPUs Slurm gave it (--threads 1)" \
+    grep -q -- "--threads 1" <(iinfo -v "$WORK"/still.farm/tiles/t00[0-3].exr)
+  check "no task left a partial tile behind" \
+    [ -z "$(find "$WORK/still.farm/tiles" -name '*.rendering.exr')" ]
+
+  t0=$SECONDS
+  "$kFarm" submit "$kAnim" -o "$WORK/anim.####.exr" --frames 1-3 --tiles 2 --cpus-per-task 1 \
+    --spp 4 "${kSize[@]}" --glint "$GLINT" --wait
+  echo "3-frame animation, 2 tiles each, through Slurm: $((SECONDS - t0)) s"
+  local f
+  for f in 1 2 3; do
+    "$GLINT" render "$kAnim" --quiet --frame "$f" --spp 4 "${kSize[@]}" -o "$WORK/ref.####.exr"
+    check "frame $f (anim.000$f.exr) equals the single-machine render byte for byte" \
+      same_pixels "$WORK/anim.000$f.exr" "$WORK/ref.000$f.exr"
+    check "frame $f records its frame number" [ "$(attribute "$WORK/anim.000$f.exr" glint:frame)" = "$f" ]
+  done
+  # The frames differ: the animation moves (a frozen scene would pass the checks above too).
+  check "frames 1 and 3 differ" bash -c "[ '$(pixels "$WORK/anim.0001.exr")' != '$(pixels "$WORK/anim.0003.exr")' ]"
+}
+
+missing_task() {
+  # 4 tasks of 1 CPU each; at this spp a tile takes seconds, so the cancel below lands
+  # while task 0 renders.
+  local out
+  out=$("$kFarm" submit "$kStill" -o "$WORK/frame.exr" --tiles 4 --cpus-per-task 1 --spp 4096 \
+    "${kSize[@]}" --glint "$GLINT")
+  echo "$out"
+  local job
+  job=$(echo "$out" | sed -n 's/.*submitted render job \([0-9]*\).*/\1/p')
+  [ -n "$job" ] || { echo "FAILED: no job id in the submit output"; return 1; }
+  local i state=""
+  for ((i = 0; i < 600; i++)); do
+    state=$(squeue -h -j "${job}_0" -o %T 2>/dev/null || true)
+    [ "$state" = RUNNING ] && break
+    sleep 0.1
+  done
+  [ "$state" = RUNNING ] || { echo "FAILED: task 0 never ran (state '$state')"; return 1; }
+  sleep 0.5 # let glint start rendering: the cancel then interrupts a real render
+  scancel "${job}_0"
+  echo "cancelled task 0 (job ${job}_0) while it ran"
+
+  local merge_rc=0 report
+  report=$("$kFarm" wait "$WORK/frame.farm" 2>&1) || merge_rc=$?
+  echo "$report"
+  check "the merge fails while a tile is missing (exit 1)" [ "$merge_rc" = 1 ]
+  check "the merge names exactly the missing tile" \
+    grep -q "task 0: tile 0 of 4 (--crop 0 48 0 32) is missing" <<<"$report"
+  check "the merge names one missing task, no other" grep -q "1 of 4 tasks missing" <<<"$report"
+  check "the merge says how to re-run it alone" \
+    grep -q "glint-farm rerun $WORK/frame.farm 0\$" <<<"$report"
+  check "no merged frame was written" [ ! -e "$WORK/frame.exr" ]
+  check "the cancelled task left no tile" [ ! -e "$WORK/frame.farm/tiles/t000.exr" ]
+
+  "$kFarm" rerun "$WORK/frame.farm" 0 --wait
+  "$GLINT" render "$kStill" --quiet --spp 4096 "${kSize[@]}" -o "$WORK/ref.exr"
+  check "after re-running task 0 alone the frame equals the single-machine render byte for byte" \
+    same_pixels "$WORK/frame.exr" "$WORK/ref.exr"
+}
+
+case "$kCase" in
+tiles_and_animation) tiles_and_animation ;;
+missing_task) missing_task ;;
+*) echo "unknown case $kCase" >&2; exit 2 ;;
+esac
+echo "$failures failed"
+[ "$failures" -eq 0 ]

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Sanitizer CI (docs/hardening.md): builds build-asan/ with clang, AddressSanitizer and
+# UndefinedBehaviorSanitizer (-O1 -g, no recovery, so any report fails its test) and runs the test
+# suite there under ctest. Extra arguments go to ctest (e.g. -R stress).
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+GLINT_PACKAGES+=(clang libclang-rt-14-dev llvm-14)  # compiler, sanitizer runtimes, symbolizer
+glint_ensure_packages
+
+# Configures (every time, so the options are always these) and builds one sanitized tree.
+glint_sanitized_build() {
+  local dir="$1" sanitizers="$2"
+  cmake -S "$GLINT_ROOT" -B "$dir" -DCMAKE_CXX_COMPILER=clang++ \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
+    -DGLINT_SANITIZE="$sanitizers" >/dev/null
+  GLINT_BUILD="$dir" glint_build
+}
+
+export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
+export ASAN_OPTIONS=strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1
+export UBSAN_OPTIONS=print_stacktrace=1
+
+start=$SECONDS
+glint_sanitized_build "$GLINT_ROOT/build-asan" address,undefined
+echo "glint: ASan+UBSan build took $((SECONDS - start)) s" >&2
+start=$SECONDS
+(cd "$GLINT_ROOT/build-asan" && ctest --output-on-failure -j "$(nproc)" "$@")
+echo "glint: ASan+UBSan tests took $((SECONDS - start)) s" >&2
