@@ -265,6 +265,34 @@ Hit EmbreeAccel::intersect(const Ray& ray) const {
   return hit;
 }
 
+void EmbreeAccel::intersectStream(const Ray* rays, Hit* hits, size_t n, bool coherent) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags =
+      coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  constexpr size_t kChunk = 256;  // bounded stack, and Embree's streams gain little beyond
+  RTCRayHit rh[kChunk];
+  for (size_t begin = 0; begin < n; begin += kChunk) {
+    const size_t count = std::min(kChunk, n - begin);
+    for (size_t i = 0; i < count; ++i) {
+      const Ray& ray = rays[begin + i];
+      rh[i].ray = {ray.o.x, ray.o.y,  ray.o.z,  ray.tMin, ray.d.x, ray.d.y,
+                   ray.d.z, ray.time, ray.tMax, ~0u,      0,       0};
+      rh[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect1M(groupScenes_[0], &context, rh, static_cast<unsigned>(count), sizeof(RTCRayHit));
+    for (size_t i = 0; i < count; ++i) {
+      Hit& hit = hits[begin + i];
+      hit = {};
+      if (rh[i].hit.geomID != RTC_INVALID_GEOMETRY_ID)
+        hit = {rh[i].ray.tfar,   rh[i].hit.u,      rh[i].hit.v,
+               rh[i].hit.geomID, rh[i].hit.primID, rh[i].hit.instID[0]};
+      intersectPlanes(scene_, rays[begin + i], hit);
+    }
+  }
+}
+
 bool EmbreeAccel::occluded(const Ray& ray) const {
   if (occludedByPlanes(scene_, ray)) return true;
   RTCIntersectContext context;

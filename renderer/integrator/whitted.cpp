@@ -61,7 +61,7 @@ void WhittedKernel<C>::recordAov(const Ray& ray, const Hit& hit, const ShadingPo
       scene_.groups[0].geometries[hit.instId != kInvalidId ? hit.instId : hit.geomId];
   aov.objectId = top.objectId + 1;
   if (const auto* phong = std::get_if<PhongMaterial>(&material))
-    aov.albedo = phong->kd.eval(sp.p);
+    aov.albedo = phong->kd.eval(sp.p, scene_.worldOrigin);
   else if (const auto* mirror = std::get_if<MirrorMaterial>(&material))
     aov.albedo = mirror->km;
   else
@@ -105,8 +105,8 @@ Rgb WhittedKernel<C>::shadePhong(const PhongMaterial& m, const ShadingPoint& sp,
                                  Rgb* perLight) const {
   // Seed 000 eq. 4.4 / seed 001 §5: surfaces are two-sided, so the normal faces the viewer.
   const Vec3f n = faceForward(sp.ns, wo);
-  const Rgb kd = m.kd.eval(sp.p);
-  Rgb L = m.ka.eval(sp.p) * scene_.render.ambient;
+  const Rgb kd = m.kd.eval(sp.p, scene_.worldOrigin);
+  Rgb L = m.ka.eval(sp.p, scene_.worldOrigin) * scene_.render.ambient;
   for (size_t li = 0; li < scene_.lights.size(); ++li) {
     const Light& light = scene_.lights[li];
     // Delta lights take one shadow ray and draw no sample; area lights average `samples`

@@ -5,6 +5,7 @@
 #include <string>
 #include <variant>
 
+#include "core/affine.h"
 #include "core/rgb.h"
 #include "core/vec.h"
 
@@ -17,7 +18,9 @@ struct ColorTexture {
   Rgb a, b;
   float scale = 1;
 
-  Rgb eval(const Vec3f& p) const;
+  // At a render-space point: the checker is fixed in world space, so the point is moved back
+  // by the scene's worldOrigin (in double) before the cells are counted.
+  Rgb eval(const Vec3f& renderP, const Vec3d& worldOrigin) const;
   bool isBlack() const { return checker ? a.isBlack() && b.isBlack() : constant.isBlack(); }
 };
 

@@ -17,7 +17,7 @@
 //   "area_illumination on" shades each point light separately, like Glint's "seed" emission
 //   (POV-Ray scales that shading by the visible fraction of the grid, which it traces with
 //   separately jittered points: the product of the averages where Glint averages the
-//   products; the two differ a little in penumbrae). "adaptive 16" forces every grid point
+//   products; the two differ near terminators). "adaptive 16" forces every grid point
 //   to be traced.
 // - Phong: POV-Ray "phong 0.5 phong_size 40" is ks (r.v)^p with ks = 0.5 ("specular_model":
 //   "phong"); "diffuse 1" with the pigment = kd; "ambient 0.1" x ambient_light 1 = ka * I_a.

@@ -208,3 +208,37 @@ TEST(Shading, GlassSphereConservesEnergy) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(Shading, CheckerStaysFixedInTheWorldWhereverTheCameraIs) {
+  // Scenes load into render space (world − eye); the checker must still count world cells.
+  // Straight down from each eye the ray meets the plane y = 0 at world (x, 0, z); ambient light
+  // only, so the pixel is the checker colour there. Eyes one cell apart flip the colour; eyes
+  // two cells apart (and 1e5 away, an even number of cells) do not.
+  struct Case {
+    double x, y, z;
+    float expected;  // 0.9 = cell sum even (a), 0.1 = odd (b)
+  };
+  for (const Case c : {Case{0.5, 5, 0.5, 0.9f}, Case{0.5, 6, 0.5, 0.9f}, Case{1.5, 5, 0.5, 0.1f},
+                       Case{2.5, 7, -0.5, 0.1f}, Case{100000.5, 5, 0.5, 0.9f}}) {
+    const auto at = [&](double y) {
+      return "[" + std::to_string(c.x) + ", " + std::to_string(y) + ", " + std::to_string(c.z) +
+             "]";
+    };
+    Traced t{test::sceneFromText(R"({"render": {"ambient": [1,1,1]},
+      "camera": {"eye": )" + at(c.y) +
+                                 R"(, "look_at": )" + at(0) + R"(, "up": [0,0,-1]},
+      "materials": {"m": {"type": "phong", "kd": [0,0,0],
+        "ka": {"checker": {"scale": 1, "a": [0.9,0.9,0.9], "b": [0.1,0.1,0.1]}}}},
+      "objects": [{"type": "plane", "point": [0,0,0], "normal": [0,1,0], "material": "m"}]})"),
+             nullptr};
+    t.accel = makeAccelerator(AccelKind::Embree, t.scene);
+    const Rgb L = t.trace({{0, 0, 0}, {0, -1, 0}});  // from the eye, in render space
+    EXPECT_FLOAT_EQ(L.r, c.expected) << "eye " << at(c.y);
+  }
+}
+
+}  // namespace
+}  // namespace glint

@@ -1,6 +1,10 @@
 // Stress cases through whole renders: energy, nested media, tiny lights, lenses, motion,
 // recursion limits, runtime NaN and I/O faults.
 #include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
 
 #include "integrator/optics.h"
 #include "stress_util.h"
@@ -211,6 +215,32 @@ TEST(IoFaults, UnwritableDirectoryAndFullDisk) {
   EXPECT_EQ(WEXITSTATUS(std::system(cmd.c_str())), 1);
   std::ifstream f(target);
   EXPECT_EQ(std::string(std::istreambuf_iterator<char>(f), {}), "old frame");
+}
+
+// 19b. A really full disk: a 64 KiB tmpfs holding the previous frame, and a render whose EXR
+// needs ~1 MB. Guards: ENOSPC met mid-write (not only at open) leaving a truncated file or a
+// stray temporary. Criterion: exit 1, the error names the path, the old file is intact and
+// nothing else is left on the filesystem. Needs root to mount (CI runs as root).
+TEST(IoFaults, FullFilesystemKeepsThePreviousFile) {
+  if (::geteuid() != 0) GTEST_SKIP() << "mounting a tmpfs needs root";
+  const std::filesystem::path dir = test::tempDir() / "tinyfs";
+  std::filesystem::create_directories(dir);
+  const std::string mount = "mount -t tmpfs -o size=64k tmpfs " + dir.string() + " 2>/dev/null";
+  if (std::system(mount.c_str()) != 0) GTEST_SKIP() << "cannot mount a tmpfs here";
+  const std::string target = (dir / "frame.exr").string();
+  std::ofstream(target) << "old frame";
+  const auto r = test::runGlint(
+      "render --quiet --width 300 --height 200 --spp 1 --compression none -o " + target);
+  std::ifstream f(target);
+  const std::string kept(std::istreambuf_iterator<char>(f), {});
+  f.close();
+  size_t entries = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++entries;
+  std::system(("umount " + dir.string()).c_str());
+  EXPECT_EQ(r.exitCode, 1) << r.output;
+  EXPECT_NE(r.output.find(target), std::string::npos) << r.output;
+  EXPECT_EQ(kept, "old frame");
+  EXPECT_EQ(entries, 1u) << "a temporary file was left behind";
 }
 
 }  // namespace

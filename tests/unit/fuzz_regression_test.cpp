@@ -53,8 +53,9 @@ TEST_P(FuzzRegression, LoadsOrNamesFileAndLine) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Inputs, FuzzRegression, testing::ValuesIn(regressionFiles()),
-                         [](const testing::TestParamInfo<std::string>& info) {
-                           std::string id = fs::path(info.param).stem().string();
+                         // Not named `info`: the macro's own parameter has that name.
+                         [](const testing::TestParamInfo<std::string>& input) {
+                           std::string id = fs::path(input.param).stem().string();
                            for (char& c : id)
                              if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
                            return id;

@@ -7,8 +7,8 @@
    ladder of matched sample counts (camera samples x light samples); every image is compared
    with its own renderer's reference (`glint compare`), and the two references with each other
    (a check that the scenes match). Ladder runs are repeated and interleaved (Glint, POV-Ray,
-   Glint, ...) so that load from other processes hits both alike; the table gives the median
-   wall time.
+   Glint, ...) so that load from other processes hits both alike; the table gives median wall
+   and CPU seconds (user + system of the process: the steadier figure on a shared machine).
 2. Extra rows: POV-Ray with its adaptive shortcuts on (area light `adaptive 0`, focal blur
    `variance 1/128`), Glint with the plain random sampler (what the stratified sampler costs).
 3. Embree's `pathtracer` on its cornell_box, and Glint on the same mesh and camera
@@ -207,8 +207,8 @@ class Peers:
         rows = []
 
         def counted(cmd):
-            """Wall seconds and (intersect, occluded) rays of each repetition; the shim costs a
-            thread-local increment per ray."""
+            """Wall seconds, (intersect, occluded) rays and CPU seconds of each repetition; the
+            shim costs a thread-local increment per ray."""
             env = dict(os.environ, LD_PRELOAD=str(shim)) if cc else None
             walls, rays, cpus = [], [], []
             for _ in range(a.reps):
@@ -217,23 +217,22 @@ class Peers:
                 walls.append(wall)
                 cpus.append(LAST_CPU[0])
                 rays.append((int(m.group(1)), int(m.group(2))) if m else None)
-            counted.cpus = cpus
-            return walls, rays
+            return walls, rays, cpus
 
         pt = ["pathtracer", "-c", str(CORNELL_ECS), "--spp", "16", "--threads", str(a.threads)]
-        for label, extra in (("pathtracer (paths up to 10 bounces)", []),
+        for label, extra in (("pathtracer (default: --max-path-length 8)", []),
                              ("pathtracer --max-path-length 1", ["--max-path-length", "1"])):
             print(f"embree: {label}", file=sys.stderr)
-            walls, rays = counted(pt + extra + ["-o", str(self.out / "pathtracer.pfm")])
-            rows.append({"program": label, "walls": walls, "rays": rays, "cpus": counted.cpus})
+            walls, rays, cpus = counted(pt + extra + ["-o", str(self.out / "pathtracer.pfm")])
+            rows.append({"program": label, "walls": walls, "rays": rays, "cpus": cpus})
         print("embree: glint cornell_box", file=sys.stderr)
         stats = self.out / "glint_cornell.stats.json"
         cmd = [self.glint, "render", str(CORNELL_JSON), "-o", str(self.out / "glint_cornell.exr"),
                "--threads", str(a.threads), "--quiet", "--stats-json", str(stats)]
-        walls, rays = counted(cmd)
+        walls, rays, cpus = counted(cmd)
         inner = json.loads(stats.read_text())["seconds"]
         rows.append({"program": "glint render (camera + shadow ray)", "walls": walls, "rays": rays,
-                     "cpus": counted.cpus, "inner": inner})
+                     "cpus": cpus, "inner": inner})
         _, log = run([self.glint, "bench", str(CORNELL_JSON), "--accel", "embree", "--threads",
                       str(a.threads), "--render-runs", "0"])
         self.results["embree"] = {"rows": rows, "glint_bench": log}
