@@ -103,10 +103,21 @@ ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit) const {
     pError = worldFromObject->pointError(p, pError);
     p = worldFromObject->point(p);
     n = worldFromObject->normal(n);
-    // A moving instance's transform is interpolated by Embree (its slerp) and by transformAt
-    // (ours); the two agree to a few ulps of the matrix, which moves points by that much.
-    if (!instances[groups[0].geometries[hit.instId].index].motion.empty())
+    // A moving instance's transform is interpolated by Embree and by transformAt (ours). They
+    // agree to a few ulps of the matrix, except the rotation angle: Embree's slerp takes a
+    // fast acos whose absolute error (~7e-5 rad measured; tests/render/motion_test.cpp)
+    // turns the object by that much more or less, moving a point by angle × its distance from
+    // the pivot. Without this a shadow ray from a turning object is blocked by the object
+    // itself in Embree's version of it.
+    const Instance& inst = instances[groups[0].geometries[hit.instId].index];
+    if (!inst.motion.empty()) {
       pError += gamma(16) * abs(p);
+      if (inst.rotates()) {
+        const Vec3f pivot = worldFromObject->point({0, 0, 0});
+        const float slack = kSlerpAngleError * length(p - pivot);
+        pError += Vec3f{slack, slack, slack};
+      }
+    }
   }
   sp.p = p;
   sp.pError = pError;

@@ -39,7 +39,17 @@ struct Instance {
 
   // worldFromObject at normalised time (slerp for rotation, as Embree's quaternion motion).
   Transform transformAt(float time) const;
+  // Whether the keys turn the object (their rotations differ), so Embree's slerp is used.
+  bool rotates() const {
+    for (const TrsKey& k : motion)
+      if (!(k.rotation == motion[0].rotation)) return true;
+    return false;
+  }
 };
+
+// Bound on the difference between Embree's interpolated rotation angle and ours, in radians
+// (Scene::shadingPoint widens the error bound of points on turning instances by it).
+inline constexpr float kSlerpAngleError = 2e-4f;
 
 struct Group {
   std::string name;

@@ -2,7 +2,8 @@
 // acceptable outcomes are a Scene or a GlintError. A SceneError must name "<fuzz>" and a line,
 // since every value the loader can complain about has one. A Scene must be usable: the reference
 // BVH (Glint's own code, so instrumented, unlike Embree) builds, keeps its invariants and traces
-// the camera's central ray. Crashes, sanitizer reports, other exceptions and hangs are bugs.
+// the camera's central ray, for an animation at its first, middle and last frame. Crashes,
+// sanitizer reports, other exceptions and hangs are bugs.
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
@@ -63,6 +64,19 @@ bool namesOutsideFile(const std::string& text) {
   std::abort();
 }
 
+// What reads a loaded scene next must cope with it: bounds, the camera, the reference BVH.
+void checkUsable(const glint::Scene& scene) {
+  (void)scene.worldBounds();
+  const glint::Camera camera(scene.cameraDesc, scene.render.width, scene.render.height);
+  const glint::Ray ray = camera.generateRay(0.5f * static_cast<float>(scene.render.width),
+                                            0.5f * static_cast<float>(scene.render.height));
+  const glint::ReferenceBvh bvh(scene);
+  if (const std::string broken = bvh.checkInvariants(); !broken.empty())
+    bug("reference BVH invariant: " + broken);
+  if (const glint::Hit hit = bvh.intersect(ray)) (void)scene.shadingPoint(ray, hit);
+  (void)bvh.occluded(ray);
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
@@ -81,15 +95,15 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (namesOutsideFile(text)) return -1;  // -1: keep this input out of the corpus
   try {
     const glint::Scene scene = glint::loadSceneText(text, "<fuzz>", gBaseDir.string());
-    (void)scene.worldBounds();
-    const glint::Camera camera(scene.cameraDesc, scene.render.width, scene.render.height);
-    const glint::Ray ray = camera.generateRay(0.5f * static_cast<float>(scene.render.width),
-                                              0.5f * static_cast<float>(scene.render.height));
-    const glint::ReferenceBvh bvh(scene);
-    if (const std::string broken = bvh.checkInvariants(); !broken.empty())
-      bug("reference BVH invariant: " + broken);
-    if (const glint::Hit hit = bvh.intersect(ray)) (void)scene.shadingPoint(ray, hit);
-    (void)bvh.occluded(ray);
+    checkUsable(scene);
+    if (scene.animation) {
+      // Loading picks the first frame; a middle and the last one resample the keys between and
+      // at the far end of the animation (int64: first and last may be far apart).
+      const glint::Animation& a = *scene.animation;
+      const int middle = static_cast<int>(a.first + (int64_t{a.last} - a.first) / 2);
+      for (const int f : {middle, a.last})
+        if (f != a.first) checkUsable(glint::loadSceneText(text, "<fuzz>", gBaseDir.string(), f));
+    }
   } catch (const glint::SceneError& e) {
     if (e.loc().file != "<fuzz>" || e.loc().line <= 0)
       bug(std::string("SceneError without file:line: ") + e.what());

@@ -1,7 +1,7 @@
 // Inputs that once crashed or exhausted the loader, or what reads a loaded scene
 // (tests/fuzz/regressions/, docs/hardening.md). Each must load and give a reference BVH that
-// keeps its invariants, or be refused with a SceneError that names the file and a line, the
-// same oracle as tests/fuzz/scene_fuzzer.cpp.
+// keeps its invariants, or be refused with a SceneError that names the file and a line: the
+// oracle of tests/fuzz/scene_fuzzer.cpp, for the first frame of an animation.
 #include <gtest/gtest.h>
 
 #include <algorithm>
