@@ -1,6 +1,7 @@
 #pragma once
 // The intersection seam (DESIGN.md §3): backends answer only with Hit. Planes are unbounded and
 // fit no hierarchy, so every backend tests them with the same shared loop (intersectPlanes).
+#include <cstddef>
 #include <memory>
 #include <string_view>
 
@@ -21,6 +22,12 @@ class Accelerator {
   virtual ~Accelerator() = default;
   virtual Hit intersect(const Ray&) const = 0;  // closest hit in (tMin, tMax) at ray.time
   virtual bool occluded(const Ray&) const = 0;  // any hit in (tMin, tMax)
+  // Closest hits of n rays that start close together and point alike (camera rays of one
+  // pixel); a backend may trace them as packets. The hits are those intersect() would give,
+  // up to the rounding of the packet kernels.
+  virtual void intersectCoherent(const Ray* rays, Hit* hits, size_t n) const {
+    for (size_t i = 0; i < n; ++i) hits[i] = intersect(rays[i]);
+  }
   virtual std::string_view name() const = 0;
 };
 

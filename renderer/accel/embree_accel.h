@@ -31,6 +31,9 @@ class EmbreeAccel final : public Accelerator {
   // n closest hits through Embree's stream API (rtcIntersect1M); `coherent` tells Embree the
   // rays start close together and point alike (camera rays), so it traces them as packets.
   void intersectStream(const Ray* rays, Hit* hits, size_t n, bool coherent) const;
+  void intersectCoherent(const Ray* rays, Hit* hits, size_t n) const override {
+    intersectStream(rays, hits, n, true);
+  }
   std::string_view name() const override { return "embree"; }
   double buildSeconds() const { return buildSeconds_; }
   int64_t bytes() const { return bytes_; }

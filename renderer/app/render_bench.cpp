@@ -77,14 +77,16 @@ double samplingSeconds(const Scene& scene, int threads) {
   runTiles(tiles, threads, [&](size_t t) {
     float acc = 0;
     for (int y = tiles[t].y0; y < tiles[t].y1; ++y)
-      for (int x = tiles[t].x0; x < tiles[t].x1; ++x)
+      for (int x = tiles[t].x0; x < tiles[t].x1; ++x) {
+        const uint64_t pixelKey = sampler.pixelKey(x, y);
         for (int s = 0; s < rs.spp; ++s) {
-          const SampleKey key{&sampler, x, y, s};
-          const Vec2f u = sampler.pixelSample(x, y, s);
+          const SampleKey key(&sampler, x, y, s, pixelKey);
+          const Vec2f u = sampler.pixelSampleFor(pixelKey, s);
           const Vec2f lens = camera.hasLens() ? key.get2D(dimension(Dim::Lens)) : Vec2f{};
           const float time = scene.features.motion ? key.get2D(dimension(Dim::Time)).x : 0;
           acc += camera.generateRay(float(x) + u.x, float(y) + u.y, lens).d.x + time;
         }
+      }
     sink[t] = acc;
   });
   benchmark::DoNotOptimize(sink.data());

@@ -132,9 +132,13 @@ Vec2f Sampler::sobol2D(uint64_t pattern, int index) {
   return {bitsToUnit(x), bitsToUnit(y)};
 }
 
-Vec2f Sampler::pixelSample(int px, int py, int index) const {
-  const uint64_t pattern = hashKey(seed_, static_cast<uint32_t>(px), static_cast<uint32_t>(py),
-                                   static_cast<uint32_t>(Dim::Pixel));
+uint64_t Sampler::pixelKey(int px, int py) const {
+  return hashKey(seed_, static_cast<uint32_t>(px), static_cast<uint32_t>(py));
+}
+
+Vec2f Sampler::pixelSampleFor(uint64_t pixelKey, int index) const {
+  // hashKey folds left, so this is hashKey(seed, px, py, Dim::Pixel).
+  const uint64_t pattern = hashCombine(pixelKey, static_cast<uint32_t>(Dim::Pixel));
   switch (kind_) {
     case SamplerKind::Regular: {
       const int n = static_cast<int>(std::ceil(std::sqrt(double(spp_))));
@@ -151,9 +155,8 @@ Vec2f Sampler::pixelSample(int px, int py, int index) const {
   return {0.5f, 0.5f};
 }
 
-Vec2f Sampler::get2D(int px, int py, int index, uint32_t dim, int sub, int count) const {
-  const uint64_t pattern =
-      hashKey(seed_, static_cast<uint32_t>(px), static_cast<uint32_t>(py), dim);
+Vec2f Sampler::get2DFor(uint64_t pixelKey, int index, uint32_t dim, int sub, int count) const {
+  const uint64_t pattern = hashCombine(pixelKey, dim);
   const int n = spp_ * count;
   // The shuffle: sample `index` of the pixel takes a permuted stratum of this dimension's set.
   const int flat = index * count + sub;

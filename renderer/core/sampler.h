@@ -38,10 +38,20 @@ class Sampler {
   int samplesPerPixel() const { return spp_; }
 
   // Offset inside pixel (px, py) for sample `index` in [0, spp), each coordinate in [0, 1).
-  Vec2f pixelSample(int px, int py, int index) const;
+  Vec2f pixelSample(int px, int py, int index) const {
+    return pixelSampleFor(pixelKey(px, py), index);
+  }
   // A 2D sample of dimension `dim` for sample `index`, stratified over the spp samples of the
   // pixel and over `count` sub-samples (e.g. shadow samples per camera sample).
-  Vec2f get2D(int px, int py, int index, uint32_t dim, int sub = 0, int count = 1) const;
+  Vec2f get2D(int px, int py, int index, uint32_t dim, int sub = 0, int count = 1) const {
+    return get2DFor(pixelKey(px, py), index, dim, sub, count);
+  }
+
+  // The same, from the pixel's key computed once (the hash of seed and pixel; each dimension's
+  // pattern extends it by one more step, so these give exactly the values above).
+  uint64_t pixelKey(int px, int py) const;
+  Vec2f pixelSampleFor(uint64_t pixelKey, int index) const;
+  Vec2f get2DFor(uint64_t pixelKey, int index, uint32_t dim, int sub = 0, int count = 1) const;
 
  private:
   Vec2f stratified2D(uint64_t pattern, int index, int n) const;

@@ -39,12 +39,18 @@ float WhittedKernel<C>::iorOutside(const MediumStack& media) const {
 template <unsigned C>
 Radiance WhittedKernel<C>::trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
                                  AovSample* aov) const {
+  return trace(cameraRay, accel_.intersect(cameraRay), key, counters, aov);
+}
+
+template <unsigned C>
+Radiance WhittedKernel<C>::trace(const Ray& cameraRay, const Hit& cameraHit, const SampleKey& key,
+                                 RayCounters& counters, AovSample* aov) const {
   ++counters.camera;
   bool hit = false;
   Radiance r;
   Branch root;
   root.key = &key;
-  r.L = Li(cameraRay, root, counters, &hit, aov);
+  r.L = shade(cameraRay, cameraHit, root, counters, &hit, aov);
   r.alpha = hit ? 1.0f : 0.0f;
   return r;
 }
@@ -69,9 +75,8 @@ void WhittedKernel<C>::recordAov(const Ray& ray, const Hit& hit, const ShadingPo
 }
 
 template <unsigned C>
-Rgb WhittedKernel<C>::Li(const Ray& ray, const Branch& branch, RayCounters& counters,
-                         bool* hitSomething, AovSample* aov) const {
-  const Hit hit = accel_.intersect(ray);
+Rgb WhittedKernel<C>::shade(const Ray& ray, const Hit& hit, const Branch& branch,
+                            RayCounters& counters, bool* hitSomething, AovSample* aov) const {
   // Beer's law over the segment just travelled, in the medium the ray was inside.
   Rgb absorbed{1, 1, 1};
   if constexpr (kMedia)

@@ -22,11 +22,18 @@ inline constexpr float kDefaultMinThroughput = 1.0f / 1024.0f;
 
 // Which camera sample is being traced: keys every random number drawn along its paths.
 struct SampleKey {
+  SampleKey(const Sampler* s, int x, int y, int i)
+      : SampleKey(s, x, y, i, s ? s->pixelKey(x, y) : 0) {}
+  // With the pixel's key computed once for all its samples (Sampler::pixelKey).
+  SampleKey(const Sampler* s, int x, int y, int i, uint64_t key)
+      : sampler(s), px(x), py(y), index(i), pixelKey(key) {}
+
   const Sampler* sampler = nullptr;
   int px = 0, py = 0, index = 0;
+  uint64_t pixelKey = 0;
 
   Vec2f get2D(uint32_t dim, int sub = 0, int count = 1) const {
-    return sampler->get2D(px, py, index, dim, sub, count);
+    return sampler->get2DFor(pixelKey, index, dim, sub, count);
   }
 };
 
@@ -50,6 +57,10 @@ class WhittedKernel {
   // viewAxis must be set: the camera's unit view direction, for depth).
   Radiance trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
                  AovSample* aov = nullptr) const;
+  // The same for a camera ray whose closest hit is already known (traced with others as a
+  // coherent stream, Accelerator::intersectCoherent).
+  Radiance trace(const Ray& cameraRay, const Hit& cameraHit, const SampleKey& key,
+                 RayCounters& counters, AovSample* aov = nullptr) const;
 
  private:
   static constexpr bool kMedia = (Caps & cap::kDielectrics) != 0;
@@ -74,8 +85,12 @@ class WhittedKernel {
     }
   };
 
-  Rgb Li(const Ray& ray, const Branch& branch, RayCounters& counters, bool* hitSomething = nullptr,
-         AovSample* aov = nullptr) const;
+  Rgb Li(const Ray& ray, const Branch& branch, RayCounters& counters) const {
+    return shade(ray, accel_.intersect(ray), branch, counters);
+  }
+  // Radiance along `ray` given its closest hit.
+  Rgb shade(const Ray& ray, const Hit& hit, const Branch& branch, RayCounters& counters,
+            bool* hitSomething = nullptr, AovSample* aov = nullptr) const;
   // `perLight`, when given, receives each light's contribution (AOVs of the camera hit).
   Rgb shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo, float time,
                  const Branch& branch, RayCounters& counters, Rgb* perLight = nullptr) const;

@@ -1,5 +1,6 @@
 #include "render/render_job.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <string>
@@ -18,6 +19,7 @@ namespace glint {
 namespace {
 
 constexpr int kMaxLoggedNonfinite = 5;
+constexpr int kCameraChunk = 64;  // camera rays traced together (bounded stack)
 
 // What every tile of one render shares.
 struct FrameContext {
@@ -50,39 +52,54 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
     for (int x = tile.x0; x < tile.x1; ++x) {
       double sum[4] = {0, 0, 0, 0};
       if (aovs) pixelAovs.begin();
-      for (int s = 0; s < rs.spp; ++s) {
-        const SampleKey key{&f.sampler, x, y, s};
-        const Vec2f u = f.sampler.pixelSample(x, y, s);
-        Vec2f lens;
-        float time = shutterOpen;
-        if constexpr (kCameraSamples) {
-          // Drawn only when there is a lens, or something moves under an open shutter.
-          if (f.camera.hasLens()) lens = key.get2D(dimension(Dim::Lens));
-          if (f.openShutter)
-            time = shutterOpen + (shutterClose - shutterOpen) * key.get2D(dimension(Dim::Time)).x;
+      const uint64_t pixelKey = f.sampler.pixelKey(x, y);
+      // A pixel's camera rays leave together in chunks: Embree traces a coherent stream as
+      // packets (docs/performance.md). Samples are still shaded and summed in index order.
+      Ray rays[kCameraChunk];
+      Hit hits[kCameraChunk];
+      for (int first = 0; first < rs.spp; first += kCameraChunk) {
+        const int count = std::min(kCameraChunk, rs.spp - first);
+        for (int i = 0; i < count; ++i) {
+          const int s = first + i;
+          const SampleKey key(&f.sampler, x, y, s, pixelKey);
+          const Vec2f u = f.sampler.pixelSampleFor(pixelKey, s);
+          Vec2f lens;
+          float time = shutterOpen;
+          if constexpr (kCameraSamples) {
+            // Drawn only when there is a lens, or something moves under an open shutter.
+            if (f.camera.hasLens()) lens = key.get2D(dimension(Dim::Lens));
+            if (f.openShutter)
+              time = shutterOpen + (shutterClose - shutterOpen) * key.get2D(dimension(Dim::Time)).x;
+          }
+          rays[i] =
+              f.camera.generateRay(static_cast<float>(x) + u.x, static_cast<float>(y) + u.y, lens);
+          rays[i].time = time;
         }
-        Ray ray =
-            f.camera.generateRay(static_cast<float>(x) + u.x, static_cast<float>(y) + u.y, lens);
-        ray.time = time;
-        AovSample aov;
-        aov.viewAxis = viewAxis;
-        Radiance r = integrator.trace(ray, key, counters, aovSamples ? &aov : nullptr);
-        if (f.opt.sampleHook) f.opt.sampleHook(x, y, r);
-        if (!r.L.isFinite()) r.L = {}, r.valid = false;
-        if (aovs) pixelAovs.add(r, aov);  // an invalid sample adds no AOV record
-        if (!r.valid) {
-          // A non-finite sample never reaches the film: it counts as black.
-          ++counters.nonfiniteSamples;
-          if (f.loggedNonfinite.fetch_add(1) < kMaxLoggedNonfinite)
-            log::warning("non-finite sample at pixel (" + std::to_string(x) + ", " +
-                         std::to_string(y) + ") sample " + std::to_string(s));
+        f.accel.intersectCoherent(rays, hits, static_cast<size_t>(count));
+        for (int i = 0; i < count; ++i) {
+          const int s = first + i;
+          const SampleKey key(&f.sampler, x, y, s, pixelKey);
+          AovSample aov;
+          aov.viewAxis = viewAxis;
+          Radiance r =
+              integrator.trace(rays[i], hits[i], key, counters, aovSamples ? &aov : nullptr);
+          if (f.opt.sampleHook) f.opt.sampleHook(x, y, r);
+          if (!r.L.isFinite()) r.L = {}, r.valid = false;
+          if (aovs) pixelAovs.add(r, aov);  // an invalid sample adds no AOV record
+          if (!r.valid) {
+            // A non-finite sample never reaches the film: it counts as black.
+            ++counters.nonfiniteSamples;
+            if (f.loggedNonfinite.fetch_add(1) < kMaxLoggedNonfinite)
+              log::warning("non-finite sample at pixel (" + std::to_string(x) + ", " +
+                           std::to_string(y) + ") sample " + std::to_string(s));
+            sum[3] += r.alpha;
+            continue;
+          }
+          sum[0] += r.L.r;
+          sum[1] += r.L.g;
+          sum[2] += r.L.b;
           sum[3] += r.alpha;
-          continue;
         }
-        sum[0] += r.L.r;
-        sum[1] += r.L.g;
-        sum[2] += r.L.b;
-        sum[3] += r.alpha;
       }
       const double inv = 1.0 / rs.spp;
       f.film.setPixel(x, y, sum[0] * inv, sum[1] * inv, sum[2] * inv, sum[3] * inv);
