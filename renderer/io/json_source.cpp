@@ -296,10 +296,12 @@ float JsonNode::number(float lo, float hi, bool loOpen) const {
 
 int JsonNode::integer(int lo, int hi) const {
   if (!value_->is_number_integer()) fail("must be an integer, got " + typeName());
+  const std::string range = "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]";
+  // Beyond long long (an unsigned literal above 2^63) would wrap if read as signed.
+  if (value_->is_number_unsigned() && value_->get<uint64_t>() > uint64_t(hi))
+    fail(range + ", got " + std::to_string(value_->get<uint64_t>()));
   const auto v = value_->get<long long>();
-  if (v < lo || v > hi)
-    fail("must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "], got " +
-         std::to_string(v));
+  if (v < lo || v > hi) fail(range + ", got " + std::to_string(v));
   return static_cast<int>(v);
 }
 

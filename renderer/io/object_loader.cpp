@@ -2,6 +2,7 @@
 // triangle, polygon, mesh) are baked into world (or group) space; analytic shapes keep their
 // exact form; a sphere under a non-similarity transform becomes an implicit instance.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -113,6 +114,11 @@ LocalMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
   const std::filesystem::path rel(fileNode.string());
   const std::filesystem::path full =
       rel.is_absolute() ? rel : std::filesystem::path(b.baseDir) / rel;
+  // A device or pipe (/dev/zero, a FIFO) would never end; only regular files are meshes.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(full, ec))
+    fileNode.fail(std::filesystem::exists(full, ec) ? "is not a regular file: " + full.string()
+                                                    : "no such file: " + full.string());
   try {
     // The file's bytes join the scene hash, so crops rendered after the mesh changed are not
     // merged with ones rendered before.
@@ -254,6 +260,9 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     if (xf.isSimilarity(&scale)) {
       std::vector<Vec3f> centers = centersPlacedBy(place);
       const Sphere sp{centers.empty() ? place.point(obj.at("center")) : centers[0], radius * scale};
+      bool finite = isFinite(sp.center) && std::isfinite(sp.radius);
+      for (const Vec3f& c : centers) finite = finite && isFinite(c);
+      if (!finite) obj.fail("the placed sphere is not finite (beyond the float range)");
       push(s, groupId, GeomKind::Sphere, addSphere(s, sp, std::move(centers)), material, objectId);
       return;
     }
@@ -269,7 +278,10 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     obj.checkKeys({"type", "point", "normal", "material", "transform"});
     if (groupId != 0) obj.fail("planes are unbounded and cannot be placed in groups");
     const Vec3f n = obj.at("normal").direction();
-    s.planes.push_back({place.point(obj.at("point")), normalize(xf.normal(n))});
+    const Plane plane{place.point(obj.at("point")), normalize(xf.normal(n))};
+    if (!isFinite(plane.point) || !isFinite(plane.normal))
+      obj.fail("the placed plane is not finite (beyond the float range)");
+    s.planes.push_back(plane);
     push(s, groupId, GeomKind::Plane, static_cast<uint32_t>(s.planes.size() - 1), material,
          objectId);
   } else if (type == "quad") {
@@ -279,6 +291,8 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     // Under a mirroring transform edge1 × edge2 would point the other way: swap the edges (the
     // same parallelogram) so the normal is the transformed normal.
     if (xf.determinant() < 0) std::swap(q.edge1, q.edge2);
+    if (!isFinite(q.corner) || !isFinite(q.edge1) || !isFinite(q.edge2))
+      obj.fail("the placed quad is not finite (beyond the float range)");
     if (!(length(cross(q.edge1, q.edge2)) > 0))
       obj.fail("edge1 and edge2 must span a parallelogram (they are parallel or zero)");
     s.quads.push_back(q);

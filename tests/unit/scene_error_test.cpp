@@ -131,3 +131,28 @@ TEST(SceneError, MotionKeysAreValidated) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(SceneError, PlacedGeometryBeyondTheFloatRangeAndNonRegularMeshFiles) {
+  // Each value is in range on its own; placed (scaled or translated) it overflows float. The
+  // renderer would otherwise meet inf/NaN bounds; the loader names the object instead.
+  const std::string head = R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+    "materials": {"m": {"type": "phong"}}, "objects": [)";
+  EXPECT_EQ(errorOf(head + R"({"type": "sphere", "center": [0,0,0], "radius": 1e38,
+    "material": "m", "transform": {"scale": [10,10,10]}}]})"),
+            "scene.json:2: objects[0]: the placed sphere is not finite (beyond the float range)");
+  EXPECT_EQ(errorOf(head + R"({"type": "quad", "corner": [3e38,0,0], "edge1": [1,0,0],
+    "edge2": [0,1,0], "material": "m", "transform": {"translate": [3e38,0,0]}}]})"),
+            "scene.json:2: objects[0]: the placed quad is not finite (beyond the float range)");
+  EXPECT_EQ(errorOf(head + R"({"type": "plane", "point": [3e38,0,0], "normal": [0,1,0],
+    "material": "m", "transform": {"translate": [3e38,0,0]}}]})"),
+            "scene.json:2: objects[0]: the placed plane is not finite (beyond the float range)");
+  // /dev/zero never ends: only regular files are read as meshes.
+  EXPECT_EQ(errorOf(head + R"({"type": "mesh", "file": "/dev/zero", "material": "m"}]})"),
+            "scene.json:2: objects[0].file: is not a regular file: /dev/zero");
+}
+
+}  // namespace
+}  // namespace glint
