@@ -118,7 +118,7 @@ LocalMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(full, ec))
     fileNode.fail(std::filesystem::exists(full, ec) ? "is not a regular file: " + full.string()
-                                                    : "no such file: " + full.string());
+                                                    : "mesh file not found: " + full.string());
   try {
     // The file's bytes join the scene hash, so crops rendered after the mesh changed are not
     // merged with ones rendered before.
