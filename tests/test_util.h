@@ -30,6 +30,16 @@ inline Scene sceneFromText(const std::string& text) {
   return loadSceneText(text, "scene.json", GLINT_SCENES_DIR);
 }
 
+// The message of the SceneError that loading `text` throws, or "(no error)".
+inline std::string sceneErrorOf(const std::string& text) {
+  try {
+    sceneFromText(text);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
 struct RunResult {
   int exitCode = -1;
   std::string output;  // stdout and stderr together

@@ -61,23 +61,14 @@ INSTANTIATE_TEST_SUITE_P(Inputs, FuzzRegression, testing::ValuesIn(regressionFil
                            return id;
                          });
 
-std::string errorOf(const std::string& text) {
-  try {
-    test::sceneFromText(text);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 TEST(FuzzRegression, NestingIsLimitedTo64Levels) {
   // Line 1 opens levels 1–3 (the root, camera, camera.eye). 61 more brackets reach the limit of
   // 64 and load as far as the camera check; one more, on line 3, is the first level too deep.
   const std::string head = "{\"camera\": {\"eye\": [\n" + std::string(61, '[');
-  EXPECT_EQ(errorOf(head + std::string(61, ']') + "]}}"),
+  EXPECT_EQ(test::sceneErrorOf(head + std::string(61, ']') + "]}}"),
             "scene.json:1: camera.eye: must be an array of 3 numbers, got " + std::string(62, '[') +
                 std::string(62, ']'));
-  EXPECT_EQ(errorOf(head + "\n[" + std::string(62, ']') + "]}}"),
+  EXPECT_EQ(test::sceneErrorOf(head + "\n[" + std::string(62, ']') + "]}}"),
             "scene.json:3: arrays and objects nest more than 64 deep (a scene needs at most 8)");
 }
 
@@ -85,8 +76,9 @@ TEST(FuzzRegression, KeysAndNamesAreLimitedTo256Characters) {
   const std::string head =
       "{\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0]}, \"objects\": [],\n";
   // 256 characters is allowed: the group loads (unused groups are fine).
-  EXPECT_EQ(errorOf(head + "\"groups\": {\"" + std::string(256, 'g') + "\": []}}"), "(no error)");
-  EXPECT_EQ(errorOf(head + "\"groups\": {\"" + std::string(257, 'g') + "\": []}}"),
+  EXPECT_EQ(test::sceneErrorOf(head + "\"groups\": {\"" + std::string(256, 'g') + "\": []}}"),
+            "(no error)");
+  EXPECT_EQ(test::sceneErrorOf(head + "\"groups\": {\"" + std::string(257, 'g') + "\": []}}"),
             "scene.json:2: a key is 257 characters long; keys and names may have at most 256");
 }
 

@@ -6,15 +6,6 @@
 namespace glint {
 namespace {
 
-std::string errorOf(const std::string& text) {
-  try {
-    test::sceneFromText(text);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
-
 // Lines:         1  2                                                         3
 const char* kHead =
     "{\n\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0]},\n"
@@ -29,14 +20,14 @@ TEST(SceneError, NegativeRadiusNamesLineAndPath) {
       "  {\"type\": \"sphere\", \"center\": [0,0,0],\n"                     // 7
       "   \"radius\": -1, \"material\": \"red\"}\n"                         // 8
       "]}\n";
-  EXPECT_EQ(errorOf(text), "scene.json:8: objects[1].radius: must be > 0, got -1");
+  EXPECT_EQ(test::sceneErrorOf(text), "scene.json:8: objects[1].radius: must be > 0, got -1");
 }
 
 TEST(SceneError, UnknownKeySuggestsTheNearest) {
   const std::string text = std::string(kHead) +
                            "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0,0],\n"  // 4
                            "  \"radus\": 1, \"material\": \"red\"}]}";                    // 5
-  EXPECT_EQ(errorOf(text),
+  EXPECT_EQ(test::sceneErrorOf(text),
             "scene.json:5: objects[0].radus: unknown key (did you mean \"radius\"?)");
 }
 
@@ -45,24 +36,26 @@ TEST(SceneError, MissingRequiredKey) {
                            "\"objects\": [\n"                                   // 4
                            "  {\"type\": \"sphere\", \"material\": \"red\",\n"  // 5
                            "   \"radius\": 1}]}";
-  EXPECT_EQ(errorOf(text), "scene.json:5: objects[0]: missing required key \"center\"");
+  EXPECT_EQ(test::sceneErrorOf(text), "scene.json:5: objects[0]: missing required key \"center\"");
 }
 
 TEST(SceneError, WrongTypeAndBadVector) {
+  EXPECT_EQ(test::sceneErrorOf(std::string(kHead) +
+                               "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0],\n"  // 4
+                               "\"radius\": 1, \"material\": \"red\"}]}"),
+            "scene.json:4: objects[0].center: must be an array of 3 numbers, got [0,0]");
   EXPECT_EQ(
-      errorOf(std::string(kHead) + "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0],\n"  // 4
-                                   "\"radius\": 1, \"material\": \"red\"}]}"),
-      "scene.json:4: objects[0].center: must be an array of 3 numbers, got [0,0]");
-  EXPECT_EQ(errorOf(std::string(kHead) + "\"render\": {\"spp\": \"many\"}, \"objects\": []}"),
-            "scene.json:4: render.spp: must be an integer, got string");
+      test::sceneErrorOf(std::string(kHead) + "\"render\": {\"spp\": \"many\"}, \"objects\": []}"),
+      "scene.json:4: render.spp: must be an integer, got string");
 }
 
 TEST(SceneError, UnknownMaterialAndEnumSuggest) {
-  EXPECT_EQ(errorOf(std::string(kHead) +
-                    "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0,0], \"radius\": 1,\n"
-                    "  \"material\": \"rde\"}]}"),
+  EXPECT_EQ(test::sceneErrorOf(
+                std::string(kHead) +
+                "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0,0], \"radius\": 1,\n"
+                "  \"material\": \"rde\"}]}"),
             "scene.json:5: objects[0].material: no material named \"rde\" (did you mean \"red\"?)");
-  EXPECT_EQ(errorOf(std::string(kHead) + "\"objects\": [{\"type\": \"spher\"}]}"),
+  EXPECT_EQ(test::sceneErrorOf(std::string(kHead) + "\"objects\": [{\"type\": \"spher\"}]}"),
             "scene.json:4: objects[0].type: must be one of \"sphere\", \"plane\", \"quad\", "
             "\"box\", \"triangle\", \"polygon\", \"mesh\", \"instance\", got \"spher\" (did you "
             "mean \"sphere\"?)");
@@ -70,41 +63,45 @@ TEST(SceneError, UnknownMaterialAndEnumSuggest) {
 
 TEST(SceneError, NonFiniteNumbersAreRejected) {
   // JSON has no NaN literal; an overflowing literal would be infinity and must be refused.
-  EXPECT_EQ(errorOf(std::string(kHead) +
-                    "\"objects\": [{\"type\": \"sphere\", \"center\": [1e999,0,0], \"radius\": 1,"
-                    " \"material\": \"red\"}]}"),
+  EXPECT_EQ(test::sceneErrorOf(
+                std::string(kHead) +
+                "\"objects\": [{\"type\": \"sphere\", \"center\": [1e999,0,0], \"radius\": 1,"
+                " \"material\": \"red\"}]}"),
             "scene.json:4: number 1e999 is out of range: numbers must be finite");
   // Finite in double but not in float (Embree's precision) is refused with its path.
-  EXPECT_EQ(errorOf(std::string(kHead) +
-                    "\"objects\": [{\"type\": \"sphere\", \"center\": [1e300,0,0], \"radius\": 1,"
-                    " \"material\": \"red\"}]}"),
+  EXPECT_EQ(test::sceneErrorOf(
+                std::string(kHead) +
+                "\"objects\": [{\"type\": \"sphere\", \"center\": [1e300,0,0], \"radius\": 1,"
+                " \"material\": \"red\"}]}"),
             "scene.json:4: objects[0].center[0]: is out of the float range, got 1e+300");
 }
 
 TEST(SceneError, SyntaxErrorNamesItsLine) {
-  const std::string msg = errorOf("{\n\"camera\": {\n\"eye\": [0,0,5],,\n}}");
+  const std::string msg = test::sceneErrorOf("{\n\"camera\": {\n\"eye\": [0,0,5],,\n}}");
   EXPECT_EQ(msg.rfind("scene.json:3: invalid JSON: syntax error", 0), 0u) << msg;
 }
 
 TEST(SceneError, MissingMeshFileNamesThePathTried) {
-  const std::string msg = errorOf(std::string(kHead) +
-                                  "\"objects\": [{\"type\": \"mesh\", \"file\": \"nope/x.obj\","
-                                  " \"material\": \"red\"}]}");
+  const std::string msg =
+      test::sceneErrorOf(std::string(kHead) +
+                         "\"objects\": [{\"type\": \"mesh\", \"file\": \"nope/x.obj\","
+                         " \"material\": \"red\"}]}");
   EXPECT_NE(msg.find("scene.json:4: objects[0].file: mesh file not found: "), std::string::npos)
       << msg;
   EXPECT_NE(msg.find("nope/x.obj"), std::string::npos) << msg;
 }
 
 TEST(SceneError, DegenerateShapesAndTransforms) {
-  EXPECT_EQ(errorOf(std::string(kHead) +
-                    "\"objects\": [{\"type\": \"box\", \"min\": [0,0,0], \"max\": [1,0,1],"
-                    " \"material\": \"red\"}]}"),
-            "scene.json:4: objects[0].max: must exceed min in x, y and z");
   EXPECT_EQ(
-      errorOf(std::string(kHead) +
-              "\"objects\": [{\"type\": \"triangle\", \"vertices\": [[0,0,0],[1,0,0],[0,1,0]],"
-              " \"material\": \"red\", \"transform\": {\"scale\": [1,0,1]}}]}"),
-      "scene.json:4: objects[0].transform.scale: scale factors must be non-zero");
+      test::sceneErrorOf(std::string(kHead) +
+                         "\"objects\": [{\"type\": \"box\", \"min\": [0,0,0], \"max\": [1,0,1],"
+                         " \"material\": \"red\"}]}"),
+      "scene.json:4: objects[0].max: must exceed min in x, y and z");
+  EXPECT_EQ(test::sceneErrorOf(
+                std::string(kHead) +
+                "\"objects\": [{\"type\": \"triangle\", \"vertices\": [[0,0,0],[1,0,0],[0,1,0]],"
+                " \"material\": \"red\", \"transform\": {\"scale\": [1,0,1]}}]}"),
+            "scene.json:4: objects[0].transform.scale: scale factors must be non-zero");
 }
 
 TEST(SceneError, MotionKeysAreValidated) {
@@ -115,17 +112,18 @@ TEST(SceneError, MotionKeysAreValidated) {
            motion +
            "}]}";  // line 5
   };
-  EXPECT_EQ(errorOf(sphereWith("\"motion\": {\"center\": [[0,0,0]]}")),
+  EXPECT_EQ(test::sceneErrorOf(sphereWith("\"motion\": {\"center\": [[0,0,0]]}")),
             "scene.json:5: objects[0].motion.center: must list at least 2 keys (spread evenly "
             "over normalised time [0, 1])");
-  EXPECT_EQ(errorOf(sphereWith("\"motion\": {\"transform\": [{\"matrix\": [1]}, {}]}")),
+  EXPECT_EQ(test::sceneErrorOf(sphereWith("\"motion\": {\"transform\": [{\"matrix\": [1]}, {}]}")),
             "scene.json:5: objects[0].motion.transform[0].matrix: motion keys take "
             "translate/rotate/scale (rotation is interpolated by slerp), not a matrix");
-  EXPECT_EQ(errorOf(sphereWith("\"motion\": {\"positions\": [[[0,0,0]], [[1,0,0]]]}")),
+  EXPECT_EQ(test::sceneErrorOf(sphereWith("\"motion\": {\"positions\": [[[0,0,0]], [[1,0,0]]]}")),
             "scene.json:5: objects[0].motion.positions: only meshes have position keys; use "
             "\"transform\" keys");
-  EXPECT_EQ(errorOf("{\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0], \"shutter\": [0, 2]},"
-                    "\"objects\": []}"),
+  EXPECT_EQ(test::sceneErrorOf(
+                "{\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0], \"shutter\": [0, 2]},"
+                "\"objects\": []}"),
             "scene.json:1: camera.shutter[1]: must be <= 1, got 2");
 }
 
@@ -140,18 +138,19 @@ TEST(SceneError, PlacedGeometryBeyondTheFloatRangeAndNonRegularMeshFiles) {
   // renderer would otherwise meet inf/NaN bounds; the loader names the object instead.
   const std::string head = R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
     "materials": {"m": {"type": "phong"}}, "objects": [)";
-  EXPECT_EQ(errorOf(head + R"({"type": "sphere", "center": [0,0,0], "radius": 1e38,
+  EXPECT_EQ(test::sceneErrorOf(head + R"({"type": "sphere", "center": [0,0,0], "radius": 1e38,
     "material": "m", "transform": {"scale": [10,10,10]}}]})"),
             "scene.json:2: objects[0]: the placed sphere is not finite (beyond the float range)");
-  EXPECT_EQ(errorOf(head + R"({"type": "quad", "corner": [3e38,0,0], "edge1": [1,0,0],
+  EXPECT_EQ(test::sceneErrorOf(head + R"({"type": "quad", "corner": [3e38,0,0], "edge1": [1,0,0],
     "edge2": [0,1,0], "material": "m", "transform": {"translate": [3e38,0,0]}}]})"),
             "scene.json:2: objects[0]: the placed quad is not finite (beyond the float range)");
-  EXPECT_EQ(errorOf(head + R"({"type": "plane", "point": [3e38,0,0], "normal": [0,1,0],
+  EXPECT_EQ(test::sceneErrorOf(head + R"({"type": "plane", "point": [3e38,0,0], "normal": [0,1,0],
     "material": "m", "transform": {"translate": [3e38,0,0]}}]})"),
             "scene.json:2: objects[0]: the placed plane is not finite (beyond the float range)");
   // /dev/zero never ends: only regular files are read as meshes.
-  EXPECT_EQ(errorOf(head + R"({"type": "mesh", "file": "/dev/zero", "material": "m"}]})"),
-            "scene.json:2: objects[0].file: is not a regular file: /dev/zero");
+  EXPECT_EQ(
+      test::sceneErrorOf(head + R"({"type": "mesh", "file": "/dev/zero", "material": "m"}]})"),
+      "scene.json:2: objects[0].file: is not a regular file: /dev/zero");
 }
 
 }  // namespace
