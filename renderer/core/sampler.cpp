@@ -108,17 +108,29 @@ Vec2f Sampler::stratified2D(uint64_t pattern, int index, int n) const {
   // every cell holds one sample for any n (a prime n gives a 1×n grid, still n-rooks): a grid
   // with m·k > n would leave the same cells empty in every pixel, a bias no spp removes.
   const auto N = static_cast<uint32_t>(n);
-  auto m = static_cast<uint32_t>(std::max(1.0, std::floor(std::sqrt(double(N)))));
-  while (N % m != 0) --m;
+  // The grid depends only on n, and a render asks for few distinct n (spp, spp × each light's
+  // samples): remember the last one per thread instead of searching divisors per sample.
+  thread_local uint32_t cachedN = 0, cachedM = 1;
+  if (N != cachedN) {
+    auto m = static_cast<uint32_t>(std::max(1.0, std::floor(std::sqrt(double(N)))));
+    while (N % m != 0) --m;
+    cachedN = N;
+    cachedM = m;
+  }
+  const uint32_t m = cachedM;
   const uint32_t k = N / m;
   const uint32_t p = key32(pattern);
   const uint32_t s = permute(static_cast<uint32_t>(index), N, p * 0x51633e2d);
-  const uint32_t sx = permute(s % m, m, p * 0xa511e9b3);
-  const uint32_t sy = permute(s / m, k, p * 0x63d83595);
-  const float jx = toUnitFloat(hashKey(pattern, s, 1));
-  const float jy = toUnitFloat(hashKey(pattern, s, 2));
-  const float x = (static_cast<float>(s % m) + (static_cast<float>(sy) + jx) / float(k)) / float(m);
-  const float y = (static_cast<float>(s / m) + (static_cast<float>(sx) + jy) / float(m)) / float(k);
+  const uint32_t row = s / m, column = s - row * m;
+  const uint32_t sx = permute(column, m, p * 0xa511e9b3);
+  const uint32_t sy = permute(row, k, p * 0x63d83595);
+  // hashKey folds left: both jitters share the (pattern, s) prefix.
+  const uint64_t prefix = hashKey(pattern, s);
+  const float jx = toUnitFloat(hashCombine(prefix, 1));
+  const float jy = toUnitFloat(hashCombine(prefix, 2));
+  const float x =
+      (static_cast<float>(column) + (static_cast<float>(sy) + jx) / float(k)) / float(m);
+  const float y = (static_cast<float>(row) + (static_cast<float>(sx) + jy) / float(m)) / float(k);
   return {std::min(x, 0x1.fffffep-1f), std::min(y, 0x1.fffffep-1f)};
 }
 
