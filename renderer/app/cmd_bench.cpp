@@ -26,7 +26,6 @@
 #include "core/fp_env.h"
 #include "core/hash.h"
 #include "film/atomic_file.h"
-#include "render/render_job.h"
 #include "render/tile_scheduler.h"
 
 namespace glint {
@@ -254,15 +253,7 @@ int runBench(const BenchArgs& a) {
     whole = benchWholeRender(scene, embree, {allThreads, a.renderRuns});
     whole.update(memory);
     const auto timeRender = [&](int threads, int tile) {
-      double best = 1e30;
-      for (int run = 0; run < a.renderRuns; ++run) {
-        RenderOptions opt;
-        opt.threads = threads;
-        opt.tileSize = tile;
-        opt.progress = false;
-        best = std::min(best, renderScene(scene, embree, opt).stats.seconds);
-      }
-      return best;
+      return bestRenderSeconds(scene, embree, threads, tile, a.renderRuns);
     };
     const double t1 = timeRender(1, 32), tn = timeRender(allThreads, 32);
     const double efficiency = t1 / (allThreads * tn);

@@ -64,12 +64,13 @@ double replaySeconds(const Accelerator& embree, const std::vector<RecordedRay>& 
   return secondsSince(start);
 }
 
-// Camera sampling alone: every pixel sample, lens and time draw and camera ray the render
-// makes, with nothing traced.
+// Camera sampling alone: every camera ray the render makes, through the same CameraSampling,
+// with nothing traced.
 double samplingSeconds(const Scene& scene, int threads) {
   const RenderSettings& rs = scene.render;
   const Camera camera(scene.cameraDesc, rs.width, rs.height);
   const Sampler sampler(rs.sampler, rs.spp, rs.seed);
+  const CameraSampling cameraSampling(scene, camera);
   const PixelWindow window{0, rs.width, 0, rs.height};
   const auto tiles = makeTiles(window, effectiveTileSize(window, 32, threads));
   std::vector<float> sink(tiles.size());
@@ -80,11 +81,8 @@ double samplingSeconds(const Scene& scene, int threads) {
       for (int x = tiles[t].x0; x < tiles[t].x1; ++x) {
         const uint64_t pixelKey = sampler.pixelKey(x, y);
         for (int s = 0; s < rs.spp; ++s) {
-          const SampleKey key(&sampler, x, y, s, pixelKey);
-          const Vec2f u = sampler.pixelSampleFor(pixelKey, s);
-          const Vec2f lens = camera.hasLens() ? key.get2D(dimension(Dim::Lens)) : Vec2f{};
-          const float time = scene.features.motion ? key.get2D(dimension(Dim::Time)).x : 0;
-          acc += camera.generateRay(float(x) + u.x, float(y) + u.y, lens).d.x + time;
+          const Ray r = cameraSampling.ray(SampleKey(&sampler, x, y, s, pixelKey));
+          acc += r.d.x + r.time;
         }
       }
     sink[t] = acc;
@@ -106,6 +104,11 @@ double filmSeconds(const Scene& scene) {
 double share(double part, double whole) { return whole > 0 ? 100 * part / whole : 0; }
 
 }  // namespace
+
+double bestRenderSeconds(const Scene& scene, const Accelerator& accel, int threads, int tileSize,
+                         int runs) {
+  return bestOf(runs, [&] { return render(scene, accel, threads, true, tileSize).stats.seconds; });
+}
 
 int64_t sceneGeometryBytes(const Scene& scene, const EmbreeAccel& embree) {
   int64_t bytes = embree.bytes();

@@ -1,7 +1,8 @@
 #pragma once
 // Whole-render figures for `glint bench`: rays by kind and rates, the Embree-limit ratio (the
 // render's rays replayed through Embree alone), a time split, the gain of the specialised
-// integrator over the general one, memory per triangle, and parallel efficiency.
+// integrator over the general one, and memory per triangle. Parallel efficiency and tile sizes
+// are timed by cmd_bench.cpp with bestRenderSeconds.
 #include <nlohmann/json.hpp>
 
 #include "accel/embree_accel.h"
@@ -17,6 +18,10 @@ struct RenderBenchOptions {
 // Prints the figures and returns them as JSON (keys in docs/performance.md).
 nlohmann::json benchWholeRender(const Scene& scene, const EmbreeAccel& embree,
                                 const RenderBenchOptions& opt);
+
+// The fastest of `runs` whole renders (no progress output), in seconds.
+double bestRenderSeconds(const Scene& scene, const Accelerator& accel, int threads, int tileSize,
+                         int runs);
 
 // Bytes the scene's triangle meshes hold (positions, keys, indices) plus Embree's BVHs.
 int64_t sceneGeometryBytes(const Scene& scene, const EmbreeAccel& embree);

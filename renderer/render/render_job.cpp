@@ -28,9 +28,9 @@ struct FrameContext {
   const RenderOptions& opt;
   Film& film;
   const Camera& camera;
+  const CameraSampling& cameraSampling;
   const Sampler& sampler;
   const AovLayout& aovLayout;
-  bool openShutter;
   std::atomic<int>& loggedNonfinite;
 };
 
@@ -42,8 +42,6 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
   constexpr bool kAovs = (Caps & cap::kAovs) != 0;
   const RenderSettings& rs = f.scene.render;
   const WhittedKernel<Caps> integrator(f.scene, f.accel);
-  const float shutterOpen = f.scene.cameraDesc.shutterOpen;
-  const float shutterClose = f.scene.cameraDesc.shutterClose;
   const bool aovs = kAovs && f.opt.aovs.any();
   const bool aovSamples = kAovs && f.opt.aovs.needsSamples();
   const Vec3f viewAxis = -f.camera.w();
@@ -61,19 +59,7 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
         const int count = std::min(kCameraChunk, rs.spp - first);
         for (int i = 0; i < count; ++i) {
           const int s = first + i;
-          const SampleKey key(&f.sampler, x, y, s, pixelKey);
-          const Vec2f u = f.sampler.pixelSampleFor(pixelKey, s);
-          Vec2f lens;
-          float time = shutterOpen;
-          if constexpr (kCameraSamples) {
-            // Drawn only when there is a lens, or something moves under an open shutter.
-            if (f.camera.hasLens()) lens = key.get2D(dimension(Dim::Lens));
-            if (f.openShutter)
-              time = shutterOpen + (shutterClose - shutterOpen) * key.get2D(dimension(Dim::Time)).x;
-          }
-          rays[i] =
-              f.camera.generateRay(static_cast<float>(x) + u.x, static_cast<float>(y) + u.y, lens);
-          rays[i].time = time;
+          rays[i] = f.cameraSampling.ray<kCameraSamples>(SampleKey(&f.sampler, x, y, s, pixelKey));
         }
         f.accel.intersectCoherent(rays, hits, static_cast<size_t>(count));
         for (int i = 0; i < count; ++i) {
@@ -137,10 +123,9 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   std::vector<RayCounters> tileCounters(tiles.size());
   Progress progress(window.area(), opt.progress);
   std::atomic<int> loggedNonfinite{0};
-  const bool openShutter =
-      scene.features.motion && scene.cameraDesc.shutterClose > scene.cameraDesc.shutterOpen;
-  const FrameContext frame{scene,   accel,     opt,         film,           camera,
-                           sampler, aovLayout, openShutter, loggedNonfinite};
+  const CameraSampling cameraSampling(scene, camera);
+  const FrameContext frame{scene,          accel,   opt,       film,           camera,
+                           cameraSampling, sampler, aovLayout, loggedNonfinite};
 
   runTiles(tiles, threads, [&](size_t tileIndex) {
     if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) {

@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "accel/accelerator.h"
+#include "camera/camera.h"
 #include "film/film.h"
 #include "integrator/aov.h"
 #include "integrator/ray_counters.h"
@@ -31,6 +32,40 @@ struct RenderOptions {
   // Test hook: sees (and may alter) every camera sample before it reaches the film, so tests
   // can force a NaN through the real path. Never set in production.
   std::function<void(int x, int y, Radiance& sample)> sampleHook;
+};
+
+// A camera sample's ray, shared by the render loop and `glint bench`'s sampling pass: the pixel
+// offset always; the lens and shutter-time dimensions only when the camera has a lens or
+// something moves under an open shutter (leave out what is not needed).
+class CameraSampling {
+ public:
+  CameraSampling(const Scene& scene, const Camera& camera)
+      : camera_(camera),
+        open_(scene.cameraDesc.shutterOpen),
+        close_(scene.cameraDesc.shutterClose),
+        openShutter_(scene.features.motion && close_ > open_) {}
+
+  // kMayDraw = false (a kernel without cap::kCameraSamples: no lens, nothing moves) leaves the
+  // two checks out at compile time; the ray is the same.
+  template <bool kMayDraw = true>
+  Ray ray(const SampleKey& key) const {
+    const Vec2f u = key.sampler->pixelSampleFor(key.pixelKey, key.index);
+    Vec2f lens;
+    float time = open_;
+    if constexpr (kMayDraw) {
+      if (camera_.hasLens()) lens = key.get2D(dimension(Dim::Lens));
+      if (openShutter_) time = open_ + (close_ - open_) * key.get2D(dimension(Dim::Time)).x;
+    }
+    Ray r = camera_.generateRay(static_cast<float>(key.px) + u.x, static_cast<float>(key.py) + u.y,
+                                lens);
+    r.time = time;
+    return r;
+  }
+
+ private:
+  const Camera& camera_;
+  float open_, close_;
+  bool openShutter_;
 };
 
 struct RenderStats {
