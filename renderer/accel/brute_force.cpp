@@ -35,13 +35,8 @@ void BruteForce::intersectGroup(uint32_t groupId, const Ray& ray, uint32_t instI
       case GeomKind::Plane:
         break;  // shared loop in intersectPlanes
       case GeomKind::Instance: {
-        // Same convention as Embree: the instanced ray keeps t, so d is not renormalised.
         const Instance& inst = scene_.instances[g.index];
-        const Transform objectFromWorld = inst.transformAt(r.time).inverse();
-        Ray local = r;
-        local.o = objectFromWorld.point(r.o);
-        local.d = objectFromWorld.vector(r.d);
-        intersectGroup(inst.groupId, local, gi, hit);
+        intersectGroup(inst.groupId, inst.toObject(r), gi, hit);
         break;
       }
     }

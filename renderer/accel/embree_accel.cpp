@@ -247,20 +247,35 @@ void EmbreeAccel::addGeometries(RTCScene rtcScene, uint32_t groupId) {
   throwIfEmbreeFailed("committing the Embree scene");
 }
 
+namespace {
+
+RTCRay toRtcRay(const Ray& ray) {
+  return {ray.o.x, ray.o.y,  ray.o.z,  ray.tMin, ray.d.x, ray.d.y,
+          ray.d.z, ray.time, ray.tMax, ~0u,      0,       0};
+}
+
+RTCRayHit toRtcRayHit(const Ray& ray) {
+  RTCRayHit rh;
+  rh.ray = toRtcRay(ray);
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+Hit fromRtcRayHit(const RTCRayHit& rh) {
+  if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return {};
+  // Embree's instance convention is Glint's: geomID inside the group, instID[0] in the world.
+  return {rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.primID, rh.hit.instID[0]};
+}
+
+}  // namespace
+
 Hit EmbreeAccel::intersect(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh;
-  rh.ray = {ray.o.x, ray.o.y,  ray.o.z,  ray.tMin, ray.d.x, ray.d.y,
-            ray.d.z, ray.time, ray.tMax, ~0u,      0,       0};
-  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  RTCRayHit rh = toRtcRayHit(ray);
   rtcIntersect1(groupScenes_[0], &context, &rh);
-  Hit hit;
-  if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-    // Embree's instance convention is Glint's: geomID inside the group, instID[0] in the world.
-    hit = {rh.ray.tfar, rh.hit.u, rh.hit.v, rh.hit.geomID, rh.hit.primID, rh.hit.instID[0]};
-  }
+  Hit hit = fromRtcRayHit(rh);
   intersectPlanes(scene_, ray, hit);
   return hit;
 }
@@ -274,21 +289,11 @@ void EmbreeAccel::intersectStream(const Ray* rays, Hit* hits, size_t n, bool coh
   RTCRayHit rh[kChunk];
   for (size_t begin = 0; begin < n; begin += kChunk) {
     const size_t count = std::min(kChunk, n - begin);
-    for (size_t i = 0; i < count; ++i) {
-      const Ray& ray = rays[begin + i];
-      rh[i].ray = {ray.o.x, ray.o.y,  ray.o.z,  ray.tMin, ray.d.x, ray.d.y,
-                   ray.d.z, ray.time, ray.tMax, ~0u,      0,       0};
-      rh[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    }
+    for (size_t i = 0; i < count; ++i) rh[i] = toRtcRayHit(rays[begin + i]);
     rtcIntersect1M(groupScenes_[0], &context, rh, static_cast<unsigned>(count), sizeof(RTCRayHit));
     for (size_t i = 0; i < count; ++i) {
-      Hit& hit = hits[begin + i];
-      hit = {};
-      if (rh[i].hit.geomID != RTC_INVALID_GEOMETRY_ID)
-        hit = {rh[i].ray.tfar,   rh[i].hit.u,      rh[i].hit.v,
-               rh[i].hit.geomID, rh[i].hit.primID, rh[i].hit.instID[0]};
-      intersectPlanes(scene_, rays[begin + i], hit);
+      hits[begin + i] = fromRtcRayHit(rh[i]);
+      intersectPlanes(scene_, rays[begin + i], hits[begin + i]);
     }
   }
 }
@@ -297,8 +302,7 @@ bool EmbreeAccel::occluded(const Ray& ray) const {
   if (occludedByPlanes(scene_, ray)) return true;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay r{ray.o.x, ray.o.y,  ray.o.z,  ray.tMin, ray.d.x, ray.d.y,
-           ray.d.z, ray.time, ray.tMax, ~0u,      0,       0};
+  RTCRay r = toRtcRay(ray);
   rtcOccluded1(groupScenes_[0], &context, &r);
   return r.tfar < 0;
 }

@@ -370,13 +370,8 @@ bool ReferenceBvh::intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray
     case GeomKind::Plane:
       return false;
     case GeomKind::Instance: {
-      // Embree's convention: the instanced ray keeps t, so its direction is not renormalised.
       const Instance& inst = scene_.instances[g.index];
-      const Transform objectFromWorld = inst.transformAt(r.time).inverse();
-      Ray local = r;
-      local.o = objectFromWorld.point(r.o);
-      local.d = objectFromWorld.vector(r.d);
-      return traverse<false>(inst.groupId, local, p.geom, hit);
+      return traverse<false>(inst.groupId, inst.toObject(r), p.geom, hit);
     }
   }
   if (!(t < r.tMax)) return false;

@@ -20,6 +20,14 @@ Transform Instance::transformAt(float time) const {
   return lerp(motion[seg], motion[seg + 1], f).toTransform();
 }
 
+Ray Instance::toObject(const Ray& ray) const {
+  const Transform objectFromWorld = transformAt(ray.time).inverse();
+  Ray local = ray;
+  local.o = objectFromWorld.point(ray.o);
+  local.d = objectFromWorld.vector(ray.d);
+  return local;
+}
+
 Sphere Scene::sphereAt(uint32_t index, float time) const {
   const Sphere& s = spheres[index];
   if (sphereCenterKeys[index].empty()) return s;

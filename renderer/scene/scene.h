@@ -39,6 +39,9 @@ struct Instance {
 
   // worldFromObject at normalised time (slerp for rotation, as Embree's quaternion motion).
   Transform transformAt(float time) const;
+  // `ray` carried into the object's space at ray.time. As in Embree, the direction is not
+  // renormalised, so t means the same distance along the ray in both spaces.
+  Ray toObject(const Ray& ray) const;
   // Whether the keys turn the object (their rotations differ), so Embree's slerp is used.
   bool rotates() const {
     for (const TrsKey& k : motion)
