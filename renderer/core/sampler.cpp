@@ -1,22 +1,33 @@
 #include "core/sampler.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include "core/fast_divide.h"
 #include "core/hash.h"
 
 namespace glint {
 
 namespace {
 
+// The set [0, len) that a permutation shuffles, with what permute() needs of it precomputed.
+struct PermutationDomain {
+  PermutationDomain() = default;
+  explicit PermutationDomain(uint32_t len) : size(len), mask(len - 1) {
+    mask |= mask >> 1;  // the smallest all-ones mask covering len - 1
+    mask |= mask >> 2;
+    mask |= mask >> 4;
+    mask |= mask >> 8;
+    mask |= mask >> 16;
+  }
+  FastDivisor size;
+  uint32_t mask = 0;
+};
+
 // Kensler's hashed permutation ("Correlated Multi-Jittered Sampling", Pixar 2013): a bijection
 // on [0, len) chosen by `key`, computed in O(1) without storing a table.
-uint32_t permute(uint32_t i, uint32_t len, uint32_t key) {
-  uint32_t w = len - 1;
-  w |= w >> 1;
-  w |= w >> 2;
-  w |= w >> 4;
-  w |= w >> 8;
-  w |= w >> 16;
+uint32_t permute(uint32_t i, const PermutationDomain& domain, uint32_t key) {
+  const uint32_t w = domain.mask, len = domain.size.divisor();
   do {
     i ^= key;
     i *= 0xe170893d;
@@ -37,7 +48,41 @@ uint32_t permute(uint32_t i, uint32_t len, uint32_t key) {
     i &= w;
     i ^= i >> 5;
   } while (i >= len);
-  return (i + key) % len;
+  return domain.size.remainder(i + key);
+}
+
+// The m × k grid of a correlated multi-jittered set of n = m·k samples: m is the largest divisor
+// of n not above √n, so every cell holds one sample for any n (a prime n gives a 1×n grid,
+// still n-rooks): a grid with m·k > n would leave the same cells empty in every pixel, a bias
+// no spp removes.
+struct JitterGrid {
+  explicit JitterGrid(uint32_t n) {
+    auto m = static_cast<uint32_t>(std::max(1.0, std::floor(std::sqrt(double(n)))));
+    while (n % m != 0) --m;
+    all = PermutationDomain(n);
+    columns = PermutationDomain(m);
+    rows = PermutationDomain(n / m);
+    inverseCount = 1.0 / static_cast<double>(n);
+  }
+  PermutationDomain all, columns, rows;
+  double inverseCount = 1;
+
+  // (stratum + jitter) / n as a float inside [stratum, stratum + 1) / n. The sum is exact in
+  // double; rounding the quotient to float reaches the next stratum's edge when the jitter is
+  // within a float ulp of 1, so such a value steps back by one ulp (x·n is exact in double).
+  float place(uint32_t stratum, float jitter) const {
+    const auto x = static_cast<float>((static_cast<double>(stratum) + jitter) * inverseCount);
+    const double n = all.size.divisor();
+    return static_cast<double>(x) * n >= stratum + 1.0 ? std::nextafter(x, 0.0f) : x;
+  }
+};
+
+// The grid depends only on n, and a render asks for few distinct n (spp, spp × each light's
+// samples): remember the last one per thread instead of rebuilding it per sample.
+const JitterGrid& jitterGrid(uint32_t n) {
+  thread_local JitterGrid cached(1);
+  if (cached.all.size.divisor() != n) cached = JitterGrid(n);
+  return cached;
 }
 
 uint32_t key32(uint64_t h) { return static_cast<uint32_t>(h ^ (h >> 32)); }
@@ -74,6 +119,9 @@ uint32_t sobolDimension1(uint32_t i) {
   return r;
 }
 
+// Two independent uniform floats in [0, 1) from one 64-bit hash: 24 bits from each half.
+Vec2f unitPair(uint64_t bits) { return {toUnitFloat(bits), toUnitFloat(bits << 32)}; }
+
 float bitsToUnit(uint32_t bits) { return static_cast<float>(bits >> 8) * (1.0f / 16777216.0f); }
 
 }  // namespace
@@ -102,45 +150,29 @@ bool parseSamplerKind(std::string_view name, SamplerKind& out) {
   return false;
 }
 
-Vec2f Sampler::stratified2D(uint64_t pattern, int index, int n) const {
-  // Correlated multi-jitter: an m×k grid with m·k = n exactly, whose samples are also
-  // stratified in each 1D projection (n-rooks). m is the largest divisor of n not above √n, so
-  // every cell holds one sample for any n (a prime n gives a 1×n grid, still n-rooks): a grid
-  // with m·k > n would leave the same cells empty in every pixel, a bias no spp removes.
-  const auto N = static_cast<uint32_t>(n);
-  // The grid depends only on n, and a render asks for few distinct n (spp, spp × each light's
-  // samples): remember the last one per thread instead of searching divisors per sample.
-  thread_local uint32_t cachedN = 0, cachedM = 1;
-  if (N != cachedN) {
-    auto m = static_cast<uint32_t>(std::max(1.0, std::floor(std::sqrt(double(N)))));
-    while (N % m != 0) --m;
-    cachedN = N;
-    cachedM = m;
-  }
-  const uint32_t m = cachedM;
-  const uint32_t k = N / m;
-  const uint32_t p = key32(pattern);
-  const uint32_t s = permute(static_cast<uint32_t>(index), N, p * 0x51633e2d);
-  const uint32_t row = s / m, column = s - row * m;
-  const uint32_t sx = permute(column, m, p * 0xa511e9b3);
-  const uint32_t sy = permute(row, k, p * 0x63d83595);
-  // hashKey folds left: both jitters share the (pattern, s) prefix.
-  const uint64_t prefix = hashKey(pattern, s);
-  const float jx = toUnitFloat(hashCombine(prefix, 1));
-  const float jy = toUnitFloat(hashCombine(prefix, 2));
-  const float x =
-      (static_cast<float>(column) + (static_cast<float>(sy) + jx) / float(k)) / float(m);
-  const float y = (static_cast<float>(row) + (static_cast<float>(sx) + jy) / float(m)) / float(k);
-  return {std::min(x, 0x1.fffffep-1f), std::min(y, 0x1.fffffep-1f)};
+Vec2f Sampler::stratified2D(const SamplePattern& pattern, int index, int n) {
+  // Correlated multi-jitter (Kensler 2013): one sample per cell of the m × k grid, placed in its
+  // cell so that both 1D projections are stratified too (n-rooks).
+  const JitterGrid& grid = jitterGrid(static_cast<uint32_t>(n));
+  const uint32_t m = grid.columns.size.divisor(), k = grid.rows.size.divisor();
+  const uint32_t p = pattern.scramble[0];
+  const uint32_t s = permute(static_cast<uint32_t>(index), grid.all, p * 0x51633e2d);
+  const uint32_t row = grid.columns.size.quotient(s), column = s - row * m;
+  const uint32_t sx = permute(column, grid.columns, p * 0xa511e9b3);
+  const uint32_t sy = permute(row, grid.rows, p * 0x63d83595);
+  // The sample sits in cell (column, row) of the coarse grid and, inside it, in sub-cell
+  // (sy, sx) of the fine n × n grid: stratum column·k + sy of n along x, row·m + sx along y.
+  // Both jitters come from one hash.
+  const Vec2f jitter = unitPair(hashCombine(pattern.hash, s));
+  return {grid.place(column * k + sy, jitter.x), grid.place(row * m + sx, jitter.y)};
 }
 
-Vec2f Sampler::sobol2D(uint64_t pattern, int index) {
+Vec2f Sampler::sobol2D(const SamplePattern& pattern, int index) {
   // The index is Owen-scrambled too, which shuffles the order of the sequence per pattern while
   // every power-of-two prefix stays a (0,m,2)-net.
-  const uint32_t seed = key32(pattern);
-  const uint32_t i = nestedUniformScramble(static_cast<uint32_t>(index), seed);
-  const uint32_t x = nestedUniformScramble(sobolDimension0(i), key32(mix64(pattern + 1)));
-  const uint32_t y = nestedUniformScramble(sobolDimension1(i), key32(mix64(pattern + 2)));
+  const uint32_t i = nestedUniformScramble(static_cast<uint32_t>(index), pattern.scramble[0]);
+  const uint32_t x = nestedUniformScramble(sobolDimension0(i), pattern.scramble[1]);
+  const uint32_t y = nestedUniformScramble(sobolDimension1(i), pattern.scramble[2]);
   return {bitsToUnit(x), bitsToUnit(y)};
 }
 
@@ -148,34 +180,44 @@ uint64_t Sampler::pixelKey(int px, int py) const {
   return hashKey(seed_, static_cast<uint32_t>(px), static_cast<uint32_t>(py));
 }
 
-Vec2f Sampler::pixelSampleFor(uint64_t pixelKey, int index) const {
-  // hashKey folds left, so this is hashKey(seed, px, py, Dim::Pixel).
-  const uint64_t pattern = hashCombine(pixelKey, static_cast<uint32_t>(Dim::Pixel));
-  switch (kind_) {
-    case SamplerKind::Regular: {
-      const int n = static_cast<int>(std::ceil(std::sqrt(double(spp_))));
-      return {(static_cast<float>(index % n) + 0.5f) / float(n),
-              (static_cast<float>(index / n) + 0.5f) / float(n)};
-    }
-    case SamplerKind::Random:
-      return {toUnitFloat(hashKey(pattern, index, 1)), toUnitFloat(hashKey(pattern, index, 2))};
-    case SamplerKind::Stratified:
-      return stratified2D(pattern, index, spp_);
-    case SamplerKind::Sobol:
-      return sobol2D(pattern, index);
+SamplePattern Sampler::pattern(uint64_t pixelKey, uint32_t dim) const {
+  // hashKey folds left, so a dimension's pattern hash is hashKey(seed, px, py, dim).
+  const uint64_t hash = hashCombine(pixelKey, dim);
+  SamplePattern p;
+  p.hash = hash;
+  p.scramble[0] = key32(hash);
+  if (kind_ == SamplerKind::Sobol) {
+    p.scramble[1] = key32(mix64(hash + 1));
+    p.scramble[2] = key32(mix64(hash + 2));
   }
-  return {0.5f, 0.5f};
+  return p;
+}
+
+Vec2f Sampler::pixelSampleFor(uint64_t pixelKey, int index) const {
+  return pixelSampleFor(pattern(pixelKey, static_cast<uint32_t>(Dim::Pixel)), index);
 }
 
 Vec2f Sampler::get2DFor(uint64_t pixelKey, int index, uint32_t dim, int sub, int count) const {
-  const uint64_t pattern = hashCombine(pixelKey, dim);
-  const int n = spp_ * count;
+  return get2DFor(pattern(pixelKey, dim), index, sub, count);
+}
+
+Vec2f Sampler::pixelSampleFor(const SamplePattern& pixel, int index) const {
+  if (kind_ == SamplerKind::Regular) {
+    const int n = static_cast<int>(std::ceil(std::sqrt(double(spp_))));
+    return {(static_cast<float>(index % n) + 0.5f) / float(n),
+            (static_cast<float>(index / n) + 0.5f) / float(n)};
+  }
+  return get2DFor(pixel, index);
+}
+
+Vec2f Sampler::get2DFor(const SamplePattern& pattern, int index, int sub, int count) const {
   // The shuffle: sample `index` of the pixel takes a permuted stratum of this dimension's set.
+  // Regular grids are for pixel offsets only; other dimensions of a regular render stratify.
   const int flat = index * count + sub;
   if (kind_ == SamplerKind::Random)
-    return {toUnitFloat(hashKey(pattern, flat, 1)), toUnitFloat(hashKey(pattern, flat, 2))};
+    return unitPair(hashCombine(pattern.hash, static_cast<uint64_t>(flat)));
   if (kind_ == SamplerKind::Sobol) return sobol2D(pattern, flat);
-  return stratified2D(pattern, flat, n);
+  return stratified2D(pattern, flat, spp_ * count);
 }
 
 }  // namespace glint

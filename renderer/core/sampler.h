@@ -29,6 +29,13 @@ constexpr uint32_t dimension(Dim kind, int depth = 0, int index = 0) {
          (static_cast<uint32_t>(index) << 16);
 }
 
+// One dimension's sample set within one pixel: the hashes that depend only on (pixel,
+// dimension), computed once and shared by every sample drawn from the set.
+struct SamplePattern {
+  uint64_t hash = 0;          // hashKey(seed, px, py, dim): keys each sample's jitter
+  uint32_t scramble[3] = {};  // stratified: the permutation key; sobol: index, x, y scrambles
+};
+
 class Sampler {
  public:
   Sampler(SamplerKind kind, int samplesPerPixel, uint64_t seed)
@@ -53,9 +60,15 @@ class Sampler {
   Vec2f pixelSampleFor(uint64_t pixelKey, int index) const;
   Vec2f get2DFor(uint64_t pixelKey, int index, uint32_t dim, int sub = 0, int count = 1) const;
 
+  // The same again, from a dimension's pattern computed once for all the samples drawn from it
+  // (e.g. once per light at a shading point, not once per shadow sample).
+  SamplePattern pattern(uint64_t pixelKey, uint32_t dim) const;
+  Vec2f pixelSampleFor(const SamplePattern& pixel, int index) const;
+  Vec2f get2DFor(const SamplePattern& pattern, int index, int sub = 0, int count = 1) const;
+
  private:
-  Vec2f stratified2D(uint64_t pattern, int index, int n) const;
-  static Vec2f sobol2D(uint64_t pattern, int index);
+  static Vec2f stratified2D(const SamplePattern& pattern, int index, int n);
+  static Vec2f sobol2D(const SamplePattern& pattern, int index);
 
   SamplerKind kind_;
   int spp_;

@@ -120,10 +120,12 @@ Rgb WhittedKernel<C>::shadePhong(const PhongMaterial& m, const ShadingPoint& sp,
     const int count = kAreaLights ? lightSampleCount(light) : 1;
     const bool delta = !kAreaLights || std::holds_alternative<PointLight>(light) ||
                        std::holds_alternative<DirectionalLight>(light);
-    const uint32_t dim = dimension(Dim::Light, branch.depth, static_cast<int>(li));
+    const SamplePattern pattern =
+        delta ? SamplePattern{}
+              : branch.key->pattern(dimension(Dim::Light, branch.depth, static_cast<int>(li)));
     Rgb sum;
     for (int j = 0; j < count; ++j) {
-      const Vec2f u = delta ? Vec2f{0.5f, 0.5f} : branch.key->get2D(dim, j, count);
+      const Vec2f u = delta ? Vec2f{0.5f, 0.5f} : branch.key->get2D(pattern, j, count);
       const LightSample ls = sampleLight(light, sp.p, u);
       const float cosL = dot(n, ls.wi);
       if (cosL <= 0 || ls.intensity.isBlack()) continue;

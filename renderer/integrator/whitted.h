@@ -35,6 +35,11 @@ struct SampleKey {
   Vec2f get2D(uint32_t dim, int sub = 0, int count = 1) const {
     return sampler->get2DFor(pixelKey, index, dim, sub, count);
   }
+  // A dimension's pattern, for drawing several sub-samples of it (a light's shadow samples).
+  SamplePattern pattern(uint32_t dim) const { return sampler->pattern(pixelKey, dim); }
+  Vec2f get2D(const SamplePattern& pattern, int sub, int count) const {
+    return sampler->get2DFor(pattern, index, sub, count);
+  }
 };
 
 struct Radiance {

@@ -7,10 +7,14 @@
 namespace glint {
 namespace {
 
+// The stratum of width 1/n that holds x: ⌊x·n⌋, exact in double (a float product could round
+// a value just below a stratum's edge onto it).
+int stratumOf(float x, int n) { return static_cast<int>(double(x) * n); }
+
 // Counts samples per 1D stratum of width 1/n; a stratified set has exactly one in each.
 std::vector<int> strataCounts(const std::vector<float>& xs, int n) {
   std::vector<int> c(static_cast<size_t>(n), 0);
-  for (float x : xs) ++c[static_cast<size_t>(x * float(n))];
+  for (float x : xs) ++c[static_cast<size_t>(stratumOf(x, n))];
   return c;
 }
 
@@ -56,8 +60,7 @@ TEST_P(StratifiedCounts, EachOneDimensionalStratumHoldsOneSample) {
     const int k = spp / m;
     std::set<std::pair<int, int>> cells;
     for (int i = 0; i < spp; ++i)
-      EXPECT_TRUE(
-          cells.insert({int(xs[size_t(i)] * float(m)), int(ys[size_t(i)] * float(k))}).second);
+      EXPECT_TRUE(cells.insert({stratumOf(xs[size_t(i)], m), stratumOf(ys[size_t(i)], k)}).second);
     EXPECT_EQ(cells.size(), size_t(spp));
   }
 }
@@ -100,7 +103,7 @@ TEST(Sampler, SobolPrefixesAreZeroTwoNets) {
       }
       // The light/lens dimensions are nets too, over spp × count points.
       std::set<int> strata;
-      for (int i = 0; i < n; ++i) strata.insert(int(s.get2D(px, 3, i, 40).x * float(n)));
+      for (int i = 0; i < n; ++i) strata.insert(stratumOf(s.get2D(px, 3, i, 40).x, n));
       EXPECT_EQ(strata.size(), size_t(n));
     }
   }
