@@ -1,5 +1,8 @@
 #include "core/sampler.h"
 
+#include "core/fast_divide.h"
+#include "core/hash.h"
+
 #include <gtest/gtest.h>
 
 #include <set>
@@ -16,6 +19,35 @@ std::vector<int> strataCounts(const std::vector<float>& xs, int n) {
   std::vector<int> c(static_cast<size_t>(n), 0);
   for (float x : xs) ++c[static_cast<size_t>(stratumOf(x, n))];
   return c;
+}
+
+TEST(FastDivisor, MatchesIntegerDivisionForEveryDividendTried) {
+  // The sampler's strata depend on these being exact: Lemire's method is exact for all 32-bit
+  // dividends, so any mismatch is a bug. Divisors 1..4096 and some large ones, dividends at the
+  // edges of the 32-bit range, around multiples of d, and a hashed spread.
+  std::vector<uint32_t> divisors;
+  for (uint32_t d = 1; d <= 4096; ++d) divisors.push_back(d);
+  for (uint32_t d : {65535u, 65536u, 65537u, 1000003u, 0x7fffffffu, 0x80000000u, 0xffffffffu})
+    divisors.push_back(d);
+  for (uint32_t d : divisors) {
+    const FastDivisor f(d);
+    std::vector<uint32_t> as = {0,
+                                1,
+                                d - 1,
+                                d,
+                                d + 1,
+                                0x7fffffffu,
+                                0x80000000u,
+                                0xfffffffeu,
+                                0xffffffffu,
+                                0xffffffffu / d * d,
+                                0xffffffffu / d * d - 1};
+    for (uint32_t i = 0; i < 64; ++i) as.push_back(static_cast<uint32_t>(mix64(d * 64ull + i)));
+    for (uint32_t a : as) {
+      ASSERT_EQ(f.quotient(a), a / d) << a << " / " << d;
+      ASSERT_EQ(f.remainder(a), a % d) << a << " % " << d;
+    }
+  }
 }
 
 TEST(Sampler, SameKeySameNumbers) {
