@@ -1,6 +1,7 @@
 #include "core/sampler.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "core/fast_divide.h"
@@ -69,11 +70,14 @@ struct JitterGrid {
 
   // (stratum + jitter) / n as a float inside [stratum, stratum + 1) / n. The sum is exact in
   // double; rounding the quotient to float reaches the next stratum's edge when the jitter is
-  // within a float ulp of 1, so such a value steps back by one ulp (x·n is exact in double).
+  // within a float ulp of 1, so such a value steps back by one ulp (x·n is exact in double;
+  // x > 0 there, so one ulp down is the bit pattern minus one).
   float place(uint32_t stratum, float jitter) const {
     const auto x = static_cast<float>((static_cast<double>(stratum) + jitter) * inverseCount);
     const double n = all.size.divisor();
-    return static_cast<double>(x) * n >= stratum + 1.0 ? std::nextafter(x, 0.0f) : x;
+    if (static_cast<double>(x) * n < stratum + 1.0) [[likely]]
+      return x;
+    return std::bit_cast<float>(std::bit_cast<uint32_t>(x) - 1);
   }
 };
 
