@@ -70,8 +70,8 @@ struct JitterGrid {
 
   // (stratum + jitter) / n as a float inside [stratum, stratum + 1) / n. The sum is exact in
   // double; rounding the quotient to float reaches the next stratum's edge when the jitter is
-  // within a float ulp of 1, so such a value steps back by one ulp (x·n is exact in double;
-  // x > 0 there, so one ulp down is the bit pattern minus one).
+  // within a float ulp of 1, so such a value steps back by one ulp (x·n is exact in double for
+  // n < 2^29; x > 0 there, so one ulp down is the bit pattern minus one).
   float place(uint32_t stratum, float jitter) const {
     const auto x = static_cast<float>((static_cast<double>(stratum) + jitter) * inverseCount);
     const double n = all.size.divisor();
