@@ -197,14 +197,6 @@ SamplePattern Sampler::pattern(uint64_t pixelKey, uint32_t dim) const {
   return p;
 }
 
-Vec2f Sampler::pixelSampleFor(uint64_t pixelKey, int index) const {
-  return pixelSampleFor(pattern(pixelKey, static_cast<uint32_t>(Dim::Pixel)), index);
-}
-
-Vec2f Sampler::get2DFor(uint64_t pixelKey, int index, uint32_t dim, int sub, int count) const {
-  return get2DFor(pattern(pixelKey, dim), index, sub, count);
-}
-
 Vec2f Sampler::pixelSampleFor(const SamplePattern& pixel, int index) const {
   if (kind_ == SamplerKind::Regular) {
     const int n = static_cast<int>(std::ceil(std::sqrt(double(spp_))));

@@ -46,22 +46,19 @@ class Sampler {
 
   // Offset inside pixel (px, py) for sample `index` in [0, spp), each coordinate in [0, 1).
   Vec2f pixelSample(int px, int py, int index) const {
-    return pixelSampleFor(pixelKey(px, py), index);
+    return pixelSampleFor(pattern(pixelKey(px, py), dimension(Dim::Pixel)), index);
   }
   // A 2D sample of dimension `dim` for sample `index`, stratified over the spp samples of the
   // pixel and over `count` sub-samples (e.g. shadow samples per camera sample).
   Vec2f get2D(int px, int py, int index, uint32_t dim, int sub = 0, int count = 1) const {
-    return get2DFor(pixelKey(px, py), index, dim, sub, count);
+    return get2DFor(pattern(pixelKey(px, py), dim), index, sub, count);
   }
 
-  // The same, from the pixel's key computed once (the hash of seed and pixel; each dimension's
-  // pattern extends it by one more step, so these give exactly the values above).
+  // The same in steps, for callers that draw many samples: the pixel's key (the hash of seed
+  // and pixel), computed once per pixel; a dimension's pattern, which extends it by one more
+  // step, computed once for all the samples drawn from it (e.g. once per light at a shading
+  // point, not once per shadow sample). The values are exactly those above.
   uint64_t pixelKey(int px, int py) const;
-  Vec2f pixelSampleFor(uint64_t pixelKey, int index) const;
-  Vec2f get2DFor(uint64_t pixelKey, int index, uint32_t dim, int sub = 0, int count = 1) const;
-
-  // The same again, from a dimension's pattern computed once for all the samples drawn from it
-  // (e.g. once per light at a shading point, not once per shadow sample).
   SamplePattern pattern(uint64_t pixelKey, uint32_t dim) const;
   Vec2f pixelSampleFor(const SamplePattern& pixel, int index) const;
   Vec2f get2DFor(const SamplePattern& pattern, int index, int sub = 0, int count = 1) const;

@@ -32,13 +32,13 @@ struct SampleKey {
   int px = 0, py = 0, index = 0;
   uint64_t pixelKey = 0;
 
-  Vec2f get2D(uint32_t dim, int sub = 0, int count = 1) const {
-    return sampler->get2DFor(pixelKey, index, dim, sub, count);
-  }
   // A dimension's pattern, for drawing several sub-samples of it (a light's shadow samples).
   SamplePattern pattern(uint32_t dim) const { return sampler->pattern(pixelKey, dim); }
   Vec2f get2D(const SamplePattern& pattern, int sub, int count) const {
     return sampler->get2DFor(pattern, index, sub, count);
+  }
+  Vec2f get2D(uint32_t dim, int sub = 0, int count = 1) const {
+    return get2D(pattern(dim), sub, count);
   }
 };
 

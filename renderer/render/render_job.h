@@ -49,7 +49,7 @@ class CameraSampling {
   // two checks out at compile time; the ray is the same.
   template <bool kMayDraw = true>
   Ray ray(const SampleKey& key) const {
-    const Vec2f u = key.sampler->pixelSampleFor(key.pixelKey, key.index);
+    const Vec2f u = key.sampler->pixelSampleFor(key.pattern(dimension(Dim::Pixel)), key.index);
     Vec2f lens;
     float time = open_;
     if constexpr (kMayDraw) {
