@@ -13,6 +13,9 @@ function(glint_warnings target)
   target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow -Wconversion
                                            -Wno-sign-conversion -Werror=return-type
                                            $<$<CXX_COMPILER_ID:GNU>:-Wno-restrict>)
+  # Glint never reads errno after maths calls: without this, every std::sqrt carries a branch
+  # to the library call that would set it, and loops with square roots do not vectorise.
+  target_compile_options(${target} PRIVATE -fno-math-errno)
   if(GLINT_NATIVE_ARCH)
     target_compile_options(${target} PRIVATE -march=native)
   endif()

@@ -89,6 +89,54 @@ const JitterGrid& jitterGrid(uint32_t n) {
   return cached;
 }
 
+// A pixel draws all n samples of each of its sets, so each of the set's m column and k row
+// permutations would be recomputed n/m and n/k times. This per-thread table keeps them for the
+// sets drawn last. A permutation depends only on its domain and its key, so an entry is found
+// by (key, n) and what it returns is what permute() would: the images cannot change.
+class AxisPermutationCache {
+ public:
+  static constexpr uint32_t kMaxSide = 64;  // sets with more columns or rows go uncached
+
+  // permute(column, grid.columns, columnKey) and permute(row, grid.rows, rowKey) of the set
+  // with pattern key p, whose grid is `grid`.
+  void lookup(const JitterGrid& grid, uint32_t p, uint32_t column, uint32_t row, uint32_t columnKey,
+              uint32_t rowKey, uint32_t& sx, uint32_t& sy) {
+    const uint32_t n = grid.all.size.divisor();
+    if (grid.rows.size.divisor() > kMaxSide) {  // rows ≥ columns
+      sx = permute(column, grid.columns, columnKey);
+      sy = permute(row, grid.rows, rowKey);
+      return;
+    }
+    Entry& e = entries_[(p ^ (p >> 11) ^ (p >> 23)) % kEntries];
+    if (e.key != p || e.n != n) {  // another set's: start afresh
+      e.key = p;
+      e.n = n;
+      e.haveColumn = e.haveRow = 0;
+    }
+    if (!(e.haveColumn >> column & 1)) {
+      e.column[column] = static_cast<uint8_t>(permute(column, grid.columns, columnKey));
+      e.haveColumn |= uint64_t{1} << column;
+    }
+    if (!(e.haveRow >> row & 1)) {
+      e.row[row] = static_cast<uint8_t>(permute(row, grid.rows, rowKey));
+      e.haveRow |= uint64_t{1} << row;
+    }
+    sx = e.column[column];
+    sy = e.row[row];
+  }
+
+ private:
+  // A pixel interleaves a set per dimension (pixel, lens, time, and each light and gloss lobe
+  // at each depth): room for that many without evicting each other in common scenes.
+  static constexpr uint32_t kEntries = 16;
+  struct Entry {
+    uint32_t key = 0, n = 0;  // n = 0: empty
+    uint64_t haveColumn = 0, haveRow = 0;
+    uint8_t column[kMaxSide], row[kMaxSide];
+  };
+  Entry entries_[kEntries];
+};
+
 uint32_t key32(uint64_t h) { return static_cast<uint32_t>(h ^ (h >> 32)); }
 
 uint32_t reverseBits(uint32_t x) {
@@ -162,8 +210,9 @@ Vec2f Sampler::stratified2D(const SamplePattern& pattern, int index, int n) {
   const uint32_t p = pattern.scramble[0];
   const uint32_t s = permute(static_cast<uint32_t>(index), grid.all, p * 0x51633e2d);
   const uint32_t row = grid.columns.size.quotient(s), column = s - row * m;
-  const uint32_t sx = permute(column, grid.columns, p * 0xa511e9b3);
-  const uint32_t sy = permute(row, grid.rows, p * 0x63d83595);
+  thread_local AxisPermutationCache axes;
+  uint32_t sx, sy;
+  axes.lookup(grid, p, column, row, p * 0xa511e9b3, p * 0x63d83595, sx, sy);
   // The sample sits in cell (column, row) of the coarse grid and, inside it, in sub-cell
   // (sy, sx) of the fine n × n grid: stratum column·k + sy of n along x, row·m + sx along y.
   // Both jitters come from one hash.

@@ -154,21 +154,21 @@ Light parseLight(const SceneBuilder& b, const JsonNode& n) {
   if (type == "quad") {
     n.checkKeys(
         {"type", "corner", "edge1", "edge2", "intensity", "samples", "falloff", "emission"});
-    QuadLight l;
-    l.corner = b.toRender(n.at("corner"));
-    l.edge1 = n.at("edge1").vec3();
-    l.edge2 = n.at("edge2").vec3();
-    if (!(length(cross(l.edge1, l.edge2)) > 0))
+    const Vec3f corner = b.toRender(n.at("corner"));
+    const Vec3f edge1 = n.at("edge1").vec3(), edge2 = n.at("edge2").vec3();
+    if (!(length(cross(edge1, edge2)) > 0))
       n.fail("edge1 and edge2 must span a parallelogram (they are parallel or zero)");
+    QuadLight l(corner, edge1, edge2);
     common(l);
     return l;
   }
   n.checkKeys(
       {"type", "center", "normal", "radius", "intensity", "samples", "falloff", "emission"});
-  DiskLight l;
-  l.center = b.toRender(n.at("center"));
-  l.normal = n.at("normal").direction();
-  l.radius = n.at("radius").number(0, 3.4e38f, true);
+  // Named before the constructor call: its arguments have no order of evaluation, and which
+  // bad field is reported first should not depend on the compiler.
+  const Vec3f center = b.toRender(n.at("center"));
+  const Vec3f normal = n.at("normal").direction();
+  DiskLight l(center, normal, n.at("radius").number(0, 3.4e38f, true));
   common(l);
   return l;
 }

@@ -6,9 +6,12 @@
 //  - Radiance ("emission": "radiance"): a one-sided emitter of radiance `intensity`, with the
 //    cosine at the light and inverse-square distance, so lit surfaces show k_d × irradiance.
 // Area lights are not visible to camera rays; they light surfaces only.
+#include <algorithm>
+#include <cmath>
 #include <variant>
 
 #include "core/rgb.h"
+#include "core/sampling.h"
 #include "core/vec.h"
 
 namespace glint {
@@ -27,21 +30,47 @@ struct DirectionalLight {
   Rgb intensity{1, 1, 1};
 };
 
-struct QuadLight {
-  Vec3f corner, edge1, edge2;  // emits towards edge1 × edge2 in radiance mode
+// How an area light emits. Its shape is fixed at construction, where what every sample would
+// otherwise recompute from it (unit normal, area, the disk's tangent frame) is derived once.
+struct AreaEmission {
   Rgb intensity{1, 1, 1};
   int samples = 1;
   Falloff falloff = Falloff::None;
   Emission emission = Emission::Seed;
 };
 
-struct DiskLight {
-  Vec3f center, normal;  // normal unit, the side that emits in radiance mode
-  float radius = 1;
-  Rgb intensity{1, 1, 1};
-  int samples = 1;
-  Falloff falloff = Falloff::None;
-  Emission emission = Emission::Seed;
+// A parallelogram; emits towards edge1 × edge2 in radiance mode. The edges must span a
+// parallelogram (the loader checks).
+class QuadLight : public AreaEmission {
+ public:
+  QuadLight(const Vec3f& corner, const Vec3f& edge1, const Vec3f& edge2);
+  const Vec3f& corner() const { return corner_; }
+  const Vec3f& edge1() const { return edge1_; }
+  const Vec3f& edge2() const { return edge2_; }
+  const Vec3f& normal() const { return normal_; }  // unit
+  float area() const { return area_; }
+
+ private:
+  Vec3f corner_, edge1_, edge2_, normal_;
+  float area_;
+};
+
+// A disk; `normal` (unit) is the side that emits in radiance mode.
+class DiskLight : public AreaEmission {
+ public:
+  DiskLight(const Vec3f& center, const Vec3f& normal, float radius);
+  const Vec3f& center() const { return center_; }
+  const Vec3f& normal() const { return normal_; }
+  float radius() const { return radius_; }
+  float area() const { return area_; }
+  // Orthogonal in-plane axes of length `radius`: a point of the unit disk maps to
+  // center + x·axisX + y·axisY.
+  const Vec3f& axisX() const { return axisX_; }
+  const Vec3f& axisY() const { return axisY_; }
+
+ private:
+  Vec3f center_, normal_, axisX_, axisY_;
+  float radius_, area_;
 };
 
 using Light = std::variant<PointLight, DirectionalLight, QuadLight, DiskLight>;
@@ -57,7 +86,50 @@ struct LightSample {
 
 // Shadow samples per camera sample: 1 for delta lights (nothing to sample).
 int lightSampleCount(const Light& light);
-// `u` in [0, 1)² picks the point on an area light; ignored by delta lights.
-LightSample sampleLight(const Light& light, const Vec3f& p, Vec2f u);
+
+// The sample of a light at point y on it (the lighting parameters and, in radiance mode, the
+// light's unit normal and area), seen from p.
+inline LightSample lightSampleFrom(const Vec3f& p, const Vec3f& y, const Rgb& intensity,
+                                   Falloff falloff, Emission emission, const Vec3f& lightNormal,
+                                   float area) {
+  const Vec3f toLight = y - p;
+  // One square root and one division serve the direction and the inverse square.
+  const float invDist = 1.0f / std::sqrt(dot(toLight, toLight));
+  const float invDist2 = invDist * invDist;
+  LightSample s;
+  s.wi = toLight * invDist;
+  s.target = y;
+  if (emission == Emission::Radiance) {
+    // E = ∫ L cosθ_y / r² dA estimated with one uniform point: L·max(0, cosθ_y)·A / r².
+    const float cosY = std::max(0.0f, -dot(lightNormal, s.wi));
+    s.intensity = intensity * (cosY * area * invDist2);
+  } else {
+    s.intensity = falloff == Falloff::InverseSquare ? intensity * invDist2 : intensity;
+  }
+  return s;
+}
+
+// `u` in [0, 1)² picks the point on an area light; ignored by delta lights. Inline: the
+// integrator draws a batch of these at a time, and a call per sample would pass each through
+// memory.
+inline LightSample sampleLight(const Light& light, const Vec3f& p, Vec2f u) {
+  if (const auto* pl = std::get_if<PointLight>(&light))
+    return lightSampleFrom(p, pl->position, pl->intensity, pl->falloff, Emission::Seed, {}, 0);
+  if (const auto* q = std::get_if<QuadLight>(&light))
+    return lightSampleFrom(p, q->corner() + u.x * q->edge1() + u.y * q->edge2(), q->intensity,
+                           q->falloff, q->emission, q->normal(), q->area());
+  if (const auto* d = std::get_if<DiskLight>(&light)) {
+    const Vec2f disk = squareToDiskConcentric(u);
+    return lightSampleFrom(p, d->center() + disk.x * d->axisX() + disk.y * d->axisY(), d->intensity,
+                           d->falloff, d->emission, d->normal(), d->area());
+  }
+  const auto& dl = std::get<DirectionalLight>(light);
+  LightSample s;
+  s.wi = -dl.direction;
+  s.target = p + s.wi;
+  s.atInfinity = true;
+  s.intensity = dl.intensity;
+  return s;
+}
 
 }  // namespace glint

@@ -2,8 +2,28 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 namespace glint {
 namespace {
+
+TEST(Optics, SpecularPowerMatchesPowWithinItsRoundingBound) {
+  // Whole exponents go by repeated squaring: each squaring doubles the relative error it is
+  // given, so the bound is (2·exponent + 2) float roundings (2^-24 each) of the exact power;
+  // below float's smallest normal number (where renders flush to zero) absolutely.
+  for (float e : {0.0f, 1.0f, 2.0f, 5.0f, 30.0f, 32.0f, 100.0f, 1000.0f, 65535.0f})
+    for (float c = 0; c <= 1; c += 1.0f / 64) {
+      const double exact = std::pow(double(c), double(e));
+      const double bound =
+          (2 * double(e) + 2) * std::ldexp(1.0, -24) * exact + std::numeric_limits<float>::min();
+      EXPECT_NEAR(specularPower(c, e), exact, bound) << c << "^" << e;
+    }
+  EXPECT_EQ(specularPower(0, 0), 1.0f);  // as powf: 0^0 = 1
+  EXPECT_EQ(specularPower(1, 65535), 1.0f);
+  // Fractional and very large exponents are powf's.
+  EXPECT_EQ(specularPower(0.7f, 12.5f), std::pow(0.7f, 12.5f));
+  EXPECT_EQ(specularPower(0.999f, 1e6f), std::pow(0.999f, 1e6f));
+}
 
 TEST(Optics, FresnelAtNormalIncidence) {
   // R = ((n − 1)/(n + 1))² = (0.5/2.5)² = 0.04 for n = 1.5, from either side.

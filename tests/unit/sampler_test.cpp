@@ -2,6 +2,7 @@
 
 #include "core/fast_divide.h"
 #include "core/hash.h"
+#include "core/sampling.h"
 
 #include <gtest/gtest.h>
 
@@ -48,6 +49,37 @@ TEST(FastDivisor, MatchesIntegerDivisionForEveryDividendTried) {
       ASSERT_EQ(f.remainder(a), a % d) << a << " % " << d;
     }
   }
+}
+
+TEST(Sampling, QuarterPiSineAndCosineAreWithinFloatRounding) {
+  // The series' truncation error is below 2e-9; what remains is float rounding of a few terms.
+  for (int i = -1000; i <= 1000; ++i) {
+    const double phi = (kPi / 4) * static_cast<double>(i) / 1000.0;
+    const Vec2f cs = cosSinQuarterPi(static_cast<float>(phi));
+    EXPECT_NEAR(cs.x, std::cos(double(static_cast<float>(phi))), 2e-7) << phi;
+    EXPECT_NEAR(cs.y, std::sin(double(static_cast<float>(phi))), 2e-7) << phi;
+  }
+}
+
+TEST(Sampling, ConcentricMapMatchesItsPolarForm) {
+  // Shirley–Chiu: the square's ring max(|ox|, |oy|) = r maps to the circle of radius r, and
+  // the angle runs linearly along each edge of the ring (π/4 per half edge).
+  for (int i = 0; i <= 64; ++i)
+    for (int j = 0; j <= 64; ++j) {
+      const Vec2f u{static_cast<float>(i) / 64, static_cast<float>(j) / 64};
+      const double ox = 2.0 * u.x - 1, oy = 2.0 * u.y - 1;
+      double r, theta;
+      if (ox == 0 && oy == 0) {
+        r = 0, theta = 0;
+      } else if (std::fabs(ox) > std::fabs(oy)) {
+        r = ox, theta = (kPi / 4) * (oy / ox);
+      } else {
+        r = oy, theta = kPi / 2 - (kPi / 4) * (ox / oy);
+      }
+      const Vec2f d = squareToDiskConcentric(u);
+      EXPECT_NEAR(d.x, r * std::cos(theta), 3e-7) << u.x << ", " << u.y;
+      EXPECT_NEAR(d.y, r * std::sin(theta), 3e-7) << u.x << ", " << u.y;
+    }
 }
 
 TEST(Sampler, SameKeySameNumbers) {
