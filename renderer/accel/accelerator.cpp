@@ -41,17 +41,14 @@ std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene)
 }
 
 void intersectPlanes(const Scene& scene, const Ray& ray, Hit& hit) {
-  if (scene.planes.empty()) return;
-  const auto& world = scene.groups[0].geometries;
-  for (uint32_t i = 0; i < world.size(); ++i) {
-    if (world[i].kind != GeomKind::Plane) continue;
+  for (size_t i = 0; i < scene.planes.size(); ++i) {
     Ray clipped = ray;
     clipped.tMax = std::min(ray.tMax, hit.t);
-    const float t = intersectPlane(scene.planes[world[i].index], clipped);
+    const float t = intersectPlane(scene.planes[i], clipped);
     if (t < clipped.tMax) {
       hit = Hit{};
       hit.t = t;
-      hit.geomId = i;
+      hit.geomId = scene.planeGeometries[i];
       hit.primId = 0;
     }
   }

@@ -46,9 +46,9 @@ class Camera {
 
  private:
   CameraDesc desc_;
-  int width_ = 1, height_ = 1;
   Vec3f u_, v_, w_;                       // right, up, backwards (w = eye − look_at, normalised)
   float halfWidth_ = 1, halfHeight_ = 1;  // image plane extent at distance 1 (or in units, ortho)
+  float uPerPixel_ = 1, vPerPixel_ = 1;   // 2·halfWidth / width, 2·halfHeight / height
 };
 
 }  // namespace glint

@@ -282,8 +282,9 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     if (!isFinite(plane.point) || !isFinite(plane.normal))
       obj.fail("the placed plane is not finite (beyond the float range)");
     s.planes.push_back(plane);
-    push(s, groupId, GeomKind::Plane, static_cast<uint32_t>(s.planes.size() - 1), material,
-         objectId);
+    s.planeGeometries.push_back(push(s, groupId, GeomKind::Plane,
+                                     static_cast<uint32_t>(s.planes.size() - 1), material,
+                                     objectId));
   } else if (type == "quad") {
     obj.checkKeys({"type", "corner", "edge1", "edge2", "material", "transform", "motion"});
     Quad q{place.point(obj.at("corner")), xf.vector(obj.at("edge1").vec3()),

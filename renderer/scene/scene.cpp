@@ -1,7 +1,5 @@
 #include "scene/scene.h"
 
-#include <optional>
-
 #include "core/check.h"
 
 namespace glint {
@@ -49,15 +47,22 @@ size_t Scene::timeSteps(const Geometry& g) const {
 
 ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit) const {
   GLINT_CHECK(bool(hit));
+  // Object space = world space outside instances; inside, go through the instance transform.
+  // (A pointer, not an optional Transform: the compiler clears an optional's 128 bytes on every
+  // call, which cost more than the rest of a plain hit's work.)
+  if (hit.instId == kInvalidId) return shadingPoint(ray, hit, nullptr);
+  const Transform worldFromObject =
+      instances[groups[0].geometries[hit.instId].index].transformAt(ray.time);
+  return shadingPoint(ray, hit, &worldFromObject);
+}
+
+ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit,
+                                 const Transform* worldFromObject) const {
   const Geometry& g = geometry(hit);
   ShadingPoint sp;
   sp.t = hit.t;
   sp.materialId = g.materialId;
   sp.objectId = g.objectId;
-  // Object space = world space outside instances; inside, go through the instance transform.
-  std::optional<Transform> worldFromObject;
-  if (hit.instId != kInvalidId)
-    worldFromObject = instances[groups[0].geometries[hit.instId].index].transformAt(ray.time);
   const Vec3f oObj = worldFromObject ? worldFromObject->inverse().point(ray.o) : ray.o;
   const Vec3f dObj = worldFromObject ? worldFromObject->inverse().vector(ray.d) : ray.d;
 

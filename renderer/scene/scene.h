@@ -96,6 +96,9 @@ class Scene {
   std::vector<std::vector<Vec3f>> sphereCenterKeys;
   std::vector<Quad> quads;
   std::vector<Plane> planes;
+  // Per plane, its entry in groups[0] (planes live only there): every ray tests every plane
+  // (accel/accelerator.h), and must not walk the whole world to find them.
+  std::vector<uint32_t> planeGeometries;
   std::vector<Instance> instances;
 
   Features features;
@@ -111,6 +114,11 @@ class Scene {
   Sphere sphereAt(uint32_t index, float time) const;
   // Time steps the accelerators need for a geometry entry: 1 when static.
   size_t timeSteps(const Geometry& g) const;
+
+ private:
+  // shadingPoint for a hit in object space, placed in the world by `worldFromObject` (null
+  // outside instances).
+  ShadingPoint shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldFromObject) const;
 };
 
 }  // namespace glint
