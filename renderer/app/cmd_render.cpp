@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/log.h"
+#include "core/sampler.h"
 #include "film/atomic_file.h"
 #include "film/display.h"
 #include "film/exr_output.h"
@@ -227,7 +228,8 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--display", args->display,
                   "Also write a display image (.png, .jpg, .tif) through OCIO");
   addDisplayOptions(*cmd, args->ocio);
-  cmd->add_option("--spp", args->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 30));
+  cmd->add_option("--spp", args->spp, "Samples per pixel")
+      ->check(CLI::Range(1, static_cast<int>(kMaxSampleSet)));
   cmd->add_option("--seed", args->seed, "Scene seed");
   cmd->add_option("--frame", args->frame,
                   "Frame of an animated scene (default: its first); -o NAME.####.exr numbers "

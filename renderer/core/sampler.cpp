@@ -69,15 +69,18 @@ struct JitterGrid {
   double inverseCount = 1;
 
   // (stratum + jitter) / n as a float inside [stratum, stratum + 1) / n. The sum is exact in
-  // double; rounding the quotient to float reaches the next stratum's edge when the jitter is
-  // within a float ulp of 1, so such a value steps back by one ulp (x·n is exact in double for
-  // n < 2^29; x > 0 there, so one ulp down is the bit pattern minus one).
+  // double; rounding the quotient to float can cross the stratum's lower edge when the jitter
+  // is within a float ulp of 0, or reach the next stratum's edge when it is within one of 1:
+  // such a value steps one ulp back inside (x·n is exact in double for n < 2^29; x ≥ 0 there,
+  // so the float one ulp up or down is the bit pattern plus or minus one).
   float place(uint32_t stratum, float jitter) const {
     const auto x = static_cast<float>((static_cast<double>(stratum) + jitter) * inverseCount);
-    const double n = all.size.divisor();
-    if (static_cast<double>(x) * n < stratum + 1.0) [[likely]]
-      return x;
-    return std::bit_cast<float>(std::bit_cast<uint32_t>(x) - 1);
+    const double scaled = static_cast<double>(x) * all.size.divisor();
+    if (scaled < stratum) [[unlikely]]
+      return std::bit_cast<float>(std::bit_cast<uint32_t>(x) + 1);
+    if (scaled >= stratum + 1.0) [[unlikely]]
+      return std::bit_cast<float>(std::bit_cast<uint32_t>(x) - 1);
+    return x;
   }
 };
 

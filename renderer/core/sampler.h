@@ -10,6 +10,11 @@
 
 namespace glint {
 
+// The most samples one pixel's set of one dimension may hold: the pixel's spp, or spp × an
+// area light's samples. The sampler indexes a set in 32-bit arithmetic and places its points
+// exactly only below 2^29 samples (sampler.cpp); no render could finish a pixel of more.
+inline constexpr int64_t kMaxSampleSet = int64_t{1} << 28;
+
 enum class SamplerKind {
   Regular,     // n×n cell centres (seed 000 §13.4.1 "regular"); non-square spp: see docs
   Random,      // independent uniform samples

@@ -6,6 +6,7 @@
 
 #include "core/hash.h"
 #include "core/log.h"
+#include "core/sampler.h"
 #include "io/animation.h"
 #include "io/scene_builder.h"
 
@@ -18,7 +19,7 @@ void parseRender(const JsonNode& n, RenderSettings& r) {
                "transparent_shadows"});
   if (auto v = n.get("width")) r.width = v->integer(1, 1 << 15);
   if (auto v = n.get("height")) r.height = v->integer(1, 1 << 15);
-  if (auto v = n.get("spp")) r.spp = v->integer(1, 1 << 30);
+  if (auto v = n.get("spp")) r.spp = v->integer(1, static_cast<int>(kMaxSampleSet));
   if (auto v = n.get("max_depth")) r.maxDepth = v->integer(0, 1000);
   if (auto v = n.get("seed")) r.seed = v->unsignedInteger();
   if (auto v = n.get("sampler"))

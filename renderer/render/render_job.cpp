@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdint>
 #include <string>
 #include <utility>
 
 #include "camera/camera.h"
+#include "core/error.h"
 #include "core/log.h"
 #include "core/sampler.h"
 #include "integrator/whitted.h"
@@ -103,9 +105,25 @@ TileRenderer tileRenderer(unsigned caps, std::integer_sequence<unsigned, Caps...
 
 }  // namespace
 
+void checkSampleSets(const Scene& scene) {
+  const int64_t spp = scene.render.spp;
+  const std::string limit = "the sampler's limit of " + std::to_string(kMaxSampleSet);
+  if (spp > kMaxSampleSet)
+    throw UsageError("spp " + std::to_string(spp) + " is more than " + limit);
+  for (size_t i = 0; i < scene.lights.size(); ++i) {
+    const int64_t samples = lightSampleCount(scene.lights[i]);
+    if (spp * samples <= kMaxSampleSet) continue;
+    throw UsageError(
+        "spp " + std::to_string(spp) + " × the " + std::to_string(samples) + " samples of lights[" +
+        std::to_string(i) + "] = " + std::to_string(spp * samples) +
+        " light samples per pixel, more than " + limit + ": lower spp or the light's \"samples\"");
+  }
+}
+
 RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   const RenderSettings& rs = scene.render;
+  checkSampleSets(scene);
   const PixelWindow window = opt.crop.value_or(PixelWindow{0, rs.width, 0, rs.height});
   Film film(rs.width, rs.height, window);
   const Camera camera(scene.cameraDesc, rs.width, rs.height);

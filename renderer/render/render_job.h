@@ -81,6 +81,12 @@ struct RenderResult {
   int tileSize = 0;      // the effective tile edge
 };
 
+// Throws UsageError, naming the numbers and the light, when one pixel's set of samples (its spp,
+// or spp × an area light's samples) is larger than kMaxSampleSet (core/sampler.h). The loader
+// bounds spp alone; the product needs the light and a --spp override, so renderScene checks it
+// before anything renders.
+void checkSampleSets(const Scene& scene);
+
 RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt);
 
 }  // namespace glint

@@ -40,6 +40,40 @@ Film render(const std::string& text) {
   return renderScene(s, *accel, opt).film;
 }
 
+TEST(SampleSets, SetsBeyondTheSamplersLimitAreRefusedBeforeRendering) {
+  // kMaxSampleSet = 2^28 samples in one pixel's set (render_job.h): spp alone, or spp × an area
+  // light's samples. At the limit a scene passes; one past it, it is refused with a message
+  // that names the numbers and the light.
+  Scene s = test::sceneFromText(R"({
+    "render": {"width": 2, "height": 2, "spp": 1048576},
+    "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
+    "lights": [{"type": "point", "position": [0, 5, 0]},
+               {"type": "quad", "corner": [0, 5, 0], "edge1": [1, 0, 0], "edge2": [0, 0, 1],
+                "samples": 256}],
+    "objects": []})");
+  EXPECT_NO_THROW(checkSampleSets(s));  // 2^20 × 2^8 = 2^28
+  s.render.spp = 1048577;
+  try {
+    checkSampleSets(s);
+    FAIL() << "accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("spp 1048577 × the 256 samples of lights[1]"),
+              std::string::npos)
+        << e.what();
+  }
+  // renderScene refuses it before drawing a sample.
+  const auto accel = makeAccelerator(AccelKind::Embree, s);
+  RenderOptions opt;
+  opt.progress = false;
+  EXPECT_THROW(renderScene(s, *accel, opt), UsageError);
+  // spp alone: 2^28 passes (with no area light), 2^28 + 1 does not.
+  s.lights.resize(1);
+  s.render.spp = 1 << 28;
+  EXPECT_NO_THROW(checkSampleSets(s));
+  s.render.spp = (1 << 28) + 1;
+  EXPECT_THROW(checkSampleSets(s), UsageError);
+}
+
 struct Placement {
   double scale, offset;
 };

@@ -129,8 +129,34 @@ TEST_P(StratifiedCounts, EachOneDimensionalStratumHoldsOneSample) {
   }
 }
 
+// 4096 is a 64 × 64 grid, the largest whose permutations the sampler caches; 4099 (prime) is
+// 1 × 4099, drawn without the cache.
 INSTANTIATE_TEST_SUITE_P(Counts, StratifiedCounts,
-                         ::testing::Values(1, 2, 4, 7, 8, 9, 12, 16, 32, 50, 64, 128, 1000));
+                         ::testing::Values(1, 2, 4, 7, 8, 9, 12, 16, 32, 50, 64, 128, 1000, 4096,
+                                           4099));
+
+TEST(Sampler, DrawingOrderDoesNotChangeTheNumbers) {
+  // The sampler keeps recent column and row permutations per thread (sampler.cpp). Drawing 40
+  // sets one after the other, and then all 40 interleaved sample by sample (which evicts and
+  // refills the 16-entry table over and over), must give the same numbers bit for bit.
+  const Sampler s(SamplerKind::Stratified, 16, 11);
+  constexpr int kSets = 40, kCount = 4;
+  std::vector<Vec2f> setBySet, interleaved;
+  for (int d = 0; d < kSets; ++d)
+    for (int i = 0; i < 16; ++i)
+      for (int j = 0; j < kCount; ++j)
+        setBySet.push_back(s.get2D(3, 5, i, dimension(Dim::Light, d % 8, d / 8), j, kCount));
+  interleaved.resize(setBySet.size());
+  for (int i = 0; i < 16; ++i)
+    for (int d = 0; d < kSets; ++d)
+      for (int j = 0; j < kCount; ++j)
+        interleaved[static_cast<size_t>((d * 16 + i) * kCount + j)] =
+            s.get2D(3, 5, i, dimension(Dim::Light, d % 8, d / 8), j, kCount);
+  for (size_t k = 0; k < setBySet.size(); ++k) {
+    EXPECT_EQ(setBySet[k].x, interleaved[k].x) << k;
+    EXPECT_EQ(setBySet[k].y, interleaved[k].y) << k;
+  }
+}
 
 TEST(Sampler, RegularIsCellCentres) {
   // spp = 4 → a 2 × 2 grid of centres at 0.25 and 0.75.
