@@ -13,7 +13,8 @@
    `variance 1/128`), Glint with the plain random sampler (what the stratified sampler costs).
 3. Embree's `pathtracer` on its cornell_box, and Glint on the same mesh and camera
    (scenes/peers/cornell_box.json): wall time and rays, counted with an LD_PRELOAD shim
-   (tools/peers/count_embree_rays.c) around rtcIntersect1 / rtcOccluded1.
+   (tools/peers/count_embree_rays.c) around rtcIntersect1 / rtcOccluded1 and their streams
+   (rtcIntersect1M / rtcOccluded1M, which Glint uses for camera rays).
 
 Prints markdown tables and writes everything (images, JSON, the tables) under --out.
 Needs: povray (Debian package povray), and for part 3 embree-tools and a C compiler.
