@@ -81,8 +81,12 @@ int runConverge(const ConvergeArgs& a) {
   // The reference: given, or rendered with an independent seed so that it shares no samples
   // with the renders being measured.
   Image reference;
+  nlohmann::json referenceInfo;  // what the errors are measured against, for the outputs
+  std::string referenceLabel;
   if (!a.reference.empty()) {
     reference = readImage(a.reference);
+    referenceInfo = {{"file", a.reference}};
+    referenceLabel = "reference " + a.reference;
   } else {
     Scene refScene = scene;
     refScene.render.seed = mix64(scene.render.seed ^ 0x5eedf00dULL);
@@ -93,7 +97,13 @@ int runConverge(const ConvergeArgs& a) {
     const auto accel = makeAccelerator(AccelKind::Embree, refScene);
     double wall, cpu;
     reference = renderImage(refScene, *accel, a.threads, wall, cpu);
+    referenceInfo = {{"spp", refScene.render.spp},
+                     {"seed", refScene.render.seed},
+                     {"sampler", samplerName(refScene.render.sampler)}};
+    referenceLabel = "reference " + std::to_string(refScene.render.spp) + " spp";
   }
+  const std::string size =
+      std::to_string(scene.render.width) + "×" + std::to_string(scene.render.height);
 
   std::vector<ConvergenceSeries> series;
   for (AccelKind ak : accels) {
@@ -134,10 +144,15 @@ int runConverge(const ConvergeArgs& a) {
     writeTextFileAtomically(a.csv, csv);
   }
   if (!a.plot.empty())
-    writeConvergenceSvg(a.plot, "Error against time: " + scene.sourcePath, series);
+    writeConvergenceSvg(
+        a.plot, "Error against time: " + scene.sourcePath + ", " + size + ", " + referenceLabel,
+        series);
   if (!a.json.empty()) {
     nlohmann::json j;
     j["scene"] = scene.sourcePath;
+    j["width"] = scene.render.width;
+    j["height"] = scene.render.height;
+    j["reference"] = referenceInfo;
     for (const auto& s : series) {
       nlohmann::json js{{"name", s.name}, {"slope", s.slope}, {"spp_slope", s.sppSlope}};
       for (const auto& p : s.points)

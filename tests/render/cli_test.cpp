@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <glint_version.h>
+#include <nlohmann/json.hpp>
 
 #include "film/exr_output.h"
 #include "test_util.h"
@@ -134,6 +135,37 @@ TEST(Cli, DefaultSceneRendersWithStats) {
   for (const char* key : {"\"seconds\"", "\"rays_total\"", "\"nonfinite_samples\": 0",
                           "\"features_used\"", "\"features_left_out\""})
     EXPECT_NE(stats.find(key), std::string::npos) << key;
+}
+
+TEST(Cli, ConvergeReportsErrorAgainstSppWithItsReference) {
+  // Pixel jitter alone over a sphere, a plane and a soft shadow; `random` draws independent
+  // samples, so RMSE ∝ spp^−½. Against a reference of 16 × 16 = 256 stratified spp whose own
+  // error adds σ²/256 to each MSE, the slope from 1 to 16 spp is ½·log(1/16 + 1/256)/log 16
+  // = −0.489. The image MSE is itself an estimate carried by the few pixels on an edge or in
+  // the penumbra; if each MSE is known to ±25 %, the slope over a factor 16 is known to
+  // √2·0.25 / (2·ln 16) = ±0.064, and ±0.15 is 2.3 of that (measured: −0.515).
+  const std::string scene = test::writeTemp("converge.json", R"({
+    "render": {"width": 24, "height": 16, "seed": 9},
+    "camera": {"eye": [0, 1.5, 4], "look_at": [0, 0.5, 0], "vfov": 40},
+    "materials": {"m": {"type": "phong", "kd": [0.8, 0.8, 0.8]}},
+    "lights": [{"type": "quad", "corner": [-0.5, 3, -0.5], "edge1": [1, 0, 0],
+                "edge2": [0, 0, 1], "samples": 2}],
+    "objects": [{"type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "m"},
+                {"type": "sphere", "center": [0, 0.6, 0], "radius": 0.6, "material": "m"}]})");
+  const std::string json = (test::tempDir() / "converge_out.json").string();
+  const auto r = runGlint("converge " + scene + " --spp 1,4,16 --sampler random --json " + json);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const auto j = nlohmann::json::parse(slurp(json));
+  EXPECT_EQ(j["width"], 24);
+  EXPECT_EQ(j["height"], 16);
+  EXPECT_EQ(j["reference"]["spp"], 256);
+  EXPECT_EQ(j["reference"]["sampler"], "stratified");
+  ASSERT_EQ(j["series"].size(), 1u);
+  const auto& points = j["series"][0]["points"];
+  ASSERT_EQ(points.size(), 3u);
+  EXPECT_GT(points[0]["rmse"].get<double>(), points[1]["rmse"].get<double>());
+  EXPECT_GT(points[1]["rmse"].get<double>(), points[2]["rmse"].get<double>());
+  EXPECT_NEAR(j["series"][0]["spp_slope"].get<double>(), -0.489, 0.15);
 }
 
 }  // namespace
