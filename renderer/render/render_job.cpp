@@ -4,6 +4,9 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -19,6 +22,18 @@
 namespace glint {
 
 namespace {
+
+// MemAvailable of /proc/meminfo (Linux: what can be allocated without swapping), 0 if unknown.
+uint64_t availableMemoryBytes() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  uint64_t kb = 0;
+  while (meminfo >> key >> kb) {
+    if (key == "MemAvailable:") return kb * 1024;
+    meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+  }
+  return 0;
+}
 
 constexpr int kMaxLoggedNonfinite = 5;
 constexpr int kCameraChunk = 64;  // camera rays traced together (bounded stack)
@@ -120,11 +135,34 @@ void checkSampleSets(const Scene& scene) {
   }
 }
 
+void checkFrameFits(int64_t pixels, size_t channels, uint64_t availableBytes) {
+  const double needed = double(pixels) * (12.0 * double(channels) + 16.0);
+  if (availableBytes == 0 || needed <= double(availableBytes)) return;
+  const auto gb = [](double bytes) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.1f GB", bytes * 1e-9);
+    return std::string(buf);
+  };
+  throw UsageError("a frame of " + std::to_string(pixels) + " pixels with " +
+                   std::to_string(channels) + " channels needs about " + gb(needed) +
+                   " of memory (film in double, float copies to write it); " +
+                   gb(double(availableBytes)) +
+                   " is available: render it in pieces with --crop, or on a farm");
+}
+
 RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   const RenderSettings& rs = scene.render;
   checkSampleSets(scene);
   const PixelWindow window = opt.crop.value_or(PixelWindow{0, rs.width, 0, rs.height});
+  {
+    // The AOV planes' channels, from the layout itself on a one-pixel film.
+    Film probe(1, 1, PixelWindow{0, 1, 0, 1});
+    AovLayout::create(opt.aovs, scene.lights.size(), probe);
+    size_t channels = 4;
+    for (const FilmPlane& plane : probe.planes()) channels += plane.channels.size();
+    checkFrameFits(window.area(), channels, availableMemoryBytes());
+  }
   Film film(rs.width, rs.height, window);
   const Camera camera(scene.cameraDesc, rs.width, rs.height);
   const Sampler sampler(rs.sampler, rs.spp, rs.seed);

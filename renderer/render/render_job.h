@@ -87,6 +87,13 @@ struct RenderResult {
 // before anything renders.
 void checkSampleSets(const Scene& scene);
 
+// Throws UsageError when a frame of `pixels` pixels with `channels` film channels (RGBA and
+// the AOVs') would not fit in `availableBytes`: the film holds doubles, and writing it makes
+// float copies, about pixels × (12·channels + 16) bytes at the peak. Without this check an
+// oversized frame was accepted and killed by the kernel when its film was first touched.
+// availableBytes 0 means unknown: no check.
+void checkFrameFits(int64_t pixels, size_t channels, uint64_t availableBytes);
+
 RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt);
 
 }  // namespace glint

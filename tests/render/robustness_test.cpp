@@ -74,6 +74,22 @@ TEST(SampleSets, SetsBeyondTheSamplersLimitAreRefusedBeforeRendering) {
   EXPECT_THROW(checkSampleSets(s), UsageError);
 }
 
+TEST(FrameMemory, AFrameThatCannotFitIsRefusedWithItsSize) {
+  // pixels × (12·channels + 16) bytes: 1000 RGBA pixels need 64 000 bytes.
+  EXPECT_NO_THROW(checkFrameFits(1000, 4, 64000));
+  EXPECT_NO_THROW(checkFrameFits(1000, 4, 0));  // unknown memory: no check
+  try {
+    checkFrameFits(1000, 4, 63999);
+    FAIL() << "accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("1000 pixels with 4 channels"), std::string::npos)
+        << e.what();
+  }
+  // A 32768² frame with depth, normal and albedo AOVs: 4 + 1 + 3 + 3 = 11 channels, 148 bytes a
+  // pixel, 1.6e11 bytes in all: more than 100 GiB.
+  EXPECT_THROW(checkFrameFits(int64_t{1} << 30, 11, uint64_t{100} << 30), UsageError);
+}
+
 struct Placement {
   double scale, offset;
 };
