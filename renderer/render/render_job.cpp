@@ -8,6 +8,7 @@
 #include <fstream>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 
 #include "camera/camera.h"
@@ -22,6 +23,8 @@
 namespace glint {
 
 namespace {
+
+struct NoAovSample {};  // the per-sample AOV record of a kernel without AOVs
 
 // MemAvailable of /proc/meminfo (Linux: what can be allocated without swapping), 0 if unknown.
 uint64_t availableMemoryBytes() {
@@ -82,13 +85,18 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
         for (int i = 0; i < count; ++i) {
           const int s = first + i;
           const SampleKey key(&f.sampler, x, y, s, pixelKey);
-          AovSample aov;
-          aov.viewAxis = viewAxis;
-          Radiance r =
-              integrator.trace(rays[i], hits[i], key, counters, aovSamples ? &aov : nullptr);
+          // Without AOVs no record exists (the compiler cleared its 264 bytes for every sample).
+          std::conditional_t<kAovs, AovSample, NoAovSample> aov;
+          AovSample* aovOut = nullptr;
+          if constexpr (kAovs) {
+            aov.viewAxis = viewAxis;
+            if (aovSamples) aovOut = &aov;
+          }
+          Radiance r = integrator.trace(rays[i], hits[i], key, counters, aovOut);
           if (f.opt.sampleHook) f.opt.sampleHook(x, y, r);
           if (!r.L.isFinite()) r.L = {}, r.valid = false;
-          if (aovs) pixelAovs.add(r, aov);  // an invalid sample adds no AOV record
+          if constexpr (kAovs)
+            if (aovs) pixelAovs.add(r, aov);  // an invalid sample adds no AOV record
           if (!r.valid) {
             // A non-finite sample never reaches the film: it counts as black.
             ++counters.nonfiniteSamples;
