@@ -226,11 +226,28 @@ uint32_t newImplicitGroup(Scene& s, const std::string& what, uint32_t objectId) 
   return static_cast<uint32_t>(s.groups.size() - 1);
 }
 
-void addInstance(Scene& s, uint32_t groupId, const Transform& xf, std::vector<TrsKey> motion,
-                 uint32_t objectId) {
+// `placement` is the JSON node that places the instance, named by the error when its group's
+// box, placed at any key, leaves the float range: Embree bounds an instance by that box, and
+// with an infinite one it misses the instance silently while the reference BVH hits it.
+void addInstance(SceneBuilder& b, uint32_t groupId, const Transform& xf, std::vector<TrsKey> motion,
+                 uint32_t objectId, const JsonNode& placement) {
+  Scene& s = b.scene;
   // One key (parseKeys collapsed equal keys): placed, not moving.
   Instance inst{groupId, motion.empty() ? xf : motion[0].toTransform(), std::move(motion)};
   if (inst.motion.size() == 1) inst.motion.clear();
+  auto cached = b.groupBounds.find(groupId);
+  if (cached == b.groupBounds.end())
+    cached = b.groupBounds.emplace(groupId, s.groupBounds(groupId)).first;
+  const Bounds3f& box = cached->second;
+  const size_t keys = std::max<size_t>(1, inst.motion.size());
+  for (size_t k = 0; k < keys && !box.empty(); ++k) {
+    const Transform placed =
+        inst.motion.empty() ? inst.worldFromObject : inst.motion[k].toTransform();
+    for (int c = 0; c < 8; ++c)
+      if (!isFinite(placed.point({(c & 1) ? box.hi.x : box.lo.x, (c & 2) ? box.hi.y : box.lo.y,
+                                  (c & 4) ? box.hi.z : box.lo.z})))
+        placement.fail("the placed instance's bounds are not finite (beyond the float range)");
+  }
   s.instances.push_back(std::move(inst));
   push(s, 0, GeomKind::Instance, static_cast<uint32_t>(s.instances.size() - 1), 0, objectId);
 }
@@ -273,7 +290,7 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     const Sphere sp{centers.empty() ? obj.at("center").vec3() : centers[0], radius};
     const uint32_t g = newImplicitGroup(s, "sphere", objectId);
     push(s, g, GeomKind::Sphere, addSphere(s, sp, std::move(centers)), material, objectId);
-    addInstance(s, g, xf, {}, objectId);
+    addInstance(b, g, xf, {}, objectId, obj.at("transform"));
   } else if (type == "plane") {
     obj.checkKeys({"type", "point", "normal", "material", "transform"});
     if (groupId != 0) obj.fail("planes are unbounded and cannot be placed in groups");
@@ -392,14 +409,17 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
       g.fail("no group named \"" + g.string() + "\"" +
              (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
     }
-    addInstance(s, it->second, place.transform(), std::move(transformKeys), objectId);
+    addInstance(b, it->second, place.transform(), std::move(transformKeys), objectId,
+                motion && motion->has("transform") ? motion->at("transform")
+                : obj.has("transform")             ? obj.at("transform")
+                                                   : obj);
     return;
   }
   if (!transformKeys.empty()) {
     // Any shape with transform keys becomes an implicit instance that moves.
     const uint32_t g = newImplicitGroup(s, type, objectId);
     addShape(b, obj, type, g, objectId, Placement{}, motion);
-    addInstance(s, g, Transform{}, std::move(transformKeys), objectId);
+    addInstance(b, g, Transform{}, std::move(transformKeys), objectId, motion->at("transform"));
     return;
   }
   addShape(b, obj, type, groupId, objectId, place, motion);

@@ -14,6 +14,8 @@ struct SceneBuilder {
   std::string baseDir;
   std::map<std::string, uint32_t> materialIds;
   std::map<std::string, uint32_t> groupIds;
+  // Bounds of each group's contents, computed once however many instances place it.
+  std::map<uint32_t, Bounds3f> groupBounds;
 
   // World → render space (io/placement.h); set from the camera before anything is placed.
   Vec3f toRender(const JsonNode& worldPoint) const {
