@@ -51,35 +51,18 @@ bool contains(const Bounds3f& outer, const Bounds3f& inner) {
          inner.hi.x <= outer.hi.x && inner.hi.y <= outer.hi.y && inner.hi.z <= outer.hi.z;
 }
 
-Bounds3f transformBox(const Transform& xf, const Bounds3f& b) {
-  Bounds3f out;
-  for (int c = 0; c < 8; ++c)
-    out.extend(xf.point(
-        {(c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z}));
-  return out;
-}
-
 // Conservative bounds of a moving instance over the whole shutter. Without a change of
 // rotation every point moves linearly between keys, so the union of the key boxes bounds it.
 // With one, slerp can swing points outside the key boxes; every point stays within
 // max|scale|·|p| of the (linearly moving) translation, which gives a safe box.
 Bounds3f movingInstanceBounds(const Instance& inst, const Bounds3f& object) {
-  bool rotates = false;
-  for (const TrsKey& k : inst.motion) {
-    const Quat& a = inst.motion[0].rotation;
-    rotates |=
-        k.rotation.w != a.w || k.rotation.x != a.x || k.rotation.y != a.y || k.rotation.z != a.z;
-  }
   Bounds3f out;
-  if (!rotates) {
+  if (!inst.rotates()) {
     for (const TrsKey& k : inst.motion) out.extend(transformBox(k.toTransform(), object));
     return out;
   }
   float radius = 0;
-  for (int c = 0; c < 8; ++c)
-    radius = std::max(radius, length(Vec3f{(c & 1) ? object.hi.x : object.lo.x,
-                                           (c & 2) ? object.hi.y : object.lo.y,
-                                           (c & 4) ? object.hi.z : object.lo.z}));
+  for (int c = 0; c < 8; ++c) radius = std::max(radius, length(object.corner(c)));
   float maxScale = 0;
   for (const TrsKey& k : inst.motion) maxScale = std::max(maxScale, maxComponent(abs(k.scale)));
   const Vec3f r{radius * maxScale, radius * maxScale, radius * maxScale};

@@ -17,6 +17,10 @@ struct Bounds3f {
     hi = max(hi, b.hi);
   }
   bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+  // Corner c in [0, 8): bits 0, 1, 2 pick hi (set) or lo (clear) along x, y, z.
+  Vec3f corner(int c) const {
+    return {(c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z};
+  }
   Vec3f diagonal() const { return hi - lo; }
 };
 

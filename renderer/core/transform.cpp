@@ -140,4 +140,10 @@ Transform operator*(const Transform& a, const Transform& b) {
   return t;
 }
 
+Bounds3f transformBox(const Transform& xf, const Bounds3f& b) {
+  Bounds3f out;
+  for (int c = 0; c < 8; ++c) out.extend(xf.point(b.corner(c)));
+  return out;
+}
+
 }  // namespace glint

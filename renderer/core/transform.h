@@ -3,6 +3,7 @@
 // be carried by the inverse transpose without inverting per ray.
 #include <array>
 
+#include "core/bounds.h"
 #include "core/vec.h"
 
 namespace glint {
@@ -51,5 +52,8 @@ class Transform {
  private:
   Mat4 m_, inv_;
 };
+
+// The box around `b`'s eight corners carried by `xf`.
+Bounds3f transformBox(const Transform& xf, const Bounds3f& b);
 
 }  // namespace glint

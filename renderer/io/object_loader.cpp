@@ -243,9 +243,9 @@ void addInstance(SceneBuilder& b, uint32_t groupId, const Transform& xf, std::ve
   for (size_t k = 0; k < keys && !box.empty(); ++k) {
     const Transform placed =
         inst.motion.empty() ? inst.worldFromObject : inst.motion[k].toTransform();
+    // Corner by corner, not transformBox: a NaN corner (inf − inf) would vanish from a box.
     for (int c = 0; c < 8; ++c)
-      if (!isFinite(placed.point({(c & 1) ? box.hi.x : box.lo.x, (c & 2) ? box.hi.y : box.lo.y,
-                                  (c & 4) ? box.hi.z : box.lo.z})))
+      if (!isFinite(placed.point(box.corner(c))))
         placement.fail("the placed instance's bounds are not finite (beyond the float range)");
   }
   s.instances.push_back(std::move(inst));

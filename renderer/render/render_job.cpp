@@ -97,19 +97,18 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
           if (!r.L.isFinite()) r.L = {}, r.valid = false;
           if constexpr (kAovs)
             if (aovs) pixelAovs.add(r, aov);  // an invalid sample adds no AOV record
+          sum[3] += r.alpha;
           if (!r.valid) {
             // A non-finite sample never reaches the film: it counts as black.
             ++counters.nonfiniteSamples;
             if (f.loggedNonfinite.fetch_add(1) < kMaxLoggedNonfinite)
               log::warning("non-finite sample at pixel (" + std::to_string(x) + ", " +
                            std::to_string(y) + ") sample " + std::to_string(s));
-            sum[3] += r.alpha;
             continue;
           }
           sum[0] += r.L.r;
           sum[1] += r.L.g;
           sum[2] += r.L.b;
-          sum[3] += r.alpha;
         }
       }
       const double inv = 1.0 / rs.spp;
