@@ -27,11 +27,13 @@ Camera::Camera(const CameraDesc& desc, int width, int height) : desc_(desc) {
   vPerPixel_ = 2 * halfHeight_ / static_cast<float>(height);
 }
 
-Ray Camera::generateRay(float x, float y, Vec2f lens) const {
+void Camera::generateRay(float x, float y, Vec2f lens, Ray& ray) const {
   // Seed 000 eq. 4.1 with l = −halfWidth, r = halfWidth, b = −halfHeight, t = halfHeight.
   const float su = -halfWidth_ + uPerPixel_ * x;
   const float sv = halfHeight_ - vPerPixel_ * y;
-  Ray ray;
+  ray.tMin = 0;
+  ray.tMax = kInfinity;
+  ray.time = 0;
   if (desc_.projection == Projection::Perspective) {
     ray.o = desc_.eye;
     ray.d = normalize(su * u_ + sv * v_ - w_);
@@ -48,7 +50,6 @@ Ray Camera::generateRay(float x, float y, Vec2f lens) const {
     ray.o = desc_.eye + su * u_ + sv * v_;
     ray.d = -w_;
   }
-  return ray;
 }
 
 }  // namespace glint

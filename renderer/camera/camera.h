@@ -30,7 +30,15 @@ class Camera {
   // A ray through film position (x, y) in pixels, y down from the top edge; `lens` in [0, 1)²
   // picks the point on the lens (ignored by a pinhole, which takes the same code path as
   // before the lens existed, so aperture 0 is the pinhole image bit for bit).
-  Ray generateRay(float x, float y, Vec2f lens = {0.5f, 0.5f}) const;
+  Ray generateRay(float x, float y, Vec2f lens = {0.5f, 0.5f}) const {
+    Ray ray;
+    generateRay(x, y, lens, ray);
+    return ray;
+  }
+  // The same, written into `ray` (all fields): a Ray returned by value and copied into the
+  // renderer's array was reloaded before its stores landed (a store-forwarding stall per
+  // camera ray, perf annotate).
+  void generateRay(float x, float y, Vec2f lens, Ray& ray) const;
   bool hasLens() const { return desc_.apertureRadius > 0; }
 
   // World to camera space (x right, y up, the camera looking down −z) and world to normalised

@@ -18,22 +18,29 @@ struct ShadingPoint {
   uint32_t objectId = 0;
 };
 
-// The one way to make a secondary or shadow ray: leaves the surface on the side `dir` points
-// to, offset by p's error bound (offsetRayOrigin).
+// The one way to make a secondary or shadow ray, written field by field into `r`: leaves the
+// surface on the side it heads to, offset by p's error bound (offsetRayOrigin). With
+// `toPoint`, `v` is a point and the ray a shadow ray towards it: t in (0, 1) covers the segment
+// and stops just short of the point, by a relative 2^-12 of the segment, so the light's own
+// surface never occludes it. Otherwise `v` is the direction and the ray unbounded.
+// (Written into `r` rather than returned: a Ray built in a temporary and copied into an array
+// was reloaded whole before its stores had landed, a stall on every shadow ray in perf.)
+inline constexpr float kShadowRayEnd = 1.0f - 1.0f / 4096.0f;
+inline void spawnRayInto(Ray& r, const ShadingPoint& sp, bool toPoint, const Vec3f& v, float time) {
+  r.o = offsetRayOrigin(sp.p, sp.pError, sp.ng, toPoint ? v - sp.p : v);
+  r.d = toPoint ? v - r.o : v;
+  r.tMin = 0;
+  r.tMax = toPoint ? kShadowRayEnd : kInfinity;
+  r.time = time;
+}
 inline Ray spawnRay(const ShadingPoint& sp, const Vec3f& dir, float time) {
   Ray r;
-  r.o = offsetRayOrigin(sp.p, sp.pError, sp.ng, dir);
-  r.d = dir;
-  r.time = time;
+  spawnRayInto(r, sp, false, dir, time);
   return r;
 }
-
-// A shadow ray towards a point: t in (0, 1) covers the segment and stops just short of the
-// target, by a relative 2^-12 of the segment, so the light's own surface never occludes it.
 inline Ray spawnRayTo(const ShadingPoint& sp, const Vec3f& target, float time) {
-  Ray r = spawnRay(sp, target - sp.p, time);
-  r.d = target - r.o;
-  r.tMax = 1.0f - 1.0f / 4096.0f;
+  Ray r;
+  spawnRayInto(r, sp, true, target, time);
   return r;
 }
 

@@ -16,7 +16,9 @@ namespace glint {
 // it is given, so the result is within about 2·exponent float roundings of the exact power: the
 // same order as the change one ulp of the cosine makes to cosine^exponent.
 inline float specularPower(float cosine, float exponent) {
-  if (!(exponent >= 0 && exponent <= 65535 && exponent == std::floor(exponent)))
+  // Whole: the integer conversion is exact in that range (std::floor is a libm call here).
+  if (!(exponent >= 0 && exponent <= 65535 &&
+        static_cast<float>(static_cast<unsigned>(exponent)) == exponent))
     return std::pow(cosine, exponent);
   float result = 1, base = cosine;
   for (auto n = static_cast<unsigned>(exponent); n != 0; n >>= 1) {

@@ -56,6 +56,81 @@ Radiance WhittedKernel<C>::trace(const Ray& cameraRay, const Hit& cameraHit, con
 }
 
 template <unsigned C>
+void WhittedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys,
+                                       int count, Radiance* out, AovSample* const* aovs,
+                                       RayCounters& counters) const {
+  // Each Phong hit's direct lighting is queued (PhongPoint); the queue is traced when the next
+  // hit might not fit, then each sample is finished in order, exactly as shade() would.
+  struct Pending {
+    PhongPoint pt;
+    Branch root;
+    Rgb L;
+    int queryEnd = 0;  // one past its last query
+    bool queued = false;
+  };
+  // Per thread, not on the stack: about 60 kB that need no clearing per pixel.
+  static constexpr int kMaxSamples = 64;
+  thread_local Pending pending[kMaxSamples];
+  thread_local ShadowQueue<512> queue;
+  for (int begin = 0; begin < count;) {
+    queue.size = 0;
+    int end = begin;
+    for (; end < count && end - begin < kMaxSamples; ++end) {
+      Pending& p = pending[end - begin];
+      p.root.key = &keys[end];  // the rest of a root branch never changes
+      p.queued = false;
+      if (!hits[end]) continue;
+      const ShadingPoint sp = scene_.shadingPoint(rays[end], hits[end]);
+      const auto* phong = std::get_if<PhongMaterial>(&scene_.materials[sp.materialId].material);
+      if (!phong || shadowRaysPerPoint_ > queue.kCapacity) continue;  // shaded on its own
+      if (queue.size + shadowRaysPerPoint_ > queue.kCapacity) break;  // trace what is queued
+      p.pt = phongPoint(*phong, sp, normalize(-rays[end].d), rays[end].time, p.root);
+      p.L = ambient(p.pt);
+      for (size_t li = 0; li < scene_.lights.size(); ++li) {
+        const int n = sampleCount(scene_.lights[li]);
+        queueLight(p.pt, li, lightPattern(p.pt, li), 0, n, n, queue);
+      }
+      p.queryEnd = queue.size;
+      p.queued = true;
+    }
+    traceShadows(queue, true, counters);
+    int next = 0;
+    for (int i = begin; i < end; ++i) {
+      Pending& p = pending[i - begin];
+      AovSample* aov = kAovs && aovs ? aovs[i] : nullptr;
+      Radiance& r = out[i];
+      if (!p.queued) {  // trace(), written straight into out[i]
+        ++counters.camera;
+        bool hit = false;
+        r.L = shade(rays[i], hits[i], p.root, counters, &hit, aov);
+        r.alpha = hit ? 1.0f : 0.0f;
+        r.valid = true;
+        continue;
+      }
+      // shade() for a Phong camera hit, with the direct light's rays already traced.
+      ++counters.camera;
+      const PhongMaterial& m = *p.pt.material;
+      if (aov)
+        recordAov(rays[i], hits[i], p.pt.sp, scene_.materials[p.pt.sp.materialId].material, *aov);
+      Rgb L = p.L;
+      for (size_t li = 0; li < scene_.lights.size(); ++li) {
+        Rgb sum;
+        addLight(queue, li, next, p.queryEnd, sum);
+        const Rgb contribution = lightContribution(sum, sampleCount(scene_.lights[li]));
+        L += contribution;
+        if (aov && li < size_t(AovSet::kMaxLights)) aov->perLight[li] = contribution;
+      }
+      if (aov) aov->direct = L;
+      L += reflectRay(m.km, m.gloss, p.pt.sp, rays[i], p.root, counters);
+      r.L = L;
+      r.alpha = 1;
+      r.valid = true;
+    }
+    begin = end;
+  }
+}
+
+template <unsigned C>
 void WhittedKernel<C>::recordAov(const Ray& ray, const Hit& hit, const ShadingPoint& sp,
                                  const Material& material, AovSample& aov) const {
   aov.hit = true;
@@ -105,51 +180,110 @@ Rgb WhittedKernel<C>::shade(const Ray& ray, const Hit& hit, const Branch& branch
 }
 
 template <unsigned C>
+typename WhittedKernel<C>::PhongPoint WhittedKernel<C>::phongPoint(const PhongMaterial& m,
+                                                                   const ShadingPoint& sp,
+                                                                   const Vec3f& wo, float time,
+                                                                   const Branch& branch) const {
+  // Seed 000 eq. 4.4 / seed 001 §5: surfaces are two-sided, so the normal faces the viewer.
+  return {&m, sp, wo, faceForward(sp.ns, wo), m.kd.eval(sp.p, scene_.worldOrigin), time, &branch};
+}
+
+template <unsigned C>
+Rgb WhittedKernel<C>::ambient(const PhongPoint& pt) const {
+  return pt.material->ka.eval(pt.sp.p, scene_.worldOrigin) * scene_.render.ambient;
+}
+
+template <unsigned C>
+SamplePattern WhittedKernel<C>::lightPattern(const PhongPoint& pt, size_t li) const {
+  // Delta lights take one shadow ray and draw no sample; area lights average `samples` points
+  // from their own stratified, shuffled set (seed 000 §13.4.2). Without area lights every
+  // light is a delta light.
+  if (isDelta(scene_.lights[li])) return {};
+  return pt.branch->key->pattern(dimension(Dim::Light, pt.branch->depth, static_cast<int>(li)));
+}
+
+template <unsigned C>
+template <class Queue>
+void WhittedKernel<C>::queueLight(const PhongPoint& pt, size_t li, const SamplePattern& pattern,
+                                  int first, int size, int count, Queue& queue) const {
+  const Light& light = scene_.lights[li];
+  const bool delta = isDelta(light);
+  const PhongMaterial& m = *pt.material;
+  // Sample points are drawn a batch ahead of their shadow rays: drawing one is a long chain of
+  // dependent integer operations (sampler.cpp), and a batch's chains run side by side.
+  constexpr int kBatch = 8;
+  Vec2f batch[kBatch];
+  for (int begin = first; begin < first + size; begin += kBatch) {
+    const int n = std::min(kBatch, first + size - begin);
+    for (int j = 0; j < n; ++j)
+      batch[j] = delta ? Vec2f{0.5f, 0.5f} : pt.branch->key->get2D(pattern, begin + j, count);
+    for (int j = 0; j < n; ++j) {
+      const LightSample ls = sampleLight(light, pt.sp.p, batch[j]);
+      const float cosL = dot(pt.n, ls.wi);
+      if (cosL <= 0 || ls.intensity.isBlack()) continue;
+      Rgb f = pt.kd * cosL;
+      if (!m.ks.isBlack()) {
+        const float spec = m.specularModel == SpecularModel::BlinnPhong
+                               ? dot(pt.n, normalize(ls.wi + pt.wo))
+                               : dot(reflect(-ls.wi, pt.n), pt.wo);
+        f += m.ks * specularPower(std::max(0.0f, spec), m.exponent);
+      }
+      const int q = queue.size++;
+      spawnRayInto(queue.rays[q], pt.sp, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target,
+                   pt.time);
+      queue.term[q] = f * ls.intensity;
+      queue.light[q] = static_cast<uint32_t>(li);
+      queue.atInfinity[q] = ls.atInfinity;
+    }
+  }
+}
+
+template <unsigned C>
+template <class Queue>
+void WhittedKernel<C>::traceShadows(Queue& queue, bool coherent, RayCounters& counters) const {
+  const auto n = static_cast<size_t>(queue.size);
+  // Shadows are see-through only where there are dielectrics to see through.
+  if (kMedia && scene_.render.transparentShadows) {
+    for (size_t i = 0; i < n; ++i)
+      queue.visible[i] = shadowTransmission(queue.rays[i], queue.atInfinity[i], counters);
+    return;
+  }
+  counters.shadow += n;
+  bool blocked[Queue::kCapacity];
+  if (coherent) {
+    accel_.occludedCoherent(queue.rays, blocked, n);
+  } else {
+    for (size_t i = 0; i < n; ++i) blocked[i] = accel_.occluded(queue.rays[i]);
+  }
+  for (size_t i = 0; i < n; ++i) queue.visible[i] = blocked[i] ? Rgb{} : Rgb{1, 1, 1};
+}
+
+template <unsigned C>
+template <class Queue>
+void WhittedKernel<C>::addLight(const Queue& queue, size_t li, int& next, int end, Rgb& sum) const {
+  for (; next < end && queue.light[next] == li; ++next)
+    if (!queue.visible[next].isBlack()) sum += queue.term[next] * queue.visible[next];
+}
+
+template <unsigned C>
 Rgb WhittedKernel<C>::shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo,
                                  float time, const Branch& branch, RayCounters& counters,
                                  Rgb* perLight) const {
-  // Seed 000 eq. 4.4 / seed 001 §5: surfaces are two-sided, so the normal faces the viewer.
-  const Vec3f n = faceForward(sp.ns, wo);
-  const Rgb kd = m.kd.eval(sp.p, scene_.worldOrigin);
-  Rgb L = m.ka.eval(sp.p, scene_.worldOrigin) * scene_.render.ambient;
+  const PhongPoint pt = phongPoint(m, sp, wo, time, branch);
+  Rgb L = ambient(pt);
+  ShadowQueue<8> queue;
   for (size_t li = 0; li < scene_.lights.size(); ++li) {
-    const Light& light = scene_.lights[li];
-    // Delta lights take one shadow ray and draw no sample; area lights average `samples`
-    // points from their own stratified, shuffled set (seed 000 §13.4.2).
-    // Without area lights every light is a delta light: one ray, no sample drawn.
-    const int count = kAreaLights ? lightSampleCount(light) : 1;
-    const bool delta = !kAreaLights || std::holds_alternative<PointLight>(light) ||
-                       std::holds_alternative<DirectionalLight>(light);
-    const SamplePattern pattern =
-        delta ? SamplePattern{}
-              : branch.key->pattern(dimension(Dim::Light, branch.depth, static_cast<int>(li)));
+    const int count = sampleCount(scene_.lights[li]);
+    const SamplePattern pattern = lightPattern(pt, li);
     Rgb sum;
-    // Sample points are drawn a batch ahead of their shadow rays: drawing one is a long chain
-    // of dependent integer operations (sampler.cpp), and a batch's chains run side by side,
-    // where alternating with traversal would wait out each chain in turn.
-    constexpr int kBatch = 8;
-    Vec2f batch[kBatch];
-    for (int first = 0; first < count; first += kBatch) {
-      const int size = std::min(kBatch, count - first);
-      for (int j = 0; j < size; ++j)
-        batch[j] = delta ? Vec2f{0.5f, 0.5f} : branch.key->get2D(pattern, first + j, count);
-      for (int j = 0; j < size; ++j) {
-        const LightSample ls = sampleLight(light, sp.p, batch[j]);
-        const float cosL = dot(n, ls.wi);
-        if (cosL <= 0 || ls.intensity.isBlack()) continue;
-        const Rgb visible = shadowTransmission(sp, ls, time, counters);
-        if (visible.isBlack()) continue;
-        Rgb f = kd * cosL;
-        if (!m.ks.isBlack()) {
-          const float spec = m.specularModel == SpecularModel::BlinnPhong
-                                 ? dot(n, normalize(ls.wi + wo))
-                                 : dot(reflect(-ls.wi, n), wo);
-          f += m.ks * specularPower(std::max(0.0f, spec), m.exponent);
-        }
-        sum += f * ls.intensity * visible;
-      }
+    for (int first = 0; first < count; first += queue.kCapacity) {
+      queue.size = 0;
+      queueLight(pt, li, pattern, first, std::min(queue.kCapacity, count - first), count, queue);
+      traceShadows(queue, false, counters);
+      int next = 0;
+      addLight(queue, li, next, queue.size, sum);
     }
-    const Rgb contribution = count == 1 ? sum : sum * (1.0f / static_cast<float>(count));
+    const Rgb contribution = lightContribution(sum, count);
     L += contribution;
     if (perLight && li < size_t(AovSet::kMaxLights)) perLight[li] = contribution;
   }
@@ -157,14 +291,8 @@ Rgb WhittedKernel<C>::shadePhong(const PhongMaterial& m, const ShadingPoint& sp,
 }
 
 template <unsigned C>
-Rgb WhittedKernel<C>::shadowTransmission(const ShadingPoint& sp, const LightSample& ls, float time,
-                                         RayCounters& counters) const {
+Rgb WhittedKernel<C>::shadowTransmission(Ray shadow, bool atInfinity, RayCounters& counters) const {
   ++counters.shadow;
-  Ray shadow = ls.atInfinity ? spawnRay(sp, ls.wi, time) : spawnRayTo(sp, ls.target, time);
-  // Shadows are see-through only where there are dielectrics to see through.
-  if (!kMedia || !scene_.render.transparentShadows)
-    return accel_.occluded(shadow) ? Rgb{} : Rgb{1, 1, 1};
-
   // Seed 002 §9.1: the shadow ray carries the product of the transmissions of the dielectrics
   // it passes (Fresnel at each interface, Beer inside); refraction of the shadow ray itself is
   // ignored, so it runs straight on. Any opaque surface blocks it.
@@ -190,7 +318,7 @@ Rgb WhittedKernel<C>::shadowTransmission(const ShadingPoint& sp, const LightSamp
     // Continue over the rest of the segment from just past this interface.
     const Vec3f target = shadow.at(shadow.tMax);
     ++counters.shadow;
-    shadow = ls.atInfinity ? spawnRay(next, dir, time) : spawnRayTo(next, target, time);
+    shadow = atInfinity ? spawnRay(next, dir, shadow.time) : spawnRayTo(next, target, shadow.time);
   }
   return {};
 }

@@ -22,6 +22,7 @@ inline constexpr float kDefaultMinThroughput = 1.0f / 1024.0f;
 
 // Which camera sample is being traced: keys every random number drawn along its paths.
 struct SampleKey {
+  SampleKey() = default;
   SampleKey(const Sampler* s, int x, int y, int i)
       : SampleKey(s, x, y, i, s ? s->pixelKey(x, y) : 0) {}
   // With the pixel's key computed once for all its samples (Sampler::pixelKey).
@@ -56,7 +57,10 @@ class WhittedKernel {
  public:
   WhittedKernel(const Scene& scene, const Accelerator& accel,
                 float minThroughput = kDefaultMinThroughput)
-      : scene_(scene), accel_(accel), minThroughput_(minThroughput) {}
+      : scene_(scene), accel_(accel), minThroughput_(minThroughput) {
+    for (const Light& light : scene.lights)
+      shadowRaysPerPoint_ += kAreaLights ? lightSampleCount(light) : 1;
+  }
 
   // With `aov` (only where Caps has cap::kAovs), also records what the camera ray hit (its
   // viewAxis must be set: the camera's unit view direction, for depth).
@@ -66,6 +70,12 @@ class WhittedKernel {
   // coherent stream, Accelerator::intersectCoherent).
   Radiance trace(const Ray& cameraRay, const Hit& cameraHit, const SampleKey& key,
                  RayCounters& counters, AovSample* aov = nullptr) const;
+  // The same for `count` camera samples of one pixel at once: out[i] is what trace() gives for
+  // sample i, bit for bit, but the shadow rays of all their Phong hits are traced together,
+  // where they are coherent too (one pixel, one light). aovs, when given, holds a record
+  // pointer (or null) per sample.
+  void traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys, int count,
+                       Radiance* out, AovSample* const* aovs, RayCounters& counters) const;
 
  private:
   static constexpr bool kMedia = (Caps & cap::kDielectrics) != 0;
@@ -96,15 +106,63 @@ class WhittedKernel {
   // Radiance along `ray` given its closest hit.
   Rgb shade(const Ray& ray, const Hit& hit, const Branch& branch, RayCounters& counters,
             bool* hitSomething = nullptr, AovSample* aov = nullptr) const;
-  // `perLight`, when given, receives each light's contribution (AOVs of the camera hit).
+  // Direct lighting of Phong surfaces (seed 000 eq. 4.4) runs in three steps, so that the
+  // shadow rays of many shading points can be traced together: queueLight draws a light's
+  // samples and queues one shadow ray per sample that could contribute, with what it adds if
+  // unblocked; traceShadows finds what each ray lets through; addLight sums that per light.
+  struct PhongPoint {
+    const PhongMaterial* material = nullptr;
+    ShadingPoint sp;
+    Vec3f wo, n;  // unit, towards the viewer; the shading normal on the viewer's side
+    Rgb kd;
+    float time = 0;
+    const Branch* branch = nullptr;
+  };
+  template <int Capacity>
+  struct ShadowQueue {
+    static constexpr int kCapacity = Capacity;
+    Ray rays[Capacity];
+    Rgb term[Capacity];     // f · intensity: what the sample adds where nothing blocks it
+    Rgb visible[Capacity];  // filled by traceShadows: the fraction that arrives
+    uint32_t light[Capacity];
+    bool atInfinity[Capacity];
+    int size = 0;
+  };
+  PhongPoint phongPoint(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo, float time,
+                        const Branch& branch) const;
+  // The ambient term: where the light sums start.
+  Rgb ambient(const PhongPoint& pt) const;
+  // Queues samples [first, first + size) of light `li`'s `count` (pattern: its sample set).
+  template <class Queue>
+  void queueLight(const PhongPoint& pt, size_t li, const SamplePattern& pattern, int first,
+                  int size, int count, Queue& queue) const;
+  // `coherent`: the rays come from one pixel and may be traced as packets.
+  template <class Queue>
+  void traceShadows(Queue& queue, bool coherent, RayCounters& counters) const;
+  // Adds light `li`'s queued samples from queue position `next` on (before `end`, where the
+  // shading point's queries end) to `sum`, in queue order.
+  template <class Queue>
+  void addLight(const Queue& queue, size_t li, int& next, int end, Rgb& sum) const;
+  // The light's share of a shading point: the mean over its samples.
+  static Rgb lightContribution(const Rgb& sum, int count) {
+    return count == 1 ? sum : sum * (1.0f / static_cast<float>(count));
+  }
+  int sampleCount(const Light& light) const { return kAreaLights ? lightSampleCount(light) : 1; }
+  static bool isDelta(const Light& light) {
+    return !kAreaLights || std::holds_alternative<PointLight>(light) ||
+           std::holds_alternative<DirectionalLight>(light);
+  }
+  SamplePattern lightPattern(const PhongPoint& pt, size_t li) const;
+  // One shading point, its shadow rays traced on their own. `perLight`, when given, receives
+  // each light's contribution (AOVs of the camera hit).
   Rgb shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo, float time,
                  const Branch& branch, RayCounters& counters, Rgb* perLight = nullptr) const;
   void recordAov(const Ray& ray, const Hit& hit, const ShadingPoint& sp, const Material& material,
                  AovSample& aov) const;
   // Fraction of a light's intensity that reaches sp along the shadow ray: 0 or 1, or with
   // transparent shadows the product of the dielectric transmissions met on the way.
-  Rgb shadowTransmission(const ShadingPoint& sp, const LightSample& ls, float time,
-                         RayCounters& counters) const;
+  // `shadow` is the first segment, as spawned from the shading point.
+  Rgb shadowTransmission(Ray shadow, bool atInfinity, RayCounters& counters) const;
   Rgb reflectRay(const Rgb& km, float gloss, const ShadingPoint& sp, const Ray& ray,
                  const Branch& branch, RayCounters& counters) const;
   Rgb shadeDielectric(const Hit& hit, const DielectricMaterial& m, const ShadingPoint& sp,
@@ -115,6 +173,7 @@ class WhittedKernel {
   const Scene& scene_;
   const Accelerator& accel_;
   float minThroughput_;
+  int shadowRaysPerPoint_ = 0;  // at most, over all lights: what a Phong point may queue
 };
 
 using WhittedIntegrator = WhittedKernel<cap::kAll>;

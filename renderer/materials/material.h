@@ -20,8 +20,13 @@ struct ColorTexture {
 
   // At a render-space point: the checker is fixed in world space, so the point is moved back
   // by the scene's worldOrigin (in double) before the cells are counted.
-  Rgb eval(const Vec3f& renderP, const Vec3d& worldOrigin) const;
+  Rgb eval(const Vec3f& renderP, const Vec3d& worldOrigin) const {
+    return checker ? checkerAt(renderP, worldOrigin) : constant;
+  }
   bool isBlack() const { return checker ? a.isBlack() && b.isBlack() : constant.isBlack(); }
+
+ private:
+  Rgb checkerAt(const Vec3f& renderP, const Vec3d& worldOrigin) const;
 };
 
 enum class SpecularModel { BlinnPhong, Phong };

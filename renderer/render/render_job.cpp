@@ -75,28 +75,33 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
       // packets (docs/performance.md). Samples are still shaded and summed in index order.
       Ray rays[kCameraChunk];
       Hit hits[kCameraChunk];
+      SampleKey keys[kCameraChunk];
+      Radiance radiance[kCameraChunk];
+      // Without AOVs no records exist (the compiler cleared 264 bytes per sample for them).
+      std::conditional_t<kAovs, AovSample[kCameraChunk], NoAovSample> records;
+      AovSample* recordOf[kCameraChunk];
       for (int first = 0; first < rs.spp; first += kCameraChunk) {
         const int count = std::min(kCameraChunk, rs.spp - first);
         for (int i = 0; i < count; ++i) {
-          const int s = first + i;
-          rays[i] = f.cameraSampling.ray<kCameraSamples>(SampleKey(&f.sampler, x, y, s, pixelKey));
+          keys[i] = SampleKey(&f.sampler, x, y, first + i, pixelKey);
+          f.cameraSampling.ray<kCameraSamples>(keys[i], rays[i]);
         }
         f.accel.intersectCoherent(rays, hits, static_cast<size_t>(count));
+        if constexpr (kAovs)
+          for (int i = 0; i < count; ++i) {
+            records[i] = AovSample{};
+            records[i].viewAxis = viewAxis;
+            recordOf[i] = aovSamples ? &records[i] : nullptr;
+          }
+        integrator.traceCameraHits(rays, hits, keys, count, radiance, kAovs ? recordOf : nullptr,
+                                   counters);
         for (int i = 0; i < count; ++i) {
           const int s = first + i;
-          const SampleKey key(&f.sampler, x, y, s, pixelKey);
-          // Without AOVs no record exists (the compiler cleared its 264 bytes for every sample).
-          std::conditional_t<kAovs, AovSample, NoAovSample> aov;
-          AovSample* aovOut = nullptr;
-          if constexpr (kAovs) {
-            aov.viewAxis = viewAxis;
-            if (aovSamples) aovOut = &aov;
-          }
-          Radiance r = integrator.trace(rays[i], hits[i], key, counters, aovOut);
+          Radiance& r = radiance[i];
           if (f.opt.sampleHook) f.opt.sampleHook(x, y, r);
           if (!r.L.isFinite()) r.L = {}, r.valid = false;
           if constexpr (kAovs)
-            if (aovs) pixelAovs.add(r, aov);  // an invalid sample adds no AOV record
+            if (aovs) pixelAovs.add(r, records[i]);  // an invalid sample adds no AOV record
           sum[3] += r.alpha;
           if (!r.valid) {
             // A non-finite sample never reaches the film: it counts as black.

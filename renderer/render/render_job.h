@@ -49,6 +49,13 @@ class CameraSampling {
   // two checks out at compile time; the ray is the same.
   template <bool kMayDraw = true>
   Ray ray(const SampleKey& key) const {
+    Ray r;
+    ray<kMayDraw>(key, r);
+    return r;
+  }
+  // The same written into `r` (Camera::generateRay says why).
+  template <bool kMayDraw = true>
+  void ray(const SampleKey& key, Ray& r) const {
     const Vec2f u = key.sampler->pixelSampleFor(key.pattern(dimension(Dim::Pixel)), key.index);
     Vec2f lens;
     float time = open_;
@@ -56,10 +63,9 @@ class CameraSampling {
       if (camera_.hasLens()) lens = key.get2D(dimension(Dim::Lens));
       if (openShutter_) time = open_ + (close_ - open_) * key.get2D(dimension(Dim::Time)).x;
     }
-    Ray r = camera_.generateRay(static_cast<float>(key.px) + u.x, static_cast<float>(key.py) + u.y,
-                                lens);
+    camera_.generateRay(static_cast<float>(key.px) + u.x, static_cast<float>(key.py) + u.y, lens,
+                        r);
     r.time = time;
-    return r;
   }
 
  private:
