@@ -80,11 +80,12 @@ void WhittedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const S
       p.root.key = &keys[end];  // the rest of a root branch never changes
       p.queued = false;
       if (!hits[end]) continue;
-      const ShadingPoint sp = scene_.shadingPoint(rays[end], hits[end]);
+      const ShadingPoint& sp = p.pt.sp;
+      scene_.shadingPoint(rays[end], hits[end], p.pt.sp);
       const auto* phong = std::get_if<PhongMaterial>(&scene_.materials[sp.materialId].material);
       if (!phong || shadowRaysPerPoint_ > queue.kCapacity) continue;  // shaded on its own
       if (queue.size + shadowRaysPerPoint_ > queue.kCapacity) break;  // trace what is queued
-      p.pt = phongPoint(*phong, sp, normalize(-rays[end].d), rays[end].time, p.root);
+      initPhongPoint(p.pt, *phong, normalize(-rays[end].d), rays[end].time, p.root);
       p.L = ambient(p.pt);
       for (size_t li = 0; li < scene_.lights.size(); ++li) {
         const int n = sampleCount(scene_.lights[li]);
@@ -180,12 +181,15 @@ Rgb WhittedKernel<C>::shade(const Ray& ray, const Hit& hit, const Branch& branch
 }
 
 template <unsigned C>
-typename WhittedKernel<C>::PhongPoint WhittedKernel<C>::phongPoint(const PhongMaterial& m,
-                                                                   const ShadingPoint& sp,
-                                                                   const Vec3f& wo, float time,
-                                                                   const Branch& branch) const {
+void WhittedKernel<C>::initPhongPoint(PhongPoint& pt, const PhongMaterial& m, const Vec3f& wo,
+                                      float time, const Branch& branch) const {
+  pt.material = &m;
+  pt.wo = wo;
   // Seed 000 eq. 4.4 / seed 001 §5: surfaces are two-sided, so the normal faces the viewer.
-  return {&m, sp, wo, faceForward(sp.ns, wo), m.kd.eval(sp.p, scene_.worldOrigin), time, &branch};
+  pt.n = faceForward(pt.sp.ns, wo);
+  pt.kd = m.kd.eval(pt.sp.p, scene_.worldOrigin);
+  pt.time = time;
+  pt.branch = &branch;
 }
 
 template <unsigned C>
@@ -269,7 +273,9 @@ template <unsigned C>
 Rgb WhittedKernel<C>::shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo,
                                  float time, const Branch& branch, RayCounters& counters,
                                  Rgb* perLight) const {
-  const PhongPoint pt = phongPoint(m, sp, wo, time, branch);
+  PhongPoint pt;
+  pt.sp = sp;
+  initPhongPoint(pt, m, wo, time, branch);
   Rgb L = ambient(pt);
   ShadowQueue<8> queue;
   for (size_t li = 0; li < scene_.lights.size(); ++li) {

@@ -128,8 +128,10 @@ class WhittedKernel {
     bool atInfinity[Capacity];
     int size = 0;
   };
-  PhongPoint phongPoint(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo, float time,
-                        const Branch& branch) const;
+  // Fills everything in `pt` but its shading point, which must be set (in place: see
+  // Scene::shadingPoint).
+  void initPhongPoint(PhongPoint& pt, const PhongMaterial& m, const Vec3f& wo, float time,
+                      const Branch& branch) const;
   // The ambient term: where the light sums start.
   Rgb ambient(const PhongPoint& pt) const;
   // Queues samples [first, first + size) of light `li`'s `count` (pattern: its sample set).

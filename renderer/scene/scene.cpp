@@ -45,21 +45,20 @@ size_t Scene::timeSteps(const Geometry& g) const {
   }
 }
 
-ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit) const {
+void Scene::shadingPoint(const Ray& ray, const Hit& hit, ShadingPoint& sp) const {
   GLINT_CHECK(bool(hit));
   // Object space = world space outside instances; inside, go through the instance transform.
   // (A pointer, not an optional Transform: GCC cleared the optional's 128 bytes on every call,
   // 15 % of this function's time in perf.)
-  if (hit.instId == kInvalidId) return shadingPoint(ray, hit, nullptr);
+  if (hit.instId == kInvalidId) return shadingPoint(ray, hit, nullptr, sp);
   const Transform worldFromObject =
       instances[groups[0].geometries[hit.instId].index].transformAt(ray.time);
-  return shadingPoint(ray, hit, &worldFromObject);
+  shadingPoint(ray, hit, &worldFromObject, sp);
 }
 
-ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit,
-                                 const Transform* worldFromObject) const {
+void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldFromObject,
+                         ShadingPoint& sp) const {
   const Geometry& g = geometry(hit);
-  ShadingPoint sp;
   sp.t = hit.t;
   sp.materialId = g.materialId;
   sp.objectId = g.objectId;
@@ -136,7 +135,6 @@ ShadingPoint Scene::shadingPoint(const Ray& ray, const Hit& hit,
   sp.pError = pError;
   sp.ng = normalize(n);
   sp.ns = sp.ng;
-  return sp;
 }
 
 Bounds3f Scene::groupBounds(uint32_t groupId) const {

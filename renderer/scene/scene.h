@@ -104,7 +104,14 @@ class Scene {
   Features features;
 
   // Rebuilds the world-space surface point of a hit (DESIGN.md §3). Shared by all backends.
-  ShadingPoint shadingPoint(const Ray& ray, const Hit& hit) const;
+  ShadingPoint shadingPoint(const Ray& ray, const Hit& hit) const {
+    ShadingPoint sp;
+    shadingPoint(ray, hit, sp);
+    return sp;
+  }
+  // The same written into `sp`, for callers that keep it: copied out of a returned temporary,
+  // it was reloaded before its stores had landed (a store-forwarding stall, perf annotate).
+  void shadingPoint(const Ray& ray, const Hit& hit, ShadingPoint& sp) const;
   // Bounds of everything finite in the world (planes excluded).
   Bounds3f worldBounds() const;
   Bounds3f groupBounds(uint32_t groupId) const;
@@ -118,7 +125,8 @@ class Scene {
  private:
   // shadingPoint for a hit in object space, placed in the world by `worldFromObject` (null
   // outside instances).
-  ShadingPoint shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldFromObject) const;
+  void shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldFromObject,
+                    ShadingPoint& sp) const;
 };
 
 }  // namespace glint
