@@ -254,7 +254,10 @@ void WhittedKernel<C>::traceShadows(Queue& queue, bool coherent, RayCounters& co
   }
   counters.shadow += n;
   bool blocked[Queue::kCapacity];
-  if (coherent) {
+  // A stream of a few rays costs Embree more to set up than it saves: one point's four
+  // area-light rays ran slower as a stream than one by one (docs/performance.md).
+  constexpr size_t kMinStream = 8;
+  if (coherent && n >= kMinStream) {
     accel_.occludedCoherent(queue.rays, blocked, n);
   } else {
     for (size_t i = 0; i < n; ++i) blocked[i] = accel_.occluded(queue.rays[i]);
