@@ -206,21 +206,29 @@ bool parseSamplerKind(std::string_view name, SamplerKind& out) {
 }
 
 Vec2f Sampler::stratified2D(const SamplePattern& pattern, int index, int n) {
+  Vec2f out;
+  stratified2D(pattern, index, 1, n, &out);
+  return out;
+}
+
+void Sampler::stratified2D(const SamplePattern& pattern, int first, int size, int n, Vec2f* out) {
   // Correlated multi-jitter (Kensler 2013): one sample per cell of the m × k grid, placed in its
   // cell so that both 1D projections are stratified too (n-rooks).
   const JitterGrid& grid = jitterGrid(static_cast<uint32_t>(n));
   const uint32_t m = grid.columns.size.divisor(), k = grid.rows.size.divisor();
   const uint32_t p = pattern.scramble[0];
-  const uint32_t s = permute(static_cast<uint32_t>(index), grid.all, p * 0x51633e2d);
-  const uint32_t row = grid.columns.size.quotient(s), column = s - row * m;
   thread_local AxisPermutationCache axes;
-  uint32_t sx, sy;
-  axes.lookup(grid, p, column, row, p * 0xa511e9b3, p * 0x63d83595, sx, sy);
-  // The sample sits in cell (column, row) of the coarse grid and, inside it, in sub-cell
-  // (sy, sx) of the fine n × n grid: stratum column·k + sy of n along x, row·m + sx along y.
-  // Both jitters come from one hash.
-  const Vec2f jitter = unitPair(hashCombine(pattern.hash, s));
-  return {grid.place(column * k + sy, jitter.x), grid.place(row * m + sx, jitter.y)};
+  for (int i = 0; i < size; ++i) {
+    const uint32_t s = permute(static_cast<uint32_t>(first + i), grid.all, p * 0x51633e2d);
+    const uint32_t row = grid.columns.size.quotient(s), column = s - row * m;
+    uint32_t sx, sy;
+    axes.lookup(grid, p, column, row, p * 0xa511e9b3, p * 0x63d83595, sx, sy);
+    // The sample sits in cell (column, row) of the coarse grid and, inside it, in sub-cell
+    // (sy, sx) of the fine n × n grid: stratum column·k + sy of n along x, row·m + sx along y.
+    // Both jitters come from one hash.
+    const Vec2f jitter = unitPair(hashCombine(pattern.hash, s));
+    out[i] = {grid.place(column * k + sy, jitter.x), grid.place(row * m + sx, jitter.y)};
+  }
 }
 
 Vec2f Sampler::sobol2D(const SamplePattern& pattern, int index) {
@@ -256,6 +264,13 @@ Vec2f Sampler::pixelSampleFor(const SamplePattern& pixel, int index) const {
             (static_cast<float>(index / n) + 0.5f) / float(n)};
   }
   return get2DFor(pixel, index);
+}
+
+void Sampler::get2DFor(const SamplePattern& pattern, int index, int firstSub, int size, int count,
+                       Vec2f* out) const {
+  if (kind_ == SamplerKind::Stratified)
+    return stratified2D(pattern, index * count + firstSub, size, spp_ * count, out);
+  for (int j = 0; j < size; ++j) out[j] = get2DFor(pattern, index, firstSub + j, count);
 }
 
 Vec2f Sampler::get2DFor(const SamplePattern& pattern, int index, int sub, int count) const {

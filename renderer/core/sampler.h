@@ -67,9 +67,15 @@ class Sampler {
   SamplePattern pattern(uint64_t pixelKey, uint32_t dim) const;
   Vec2f pixelSampleFor(const SamplePattern& pixel, int index) const;
   Vec2f get2DFor(const SamplePattern& pattern, int index, int sub = 0, int count = 1) const;
+  // get2DFor(pattern, index, firstSub + j, count) into out[j] for j in [0, size): the same
+  // values, drawn in one loop (one lookup of the set's tables, and the samples' long chains of
+  // dependent integer operations side by side).
+  void get2DFor(const SamplePattern& pattern, int index, int firstSub, int size, int count,
+                Vec2f* out) const;
 
  private:
   static Vec2f stratified2D(const SamplePattern& pattern, int index, int n);
+  static void stratified2D(const SamplePattern& pattern, int first, int size, int n, Vec2f* out);
   static Vec2f sobol2D(const SamplePattern& pattern, int index);
 
   SamplerKind kind_;

@@ -219,8 +219,10 @@ void WhittedKernel<C>::queueLight(const PhongPoint& pt, size_t li, const SampleP
   Vec2f batch[kBatch];
   for (int begin = first; begin < first + size; begin += kBatch) {
     const int n = std::min(kBatch, first + size - begin);
-    for (int j = 0; j < n; ++j)
-      batch[j] = delta ? Vec2f{0.5f, 0.5f} : pt.branch->key->get2D(pattern, begin + j, count);
+    if (delta)
+      batch[0] = {0.5f, 0.5f};
+    else
+      pt.branch->key->get2D(pattern, begin, n, count, batch);
     for (int j = 0; j < n; ++j) {
       const LightSample ls = sampleLight(light, pt.sp.p, batch[j]);
       const float cosL = dot(pt.n, ls.wi);

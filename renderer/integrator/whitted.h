@@ -38,6 +38,10 @@ struct SampleKey {
   Vec2f get2D(const SamplePattern& pattern, int sub, int count) const {
     return sampler->get2DFor(pattern, index, sub, count);
   }
+  // Sub-samples [firstSub, firstSub + size) of `count` at once, into out.
+  void get2D(const SamplePattern& pattern, int firstSub, int size, int count, Vec2f* out) const {
+    sampler->get2DFor(pattern, index, firstSub, size, count, out);
+  }
   Vec2f get2D(uint32_t dim, int sub = 0, int count = 1) const {
     return get2D(pattern(dim), sub, count);
   }

@@ -158,6 +158,27 @@ TEST(Sampler, DrawingOrderDoesNotChangeTheNumbers) {
   }
 }
 
+TEST(Sampler, DrawingSubSamplesTogetherGivesTheSameNumbers) {
+  // get2DFor over a range of sub-samples (how shading draws a light's samples) must equal the
+  // one-at-a-time draws bit for bit, for every kind, for ranges that start anywhere.
+  for (const SamplerKind kind :
+       {SamplerKind::Regular, SamplerKind::Random, SamplerKind::Stratified, SamplerKind::Sobol}) {
+    const Sampler s(kind, 9, 4);
+    const SamplePattern pattern = s.pattern(s.pixelKey(7, 2), dimension(Dim::Light, 1, 2));
+    constexpr int kCount = 12;
+    for (int index = 0; index < 9; ++index)
+      for (const auto& [first, size] : {std::pair{0, 12}, std::pair{5, 7}, std::pair{11, 1}}) {
+        Vec2f together[kCount];
+        s.get2DFor(pattern, index, first, size, kCount, together);
+        for (int j = 0; j < size; ++j) {
+          const Vec2f alone = s.get2DFor(pattern, index, first + j, kCount);
+          EXPECT_EQ(alone.x, together[j].x) << samplerName(kind) << " " << index << " " << j;
+          EXPECT_EQ(alone.y, together[j].y) << samplerName(kind) << " " << index << " " << j;
+        }
+      }
+  }
+}
+
 TEST(Sampler, RegularIsCellCentres) {
   // spp = 4 → a 2 × 2 grid of centres at 0.25 and 0.75.
   const Sampler s(SamplerKind::Regular, 4, 0);
