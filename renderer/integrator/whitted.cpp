@@ -45,38 +45,36 @@ Radiance WhittedKernel<C>::trace(const Ray& cameraRay, const SampleKey& key, Ray
 template <unsigned C>
 Radiance WhittedKernel<C>::trace(const Ray& cameraRay, const Hit& cameraHit, const SampleKey& key,
                                  RayCounters& counters, AovSample* aov) const {
-  ++counters.camera;
-  bool hit = false;
-  Radiance r;
   Branch root;
   root.key = &key;
-  r.L = shade(cameraRay, cameraHit, root, counters, &hit, aov);
-  r.alpha = hit ? 1.0f : 0.0f;
+  Radiance r;
+  traceInto(cameraRay, cameraHit, root, counters, aov, r);
   return r;
+}
+
+template <unsigned C>
+void WhittedKernel<C>::traceInto(const Ray& cameraRay, const Hit& cameraHit, const Branch& root,
+                                 RayCounters& counters, AovSample* aov, Radiance& out) const {
+  ++counters.camera;
+  bool hit = false;
+  out.L = shade(cameraRay, cameraHit, root, counters, &hit, aov);
+  out.alpha = hit ? 1.0f : 0.0f;
+  out.valid = true;
 }
 
 template <unsigned C>
 void WhittedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys,
                                        int count, Radiance* out, AovSample* const* aovs,
-                                       RayCounters& counters) const {
+                                       RayCounters& counters, CameraHitScratch& scratch) const {
   // Each Phong hit's direct lighting is queued (PhongPoint); the queue is traced when the next
   // hit might not fit, then each sample is finished in order, exactly as shade() would.
-  struct Pending {
-    PhongPoint pt;
-    Branch root;
-    Rgb L;
-    int queryEnd = 0;  // one past its last query
-    bool queued = false;
-  };
-  // Per thread, not on the stack: about 60 kB that need no clearing per pixel.
-  static constexpr int kMaxSamples = 64;
-  thread_local Pending pending[kMaxSamples];
-  thread_local ShadowQueue<512> queue;
+  auto& pending = scratch.pending;
+  auto& queue = scratch.queue;
   for (int begin = 0; begin < count;) {
     queue.size = 0;
     int end = begin;
-    for (; end < count && end - begin < kMaxSamples; ++end) {
-      Pending& p = pending[end - begin];
+    for (; end < count && end - begin < scratch.kMaxSamples; ++end) {
+      auto& p = pending[end - begin];
       p.root.key = &keys[end];  // the rest of a root branch never changes
       p.queued = false;
       if (!hits[end]) continue;
@@ -97,15 +95,11 @@ void WhittedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const S
     traceShadows(queue, true, counters);
     int next = 0;
     for (int i = begin; i < end; ++i) {
-      Pending& p = pending[i - begin];
+      auto& p = pending[i - begin];
       AovSample* aov = kAovs && aovs ? aovs[i] : nullptr;
       Radiance& r = out[i];
-      if (!p.queued) {  // trace(), written straight into out[i]
-        ++counters.camera;
-        bool hit = false;
-        r.L = shade(rays[i], hits[i], p.root, counters, &hit, aov);
-        r.alpha = hit ? 1.0f : 0.0f;
-        r.valid = true;
+      if (!p.queued) {
+        traceInto(rays[i], hits[i], p.root, counters, aov, r);
         continue;
       }
       // shade() for a Phong camera hit, with the direct light's rays already traced.

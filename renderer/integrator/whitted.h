@@ -74,12 +74,16 @@ class WhittedKernel {
   // coherent stream, Accelerator::intersectCoherent).
   Radiance trace(const Ray& cameraRay, const Hit& cameraHit, const SampleKey& key,
                  RayCounters& counters, AovSample* aov = nullptr) const;
-  // The same for `count` camera samples of one pixel at once: out[i] is what trace() gives for
-  // sample i, bit for bit, but the shadow rays of all their Phong hits are traced together,
-  // where they are coherent too (one pixel, one light). aovs, when given, holds a record
-  // pointer (or null) per sample.
+  // Where traceCameraHits keeps a pixel's pending hits and their shadow rays (about 60 kB):
+  // one per thread or tile, reused for every pixel.
+  struct CameraHitScratch;
+  // The same as trace() for `count` camera samples of one pixel at once: out[i] is what trace()
+  // gives for sample i, bit for bit, but the shadow rays of all their Phong hits are traced
+  // together, where they are coherent too (one pixel, one light). aovs, when given, holds a
+  // record pointer (or null) per sample.
   void traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys, int count,
-                       Radiance* out, AovSample* const* aovs, RayCounters& counters) const;
+                       Radiance* out, AovSample* const* aovs, RayCounters& counters,
+                       CameraHitScratch& scratch) const;
 
  private:
   static constexpr bool kMedia = (Caps & cap::kDielectrics) != 0;
@@ -176,10 +180,29 @@ class WhittedKernel {
   float iorOutside(const MediumStack& media) const;
   const DielectricMaterial* dielectric(uint32_t materialId) const;
 
+  // trace() for a camera hit, written into `out` (a Radiance returned and copied stalled on
+  // store forwarding).
+  void traceInto(const Ray& cameraRay, const Hit& cameraHit, const Branch& root,
+                 RayCounters& counters, AovSample* aov, Radiance& out) const;
+
   const Scene& scene_;
   const Accelerator& accel_;
   float minThroughput_;
   int shadowRaysPerPoint_ = 0;  // at most, over all lights: what a Phong point may queue
+
+ public:
+  struct CameraHitScratch {
+    static constexpr int kMaxSamples = 64;  // hits pending at once
+    struct Pending {
+      PhongPoint pt;
+      Branch root;
+      Rgb L;             // the ambient term, where the light sums start
+      int queryEnd = 0;  // one past its last queued shadow ray
+      bool queued = false;
+    };
+    Pending pending[kMaxSamples];
+    ShadowQueue<512> queue;
+  };
 };
 
 using WhittedIntegrator = WhittedKernel<cap::kAll>;

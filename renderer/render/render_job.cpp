@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -77,6 +78,7 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
   // Without AOVs no records exist (the compiler cleared 264 bytes per sample for them).
   std::conditional_t<kAovs, AovSample[kCameraChunk], NoAovSample> records;
   AovSample* recordOf[kCameraChunk];
+  const auto scratch = std::make_unique<typename WhittedKernel<Caps>::CameraHitScratch>();
   for (int y = tile.y0; y < tile.y1; ++y)
     for (int x = tile.x0; x < tile.x1; ++x) {
       double sum[4] = {0, 0, 0, 0};
@@ -96,7 +98,7 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
             recordOf[i] = aovSamples ? &records[i] : nullptr;
           }
         integrator.traceCameraHits(rays, hits, keys, count, radiance, kAovs ? recordOf : nullptr,
-                                   counters);
+                                   counters, *scratch);
         for (int i = 0; i < count; ++i) {
           const int s = first + i;
           Radiance& r = radiance[i];

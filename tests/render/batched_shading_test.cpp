@@ -5,6 +5,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <vector>
 
 #include "camera/camera.h"
@@ -42,6 +43,7 @@ int compareBatchedWithOneByOne(const Scene& scene, const std::string& what) {
   std::vector<Radiance> batched(n);
   std::vector<AovSample> records(n);
   std::vector<AovSample*> recordOf(n);
+  const auto scratch = std::make_unique<WhittedIntegrator::CameraHitScratch>();
   int compared = 0, differing = 0;
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x) {
@@ -55,7 +57,7 @@ int compareBatchedWithOneByOne(const Scene& scene, const std::string& what) {
       accel->intersectCoherent(rays.data(), hits.data(), rays.size());
       RayCounters batchedCounters, aloneCounters;
       integrator.traceCameraHits(rays.data(), hits.data(), keys.data(), n, batched.data(),
-                                 recordOf.data(), batchedCounters);
+                                 recordOf.data(), batchedCounters, *scratch);
       for (int i = 0; i < n; ++i) {
         AovSample record;
         record.viewAxis = -camera.w();
