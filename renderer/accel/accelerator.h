@@ -28,11 +28,6 @@ class Accelerator {
   virtual void intersectCoherent(const Ray* rays, Hit* hits, size_t n) const {
     for (size_t i = 0; i < n; ++i) hits[i] = intersect(rays[i]);
   }
-  // Whether each of n rays is occluded, as occluded() answers; rays that start close together
-  // and point alike (a pixel's shadow rays towards one light) may be traced as packets.
-  virtual void occludedCoherent(const Ray* rays, bool* blocked, size_t n) const {
-    for (size_t i = 0; i < n; ++i) blocked[i] = occluded(rays[i]);
-  }
   virtual std::string_view name() const = 0;
 };
 

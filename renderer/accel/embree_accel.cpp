@@ -298,25 +298,6 @@ void EmbreeAccel::intersectStream(const Ray* rays, Hit* hits, size_t n, bool coh
   }
 }
 
-void EmbreeAccel::occludedCoherent(const Ray* rays, bool* blocked, size_t n) const {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
-  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-  constexpr size_t kChunk = 256;
-  RTCRay r[kChunk];
-  for (size_t begin = 0; begin < n; begin += kChunk) {
-    const size_t count = std::min(kChunk, n - begin);
-    for (size_t i = 0; i < count; ++i) {
-      r[i] = toRtcRay(rays[begin + i]);
-      // A ray a plane blocks is answered already: tfar below tnear leaves it out of the stream,
-      // and a negative tfar reads as occluded below.
-      if (occludedByPlanes(scene_, rays[begin + i])) r[i].tfar = -kInfinity;
-    }
-    rtcOccluded1M(groupScenes_[0], &context, r, static_cast<unsigned>(count), sizeof(RTCRay));
-    for (size_t i = 0; i < count; ++i) blocked[begin + i] = r[i].tfar < 0;
-  }
-}
-
 bool EmbreeAccel::occluded(const Ray& ray) const {
   if (occludedByPlanes(scene_, ray)) return true;
   RTCIntersectContext context;

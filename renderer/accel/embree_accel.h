@@ -34,8 +34,6 @@ class EmbreeAccel final : public Accelerator {
   void intersectCoherent(const Ray* rays, Hit* hits, size_t n) const override {
     intersectStream(rays, hits, n, true);
   }
-  // Through rtcOccluded1M with the coherent flag.
-  void occludedCoherent(const Ray* rays, bool* blocked, size_t n) const override;
   std::string_view name() const override { return "embree"; }
   double buildSeconds() const { return buildSeconds_; }
   int64_t bytes() const { return bytes_; }

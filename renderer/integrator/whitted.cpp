@@ -92,7 +92,7 @@ void WhittedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const S
       p.queryEnd = queue.size;
       p.queued = true;
     }
-    traceShadows(queue, true, counters);
+    traceShadows(queue, counters);
     int next = 0;
     for (int i = begin; i < end; ++i) {
       auto& p = pending[i - begin];
@@ -240,7 +240,7 @@ void WhittedKernel<C>::queueLight(const PhongPoint& pt, size_t li, const SampleP
 
 template <unsigned C>
 template <class Queue>
-void WhittedKernel<C>::traceShadows(Queue& queue, bool coherent, RayCounters& counters) const {
+void WhittedKernel<C>::traceShadows(Queue& queue, RayCounters& counters) const {
   const auto n = static_cast<size_t>(queue.size);
   // Shadows are see-through only where there are dielectrics to see through.
   if (kMedia && scene_.render.transparentShadows) {
@@ -248,17 +248,12 @@ void WhittedKernel<C>::traceShadows(Queue& queue, bool coherent, RayCounters& co
       queue.visible[i] = shadowTransmission(queue.rays[i], queue.atInfinity[i], counters);
     return;
   }
+  // One by one: a pixel's rays as one coherent rtcOccluded1M stream measured no faster, and in
+  // the sanitizer build spun forever inside Embree 3.13.5 on a scene with instances
+  // (docs/performance.md).
   counters.shadow += n;
-  bool blocked[Queue::kCapacity];
-  // A stream of a few rays costs Embree more to set up than it saves: one point's four
-  // area-light rays ran slower as a stream than one by one (docs/performance.md).
-  constexpr size_t kMinStream = 8;
-  if (coherent && n >= kMinStream) {
-    accel_.occludedCoherent(queue.rays, blocked, n);
-  } else {
-    for (size_t i = 0; i < n; ++i) blocked[i] = accel_.occluded(queue.rays[i]);
-  }
-  for (size_t i = 0; i < n; ++i) queue.visible[i] = blocked[i] ? Rgb{} : Rgb{1, 1, 1};
+  for (size_t i = 0; i < n; ++i)
+    queue.visible[i] = accel_.occluded(queue.rays[i]) ? Rgb{} : Rgb{1, 1, 1};
 }
 
 template <unsigned C>
@@ -284,7 +279,7 @@ Rgb WhittedKernel<C>::shadePhong(const PhongMaterial& m, const ShadingPoint& sp,
     for (int first = 0; first < count; first += queue.kCapacity) {
       queue.size = 0;
       queueLight(pt, li, pattern, first, std::min(queue.kCapacity, count - first), count, queue);
-      traceShadows(queue, false, counters);
+      traceShadows(queue, counters);
       int next = 0;
       addLight(queue, li, next, queue.size, sum);
     }

@@ -78,9 +78,10 @@ class WhittedKernel {
   // one per thread or tile, reused for every pixel.
   struct CameraHitScratch;
   // The same as trace() for `count` camera samples of one pixel at once: out[i] is what trace()
-  // gives for sample i, bit for bit, but the shadow rays of all their Phong hits are traced
-  // together, where they are coherent too (one pixel, one light). aovs, when given, holds a
-  // record pointer (or null) per sample.
+  // gives for sample i, bit for bit, but in stages over all the samples (shading points and
+  // light samples of every Phong hit, then all their shadow rays, then each sample finished),
+  // so that the samples' independent chains of work run side by side instead of one after
+  // another. aovs, when given, holds a record pointer (or null) per sample.
   void traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys, int count,
                        Radiance* out, AovSample* const* aovs, RayCounters& counters,
                        CameraHitScratch& scratch) const;
@@ -146,9 +147,8 @@ class WhittedKernel {
   template <class Queue>
   void queueLight(const PhongPoint& pt, size_t li, const SamplePattern& pattern, int first,
                   int size, int count, Queue& queue) const;
-  // `coherent`: the rays come from one pixel and may be traced as packets.
   template <class Queue>
-  void traceShadows(Queue& queue, bool coherent, RayCounters& counters) const;
+  void traceShadows(Queue& queue, RayCounters& counters) const;
   // Adds light `li`'s queued samples from queue position `next` on (before `end`, where the
   // shading point's queries end) to `sum`, in queue order.
   template <class Queue>

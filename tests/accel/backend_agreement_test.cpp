@@ -8,9 +8,8 @@
 namespace glint {
 namespace {
 
-// A scene with every shape kind, instances and an unbounded plane.
-Scene everyShapeScene() {
-  return test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+TEST(BackendAgreement, EmbreeMatchesBruteForceOnRandomRays) {
+  const Scene s = test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
     "materials": {"m": {"type": "phong"}},
     "groups": {"g": [{"type": "box", "min": [-0.5,-0.5,-0.5], "max": [0.5,0.5,0.5], "material": "m"},
                      {"type": "sphere", "center": [0,1,0], "radius": 0.4, "material": "m"}]},
@@ -22,10 +21,6 @@ Scene everyShapeScene() {
       {"type": "instance", "group": "g", "transform": {"translate": [-1.5,1,0], "rotate": [1,1,0,30]}},
       {"type": "instance", "group": "g", "transform": {"matrix": [1,0.3,0,1.5, 0,1,0,-1.5, 0,0,2,0, 0,0,0,1]}}
     ]})");
-}
-
-TEST(BackendAgreement, EmbreeMatchesBruteForceOnRandomRays) {
-  const Scene s = everyShapeScene();
   const auto embree = makeAccelerator(AccelKind::Embree, s);
   const auto brute = makeAccelerator(AccelKind::BruteForce, s);
   constexpr int kRays = 4000;
@@ -48,40 +43,6 @@ TEST(BackendAgreement, EmbreeMatchesBruteForceOnRandomRays) {
   }
   EXPECT_GT(hits, kRays / 2);  // the test must exercise hits, not only misses
   EXPECT_EQ(disagreements, 0);
-}
-
-// Shadow-like bundles: 16 origins close together, all aimed at one point (a point light), some
-// far enough below to be blocked by the plane alone. The coherent stream (Embree's packets)
-// must answer each ray as occluded() does.
-TEST(BackendAgreement, CoherentOcclusionAnswersAsOneByOne) {
-  const Scene s = everyShapeScene();
-  const auto embree = makeAccelerator(AccelKind::Embree, s);
-  const auto brute = makeAccelerator(AccelKind::BruteForce, s);
-  constexpr int kBundles = 300, kRays = 16;
-  int blocked = 0, total = 0;
-  for (int b = 0; b < kBundles; ++b) {
-    auto u = [&](int k) { return toUnitFloat(hashKey(7, b, k)); };
-    const Vec3f centre{8 * u(0) - 4, 8 * u(1) - 5, 8 * u(2) - 4};  // y from −5: under the plane
-    const Vec3f light{6 * u(3) - 3, 4 * u(4), 6 * u(5) - 3};
-    Ray rays[kRays];
-    for (int i = 0; i < kRays; ++i) {
-      auto v = [&](int k) { return toUnitFloat(hashKey(8, b * kRays + i, k)) - 0.5f; };
-      rays[i].o = centre + 0.05f * Vec3f{v(0), v(1), v(2)};
-      rays[i].d = light - rays[i].o;
-      rays[i].tMax = 1;
-    }
-    bool coherent[kRays];
-    embree->occludedCoherent(rays, coherent, kRays);
-    for (int i = 0; i < kRays; ++i) {
-      EXPECT_EQ(coherent[i], embree->occluded(rays[i])) << "bundle " << b << " ray " << i;
-      EXPECT_EQ(coherent[i], brute->occluded(rays[i])) << "bundle " << b << " ray " << i;
-      blocked += coherent[i];
-      ++total;
-    }
-  }
-  // Both answers must be exercised: neither almost all blocked nor almost all free.
-  EXPECT_GT(blocked, total / 10);
-  EXPECT_LT(blocked, total * 9 / 10);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // A pixel's camera hits are shaded together (WhittedKernel::traceCameraHits): their shadow rays
-// are queued and traced as one coherent stream. That must change nothing: every sample's
-// radiance, alpha and AOV record equal what trace() gives for it alone, bit for bit.
+// are queued and traced in one pass. That must change nothing: every sample's radiance, alpha
+// and AOV record equal what trace() gives for it alone, bit for bit.
 #include <gtest/gtest.h>
 
 #include <cstring>
