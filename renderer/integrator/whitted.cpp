@@ -78,11 +78,13 @@ void WhittedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const S
       p.root.key = &keys[end];  // the rest of a root branch never changes
       p.queued = false;
       if (!hits[end]) continue;
-      const ShadingPoint& sp = p.pt.sp;
-      scene_.shadingPoint(rays[end], hits[end], p.pt.sp);
-      const auto* phong = std::get_if<PhongMaterial>(&scene_.materials[sp.materialId].material);
+      // The material from the hit's geometry: a hit shaded on its own gets its shading point
+      // in shade(), so it is built here only for the hits queued.
+      const uint32_t materialId = scene_.geometry(hits[end]).materialId;
+      const auto* phong = std::get_if<PhongMaterial>(&scene_.materials[materialId].material);
       if (!phong || shadowRaysPerPoint_ > queue.kCapacity) continue;  // shaded on its own
       if (queue.size + shadowRaysPerPoint_ > queue.kCapacity) break;  // trace what is queued
+      scene_.shadingPoint(rays[end], hits[end], p.pt.sp);
       initPhongPoint(p.pt, *phong, normalize(-rays[end].d), rays[end].time, p.root);
       p.L = ambient(p.pt);
       for (size_t li = 0; li < scene_.lights.size(); ++li) {

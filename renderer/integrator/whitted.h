@@ -62,8 +62,7 @@ class WhittedKernel {
   WhittedKernel(const Scene& scene, const Accelerator& accel,
                 float minThroughput = kDefaultMinThroughput)
       : scene_(scene), accel_(accel), minThroughput_(minThroughput) {
-    for (const Light& light : scene.lights)
-      shadowRaysPerPoint_ += kAreaLights ? lightSampleCount(light) : 1;
+    for (const Light& light : scene.lights) shadowRaysPerPoint_ += sampleCount(light);
   }
 
   // With `aov` (only where Caps has cap::kAovs), also records what the camera ray hit (its
