@@ -80,13 +80,17 @@ double samplingSeconds(const Scene& scene, int threads) {
   std::vector<float> sink(tiles.size());
   const auto start = Clock::now();
   runTiles(tiles, threads, [&](size_t t) {
+    SampleKey keys[kCameraChunk];  // in runs, as renderTile draws them
+    Ray rays[kCameraChunk];
     float acc = 0;
     for (int y = tiles[t].y0; y < tiles[t].y1; ++y)
       for (int x = tiles[t].x0; x < tiles[t].x1; ++x) {
         const uint64_t pixelKey = sampler.pixelKey(x, y);
-        for (int s = 0; s < rs.spp; ++s) {
-          const Ray r = cameraSampling.ray(SampleKey(&sampler, x, y, s, pixelKey));
-          acc += r.d.x + r.time;
+        for (int first = 0; first < rs.spp; first += kCameraChunk) {
+          const int count = std::min(kCameraChunk, rs.spp - first);
+          for (int i = 0; i < count; ++i) keys[i] = SampleKey(&sampler, x, y, first + i, pixelKey);
+          cameraSampling.rays(keys, count, rays);
+          for (int i = 0; i < count; ++i) acc += rays[i].d.x + rays[i].time;
         }
       }
     sink[t] = acc;

@@ -6,15 +6,23 @@
 
 namespace glint {
 
-// SplitMix64's finaliser (Steele, Lea, Flood 2014): full avalanche on 64 bits.
-constexpr uint64_t mix64(uint64_t z) {
+// SplitMix64's finaliser (Steele, Lea, Flood 2014): full avalanche on 64 bits. U64 is uint64_t
+// or a vector of them (GCC vector extensions: the sampler hashes lanes side by side).
+template <class U64>
+[[gnu::always_inline]] constexpr U64 mix64Lanes(U64 z) {
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
   return z ^ (z >> 31);
 }
+constexpr uint64_t mix64(uint64_t z) { return mix64Lanes(z); }
+
+// hashCombine's terms that depend only on the seed: hoisted where one seed hashes many values.
+constexpr uint64_t hashCombineOffset(uint64_t seed) {
+  return 0x9e3779b97f4a7c15ULL + (seed << 6) + (seed >> 2);
+}
 
 constexpr uint64_t hashCombine(uint64_t seed, uint64_t v) {
-  return mix64(seed ^ (v + 0x9e3779b97f4a7c15ULL + (seed << 6) + (seed >> 2)));
+  return mix64(seed ^ (v + hashCombineOffset(seed)));
 }
 
 template <typename... Ts>

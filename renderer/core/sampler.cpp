@@ -1,8 +1,14 @@
+// The vector lanes here (and in hash.h's mix64Lanes) never cross a call boundary: everything
+// taking them is inlined, so GCC's note that 32-byte vector arguments changed ABI in GCC 4.6
+// does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 #include "core/sampler.h"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 
 #include "core/fast_divide.h"
 #include "core/hash.h"
@@ -25,32 +31,55 @@ struct PermutationDomain {
   uint32_t mask = 0;
 };
 
+// One round of permute()'s hash; `w` masks it to the domain's bit width. U is uint32_t, or a
+// vector of them (GCC vector extensions) for lanes side by side.
+template <class U>
+[[gnu::always_inline]] inline U permuteRound(U i, uint32_t w, uint32_t key) {
+  i ^= key;
+  i *= 0xe170893d;
+  i ^= key >> 16;
+  i ^= (i & w) >> 4;
+  i ^= key >> 8;
+  i *= 0x0929eb3f;
+  i ^= key >> 23;
+  i ^= (i & w) >> 1;
+  i *= 1 | key >> 27;
+  i *= 0x6935fa69;
+  i ^= (i & w) >> 11;
+  i *= 0x74dcb303;
+  i ^= (i & w) >> 2;
+  i *= 0x9e501cc3;
+  i ^= (i & w) >> 2;
+  i *= 0xc860a3df;
+  i &= w;
+  i ^= i >> 5;
+  return i;
+}
+
 // Kensler's hashed permutation ("Correlated Multi-Jittered Sampling", Pixar 2013): a bijection
-// on [0, len) chosen by `key`, computed in O(1) without storing a table.
+// on [0, len) chosen by `key`, computed in O(1) without storing a table. Rounds repeat until
+// the value falls inside the domain (cycle walking).
 uint32_t permute(uint32_t i, const PermutationDomain& domain, uint32_t key) {
-  const uint32_t w = domain.mask, len = domain.size.divisor();
-  do {
-    i ^= key;
-    i *= 0xe170893d;
-    i ^= key >> 16;
-    i ^= (i & w) >> 4;
-    i ^= key >> 8;
-    i *= 0x0929eb3f;
-    i ^= key >> 23;
-    i ^= (i & w) >> 1;
-    i *= 1 | key >> 27;
-    i *= 0x6935fa69;
-    i ^= (i & w) >> 11;
-    i *= 0x74dcb303;
-    i ^= (i & w) >> 2;
-    i *= 0x9e501cc3;
-    i ^= (i & w) >> 2;
-    i *= 0xc860a3df;
-    i &= w;
-    i ^= i >> 5;
-  } while (i >= len);
+  const uint32_t len = domain.size.divisor();
+  do i = permuteRound(i, domain.mask, key);
+  while (i >= len);
   return domain.size.remainder(i + key);
 }
+
+// permute() on [0, 2^b) with w = 2^b − 1: a round never leaves the domain (its last steps mask
+// i to w and shift bits down), so there is one round, and the remainder is a mask.
+template <class U>
+[[gnu::always_inline]] inline U permutePowerOfTwo(U i, uint32_t w, uint32_t key) {
+  return (permuteRound(i, w, key) + key) & w;
+}
+
+// The keys of a set's three permutations (of its n cells, and of a grid's columns and rows),
+// from its pattern's scramble.
+struct PermutationKeys {
+  explicit PermutationKeys(uint32_t p)
+      : all(p * 0x51633e2d), column(p * 0xa511e9b3), row(p * 0x63d83595) {}
+  uint32_t all, column, row;
+};
 
 // The m × k grid of a correlated multi-jittered set of n = m·k samples: m is the largest divisor
 // of n not above √n, so every cell holds one sample for any n (a prime n gives a 1×n grid,
@@ -64,9 +93,11 @@ struct JitterGrid {
     columns = PermutationDomain(m);
     rows = PermutationDomain(n / m);
     inverseCount = 1.0 / static_cast<double>(n);
+    log2Count = std::has_single_bit(n) ? std::countr_zero(n) : -1;
   }
   PermutationDomain all, columns, rows;
   double inverseCount = 1;
+  int log2Count;  // n = 2^log2Count, or -1 when n is not a power of two
 
   // (stratum + jitter) / n as a float inside [stratum, stratum + 1) / n. The sum is exact in
   // double; rounding the quotient to float can cross the stratum's lower edge when the jitter
@@ -211,18 +242,109 @@ Vec2f Sampler::stratified2D(const SamplePattern& pattern, int index, int n) {
   return out;
 }
 
+namespace {
+
+// stratified2D for n = 2^b, whose grid sides are powers of two as well: every permutation is
+// one round with a mask and every division a shift. Most renders draw such sets (spp and light
+// samples are usually powers of two), and the points are stratified2D's bit for bit
+// (Sampler.PowerOfTwoSetsMatchTheGeneralConstruction).
+struct PowerOfTwoSet {
+  PowerOfTwoSet(const JitterGrid& grid, const SamplePattern& pattern)
+      : columnBits(static_cast<uint32_t>(std::countr_zero(grid.columns.size.divisor()))),
+        rowBits(static_cast<uint32_t>(grid.log2Count) - columnBits),
+        all(grid.all.mask),
+        columnMask(grid.columns.mask),
+        rowMask(grid.rows.mask),
+        keys(pattern.scramble[0]),
+        hash(pattern.hash),
+        offset(hashCombineOffset(hash)),
+        scale(std::bit_cast<float>(uint32_t(127 - 24 - grid.log2Count) << 23)) {}
+
+  uint32_t columnBits, rowBits, all, columnMask, rowMask;
+  PermutationKeys keys;
+  uint64_t hash, offset;  // offset: hashCombineOffset(hash)
+  float scale;            // 2^-(24+b)
+
+  // Points [first, first + min(size, 8)): eight lanes in GCC vector types, which stay in
+  // registers (ymm with AVX2, pairs of xmm without).
+  [[gnu::always_inline]] void block(uint32_t first, int size, Vec2f* out) const {
+    using U32x8 = uint32_t [[gnu::vector_size(32)]];
+    using U64x4 = uint64_t [[gnu::vector_size(32)]];
+    using I64x4 = int64_t [[gnu::vector_size(32)]];
+    using I32x4 = int32_t [[gnu::vector_size(16)]];
+    using F64x4 = double [[gnu::vector_size(32)]];
+    using F32x4 = float [[gnu::vector_size(16)]];
+    using F32x8 = float [[gnu::vector_size(32)]];
+    const U32x8 s = permutePowerOfTwo(first + U32x8{0, 1, 2, 3, 4, 5, 6, 7}, all, keys.all);
+    const U32x8 row = s >> columnBits, column = s & columnMask;
+    const U32x8 sx = permutePowerOfTwo(column, columnMask, keys.column);
+    const U32x8 sy = permutePowerOfTwo(row, rowMask, keys.row);
+    // The sample's strata along x and y (as in stratified2D).
+    const U32x8 strata[2] = {(column << rowBits) + sy, (row << columnBits) + sx};
+    // JitterGrid::place for n = 2^b: (stratum + j·2^-24) / n is stratum·2^24 + j (exact in
+    // double, below 2^52) times 2^-(24+b), and rounding to float commutes with that scale; so
+    // do place()'s edge tests, made here on the rounded value times 2^(24+b).
+    // Signed lanes convert to double in one instruction (strata are below 2^28, jitters 2^24).
+    const auto place = [&](U32x8 stratum, int half, U64x4 jitter24) {
+      const auto quarter = half == 0 ? __builtin_shufflevector(stratum, stratum, 0, 1, 2, 3)
+                                     : __builtin_shufflevector(stratum, stratum, 4, 5, 6, 7);
+      const F64x4 low =
+          __builtin_convertvector(__builtin_convertvector(quarter, I32x4), F64x4) * 16777216.0;
+      const F64x4 jitter = __builtin_convertvector(__builtin_convertvector(jitter24, I32x4), F64x4);
+      const F32x4 rounded = __builtin_convertvector(low + jitter, F32x4);
+      const F64x4 back = __builtin_convertvector(rounded, F64x4);
+      // Comparisons give −1 where true: one ulp up below the stratum, down at its top edge.
+      const I64x4 step = (back >= low + 16777216.0) - (back < low);
+      return std::bit_cast<F32x4>(std::bit_cast<I32x4>(rounded) +
+                                  __builtin_convertvector(step, I32x4)) *
+             scale;
+    };
+    for (int half = 0; half < 2 && half * 4 < size; ++half) {
+      const U64x4 s64 =
+          __builtin_convertvector(half == 0 ? __builtin_shufflevector(s, s, 0, 1, 2, 3)
+                                            : __builtin_shufflevector(s, s, 4, 5, 6, 7),
+                                  U64x4);
+      const U64x4 bits = mix64Lanes(hash ^ (s64 + offset));  // hashCombine(hash, s) per lane
+      // Both jitters from one hash, as unitPair: the top 24 bits, and bits 8–31.
+      const F32x4 x = place(strata[0], half, bits >> 40);
+      const F32x4 y = place(strata[1], half, (bits & 0xffffffffu) >> 8);
+      const F32x8 xy = __builtin_shufflevector(x, y, 0, 4, 1, 5, 2, 6, 3, 7);
+      const int n = std::min(4, size - half * 4);
+      if (n == 4)
+        std::memcpy(static_cast<void*>(out + half * 4), &xy, sizeof xy);
+      else
+        for (int l = 0; l < n; ++l) out[half * 4 + l] = {xy[2 * l], xy[2 * l + 1]};
+    }
+  }
+};
+
+// On AVX2 machines (target_clones picks at load time) eight lanes fill one register.
+[[gnu::target_clones("avx2", "default")]] void stratifiedPowerOfTwo(const PowerOfTwoSet& set,
+                                                                    uint32_t first, int size,
+                                                                    Vec2f* out) {
+  for (; size > 0; first += 8, out += 8, size -= 8) set.block(first, size, out);
+}
+
+}  // namespace
+
 void Sampler::stratified2D(const SamplePattern& pattern, int first, int size, int n, Vec2f* out) {
   // Correlated multi-jitter (Kensler 2013): one sample per cell of the m × k grid, placed in its
   // cell so that both 1D projections are stratified too (n-rooks).
   const JitterGrid& grid = jitterGrid(static_cast<uint32_t>(n));
+  // One or two points are quicker through the general code: a block of lanes is a long
+  // chain of vector multiplies (about 80 ns), worth it from three points on.
+  if (grid.log2Count >= 0 && size >= 3)
+    return stratifiedPowerOfTwo(PowerOfTwoSet(grid, pattern), static_cast<uint32_t>(first), size,
+                                out);
   const uint32_t m = grid.columns.size.divisor(), k = grid.rows.size.divisor();
   const uint32_t p = pattern.scramble[0];
+  const PermutationKeys keys(p);
   thread_local AxisPermutationCache axes;
   for (int i = 0; i < size; ++i) {
-    const uint32_t s = permute(static_cast<uint32_t>(first + i), grid.all, p * 0x51633e2d);
+    const uint32_t s = permute(static_cast<uint32_t>(first + i), grid.all, keys.all);
     const uint32_t row = grid.columns.size.quotient(s), column = s - row * m;
     uint32_t sx, sy;
-    axes.lookup(grid, p, column, row, p * 0xa511e9b3, p * 0x63d83595, sx, sy);
+    axes.lookup(grid, p, column, row, keys.column, keys.row, sx, sy);
     // The sample sits in cell (column, row) of the coarse grid and, inside it, in sub-cell
     // (sy, sx) of the fine n × n grid: stratum column·k + sy of n along x, row·m + sx along y.
     // Both jitters come from one hash.
@@ -264,6 +386,13 @@ Vec2f Sampler::pixelSampleFor(const SamplePattern& pixel, int index) const {
             (static_cast<float>(index / n) + 0.5f) / float(n)};
   }
   return get2DFor(pixel, index);
+}
+
+void Sampler::pixelSamplesFor(const SamplePattern& pixel, int first, int size, Vec2f* out) const {
+  if (kind_ == SamplerKind::Regular)
+    for (int j = 0; j < size; ++j) out[j] = pixelSampleFor(pixel, first + j);
+  else
+    get2DRange(pixel, first, size, out);
 }
 
 void Sampler::get2DFor(const SamplePattern& pattern, int index, int firstSub, int size, int count,

@@ -66,10 +66,17 @@ class Sampler {
   uint64_t pixelKey(int px, int py) const;
   SamplePattern pattern(uint64_t pixelKey, uint32_t dim) const;
   Vec2f pixelSampleFor(const SamplePattern& pixel, int index) const;
+  // pixelSampleFor for samples [first, first + size), into out.
+  void pixelSamplesFor(const SamplePattern& pixel, int first, int size, Vec2f* out) const;
+  // get2DFor(pattern, first + j) into out[j] for j in [0, size): a dimension drawn once per
+  // sample (lens, time) for a run of one pixel's samples.
+  void get2DRange(const SamplePattern& pattern, int first, int size, Vec2f* out) const {
+    get2DFor(pattern, first, 0, size, 1, out);
+  }
   Vec2f get2DFor(const SamplePattern& pattern, int index, int sub = 0, int count = 1) const;
   // get2DFor(pattern, index, firstSub + j, count) into out[j] for j in [0, size): the same
-  // values, drawn in one loop (one lookup of the set's tables, and the samples' long chains of
-  // dependent integer operations side by side).
+  // values, drawn side by side (for power-of-two sets in vector lanes, sampler.cpp). Flat
+  // indices index·count + firstSub + j run on across sub-samples into the next samples'.
   void get2DFor(const SamplePattern& pattern, int index, int firstSub, int size, int count,
                 Vec2f* out) const;
 

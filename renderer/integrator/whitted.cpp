@@ -70,6 +70,11 @@ void WhittedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const S
   // hit might not fit, then each sample is finished in order, exactly as shade() would.
   auto& pending = scratch.pending;
   auto& queue = scratch.queue;
+  // Each area light's points for all `count` samples, drawn in one sampler call per light at
+  // the first Phong hit (the sampler's vector lanes pay from a few points on): light li's
+  // points for sample i start at lightPoints[li] + i·samples. Null: drawn per shading point.
+  const Vec2f* lightPoints[kMaxPrecomputedLights] = {};
+  bool pointsDrawn = false;
   for (int begin = 0; begin < count;) {
     queue.size = 0;
     int end = begin;
@@ -84,12 +89,19 @@ void WhittedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const S
       const auto* phong = std::get_if<PhongMaterial>(&scene_.materials[materialId].material);
       if (!phong || shadowRaysPerPoint_ > queue.kCapacity) continue;  // shaded on its own
       if (queue.size + shadowRaysPerPoint_ > queue.kCapacity) break;  // trace what is queued
+      if (kAreaLights && !pointsDrawn) {
+        drawLightPoints(keys[0], count, scratch, lightPoints);
+        pointsDrawn = true;
+      }
       scene_.shadingPoint(rays[end], hits[end], p.pt.sp);
       initPhongPoint(p.pt, *phong, normalize(-rays[end].d), rays[end].time, p.root);
       p.L = ambient(p.pt);
       for (size_t li = 0; li < scene_.lights.size(); ++li) {
         const int n = sampleCount(scene_.lights[li]);
-        queueLight(p.pt, li, lightPattern(p.pt, li), 0, n, n, queue);
+        const Vec2f* points =
+            li < kMaxPrecomputedLights && lightPoints[li] ? lightPoints[li] + (end * n) : nullptr;
+        queueLight(p.pt, li, points ? SamplePattern{} : lightPattern(p.pt, li), 0, n, n, queue,
+                   points);
       }
       p.queryEnd = queue.size;
       p.queued = true;
@@ -203,9 +215,26 @@ SamplePattern WhittedKernel<C>::lightPattern(const PhongPoint& pt, size_t li) co
 }
 
 template <unsigned C>
+void WhittedKernel<C>::drawLightPoints(const SampleKey& key, int count, CameraHitScratch& scratch,
+                                       const Vec2f** points) const {
+  int used = 0;
+  for (size_t li = 0; li < scene_.lights.size() && li < kMaxPrecomputedLights; ++li) {
+    const Light& light = scene_.lights[li];
+    const int n = sampleCount(light), size = count * n;
+    if (isDelta(light) || used + size > CameraHitScratch::kMaxLightPoints) continue;
+    // Samples key.index + i, sub-samples j: flat indices (key.index + i)·n + j, one run.
+    key.get2D(key.pattern(dimension(Dim::Light, 0, static_cast<int>(li))), 0, size, n,
+              scratch.lightPoints + used);
+    points[li] = scratch.lightPoints + used;
+    used += size;
+  }
+}
+
+template <unsigned C>
 template <class Queue>
 void WhittedKernel<C>::queueLight(const PhongPoint& pt, size_t li, const SamplePattern& pattern,
-                                  int first, int size, int count, Queue& queue) const {
+                                  int first, int size, int count, Queue& queue,
+                                  const Vec2f* points) const {
   const Light& light = scene_.lights[li];
   const bool delta = isDelta(light);
   const PhongMaterial& m = *pt.material;
@@ -215,12 +244,15 @@ void WhittedKernel<C>::queueLight(const PhongPoint& pt, size_t li, const SampleP
   Vec2f batch[kBatch];
   for (int begin = first; begin < first + size; begin += kBatch) {
     const int n = std::min(kBatch, first + size - begin);
+    const Vec2f* u = batch;
     if (delta)
       batch[0] = {0.5f, 0.5f};
+    else if (points)
+      u = points + begin;
     else
       pt.branch->key->get2D(pattern, begin, n, count, batch);
     for (int j = 0; j < n; ++j) {
-      const LightSample ls = sampleLight(light, pt.sp.p, batch[j]);
+      const LightSample ls = sampleLight(light, pt.sp.p, u[j]);
       const float cosL = dot(pt.n, ls.wi);
       if (cosL <= 0 || ls.intensity.isBlack()) continue;
       Rgb f = pt.kd * cosL;

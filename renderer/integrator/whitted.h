@@ -142,10 +142,17 @@ class WhittedKernel {
                       const Branch& branch) const;
   // The ambient term: where the light sums start.
   Rgb ambient(const PhongPoint& pt) const;
-  // Queues samples [first, first + size) of light `li`'s `count` (pattern: its sample set).
+  // Queues samples [first, first + size) of light `li`'s `count` (pattern: its sample set;
+  // `points`, when given: the set's points for this shading point, drawn already).
   template <class Queue>
   void queueLight(const PhongPoint& pt, size_t li, const SamplePattern& pattern, int first,
-                  int size, int count, Queue& queue) const;
+                  int size, int count, Queue& queue, const Vec2f* points = nullptr) const;
+  // For traceCameraHits: the points of the area lights among the first kMaxPrecomputedLights
+  // for `count` camera samples from `key` on, into the scratch; points[li] stays null for a
+  // delta light or one that no longer fits.
+  static constexpr size_t kMaxPrecomputedLights = 8;
+  void drawLightPoints(const SampleKey& key, int count, CameraHitScratch& scratch,
+                       const Vec2f** points) const;
   template <class Queue>
   void traceShadows(Queue& queue, RayCounters& counters) const;
   // Adds light `li`'s queued samples from queue position `next` on (before `end`, where the
@@ -201,6 +208,8 @@ class WhittedKernel {
     };
     Pending pending[kMaxSamples];
     ShadowQueue<512> queue;
+    static constexpr int kMaxLightPoints = 2048;  // 64 samples × 32 points, for example
+    Vec2f lightPoints[kMaxLightPoints];
   };
 };
 

@@ -40,7 +40,6 @@ uint64_t availableMemoryBytes() {
 }
 
 constexpr int kMaxLoggedNonfinite = 5;
-constexpr int kCameraChunk = 64;  // camera rays traced together (bounded stack)
 
 // What every tile of one render shares.
 struct FrameContext {
@@ -86,10 +85,8 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
       const uint64_t pixelKey = f.sampler.pixelKey(x, y);
       for (int first = 0; first < rs.spp; first += kCameraChunk) {
         const int count = std::min(kCameraChunk, rs.spp - first);
-        for (int i = 0; i < count; ++i) {
-          keys[i] = SampleKey(&f.sampler, x, y, first + i, pixelKey);
-          f.cameraSampling.ray<kCameraSamples>(keys[i], rays[i]);
-        }
+        for (int i = 0; i < count; ++i) keys[i] = SampleKey(&f.sampler, x, y, first + i, pixelKey);
+        f.cameraSampling.rays<kCameraSamples>(keys, count, rays);
         f.accel.intersectCoherent(rays, hits, static_cast<size_t>(count));
         if constexpr (kAovs)
           for (int i = 0; i < count; ++i) {

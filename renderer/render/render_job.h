@@ -1,6 +1,7 @@
 #pragma once
 // Renders a scene into a film: camera samples per pixel through the integrator, box filter,
 // non-finite samples counted and dropped, tiles on all cores, progress on stderr.
+#include <algorithm>
 #include <atomic>
 #include <functional>
 #include <optional>
@@ -34,6 +35,10 @@ struct RenderOptions {
   std::function<void(int x, int y, Radiance& sample)> sampleHook;
 };
 
+// Camera rays are made, traced and shaded in runs of this many samples of one pixel (bounded
+// stack arrays).
+inline constexpr int kCameraChunk = 64;
+
 // A camera sample's ray, shared by the render loop and `glint bench`'s sampling pass: the pixel
 // offset always; the lens and shutter-time dimensions only when the camera has a lens or
 // something moves under an open shutter (leave out what is not needed).
@@ -45,27 +50,35 @@ class CameraSampling {
         close_(scene.cameraDesc.shutterClose),
         openShutter_(scene.features.motion && close_ > open_) {}
 
-  // kMayDraw = false (a kernel without cap::kCameraSamples: no lens, nothing moves) leaves the
-  // two checks out at compile time; the ray is the same.
+  // The rays of `count` consecutive samples of one pixel (keys[i].index = keys[0].index + i),
+  // into out: each dimension's points are drawn in one call, where the sampler runs them side
+  // by side (sampler.cpp). kMayDraw = false (a kernel without cap::kCameraSamples: no lens,
+  // nothing moves) leaves the two checks out at compile time; the rays are the same.
+  template <bool kMayDraw = true>
+  void rays(const SampleKey* keys, int count, Ray* out) const {
+    const SampleKey& key = keys[0];
+    Vec2f pixel[kCameraChunk], lens[kCameraChunk], time[kCameraChunk];
+    for (int first = 0; first < count; first += kCameraChunk) {
+      const int n = std::min(kCameraChunk, count - first);
+      const int index = key.index + first;
+      key.sampler->pixelSamplesFor(key.pattern(dimension(Dim::Pixel)), index, n, pixel);
+      const bool drawLens = kMayDraw && camera_.hasLens(), drawTime = kMayDraw && openShutter_;
+      if (drawLens) key.sampler->get2DRange(key.pattern(dimension(Dim::Lens)), index, n, lens);
+      if (drawTime) key.sampler->get2DRange(key.pattern(dimension(Dim::Time)), index, n, time);
+      for (int i = 0; i < n; ++i) {
+        Ray& r = out[first + i];
+        camera_.generateRay(static_cast<float>(key.px) + pixel[i].x,
+                            static_cast<float>(key.py) + pixel[i].y, drawLens ? lens[i] : Vec2f{},
+                            r);
+        r.time = drawTime ? open_ + (close_ - open_) * time[i].x : open_;
+      }
+    }
+  }
   template <bool kMayDraw = true>
   Ray ray(const SampleKey& key) const {
     Ray r;
-    ray<kMayDraw>(key, r);
+    rays<kMayDraw>(&key, 1, &r);
     return r;
-  }
-  // The same written into `r` (Camera::generateRay says why).
-  template <bool kMayDraw = true>
-  void ray(const SampleKey& key, Ray& r) const {
-    const Vec2f u = key.sampler->pixelSampleFor(key.pattern(dimension(Dim::Pixel)), key.index);
-    Vec2f lens;
-    float time = open_;
-    if constexpr (kMayDraw) {
-      if (camera_.hasLens()) lens = key.get2D(dimension(Dim::Lens));
-      if (openShutter_) time = open_ + (close_ - open_) * key.get2D(dimension(Dim::Time)).x;
-    }
-    camera_.generateRay(static_cast<float>(key.px) + u.x, static_cast<float>(key.py) + u.y, lens,
-                        r);
-    r.time = time;
   }
 
  private:

@@ -95,9 +95,11 @@ TEST(BatchedShading, EveryBundledSceneMatchesOneSampleAtATime) {
 
 // The shadow-ray queue holds 512 rays. With 2 area lights of `samples` each and 16 spp, a pixel
 // queues 16 × 2 × samples rays: 40 samples fill the queue mid-pixel (traced, then refilled);
-// 300 give one hit more rays than the queue holds (that hit is shaded on its own).
+// 300 give one hit more rays than the queue holds (that hit is shaded on its own). The lights'
+// points for a pixel's samples are drawn together into room for 2048: 100 samples (1600
+// points a light) fit for the first light and not the second, whose points are drawn per hit.
 TEST(BatchedShading, AQueueThatFillsOrOverflowsChangesNothing) {
-  for (const int samples : {1, 40, 300}) {
+  for (const int samples : {1, 40, 100, 300}) {
     Scene scene = loadSceneFile(std::string(GLINT_SCENES_DIR) + "/soft_shadows.json");
     scene.render.spp = 16;
     int areaLights = 0;
@@ -108,6 +110,34 @@ TEST(BatchedShading, AQueueThatFillsOrOverflowsChangesNothing) {
     ASSERT_EQ(areaLights, 2);
     EXPECT_GT(compareBatchedWithOneByOne(scene, std::to_string(samples) + " samples"), 0);
   }
+}
+
+// The render makes a pixel's camera rays as a run (CameraSampling::rays draws each dimension's
+// points in one call, in vector lanes for power-of-two sets); one at a time they come from the
+// sampler's general code. Both must give the same rays bit for bit, with a lens and a shutter
+// (lens and time dimensions drawn), for runs that start mid-pixel and for sets that are not
+// powers of two.
+TEST(BatchedShading, CameraRaysOfARunMatchOneAtATime) {
+  for (const char* file : {"depth_of_field.json", "motion_blur.json", "default.json"})
+    for (const int spp : {16, 12, 64}) {
+      Scene scene = loadSceneFile(std::string(GLINT_SCENES_DIR) + "/" + file);
+      const Camera camera(scene.cameraDesc, 32, 24);
+      const Sampler sampler(scene.render.sampler, spp, scene.render.seed);
+      const CameraSampling cameraSampling(scene, camera);
+      for (const int first : {0, 5}) {
+        std::vector<SampleKey> keys;
+        for (int i = first; i < spp; ++i) keys.emplace_back(&sampler, 7, 3, i);
+        std::vector<Ray> run(keys.size());
+        cameraSampling.rays(keys.data(), static_cast<int>(keys.size()), run.data());
+        for (size_t i = 0; i < keys.size(); ++i) {
+          const Ray alone = cameraSampling.ray(keys[i]);
+          EXPECT_TRUE(std::memcmp(&alone.o, &run[i].o, sizeof alone.o) == 0 &&
+                      std::memcmp(&alone.d, &run[i].d, sizeof alone.d) == 0 &&
+                      alone.time == run[i].time)
+              << file << " spp " << spp << " sample " << keys[i].index;
+        }
+      }
+    }
 }
 
 }  // namespace
