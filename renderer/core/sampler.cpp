@@ -330,6 +330,12 @@ struct PowerOfTwoSet {
 void Sampler::stratified2D(const SamplePattern& pattern, int first, int size, int n, Vec2f* out) {
   // Correlated multi-jitter (Kensler 2013): one sample per cell of the m × k grid, placed in its
   // cell so that both 1D projections are stratified too (n-rooks).
+  // A set of one (a 1-spp render's pixel offsets): cell 0, and the point is its jitter, as
+  // below with every permutation the identity and place() exact.
+  if (n == 1) {
+    out[0] = unitPair(hashCombine(pattern.hash, 0));
+    return;
+  }
   const JitterGrid& grid = jitterGrid(static_cast<uint32_t>(n));
   // One or two points are quicker through the general code: a block of lanes is a long
   // chain of vector multiplies (about 80 ns), worth it from three points on.
