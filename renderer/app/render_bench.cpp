@@ -82,6 +82,7 @@ double samplingSeconds(const Scene& scene, int threads) {
   runTiles(tiles, threads, [&](size_t t) {
     SampleKey keys[kCameraChunk];  // in runs, as renderTile draws them
     Ray rays[kCameraChunk];
+    CameraSampling::Points points;
     float acc = 0;
     for (int y = tiles[t].y0; y < tiles[t].y1; ++y)
       for (int x = tiles[t].x0; x < tiles[t].x1; ++x) {
@@ -89,7 +90,7 @@ double samplingSeconds(const Scene& scene, int threads) {
         for (int first = 0; first < rs.spp; first += kCameraChunk) {
           const int count = std::min(kCameraChunk, rs.spp - first);
           for (int i = 0; i < count; ++i) keys[i] = SampleKey(&sampler, x, y, first + i, pixelKey);
-          cameraSampling.rays(keys, count, rays);
+          cameraSampling.rays(keys, count, rays, points);
           for (int i = 0; i < count; ++i) acc += rays[i].d.x + rays[i].time;
         }
       }

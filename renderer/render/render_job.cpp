@@ -77,6 +77,7 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
   // Without AOVs no records exist (the compiler cleared 264 bytes per sample for them).
   std::conditional_t<kAovs, AovSample[kCameraChunk], NoAovSample> records;
   AovSample* recordOf[kCameraChunk];
+  CameraSampling::Points cameraPoints;
   const auto scratch = std::make_unique<typename WhittedKernel<Caps>::CameraHitScratch>();
   for (int y = tile.y0; y < tile.y1; ++y)
     for (int x = tile.x0; x < tile.x1; ++x) {
@@ -86,7 +87,7 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
       for (int first = 0; first < rs.spp; first += kCameraChunk) {
         const int count = std::min(kCameraChunk, rs.spp - first);
         for (int i = 0; i < count; ++i) keys[i] = SampleKey(&f.sampler, x, y, first + i, pixelKey);
-        f.cameraSampling.rays<kCameraSamples>(keys, count, rays);
+        f.cameraSampling.rays<kCameraSamples>(keys, count, rays, cameraPoints);
         f.accel.intersectCoherent(rays, hits, static_cast<size_t>(count));
         if constexpr (kAovs)
           for (int i = 0; i < count; ++i) {

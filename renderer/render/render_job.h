@@ -50,37 +50,42 @@ class CameraSampling {
         close_(scene.cameraDesc.shutterClose),
         openShutter_(scene.features.motion && close_ > open_) {}
 
+  // Where rays() keeps a run's sample points: one per tile or thread. Declared inside rays(),
+  // the arrays were cleared per call (a `rep stos` that a 1-spp render paid per camera ray).
+  struct Points {
+    static constexpr int kRun = 16;  // points per sampler call: enough for its vector lanes
+    Vec2f pixel[kRun], lens[kRun], time[kRun];
+  };
   // The rays of `count` consecutive samples of one pixel (keys[i].index = keys[0].index + i),
-  // into out: each dimension's points are drawn in one call, where the sampler runs them side
-  // by side (sampler.cpp). kMayDraw = false (a kernel without cap::kCameraSamples: no lens,
+  // into out: each dimension's points are drawn in runs, where the sampler draws them side by
+  // side (sampler.cpp). kMayDraw = false (a kernel without cap::kCameraSamples: no lens,
   // nothing moves) leaves the two checks out at compile time; the rays are the same.
   template <bool kMayDraw = true>
-  void rays(const SampleKey* keys, int count, Ray* out) const {
-    // Runs of 16 points: enough for the sampler's lanes; arrays of 64 were cleared per pixel
-    // (a `rep stos` of 1.5 kB that a 1-spp render paid per camera ray).
-    constexpr int kRun = 16;
+  void rays(const SampleKey* keys, int count, Ray* out, Points& points) const {
     const SampleKey& key = keys[0];
-    Vec2f pixel[kRun], lens[kRun], time[kRun];
-    for (int first = 0; first < count; first += kRun) {
-      const int n = std::min(kRun, count - first);
+    for (int first = 0; first < count; first += Points::kRun) {
+      const int n = std::min(Points::kRun, count - first);
       const int index = key.index + first;
-      key.sampler->pixelSamplesFor(key.pattern(dimension(Dim::Pixel)), index, n, pixel);
+      key.sampler->pixelSamplesFor(key.pattern(dimension(Dim::Pixel)), index, n, points.pixel);
       const bool drawLens = kMayDraw && camera_.hasLens(), drawTime = kMayDraw && openShutter_;
-      if (drawLens) key.sampler->get2DRange(key.pattern(dimension(Dim::Lens)), index, n, lens);
-      if (drawTime) key.sampler->get2DRange(key.pattern(dimension(Dim::Time)), index, n, time);
+      if (drawLens)
+        key.sampler->get2DRange(key.pattern(dimension(Dim::Lens)), index, n, points.lens);
+      if (drawTime)
+        key.sampler->get2DRange(key.pattern(dimension(Dim::Time)), index, n, points.time);
       for (int i = 0; i < n; ++i) {
         Ray& r = out[first + i];
-        camera_.generateRay(static_cast<float>(key.px) + pixel[i].x,
-                            static_cast<float>(key.py) + pixel[i].y, drawLens ? lens[i] : Vec2f{},
-                            r);
-        r.time = drawTime ? open_ + (close_ - open_) * time[i].x : open_;
+        camera_.generateRay(static_cast<float>(key.px) + points.pixel[i].x,
+                            static_cast<float>(key.py) + points.pixel[i].y,
+                            drawLens ? points.lens[i] : Vec2f{}, r);
+        r.time = drawTime ? open_ + (close_ - open_) * points.time[i].x : open_;
       }
     }
   }
   template <bool kMayDraw = true>
   Ray ray(const SampleKey& key) const {
     Ray r;
-    rays<kMayDraw>(&key, 1, &r);
+    Points points;
+    rays<kMayDraw>(&key, 1, &r, points);
     return r;
   }
 

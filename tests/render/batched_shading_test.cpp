@@ -128,7 +128,8 @@ TEST(BatchedShading, CameraRaysOfARunMatchOneAtATime) {
         std::vector<SampleKey> keys;
         for (int i = first; i < spp; ++i) keys.emplace_back(&sampler, 7, 3, i);
         std::vector<Ray> run(keys.size());
-        cameraSampling.rays(keys.data(), static_cast<int>(keys.size()), run.data());
+        CameraSampling::Points points;
+        cameraSampling.rays(keys.data(), static_cast<int>(keys.size()), run.data(), points);
         for (size_t i = 0; i < keys.size(); ++i) {
           const Ray alone = cameraSampling.ray(keys[i]);
           EXPECT_TRUE(std::memcmp(&alone.o, &run[i].o, sizeof alone.o) == 0 &&
