@@ -90,7 +90,7 @@ void WhittedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const S
       if (!phong || shadowRaysPerPoint_ > queue.kCapacity) continue;  // shaded on its own
       if (queue.size + shadowRaysPerPoint_ > queue.kCapacity) break;  // trace what is queued
       if (kAreaLights && !pointsDrawn) {
-        drawLightPoints(keys[0], count, scratch, lightPoints);
+        drawLightPoints(keys, count, scratch, lightPoints);
         pointsDrawn = true;
       }
       scene_.shadingPoint(rays[end], hits[end], p.pt.sp);
@@ -215,18 +215,23 @@ SamplePattern WhittedKernel<C>::lightPattern(const PhongPoint& pt, size_t li) co
 }
 
 template <unsigned C>
-void WhittedKernel<C>::drawLightPoints(const SampleKey& key, int count, CameraHitScratch& scratch,
+void WhittedKernel<C>::drawLightPoints(const SampleKey* keys, int count, CameraHitScratch& scratch,
                                        const Vec2f** points) const {
   int used = 0;
   for (size_t li = 0; li < scene_.lights.size() && li < kMaxPrecomputedLights; ++li) {
     const Light& light = scene_.lights[li];
-    const int n = sampleCount(light), size = count * n;
-    if (isDelta(light) || used + size > CameraHitScratch::kMaxLightPoints) continue;
-    // Samples key.index + i, sub-samples j: flat indices (key.index + i)·n + j, one run.
-    key.get2D(key.pattern(dimension(Dim::Light, 0, static_cast<int>(li))), 0, size, n,
-              scratch.lightPoints + used);
+    const int n = sampleCount(light);
+    if (isDelta(light) || used + count * n > CameraHitScratch::kMaxLightPoints) continue;
     points[li] = scratch.lightPoints + used;
-    used += size;
+    // Per pixel: its run of samples key.index + i, sub-samples j, is one run of flat indices
+    // (key.index + i)·n + j of its set.
+    for (int begin = 0, end; begin < count; begin = end) {
+      const SampleKey& key = keys[begin];
+      for (end = begin + 1; end < count && keys[end].px == key.px && keys[end].py == key.py;) ++end;
+      key.get2D(key.pattern(dimension(Dim::Light, 0, static_cast<int>(li))), 0, (end - begin) * n,
+                n, scratch.lightPoints + used + begin * n);
+    }
+    used += count * n;
   }
 }
 

@@ -73,10 +73,11 @@ class WhittedKernel {
   // coherent stream, Accelerator::intersectCoherent).
   Radiance trace(const Ray& cameraRay, const Hit& cameraHit, const SampleKey& key,
                  RayCounters& counters, AovSample* aov = nullptr) const;
-  // Where traceCameraHits keeps a pixel's pending hits and their shadow rays (about 60 kB):
-  // one per thread or tile, reused for every pixel.
+  // Where traceCameraHits keeps its pending hits, their shadow rays and light points (about
+  // 76 kB): one per thread or tile, reused for every chunk.
   struct CameraHitScratch;
-  // The same as trace() for `count` camera samples of one pixel at once: out[i] is what trace()
+  // The same as trace() for `count` camera samples at once (runs of consecutive samples of one
+  // or several pixels, as renderTile makes them): out[i] is what trace()
   // gives for sample i, bit for bit, but in stages over all the samples (shading points and
   // light samples of every Phong hit, then all their shadow rays, then each sample finished),
   // so that the samples' independent chains of work run side by side instead of one after
@@ -148,10 +149,10 @@ class WhittedKernel {
   void queueLight(const PhongPoint& pt, size_t li, const SamplePattern& pattern, int first,
                   int size, int count, Queue& queue, const Vec2f* points = nullptr) const;
   // For traceCameraHits: the points of the area lights among the first kMaxPrecomputedLights
-  // for `count` camera samples from `key` on, into the scratch; points[li] stays null for a
-  // delta light or one that no longer fits.
+  // for the `count` camera samples of `keys` (runs of consecutive samples of a pixel), into
+  // the scratch; points[li] stays null for a delta light or one that no longer fits.
   static constexpr size_t kMaxPrecomputedLights = 8;
-  void drawLightPoints(const SampleKey& key, int count, CameraHitScratch& scratch,
+  void drawLightPoints(const SampleKey* keys, int count, CameraHitScratch& scratch,
                        const Vec2f** points) const;
   template <class Queue>
   void traceShadows(Queue& queue, RayCounters& counters) const;

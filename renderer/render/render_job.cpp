@@ -66,10 +66,12 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
   const bool aovSamples = kAovs && f.opt.aovs.needsSamples();
   const Vec3f viewAxis = -f.camera.w();
   PixelAovs pixelAovs(f.aovLayout);
-  // A pixel's camera rays leave together in chunks: Embree traces a coherent stream as packets
-  // (docs/performance.md), and their hits are shaded together (traceCameraHits). Samples are
-  // still summed in index order. The arrays live per tile: declared per pixel, their
-  // initialisation cost 13 % of a 1-spp render.
+  // Camera rays leave together in chunks: Embree traces a coherent stream as packets
+  // (docs/performance.md), and their hits are shaded together (traceCameraHits), so one
+  // sample's memory misses and dependent chains overlap another's. Below kCameraChunk spp a
+  // chunk holds several whole pixels along the row; from it on, a run of one pixel's samples.
+  // Samples are still summed per pixel in index order. The arrays live per tile: declared per
+  // pixel, their initialisation cost 13 % of a 1-spp render.
   Ray rays[kCameraChunk];
   Hit hits[kCameraChunk];
   SampleKey keys[kCameraChunk];
@@ -79,15 +81,26 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
   AovSample* recordOf[kCameraChunk];
   CameraSampling::Points cameraPoints;
   const auto scratch = std::make_unique<typename WhittedKernel<Caps>::CameraHitScratch>();
+  const int pixelsPerChunk = std::max(1, kCameraChunk / rs.spp);
+  const int samplesPerChunk = std::min(kCameraChunk, rs.spp);
+  const double inv = 1.0 / rs.spp;
+  double sum[4] = {0, 0, 0, 0};  // the pixel being summed
   for (int y = tile.y0; y < tile.y1; ++y)
-    for (int x = tile.x0; x < tile.x1; ++x) {
-      double sum[4] = {0, 0, 0, 0};
-      if (aovs) pixelAovs.begin();
-      const uint64_t pixelKey = f.sampler.pixelKey(x, y);
-      for (int first = 0; first < rs.spp; first += kCameraChunk) {
-        const int count = std::min(kCameraChunk, rs.spp - first);
-        for (int i = 0; i < count; ++i) keys[i] = SampleKey(&f.sampler, x, y, first + i, pixelKey);
-        f.cameraSampling.rays<kCameraSamples>(keys, count, rays, cameraPoints);
+    for (int x0 = tile.x0; x0 < tile.x1; x0 += pixelsPerChunk) {
+      const int pixels = std::min(pixelsPerChunk, tile.x1 - x0);
+      // Samples [first, first + runLength) of each of the pixels; several pixels only when
+      // their samples all fit (runLength = spp).
+      for (int first = 0; first < rs.spp; first += samplesPerChunk) {
+        const int runLength = std::min(samplesPerChunk, rs.spp - first);
+        const int count = pixels * runLength;
+        for (int p = 0; p < pixels; ++p) {
+          const int x = x0 + p;
+          SampleKey* run = keys + p * runLength;
+          const uint64_t pixelKey = f.sampler.pixelKey(x, y);
+          for (int i = 0; i < runLength; ++i)
+            run[i] = SampleKey(&f.sampler, x, y, first + i, pixelKey);
+          f.cameraSampling.rays<kCameraSamples>(run, runLength, rays + p * runLength, cameraPoints);
+        }
         f.accel.intersectCoherent(rays, hits, static_cast<size_t>(count));
         if constexpr (kAovs)
           for (int i = 0; i < count; ++i) {
@@ -97,30 +110,36 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
           }
         integrator.traceCameraHits(rays, hits, keys, count, radiance, kAovs ? recordOf : nullptr,
                                    counters, *scratch);
-        for (int i = 0; i < count; ++i) {
-          const int s = first + i;
-          Radiance& r = radiance[i];
-          if (f.opt.sampleHook) f.opt.sampleHook(x, y, r);
-          if (!r.L.isFinite()) r.L = {}, r.valid = false;
-          if constexpr (kAovs)
-            if (aovs) pixelAovs.add(r, records[i]);  // an invalid sample adds no AOV record
-          sum[3] += r.alpha;
-          if (!r.valid) {
-            // A non-finite sample never reaches the film: it counts as black.
-            ++counters.nonfiniteSamples;
-            if (f.loggedNonfinite.fetch_add(1) < kMaxLoggedNonfinite)
-              log::warning("non-finite sample at pixel (" + std::to_string(x) + ", " +
-                           std::to_string(y) + ") sample " + std::to_string(s));
-            continue;
+        for (int p = 0; p < pixels; ++p) {
+          const int x = x0 + p;
+          if (first == 0) {
+            sum[0] = sum[1] = sum[2] = sum[3] = 0;
+            if (aovs) pixelAovs.begin();
           }
-          sum[0] += r.L.r;
-          sum[1] += r.L.g;
-          sum[2] += r.L.b;
+          for (int i = p * runLength; i < (p + 1) * runLength; ++i) {
+            Radiance& r = radiance[i];
+            if (f.opt.sampleHook) f.opt.sampleHook(x, y, r);
+            if (!r.L.isFinite()) r.L = {}, r.valid = false;
+            if constexpr (kAovs)
+              if (aovs) pixelAovs.add(r, records[i]);  // an invalid sample adds no AOV record
+            sum[3] += r.alpha;
+            if (!r.valid) {
+              // A non-finite sample never reaches the film: it counts as black.
+              ++counters.nonfiniteSamples;
+              if (f.loggedNonfinite.fetch_add(1) < kMaxLoggedNonfinite)
+                log::warning("non-finite sample at pixel (" + std::to_string(x) + ", " +
+                             std::to_string(y) + ") sample " + std::to_string(keys[i].index));
+              continue;
+            }
+            sum[0] += r.L.r;
+            sum[1] += r.L.g;
+            sum[2] += r.L.b;
+          }
+          if (first + runLength < rs.spp) continue;  // the pixel goes on in the next chunk
+          f.film.setPixel(x, y, sum[0] * inv, sum[1] * inv, sum[2] * inv, sum[3] * inv);
+          if (aovs) pixelAovs.end(f.film, x, y);
         }
       }
-      const double inv = 1.0 / rs.spp;
-      f.film.setPixel(x, y, sum[0] * inv, sum[1] * inv, sum[2] * inv, sum[3] * inv);
-      if (aovs) pixelAovs.end(f.film, x, y);
     }
 }
 

@@ -28,7 +28,8 @@ bool sameRecord(const AovSample& a, const AovSample& b) {
 }
 
 // Compares the two paths over a small frame of `scene` with the general kernel; returns how many
-// samples were compared and adds a failure per sample that differs.
+// samples were compared and adds a failure per sample that differs. Like renderTile, one call
+// of traceCameraHits takes all the samples of 64 / spp pixels along a row (at least one).
 int compareBatchedWithOneByOne(const Scene& scene, const std::string& what) {
   constexpr int kWidth = 24, kHeight = 16;
   const auto accel = makeAccelerator(AccelKind::Embree, scene);
@@ -36,7 +37,8 @@ int compareBatchedWithOneByOne(const Scene& scene, const std::string& what) {
   const Sampler sampler(scene.render.sampler, scene.render.spp, scene.render.seed);
   const CameraSampling cameraSampling(scene, camera);
   const WhittedIntegrator integrator(scene, *accel);
-  const int n = scene.render.spp;
+  const int spp = scene.render.spp, pixelsPerCall = std::max(1, kCameraChunk / spp);
+  const int n = spp * pixelsPerCall;
   std::vector<SampleKey> keys(n);
   std::vector<Ray> rays(n);
   std::vector<Hit> hits(n);
@@ -46,28 +48,29 @@ int compareBatchedWithOneByOne(const Scene& scene, const std::string& what) {
   const auto scratch = std::make_unique<WhittedIntegrator::CameraHitScratch>();
   int compared = 0, differing = 0;
   for (int y = 0; y < kHeight; ++y)
-    for (int x = 0; x < kWidth; ++x) {
-      for (int i = 0; i < n; ++i) {
-        keys[i] = SampleKey(&sampler, x, y, i);
+    for (int x0 = 0; x0 < kWidth; x0 += pixelsPerCall) {
+      const int count = std::min(pixelsPerCall, kWidth - x0) * spp;
+      for (int i = 0; i < count; ++i) {
+        keys[i] = SampleKey(&sampler, x0 + i / spp, y, i % spp);
         rays[i] = cameraSampling.ray(keys[i]);
         records[i] = AovSample{};
         records[i].viewAxis = -camera.w();
         recordOf[i] = &records[i];
       }
-      accel->intersectCoherent(rays.data(), hits.data(), rays.size());
+      accel->intersectCoherent(rays.data(), hits.data(), static_cast<size_t>(count));
       RayCounters batchedCounters, aloneCounters;
-      integrator.traceCameraHits(rays.data(), hits.data(), keys.data(), n, batched.data(),
+      integrator.traceCameraHits(rays.data(), hits.data(), keys.data(), count, batched.data(),
                                  recordOf.data(), batchedCounters, *scratch);
-      for (int i = 0; i < n; ++i) {
+      for (int i = 0; i < count; ++i) {
         AovSample record;
         record.viewAxis = -camera.w();
         const Radiance alone = integrator.trace(rays[i], hits[i], keys[i], aloneCounters, &record);
         const bool same = sameBits(alone.L, batched[i].L) && alone.alpha == batched[i].alpha &&
                           alone.valid == batched[i].valid && sameRecord(record, records[i]);
         if (!same && ++differing <= 3)
-          ADD_FAILURE() << what << ": pixel (" << x << ", " << y << ") sample " << i
-                        << " differs: " << alone.L.r << " " << alone.L.g << " " << alone.L.b
-                        << " alone, " << batched[i].L.r << " " << batched[i].L.g << " "
+          ADD_FAILURE() << what << ": pixel (" << keys[i].px << ", " << y << ") sample "
+                        << keys[i].index << " differs: " << alone.L.r << " " << alone.L.g << " "
+                        << alone.L.b << " alone, " << batched[i].L.r << " " << batched[i].L.g << " "
                         << batched[i].L.b << " batched";
         ++compared;
       }
@@ -81,25 +84,31 @@ int compareBatchedWithOneByOne(const Scene& scene, const std::string& what) {
   return compared;
 }
 
+// At 16 spp a call holds 4 pixels; at 3 spp, 21 (the last call of a row fewer).
 TEST(BatchedShading, EveryBundledSceneMatchesOneSampleAtATime) {
   int scenes = 0;
   for (const auto& e : std::filesystem::directory_iterator(GLINT_SCENES_DIR)) {
     if (e.path().extension() != ".json") continue;
-    Scene scene = loadSceneFile(e.path().string());
-    scene.render.spp = std::min(scene.render.spp, 16);
-    EXPECT_GT(compareBatchedWithOneByOne(scene, e.path().filename().string()), 0);
+    for (const int spp : {16, 3}) {
+      Scene scene = loadSceneFile(e.path().string());
+      scene.render.spp = std::min(scene.render.spp, spp);
+      EXPECT_GT(compareBatchedWithOneByOne(
+                    scene, e.path().filename().string() + " at " + std::to_string(spp) + " spp"),
+                0);
+    }
     ++scenes;
   }
   EXPECT_GE(scenes, 10);
 }
 
-// The shadow-ray queue holds 512 rays. With 2 area lights of `samples` each and 16 spp, a pixel
-// queues 16 × 2 × samples rays: 40 samples fill the queue mid-pixel (traced, then refilled);
-// 300 give one hit more rays than the queue holds (that hit is shaded on its own). The lights'
-// points for a pixel's samples are drawn together into room for 2048: 100 samples (1600
-// points a light) fit for the first light and not the second, whose points are drawn per hit.
+// The shadow-ray queue holds 512 rays. With 2 area lights of `samples` each and 16 spp (4
+// pixels a call), a call queues 64 × 2 × samples rays: 40 samples fill the queue mid-call
+// (traced, then refilled); 300 give one hit more rays than the queue holds (that hit is shaded
+// on its own). The lights' points for a call's samples are drawn together into room for 2048:
+// 16 samples (1024 points a light) fit for both lights, 24 for the first light only (the
+// second's points are drawn per hit), 40 for neither.
 TEST(BatchedShading, AQueueThatFillsOrOverflowsChangesNothing) {
-  for (const int samples : {1, 40, 100, 300}) {
+  for (const int samples : {1, 16, 24, 40, 300}) {
     Scene scene = loadSceneFile(std::string(GLINT_SCENES_DIR) + "/soft_shadows.json");
     scene.render.spp = 16;
     int areaLights = 0;
