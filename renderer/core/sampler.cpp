@@ -32,7 +32,7 @@ struct PermutationDomain {
 };
 
 // One round of permute()'s hash; `w` masks it to the domain's bit width. U is uint32_t, or a
-// vector of them (GCC vector extensions) for lanes side by side.
+// vector of them (GNU vector extensions, which GCC and Clang share) for lanes side by side.
 template <class U>
 [[gnu::always_inline]] inline U permuteRound(U i, uint32_t w, uint32_t key) {
   i ^= key;
@@ -265,16 +265,16 @@ struct PowerOfTwoSet {
   uint64_t hash, offset;  // offset: hashCombineOffset(hash)
   float scale;            // 2^-(24+b)
 
-  // Points [first, first + min(size, 8)): eight lanes in GCC vector types, which stay in
+  // Points [first, first + min(size, 8)): eight lanes in GNU vector types, which stay in
   // registers (ymm with AVX2, pairs of xmm without).
   [[gnu::always_inline]] void block(uint32_t first, int size, Vec2f* out) const {
-    using U32x8 = uint32_t [[gnu::vector_size(32)]];
-    using U64x4 = uint64_t [[gnu::vector_size(32)]];
-    using I64x4 = int64_t [[gnu::vector_size(32)]];
-    using I32x4 = int32_t [[gnu::vector_size(16)]];
-    using F64x4 = double [[gnu::vector_size(32)]];
-    using F32x4 = float [[gnu::vector_size(16)]];
-    using F32x8 = float [[gnu::vector_size(32)]];
+    using U32x8 = uint32_t __attribute__((vector_size(32)));
+    using U64x4 = uint64_t __attribute__((vector_size(32)));
+    using I64x4 = int64_t __attribute__((vector_size(32)));
+    using I32x4 = int32_t __attribute__((vector_size(16)));
+    using F64x4 = double __attribute__((vector_size(32)));
+    using F32x4 = float __attribute__((vector_size(16)));
+    using F32x8 = float __attribute__((vector_size(32)));
     const U32x8 s = permutePowerOfTwo(first + U32x8{0, 1, 2, 3, 4, 5, 6, 7}, all, keys.all);
     const U32x8 row = s >> columnBits, column = s & columnMask;
     const U32x8 sx = permutePowerOfTwo(column, columnMask, keys.column);

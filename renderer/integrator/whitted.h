@@ -77,11 +77,11 @@ class WhittedKernel {
   // 76 kB): one per thread or tile, reused for every chunk.
   struct CameraHitScratch;
   // The same as trace() for `count` camera samples at once (runs of consecutive samples of one
-  // or several pixels, as renderTile makes them): out[i] is what trace()
-  // gives for sample i, bit for bit, but in stages over all the samples (shading points and
-  // light samples of every Phong hit, then all their shadow rays, then each sample finished),
-  // so that the samples' independent chains of work run side by side instead of one after
-  // another. aovs, when given, holds a record pointer (or null) per sample.
+  // or several pixels, as renderTile makes them): out[i] is what trace() gives for sample i,
+  // bit for bit, but in stages over all the samples (shading points and light samples of
+  // every Phong hit, then all their shadow rays, then each sample finished), so that the
+  // samples' independent chains of work run side by side instead of one after another. aovs,
+  // when given, holds a record pointer (or null) per sample.
   void traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys, int count,
                        Radiance* out, AovSample* const* aovs, RayCounters& counters,
                        CameraHitScratch& scratch) const;
