@@ -8,6 +8,7 @@
 #include "accel/accelerator.h"
 #include "core/rgb.h"
 #include "core/sampler.h"
+#include "core/uninitialized_array.h"
 #include "integrator/aov.h"
 #include "integrator/kernel_caps.h"
 #include "integrator/medium_stack.h"
@@ -127,12 +128,14 @@ class WhittedKernel {
     float time = 0;
     const Branch* branch = nullptr;
   };
+  // Slots [0, size) are written by queueLight (all but `visible`) and traceShadows before
+  // anything reads them, so the arrays start uninitialised.
   template <int Capacity>
   struct ShadowQueue {
     static constexpr int kCapacity = Capacity;
-    Ray rays[Capacity];
-    Rgb term[Capacity];     // f · intensity: what the sample adds where nothing blocks it
-    Rgb visible[Capacity];  // filled by traceShadows: the fraction that arrives
+    UninitializedArray<Ray, Capacity> rays;
+    UninitializedArray<Rgb, Capacity> term;     // f · intensity: what the sample adds unblocked
+    UninitializedArray<Rgb, Capacity> visible;  // filled by traceShadows: the fraction arriving
     uint32_t light[Capacity];
     bool atInfinity[Capacity];
     int size = 0;
