@@ -6,6 +6,7 @@
 #include "core/sampler.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -318,14 +319,31 @@ struct PowerOfTwoSet {
   }
 };
 
-// On AVX2 machines (target_clones picks at load time) eight lanes fill one register.
-[[gnu::target_clones("avx2", "default")]] void stratifiedPowerOfTwo(const PowerOfTwoSet& set,
-                                                                    uint32_t first, int size,
-                                                                    Vec2f* out) {
+// The same blocks built twice: for baseline x86-64 (pairs of SSE registers) and for AVX2,
+// where eight lanes fill one register. Chosen per call by what the CPU has, unless a test
+// asks for the portable build (both must give the same bits).
+void stratifiedPowerOfTwoPortable(const PowerOfTwoSet& set, uint32_t first, int size, Vec2f* out) {
+  for (; size > 0; first += 8, out += 8, size -= 8) set.block(first, size, out);
+}
+[[gnu::target("avx2")]] void stratifiedPowerOfTwoAvx2(const PowerOfTwoSet& set, uint32_t first,
+                                                      int size, Vec2f* out) {
   for (; size > 0; first += 8, out += 8, size -= 8) set.block(first, size, out);
 }
 
+// __builtin_cpu_init first: this runs among static constructors, maybe before libgcc's own.
+const bool kHaveAvx2 = (__builtin_cpu_init(), __builtin_cpu_supports("avx2"));
+std::atomic<bool> forcePortable{false};
+
+void stratifiedPowerOfTwo(const PowerOfTwoSet& set, uint32_t first, int size, Vec2f* out) {
+  if (kHaveAvx2 && !forcePortable.load(std::memory_order_relaxed))
+    stratifiedPowerOfTwoAvx2(set, first, size, out);
+  else
+    stratifiedPowerOfTwoPortable(set, first, size, out);
+}
+
 }  // namespace
+
+void forcePortableSamplerLanes(bool force) { forcePortable = force; }
 
 void Sampler::stratified2D(const SamplePattern& pattern, int first, int size, int n, Vec2f* out) {
   // Correlated multi-jitter (Kensler 2013): one sample per cell of the m × k grid, placed in its

@@ -41,6 +41,10 @@ struct SamplePattern {
   uint32_t scramble[3] = {};  // stratified: the permutation key; sobol: index, x, y scrambles
 };
 
+// Test hook: power-of-two sets drawn with the portable build of the sampler's vector lanes
+// even on a CPU with AVX2 (sampler.cpp), so that tests hold both builds to the same bits.
+void forcePortableSamplerLanes(bool force);
+
 class Sampler {
  public:
   Sampler(SamplerKind kind, int samplesPerPixel, uint64_t seed)

@@ -183,27 +183,33 @@ TEST(Sampler, PowerOfTwoSetsMatchTheGeneralConstruction) {
   // Sets of n = 2^b points drawn three or more at a time take a vector path (sampler.cpp) that
   // shares no code with the general construction, which one or two points at a time take. The
   // two must agree bit for bit, for every b, for runs that start anywhere and end mid-block, and
-  // for large sets, where rounding to float often lands on a stratum's edge and steps back.
-  for (int b = 0; b <= 28; ++b) {
-    const int n = 1 << b;
-    const Sampler s(SamplerKind::Stratified, n, 5);
-    for (int pixel = 0; pixel < 3; ++pixel) {
-      const SamplePattern pattern = s.pattern(s.pixelKey(pixel, 9), dimension(Dim::Lens));
-      const uint64_t spread = hashKey(static_cast<uint64_t>(b), static_cast<uint64_t>(pixel));
-      for (const int size : {3, 8, 13, 40}) {
-        const int first = n <= size ? 0 : static_cast<int>(spread % uint64_t(n - size));
-        const int count = std::min(size, n - first);
-        if (count < 3) continue;
-        Vec2f together[40];
-        s.get2DFor(pattern, first, 0, count, 1, together);
-        for (int j = 0; j < count; ++j) {
-          const Vec2f alone = s.get2DFor(pattern, first + j);
-          EXPECT_EQ(alone.x, together[j].x) << "n = 2^" << b << ", point " << first + j;
-          EXPECT_EQ(alone.y, together[j].y) << "n = 2^" << b << ", point " << first + j;
+  // for large sets, where rounding to float often lands on a stratum's edge and steps back;
+  // with the AVX2 build of the path where the CPU has it, and with the portable build.
+  for (const bool portable : {false, true}) {
+    forcePortableSamplerLanes(portable);
+    SCOPED_TRACE(portable ? "portable build" : "this CPU's build");
+    for (int b = 0; b <= 28; ++b) {
+      const int n = 1 << b;
+      const Sampler s(SamplerKind::Stratified, n, 5);
+      for (int pixel = 0; pixel < 3; ++pixel) {
+        const SamplePattern pattern = s.pattern(s.pixelKey(pixel, 9), dimension(Dim::Lens));
+        const uint64_t spread = hashKey(static_cast<uint64_t>(b), static_cast<uint64_t>(pixel));
+        for (const int size : {3, 8, 13, 40}) {
+          const int first = n <= size ? 0 : static_cast<int>(spread % uint64_t(n - size));
+          const int count = std::min(size, n - first);
+          if (count < 3) continue;
+          Vec2f together[40];
+          s.get2DFor(pattern, first, 0, count, 1, together);
+          for (int j = 0; j < count; ++j) {
+            const Vec2f alone = s.get2DFor(pattern, first + j);
+            EXPECT_EQ(alone.x, together[j].x) << "n = 2^" << b << ", point " << first + j;
+            EXPECT_EQ(alone.y, together[j].y) << "n = 2^" << b << ", point " << first + j;
+          }
         }
       }
     }
   }
+  forcePortableSamplerLanes(false);
 }
 
 TEST(Sampler, RegularIsCellCentres) {
