@@ -125,9 +125,7 @@ void WhittedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const S
       for (size_t li = 0; li < scene_.lights.size(); ++li) {
         Rgb sum;
         addLight(queue, li, next, p.queryEnd, sum);
-        const Rgb contribution = lightContribution(sum, sampleCount(scene_.lights[li]));
-        L += contribution;
-        if (aov && li < size_t(AovSet::kMaxLights)) aov->perLight[li] = contribution;
+        addContribution(sum, li, L, aov ? aov->perLight : nullptr);
       }
       if (aov) aov->direct = L;
       L += reflectRay(m.km, m.gloss, p.pt.sp, rays[i], p.root, counters);
@@ -322,9 +320,7 @@ Rgb WhittedKernel<C>::shadePhong(const PhongMaterial& m, const ShadingPoint& sp,
       int next = 0;
       addLight(queue, li, next, queue.size, sum);
     }
-    const Rgb contribution = lightContribution(sum, count);
-    L += contribution;
-    if (perLight && li < size_t(AovSet::kMaxLights)) perLight[li] = contribution;
+    addContribution(sum, li, L, perLight);
   }
   return L;
 }

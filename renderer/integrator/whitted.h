@@ -163,9 +163,13 @@ class WhittedKernel {
   // shading point's queries end) to `sum`, in queue order.
   template <class Queue>
   void addLight(const Queue& queue, size_t li, int& next, int end, Rgb& sum) const;
-  // The light's share of a shading point: the mean over its samples.
-  static Rgb lightContribution(const Rgb& sum, int count) {
-    return count == 1 ? sum : sum * (1.0f / static_cast<float>(count));
+  // Light li's share of a shading point, the mean over its samples (`sum` their total), added
+  // to L, and kept in perLight[li] when given (per-light AOVs).
+  void addContribution(const Rgb& sum, size_t li, Rgb& L, Rgb* perLight) const {
+    const int count = sampleCount(scene_.lights[li]);
+    const Rgb contribution = count == 1 ? sum : sum * (1.0f / static_cast<float>(count));
+    L += contribution;
+    if (perLight && li < size_t(AovSet::kMaxLights)) perLight[li] = contribution;
   }
   int sampleCount(const Light& light) const { return kAreaLights ? lightSampleCount(light) : 1; }
   static bool isDelta(const Light& light) {
