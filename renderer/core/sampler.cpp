@@ -346,8 +346,6 @@ void stratifiedPowerOfTwo(const PowerOfTwoSet& set, uint32_t first, int size, Ve
 void forcePortableSamplerLanes(bool force) { forcePortable = force; }
 
 void Sampler::stratified2D(const SamplePattern& pattern, int first, int size, int n, Vec2f* out) {
-  // Correlated multi-jitter (Kensler 2013): one sample per cell of the m × k grid, placed in its
-  // cell so that both 1D projections are stratified too (n-rooks).
   // A set of one (a 1-spp render's pixel offsets): cell 0, and the point is its jitter, as
   // below with every permutation the identity and place() exact.
   if (n == 1) {
@@ -360,6 +358,8 @@ void Sampler::stratified2D(const SamplePattern& pattern, int first, int size, in
   if (grid.log2Count >= 0 && size >= 3)
     return stratifiedPowerOfTwo(PowerOfTwoSet(grid, pattern), static_cast<uint32_t>(first), size,
                                 out);
+  // Correlated multi-jitter (Kensler 2013): one sample per cell of the m × k grid, placed in its
+  // cell so that both 1D projections are stratified too (n-rooks).
   const uint32_t m = grid.columns.size.divisor(), k = grid.rows.size.divisor();
   const uint32_t p = pattern.scramble[0];
   const PermutationKeys keys(p);
