@@ -85,15 +85,12 @@ double samplingSeconds(const Scene& scene, int threads) {
     CameraSampling::Points points;
     float acc = 0;
     for (int y = tiles[t].y0; y < tiles[t].y1; ++y)
-      for (int x = tiles[t].x0; x < tiles[t].x1; ++x) {
-        const uint64_t pixelKey = sampler.pixelKey(x, y);
+      for (int x = tiles[t].x0; x < tiles[t].x1; ++x)
         for (int first = 0; first < rs.spp; first += kCameraChunk) {
           const int count = std::min(kCameraChunk, rs.spp - first);
-          for (int i = 0; i < count; ++i) keys[i] = SampleKey(&sampler, x, y, first + i, pixelKey);
-          cameraSampling.rays(keys, count, rays, points);
+          cameraSampling.pixelRays(sampler, x, y, first, count, keys, rays, points);
           for (int i = 0; i < count; ++i) acc += rays[i].d.x + rays[i].time;
         }
-      }
     sink[t] = acc;
   });
   benchmark::DoNotOptimize(sink.data());

@@ -7,7 +7,7 @@
 namespace glint {
 
 // SplitMix64's finaliser (Steele, Lea, Flood 2014): full avalanche on 64 bits. U64 is uint64_t
-// or a vector of them (GCC vector extensions: the sampler hashes lanes side by side).
+// or a vector of them (GNU vector extensions: the sampler hashes lanes side by side).
 template <class U64>
 [[gnu::always_inline]] constexpr U64 mix64Lanes(U64 z) {
   z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;

@@ -286,11 +286,15 @@ struct PowerOfTwoSet {
     // double, below 2^52) times 2^-(24+b), and rounding to float commutes with that scale; so
     // do place()'s edge tests, made here on the rounded value times 2^(24+b).
     // Signed lanes convert to double in one instruction (strata are below 2^28, jitters 2^24).
+    // Lanes 0–3 (half 0) or 4–7 (half 1) of eight.
+    const auto halfOf = [](U32x8 v, int half) {
+      return half == 0 ? __builtin_shufflevector(v, v, 0, 1, 2, 3)
+                       : __builtin_shufflevector(v, v, 4, 5, 6, 7);
+    };
     const auto place = [&](U32x8 stratum, int half, U64x4 jitter24) {
-      const auto quarter = half == 0 ? __builtin_shufflevector(stratum, stratum, 0, 1, 2, 3)
-                                     : __builtin_shufflevector(stratum, stratum, 4, 5, 6, 7);
       const F64x4 low =
-          __builtin_convertvector(__builtin_convertvector(quarter, I32x4), F64x4) * 16777216.0;
+          __builtin_convertvector(__builtin_convertvector(halfOf(stratum, half), I32x4), F64x4) *
+          16777216.0;
       const F64x4 jitter = __builtin_convertvector(__builtin_convertvector(jitter24, I32x4), F64x4);
       const F32x4 rounded = __builtin_convertvector(low + jitter, F32x4);
       const F64x4 back = __builtin_convertvector(rounded, F64x4);
@@ -301,10 +305,7 @@ struct PowerOfTwoSet {
              scale;
     };
     for (int half = 0; half < 2 && half * 4 < size; ++half) {
-      const U64x4 s64 =
-          __builtin_convertvector(half == 0 ? __builtin_shufflevector(s, s, 0, 1, 2, 3)
-                                            : __builtin_shufflevector(s, s, 4, 5, 6, 7),
-                                  U64x4);
+      const U64x4 s64 = __builtin_convertvector(halfOf(s, half), U64x4);
       const U64x4 bits = mix64Lanes(hash ^ (s64 + offset));  // hashCombine(hash, s) per lane
       // Both jitters from one hash, as unitPair: the top 24 bits, and bits 8–31.
       const F32x4 x = place(strata[0], half, bits >> 40);

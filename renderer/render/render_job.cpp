@@ -93,14 +93,10 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
       for (int first = 0; first < rs.spp; first += samplesPerChunk) {
         const int runLength = std::min(samplesPerChunk, rs.spp - first);
         const int count = pixels * runLength;
-        for (int p = 0; p < pixels; ++p) {
-          const int x = x0 + p;
-          SampleKey* run = keys + p * runLength;
-          const uint64_t pixelKey = f.sampler.pixelKey(x, y);
-          for (int i = 0; i < runLength; ++i)
-            run[i] = SampleKey(&f.sampler, x, y, first + i, pixelKey);
-          f.cameraSampling.rays<kCameraSamples>(run, runLength, rays + p * runLength, cameraPoints);
-        }
+        for (int p = 0; p < pixels; ++p)
+          f.cameraSampling.pixelRays<kCameraSamples>(f.sampler, x0 + p, y, first, runLength,
+                                                     keys + p * runLength, rays + p * runLength,
+                                                     cameraPoints);
         f.accel.intersectCoherent(rays, hits, static_cast<size_t>(count));
         if constexpr (kAovs)
           for (int i = 0; i < count; ++i) {

@@ -35,8 +35,8 @@ struct RenderOptions {
   std::function<void(int x, int y, Radiance& sample)> sampleHook;
 };
 
-// Camera rays are made, traced and shaded in runs of this many samples of one pixel (bounded
-// stack arrays).
+// Camera rays are made, traced and shaded in chunks of at most this many samples (bounded
+// stack arrays): several whole pixels' below this spp, a run of one pixel's from it on.
 inline constexpr int kCameraChunk = 64;
 
 // A camera sample's ray, shared by the render loop and `glint bench`'s sampling pass: the pixel
@@ -80,6 +80,14 @@ class CameraSampling {
         r.time = drawTime ? open_ + (close_ - open_) * points.time[i].x : open_;
       }
     }
+  }
+  // The keys and rays of samples [first, first + count) of pixel (x, y).
+  template <bool kMayDraw = true>
+  void pixelRays(const Sampler& sampler, int x, int y, int first, int count, SampleKey* keys,
+                 Ray* out, Points& points) const {
+    const uint64_t pixelKey = sampler.pixelKey(x, y);
+    for (int i = 0; i < count; ++i) keys[i] = SampleKey(&sampler, x, y, first + i, pixelKey);
+    rays<kMayDraw>(keys, count, out, points);
   }
   template <bool kMayDraw = true>
   Ray ray(const SampleKey& key) const {
