@@ -28,6 +28,12 @@ class Accelerator {
   virtual void intersectCoherent(const Ray* rays, Hit* hits, size_t n) const {
     for (size_t i = 0; i < n; ++i) hits[i] = intersect(rays[i]);
   }
+  // Whether each of n rays is blocked, as occluded() would answer, for rays that start close
+  // together and point alike (the shadow rays of neighbouring shading points towards one
+  // light); a backend may trace them as packets.
+  virtual void occludedCoherent(const Ray* rays, bool* blocked, size_t n) const {
+    for (size_t i = 0; i < n; ++i) blocked[i] = occluded(rays[i]);
+  }
   virtual std::string_view name() const = 0;
 };
 

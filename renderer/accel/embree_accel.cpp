@@ -298,6 +298,28 @@ void EmbreeAccel::intersectStream(const Ray* rays, Hit* hits, size_t n, bool coh
   }
 }
 
+void EmbreeAccel::occludedCoherent(const Ray* rays, bool* blocked, size_t n) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  constexpr size_t kChunk = 256;
+  RTCRay rr[kChunk];
+  uint32_t index[kChunk];
+  for (size_t begin = 0; begin < n; begin += kChunk) {
+    const size_t count = std::min(kChunk, n - begin);
+    unsigned m = 0;
+    for (size_t i = begin; i < begin + count; ++i) {
+      blocked[i] = occludedByPlanes(scene_, rays[i]);
+      if (blocked[i]) continue;
+      index[m] = static_cast<uint32_t>(i);
+      rr[m++] = toRtcRay(rays[i]);
+    }
+    if (m == 0) continue;
+    rtcOccluded1M(groupScenes_[0], &context, rr, m, sizeof(RTCRay));
+    for (unsigned k = 0; k < m; ++k) blocked[index[k]] = rr[k].tfar < 0;
+  }
+}
+
 bool EmbreeAccel::occluded(const Ray& ray) const {
   if (occludedByPlanes(scene_, ray)) return true;
   RTCIntersectContext context;

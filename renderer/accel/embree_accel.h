@@ -34,6 +34,7 @@ class EmbreeAccel final : public Accelerator {
   void intersectCoherent(const Ray* rays, Hit* hits, size_t n) const override {
     intersectStream(rays, hits, n, true);
   }
+  void occludedCoherent(const Ray* rays, bool* blocked, size_t n) const override;
   std::string_view name() const override { return "embree"; }
   double buildSeconds() const { return buildSeconds_; }
   int64_t bytes() const { return bytes_; }

@@ -169,33 +169,42 @@ int runBench(const BenchArgs& a) {
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime();
       }
-  // Camera rays as one coherent stream (rtcIntersect1M, packets inside Embree) against one by
-  // one: the same rays and hits, so the ratio says whether packets pay for this scene.
-  for (int threads : {1, allThreads}) {
-    const std::string name = "embree/camera-stream/threads:" + std::to_string(threads);
-    const std::vector<Ray>* cam = &rays.camera;
-    const EmbreeAccel* acc = &embree;
-    benchmark::RegisterBenchmark(
-        name.c_str(),
-        [acc, cam, threads](benchmark::State& state) {
-          tbb::task_arena arena(threads);
-          std::vector<Hit> hits(cam->size());
-          for (auto _ : state)
-            arena.execute([&] {
-              tbb::parallel_for(tbb::blocked_range<size_t>(0, cam->size(), 4096),
-                                [&](const tbb::blocked_range<size_t>& r) {
-                                  enableFlushToZero();
-                                  acc->intersectStream(cam->data() + r.begin(),
-                                                       hits.data() + r.begin(), r.size(), true);
-                                });
-            });
-          benchmark::DoNotOptimize(hits.data());
-          state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(cam->size()));
-        })
-        ->MinTime(0.1)
-        ->Unit(benchmark::kMillisecond)
-        ->UseRealTime();
-  }
+  // Camera rays and shadow rays as coherent streams (rtcIntersect1M / rtcOccluded1M, packets
+  // inside Embree) against one by one: the same rays and answers, so the ratio says whether
+  // packets pay for this scene.
+  for (const bool shadow : {false, true})
+    for (int threads : {1, allThreads}) {
+      const std::string name = std::string("embree/") + (shadow ? "shadow" : "camera") +
+                               "-stream/threads:" + std::to_string(threads);
+      const std::vector<Ray>* set = shadow ? &rays.shadow : &rays.camera;
+      const EmbreeAccel* acc = &embree;
+      benchmark::RegisterBenchmark(
+          name.c_str(),
+          [acc, set, threads, shadow](benchmark::State& state) {
+            tbb::task_arena arena(threads);
+            std::vector<Hit> hits(set->size());
+            std::unique_ptr<bool[]> blocked(new bool[set->size()]);
+            for (auto _ : state)
+              arena.execute([&] {
+                tbb::parallel_for(tbb::blocked_range<size_t>(0, set->size(), 4096),
+                                  [&](const tbb::blocked_range<size_t>& r) {
+                                    enableFlushToZero();
+                                    if (shadow)
+                                      acc->occludedCoherent(set->data() + r.begin(),
+                                                            blocked.get() + r.begin(), r.size());
+                                    else
+                                      acc->intersectCoherent(set->data() + r.begin(),
+                                                             hits.data() + r.begin(), r.size());
+                                  });
+              });
+            benchmark::DoNotOptimize(hits.data());
+            benchmark::DoNotOptimize(blocked.get());
+            state.SetItemsProcessed(int64_t(state.iterations()) * int64_t(set->size()));
+          })
+          ->MinTime(0.1)
+          ->Unit(benchmark::kMillisecond)
+          ->UseRealTime();
+    }
   RateCollector collector;
   benchmark::RunSpecifiedBenchmarks(&collector);
   benchmark::ClearRegisteredBenchmarks();
@@ -215,15 +224,16 @@ int runBench(const BenchArgs& a) {
       j["backends"][n][set.name] = {
           {"mrays_per_s_1_thread", one}, {"mrays_per_s_all_threads", all}, {"threads", allThreads}};
     }
-  {
+  for (const char* kind : {"camera", "shadow"}) {
     const auto rate = [&](const std::string& set, int t) {
       return collector.rates["embree/" + set + "/threads:" + std::to_string(t)] * 1e-6;
     };
-    const double one = rate("camera-stream", 1), all = rate("camera-stream", allThreads);
-    const double single = rate("camera", 1);
+    const std::string stream = std::string(kind) + "-stream";
+    const double one = rate(stream, 1), all = rate(stream, allThreads), single = rate(kind, 1);
     std::printf("%-8s %-7s %9.2f Mr/s %9.2f Mr/s %9.2fx  (coherent stream vs one by one)\n",
-                "embree", "cam-1M", one, all, single > 0 ? one / single : 0.0);
-    j["backends"]["embree"]["camera_stream"] = {
+                "embree", (std::string(kind).substr(0, 3) + "-1M").c_str(), one, all,
+                single > 0 ? one / single : 0.0);
+    j["backends"]["embree"][std::string(kind) + "_stream"] = {
         {"mrays_per_s_1_thread", one}, {"mrays_per_s_all_threads", all}, {"threads", allThreads}};
   }
   // The three reference-BVH builds side by side (seed 000 §12.3.2 against Wald's binned SAH).

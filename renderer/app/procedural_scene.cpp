@@ -18,6 +18,7 @@ Scene makeProceduralScene(size_t triangles) {
   PhongMaterial ground;
   ground.kd.constant = {0.5f, 0.6f, 0.4f};
   ground.ka = ground.kd;
+  ground.ambientFollowsDiffuse = true;
   s.materials.push_back({"ground", ground});
   s.lights.push_back(PointLight{{5, 12, 8}, {1, 1, 1}, Falloff::None});
 

@@ -17,11 +17,10 @@ class UninitializedArray {
  public:
   T& operator[](std::size_t i) { return data()[i]; }
   const T& operator[](std::size_t i) const { return data()[i]; }
-
- private:
   T* data() { return std::launder(reinterpret_cast<T*>(bytes_)); }
   const T* data() const { return std::launder(reinterpret_cast<const T*>(bytes_)); }
 
+ private:
   alignas(T) std::byte bytes_[sizeof(T) * N];
 };
 

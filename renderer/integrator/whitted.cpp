@@ -11,6 +11,10 @@ namespace {
 // Shadow rays give up after this many dielectric interfaces and count the light as blocked.
 constexpr int kMaxShadowInterfaces = 64;
 
+// Fewer queued shadow rays than this are traced one by one: a stream's set-up costs more than
+// packets save on a handful of rays (docs/performance.md).
+constexpr size_t kMinShadowStream = 8;
+
 // Seed 000 §13.4.4: perturb a unit direction r over a square of width `a` orthogonal to r.
 Vec3f perturb(const Vec3f& r, float a, Vec2f u) {
   const Vec3f helper = std::fabs(r.x) > 0.9f ? Vec3f{0, 1, 0} : Vec3f{1, 0, 0};
@@ -200,7 +204,9 @@ void WhittedKernel<C>::initPhongPoint(PhongPoint& pt, const PhongMaterial& m, co
 
 template <unsigned C>
 Rgb WhittedKernel<C>::ambient(const PhongPoint& pt) const {
-  return pt.material->ka.eval(pt.sp.p, scene_.worldOrigin) * scene_.render.ambient;
+  const PhongMaterial& m = *pt.material;
+  const Rgb ka = m.ambientFollowsDiffuse ? pt.kd : m.ka.eval(pt.sp.p, scene_.worldOrigin);
+  return ka * scene_.render.ambient;
 }
 
 template <unsigned C>
@@ -285,12 +291,28 @@ void WhittedKernel<C>::traceShadows(Queue& queue, RayCounters& counters) const {
       queue.visible[i] = shadowTransmission(queue.rays[i], queue.atInfinity[i], counters);
     return;
   }
-  // One by one: a pixel's rays as one coherent rtcOccluded1M stream measured no faster, and in
-  // the sanitizer build spun forever inside Embree 3.13.5 on a scene with instances
-  // (docs/performance.md).
   counters.shadow += n;
+  if (n < kMinShadowStream) {
+    for (size_t i = 0; i < n; ++i)
+      queue.visible[i] = accel_.occluded(queue.rays[i]) ? Rgb{} : Rgb{1, 1, 1};
+    return;
+  }
+  // The rays towards one light start close together and converge (or run parallel), so they
+  // are traced together as a coherent stream, light by light: a stable counting sort by light
+  // (lights past the last bucket share it), the rays gathered in that order, their answers
+  // scattered back to the queue's slots.
+  constexpr size_t kBuckets = 32;
+  uint16_t start[kBuckets + 1] = {};
+  for (size_t i = 0; i < n; ++i) ++start[std::min<size_t>(queue.light[i], kBuckets - 1) + 1];
+  for (size_t b = 0; b < kBuckets; ++b) start[b + 1] += start[b];
+  uint16_t order[Queue::kCapacity];
   for (size_t i = 0; i < n; ++i)
-    queue.visible[i] = accel_.occluded(queue.rays[i]) ? Rgb{} : Rgb{1, 1, 1};
+    order[start[std::min<size_t>(queue.light[i], kBuckets - 1)]++] = static_cast<uint16_t>(i);
+  UninitializedArray<Ray, Queue::kCapacity> sorted;
+  for (size_t k = 0; k < n; ++k) sorted[k] = queue.rays[order[k]];
+  bool blocked[Queue::kCapacity];
+  accel_.occludedCoherent(sorted.data(), blocked, n);
+  for (size_t k = 0; k < n; ++k) queue.visible[order[k]] = blocked[k] ? Rgb{} : Rgb{1, 1, 1};
 }
 
 template <unsigned C>

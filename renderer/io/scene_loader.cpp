@@ -91,7 +91,8 @@ Material parseMaterial(const JsonNode& n) {
     m.kd.constant = {0.5f, 0.5f, 0.5f};
     if (auto v = n.get("kd")) m.kd = parseColorTexture(*v);
     m.ka = m.kd;  // documented default: ambient reflectance follows the diffuse colour
-    if (auto v = n.get("ka")) m.ka = parseColorTexture(*v);
+    m.ambientFollowsDiffuse = true;
+    if (auto v = n.get("ka")) m.ka = parseColorTexture(*v), m.ambientFollowsDiffuse = false;
     m.ks = n.color("ks", m.ks);
     m.km = n.color("km", m.km);
     if (auto v = n.get("exponent")) m.exponent = v->number(0, 1e9f);

@@ -34,6 +34,9 @@ enum class FresnelModel { Exact, Schlick };
 
 struct PhongMaterial {
   ColorTexture ka, kd;
+  // ka is kd (the scene gave no "ka"): the ambient term reuses the diffuse colour already
+  // looked up at the shading point instead of evaluating the same texture twice.
+  bool ambientFollowsDiffuse = false;
   Rgb ks, km;
   float exponent = 32;
   SpecularModel specularModel = SpecularModel::BlinnPhong;

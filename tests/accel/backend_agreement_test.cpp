@@ -1,6 +1,9 @@
 // Embree against the brute-force oracle on random rays through a scene with every shape kind.
 #include <gtest/gtest.h>
 
+#include <memory>
+#include <vector>
+
 #include "accel/accelerator.h"
 #include "core/hash.h"
 #include "test_util.h"
@@ -8,8 +11,10 @@
 namespace glint {
 namespace {
 
-TEST(BackendAgreement, EmbreeMatchesBruteForceOnRandomRays) {
-  const Scene s = test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+// Every shape kind Embree holds for Glint: a plane (outside Embree), user spheres and quads,
+// a triangle mesh, and instances of a group.
+Scene everyShapeKind() {
+  return test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
     "materials": {"m": {"type": "phong"}},
     "groups": {"g": [{"type": "box", "min": [-0.5,-0.5,-0.5], "max": [0.5,0.5,0.5], "material": "m"},
                      {"type": "sphere", "center": [0,1,0], "radius": 0.4, "material": "m"}]},
@@ -21,6 +26,10 @@ TEST(BackendAgreement, EmbreeMatchesBruteForceOnRandomRays) {
       {"type": "instance", "group": "g", "transform": {"translate": [-1.5,1,0], "rotate": [1,1,0,30]}},
       {"type": "instance", "group": "g", "transform": {"matrix": [1,0.3,0,1.5, 0,1,0,-1.5, 0,0,2,0, 0,0,0,1]}}
     ]})");
+}
+
+TEST(BackendAgreement, EmbreeMatchesBruteForceOnRandomRays) {
+  const Scene s = everyShapeKind();
   const auto embree = makeAccelerator(AccelKind::Embree, s);
   const auto brute = makeAccelerator(AccelKind::BruteForce, s);
   constexpr int kRays = 4000;
@@ -43,6 +52,53 @@ TEST(BackendAgreement, EmbreeMatchesBruteForceOnRandomRays) {
   }
   EXPECT_GT(hits, kRays / 2);  // the test must exercise hits, not only misses
   EXPECT_EQ(disagreements, 0);
+}
+
+// The renderer traces camera rays and shadow rays as coherent streams (packets inside Embree):
+// every ray must get the answer rtcIntersect1 / rtcOccluded1 gives it. Bundles of 16 rays leave
+// from close together towards one point, as a chunk's shadow rays towards a light do; some
+// are segments ending short of the point (shadow rays), some unbounded. All 4000 go in one call,
+// so the backend's own chunking is crossed too.
+TEST(BackendAgreement, EmbreeStreamsAnswerAsOneRayAtATime) {
+  const Scene s = everyShapeKind();
+  const auto embree = makeAccelerator(AccelKind::Embree, s);
+  constexpr int kBundles = 250, kPerBundle = 16;
+  std::vector<Ray> rays;
+  for (int b = 0; b < kBundles; ++b) {
+    auto u = [&](int i, int k) { return toUnitFloat(hashKey(7, b * kPerBundle + i, k)); };
+    const Vec3f base{6 * u(0, 0) - 3, 6 * u(0, 1) - 3, 6 * u(0, 2) - 3};
+    const Vec3f target{6 * u(0, 3) - 3, 6 * u(0, 4) - 3, 6 * u(0, 5) - 3};
+    for (int i = 0; i < kPerBundle; ++i) {
+      Ray r;
+      r.o = base + 0.1f * Vec3f{u(i, 6) - 0.5f, u(i, 7) - 0.5f, u(i, 8) - 0.5f};
+      r.d = target - r.o;
+      r.tMax = b % 2 ? 0.999f : kInfinity;
+      rays.push_back(r);
+    }
+  }
+  std::vector<Hit> hits(rays.size());
+  std::unique_ptr<bool[]> blocked(new bool[rays.size()]);
+  embree->intersectCoherent(rays.data(), hits.data(), rays.size());
+  embree->occludedCoherent(rays.data(), blocked.get(), rays.size());
+  int hitCount = 0, blockedCount = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const Hit one = embree->intersect(rays[i]);
+    hitCount += bool(one);
+    blockedCount += blocked[i];
+    ASSERT_EQ(bool(hits[i]), bool(one)) << "ray " << i;
+    if (one) {
+      EXPECT_EQ(hits[i].geomId, one.geomId) << "ray " << i;
+      EXPECT_EQ(hits[i].instId, one.instId) << "ray " << i;
+      // Embree's packet kernels may round t differently from its single-ray kernel.
+      EXPECT_NEAR(hits[i].t, one.t, 1e-5f * std::max(1.0f, one.t)) << "ray " << i;
+    }
+    EXPECT_EQ(blocked[i], embree->occluded(rays[i])) << "ray " << i;
+  }
+  // Both answers must be exercised: hits and misses, blocked and clear segments.
+  EXPECT_GT(hitCount, 400);
+  EXPECT_LT(hitCount, 3600);
+  EXPECT_GT(blockedCount, 400);
+  EXPECT_LT(blockedCount, 3600);
 }
 
 }  // namespace

@@ -70,6 +70,7 @@ TEST(SceneParse, MaterialsKeepEveryKey) {
   EXPECT_TRUE(p.kd.checker);
   EXPECT_EQ(p.kd.scale, 2);
   EXPECT_EQ(p.ka.constant, (Rgb{0.1f, 0, 0}));
+  EXPECT_FALSE(p.ambientFollowsDiffuse);  // its own ka: the ambient term must evaluate it
   EXPECT_EQ(p.specularModel, SpecularModel::Phong);
   EXPECT_EQ(p.exponent, 100);
   EXPECT_EQ(p.km, (Rgb{0.2f, 0.2f, 0.2f}));
@@ -79,6 +80,20 @@ TEST(SceneParse, MaterialsKeepEveryKey) {
   EXPECT_EQ(g.fresnel, FresnelModel::Schlick);
   EXPECT_TRUE(s.features.absorption);
   EXPECT_TRUE(s.features.textures);
+}
+
+// Without "ka" the ambient reflectance is the diffuse texture (SCENE_FORMAT.md), and the
+// integrator reuses the diffuse lookup for it, so the flag must say so.
+TEST(SceneParse, AmbientFollowsDiffuseWithoutKa) {
+  const Scene s = sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
+    "materials": {"p": {"type": "phong", "kd": {"checker": {"scale": 2, "a": [1,0,0], "b": [0,0,1]}}}},
+    "objects": []})");
+  const auto& p = std::get<PhongMaterial>(s.materials.at(0).material);
+  EXPECT_TRUE(p.ambientFollowsDiffuse);
+  EXPECT_TRUE(p.ka.checker);
+  EXPECT_EQ(p.ka.a, p.kd.a);
+  EXPECT_EQ(p.ka.b, p.kd.b);
+  EXPECT_EQ(p.ka.scale, p.kd.scale);
 }
 
 TEST(SceneParse, EveryObjectType) {
