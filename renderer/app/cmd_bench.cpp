@@ -169,9 +169,9 @@ int runBench(const BenchArgs& a) {
             ->Unit(benchmark::kMillisecond)
             ->UseRealTime();
       }
-  // Camera rays and shadow rays as coherent streams (rtcIntersect1M / rtcOccluded1M, packets
-  // inside Embree) against one by one: the same rays and answers, so the ratio says whether
-  // packets pay for this scene.
+  // Camera rays and shadow rays as coherent streams (EmbreeAccel's intersectCoherent and
+  // occludedCoherent, rtcIntersect1M with packets inside Embree) against one by one: the same
+  // rays and answers, so the ratio says whether packets pay for this scene.
   for (const bool shadow : {false, true})
     for (int threads : {1, allThreads}) {
       const std::string name = std::string("embree/") + (shadow ? "shadow" : "camera") +

@@ -1,4 +1,5 @@
-// Embree against the brute-force oracle on random rays through a scene with every shape kind.
+// Embree against the brute-force oracle on random rays through a scene with every shape kind,
+// and Embree's coherent streams against its own single-ray queries.
 #include <gtest/gtest.h>
 
 #include <memory>
