@@ -302,12 +302,12 @@ void WhittedKernel<C>::traceShadows(Queue& queue, RayCounters& counters) const {
   // (lights past the last bucket share it), the rays gathered in that order, their answers
   // scattered back to the queue's slots.
   constexpr size_t kBuckets = 32;
+  const auto bucket = [&](size_t i) { return std::min<size_t>(queue.light[i], kBuckets - 1); };
   uint16_t start[kBuckets + 1] = {};
-  for (size_t i = 0; i < n; ++i) ++start[std::min<size_t>(queue.light[i], kBuckets - 1) + 1];
+  for (size_t i = 0; i < n; ++i) ++start[bucket(i) + 1];
   for (size_t b = 0; b < kBuckets; ++b) start[b + 1] += start[b];
   uint16_t order[Queue::kCapacity];
-  for (size_t i = 0; i < n; ++i)
-    order[start[std::min<size_t>(queue.light[i], kBuckets - 1)]++] = static_cast<uint16_t>(i);
+  for (size_t i = 0; i < n; ++i) order[start[bucket(i)]++] = static_cast<uint16_t>(i);
   UninitializedArray<Ray, Queue::kCapacity> sorted;
   for (size_t k = 0; k < n; ++k) sorted[k] = queue.rays[order[k]];
   bool blocked[Queue::kCapacity];

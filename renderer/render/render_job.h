@@ -63,11 +63,11 @@ class CameraSampling {
   template <bool kMayDraw = true>
   void rays(const SampleKey* keys, int count, Ray* out, Points& points) const {
     const SampleKey& key = keys[0];
+    const bool drawLens = kMayDraw && camera_.hasLens(), drawTime = kMayDraw && openShutter_;
     for (int first = 0; first < count; first += Points::kRun) {
       const int n = std::min(Points::kRun, count - first);
       const int index = key.index + first;
       key.sampler->pixelSamplesFor(key.pattern(dimension(Dim::Pixel)), index, n, points.pixel);
-      const bool drawLens = kMayDraw && camera_.hasLens(), drawTime = kMayDraw && openShutter_;
       if (drawLens)
         key.sampler->get2DRange(key.pattern(dimension(Dim::Lens)), index, n, points.lens);
       if (drawTime)
