@@ -1,5 +1,6 @@
 #include "integrator/whitted.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "integrator/optics.h"
@@ -49,96 +50,153 @@ Radiance WhittedKernel<C>::trace(const Ray& cameraRay, const SampleKey& key, Ray
 template <unsigned C>
 Radiance WhittedKernel<C>::trace(const Ray& cameraRay, const Hit& cameraHit, const SampleKey& key,
                                  RayCounters& counters, AovSample* aov) const {
-  Branch root;
-  root.key = &key;
+  const auto scratch = std::make_unique<Scratch>();
   Radiance r;
-  traceInto(cameraRay, cameraHit, root, counters, aov, r);
+  traceCameraHits(&cameraRay, &cameraHit, &key, 1, &r, &aov, counters, *scratch);
   return r;
-}
-
-template <unsigned C>
-void WhittedKernel<C>::traceInto(const Ray& cameraRay, const Hit& cameraHit, const Branch& root,
-                                 RayCounters& counters, AovSample* aov, Radiance& out) const {
-  ++counters.camera;
-  bool hit = false;
-  out.L = shade(cameraRay, cameraHit, root, counters, &hit, aov);
-  out.alpha = hit ? 1.0f : 0.0f;
-  out.valid = true;
 }
 
 template <unsigned C>
 void WhittedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys,
                                        int count, Radiance* out, AovSample* const* aovs,
-                                       RayCounters& counters, CameraHitScratch& scratch) const {
-  // Each Phong hit's direct lighting is queued (PhongPoint); the queue is traced when the next
-  // hit might not fit, then each sample is finished in order, exactly as shade() would.
-  auto& pending = scratch.pending;
-  auto& queue = scratch.queue;
-  // Each area light's points for all `count` samples, drawn in one sampler call per light at
-  // the first Phong hit (the sampler's vector lanes pay from a few points on): light li's
-  // points for sample i start at lightPoints[li] + i·samples. Null: drawn per shading point.
-  const Vec2f* lightPoints[kMaxPrecomputedLights] = {};
-  bool pointsDrawn = false;
-  for (int begin = 0; begin < count;) {
-    queue.size = 0;
-    int end = begin;
-    for (; end < count && end - begin < scratch.kMaxSamples; ++end) {
-      auto& p = pending[end - begin];
-      p.root.key = &keys[end];  // the rest of a root branch never changes
-      p.queued = false;
-      if (!hits[end]) continue;
-      // The material from the hit's geometry: a hit shaded on its own gets its shading point
-      // in shade(), so it is built here only for the hits queued.
-      const uint32_t materialId = scene_.geometry(hits[end]).materialId;
-      const auto* phong = std::get_if<PhongMaterial>(&scene_.materials[materialId].material);
-      if (!phong || shadowRaysPerPoint_ > queue.kCapacity) continue;  // shaded on its own
-      if (queue.size + shadowRaysPerPoint_ > queue.kCapacity) break;  // trace what is queued
-      if (kAreaLights && !pointsDrawn) {
-        drawLightPoints(keys, count, scratch, lightPoints);
-        pointsDrawn = true;
-      }
-      scene_.shadingPoint(rays[end], hits[end], p.pt.sp);
-      initPhongPoint(p.pt, *phong, normalize(-rays[end].d), rays[end].time, p.root);
-      p.L = ambient(p.pt);
-      for (size_t li = 0; li < scene_.lights.size(); ++li) {
-        const int n = sampleCount(scene_.lights[li]);
-        const Vec2f* points =
-            li < kMaxPrecomputedLights && lightPoints[li] ? lightPoints[li] + (end * n) : nullptr;
-        queueLight(p.pt, li, points ? SamplePattern{} : lightPattern(p.pt, li), 0, n, n, queue,
-                   points);
-      }
-      p.queryEnd = queue.size;
-      p.queued = true;
-    }
-    traceShadows(queue, counters);
-    int next = 0;
-    for (int i = begin; i < end; ++i) {
-      auto& p = pending[i - begin];
-      AovSample* aov = kAovs && aovs ? aovs[i] : nullptr;
-      Radiance& r = out[i];
-      if (!p.queued) {
-        traceInto(rays[i], hits[i], p.root, counters, aov, r);
-        continue;
-      }
-      // shade() for a Phong camera hit, with the direct light's rays already traced.
-      ++counters.camera;
-      const PhongMaterial& m = *p.pt.material;
-      if (aov)
-        recordAov(rays[i], hits[i], p.pt.sp, scene_.materials[p.pt.sp.materialId].material, *aov);
-      Rgb L = p.L;
-      for (size_t li = 0; li < scene_.lights.size(); ++li) {
-        Rgb sum;
-        addLight(queue, li, next, p.queryEnd, sum);
-        addContribution(sum, li, L, aov ? aov->perLight : nullptr);
-      }
-      if (aov) aov->direct = L;
-      L += reflectRay(m.km, m.gloss, p.pt.sp, rays[i], p.root, counters);
-      r.L = L;
-      r.alpha = 1;
+                                       RayCounters& counters, Scratch& scratch) const {
+  counters.camera += static_cast<uint64_t>(count);
+  for (int begin = 0; begin < count; begin += kChunk) {
+    const int n = std::min(kChunk, count - begin);
+    for (int i = 0; i < n; ++i) scratch.roots[i].key = &keys[begin + i];  // the rest never changes
+    scratch.lightPointsDrawn = false;
+    shadeChunk(rays + begin, hits + begin, scratch.roots, n, scratch.cameraRadiance,
+               kAovs && aovs ? aovs + begin : nullptr, keys + begin, counters, scratch);
+    for (int i = 0; i < n; ++i) {
+      Radiance& r = out[begin + i];
+      r.L = scratch.cameraRadiance[i];
+      r.alpha = hits[begin + i] ? 1.0f : 0.0f;
       r.valid = true;
     }
-    begin = end;
   }
+}
+
+template <unsigned C>
+typename WhittedKernel<C>::Generation& WhittedKernel<C>::generation(Scratch& scratch,
+                                                                    int depth) const {
+  auto& generations = scratch.generations;
+  while (generations.size() <= static_cast<size_t>(depth))
+    generations.push_back(std::make_unique<Generation>());
+  return *generations[static_cast<size_t>(depth)];
+}
+
+template <unsigned C>
+void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch* branches, int n,
+                                  Rgb* radiance, AovSample* const* aovs,
+                                  const SampleKey* cameraKeys, RayCounters& counters,
+                                  Scratch& scratch) const {
+  Generation& gen = generation(scratch, branches[0].depth);
+  gen.children = 0;
+  auto& queue = scratch.queue;
+  queue.size = 0;
+  scratch.pendingCount = 0;
+  // Each hit's shading point; a Phong hit's light samples queued (the queue traced whenever
+  // the next point's might not fit) or, past the queue's size, traced on their own; the rays
+  // it spawns.
+  for (int i = 0; i < n; ++i) {
+    const Ray& ray = rays[i];
+    const Hit& hit = hits[i];
+    const Branch& branch = branches[i];
+    // Beer's law over the segment just travelled, in the medium the ray was inside.
+    if constexpr (kMedia)
+      if (!branch.media.empty())
+        gen.absorbed[i] =
+            beer(dielectric(branch.media.innermostMaterial())->attenuation, hit.t * length(ray.d));
+    Rgb& local = gen.local[i];
+    if (!hit) {
+      local = scene_.render.background;
+      gen.childEnd[i] = gen.children;
+      continue;
+    }
+    local = {};
+    AovSample* aov = kAovs && aovs ? aovs[i] : nullptr;
+    const Material& material = scene_.materials[scene_.geometry(hit).materialId].material;
+    if (const auto* phong = std::get_if<PhongMaterial>(&material)) {
+      const bool alone = shadowRaysPerPoint_ > queue.kCapacity;
+      if (!alone && queue.size + shadowRaysPerPoint_ > queue.kCapacity)
+        finishQueuedPoints(scratch, gen.local, aovs, counters);
+      // The next pending slot, also for a point traced alone (finished before the next hit).
+      auto& p = scratch.pending[scratch.pendingCount];
+      scene_.shadingPoint(ray, hit, p.pt.sp);
+      initPhongPoint(p.pt, *phong, normalize(-ray.d), ray.time, branch);
+      if (aov) recordAov(ray, hit, p.pt.sp, material, *aov);
+      if (alone) {
+        local = shadePhongAlone(p.pt, counters, aov ? aov->perLight : nullptr);
+        if (aov) aov->direct = local;
+      } else {
+        local = ambient(p.pt);
+        if (kAreaLights && cameraKeys && !scratch.lightPointsDrawn) {
+          drawLightPoints(cameraKeys, n, scratch);
+          scratch.lightPointsDrawn = true;
+        }
+        for (size_t li = 0; li < scene_.lights.size(); ++li) {
+          const int samples = sampleCount(scene_.lights[li]);
+          const Vec2f* points =
+              cameraKeys && li < kMaxPrecomputedLights && scratch.lightPointsOf[li]
+                  ? scratch.lightPointsOf[li] + i * samples
+                  : nullptr;
+          queueLight(p.pt, li, points ? SamplePattern{} : lightPattern(p.pt, li), 0, samples,
+                     samples, queue, points);
+        }
+        p.ray = i;
+        p.queryEnd = queue.size;
+        ++scratch.pendingCount;
+      }
+      spawnReflection(phong->km, phong->gloss, p.pt.sp, ray, branch, gen, counters);
+    } else {
+      const ShadingPoint sp = scene_.shadingPoint(ray, hit);
+      if (aov) recordAov(ray, hit, sp, material, *aov);
+      if (const auto* mirror = std::get_if<MirrorMaterial>(&material))
+        spawnReflection(mirror->km, mirror->gloss, sp, ray, branch, gen, counters);
+      else if constexpr (kMedia)
+        spawnDielectric(hit, std::get<DielectricMaterial>(material), sp, ray, branch, gen,
+                        counters);
+    }
+    gen.childEnd[i] = gen.children;
+  }
+  finishQueuedPoints(scratch, gen.local, aovs, counters);
+  // The next generation: the spawned rays traced as one stream, shaded a chunk at a time.
+  if (gen.children > 0) {
+    accel_.intersectCoherent(gen.rays.data(), gen.hits.data(), static_cast<size_t>(gen.children));
+    for (int c = 0; c < gen.children; c += kChunk)
+      shadeChunk(gen.rays.data() + c, gen.hits.data() + c, gen.branches.data() + c,
+                 std::min(kChunk, gen.children - c), gen.radiance.data() + c, nullptr, nullptr,
+                 counters, scratch);
+  }
+  for (int i = 0, c = 0; i < n; ++i) {
+    Rgb L = gen.local[i];
+    for (; c < gen.childEnd[i]; ++c) L += gen.weight[c] * gen.radiance[c];
+    if constexpr (kMedia)
+      if (!branches[i].media.empty()) L = L * gen.absorbed[i];
+    radiance[i] = L;
+  }
+}
+
+template <unsigned C>
+void WhittedKernel<C>::finishQueuedPoints(Scratch& scratch, Rgb* local, AovSample* const* aovs,
+                                          RayCounters& counters) const {
+  auto& queue = scratch.queue;
+  traceShadows(queue, counters);
+  int next = 0;
+  for (int k = 0; k < scratch.pendingCount; ++k) {
+    const auto& p = scratch.pending[k];
+    AovSample* aov = kAovs && aovs ? aovs[p.ray] : nullptr;
+    Rgb L = local[p.ray];
+    for (size_t li = 0; li < scene_.lights.size(); ++li) {
+      Rgb sum;
+      addLight(queue, li, next, p.queryEnd, sum);
+      addContribution(sum, li, L, aov ? aov->perLight : nullptr);
+    }
+    if (aov) aov->direct = L;
+    local[p.ray] = L;
+  }
+  queue.size = 0;
+  scratch.pendingCount = 0;
 }
 
 template <unsigned C>
@@ -158,36 +216,6 @@ void WhittedKernel<C>::recordAov(const Ray& ray, const Hit& hit, const ShadingPo
     aov.albedo = mirror->km;
   else
     aov.albedo = {1, 1, 1};
-}
-
-template <unsigned C>
-Rgb WhittedKernel<C>::shade(const Ray& ray, const Hit& hit, const Branch& branch,
-                            RayCounters& counters, bool* hitSomething, AovSample* aov) const {
-  // Beer's law over the segment just travelled, in the medium the ray was inside.
-  Rgb absorbed{1, 1, 1};
-  if constexpr (kMedia)
-    if (!branch.media.empty())
-      absorbed =
-          beer(dielectric(branch.media.innermostMaterial())->attenuation, hit.t * length(ray.d));
-  if (!hit) return scene_.render.background * absorbed;
-  if (hitSomething) *hitSomething = true;
-
-  const ShadingPoint sp = scene_.shadingPoint(ray, hit);
-  const Material& material = scene_.materials[sp.materialId].material;
-  if constexpr (!kAovs) aov = nullptr;
-  if (aov) recordAov(ray, hit, sp, material, *aov);
-  Rgb L;
-  if (const auto* phong = std::get_if<PhongMaterial>(&material)) {
-    L = shadePhong(*phong, sp, normalize(-ray.d), ray.time, branch, counters,
-                   aov ? aov->perLight : nullptr);
-    if (aov) aov->direct = L;
-    L += reflectRay(phong->km, phong->gloss, sp, ray, branch, counters);
-  } else if (const auto* mirror = std::get_if<MirrorMaterial>(&material)) {
-    L = reflectRay(mirror->km, mirror->gloss, sp, ray, branch, counters);
-  } else if constexpr (kMedia) {
-    L = shadeDielectric(hit, std::get<DielectricMaterial>(material), sp, ray, branch, counters);
-  }
-  return L * absorbed;
 }
 
 template <unsigned C>
@@ -219,13 +247,14 @@ SamplePattern WhittedKernel<C>::lightPattern(const PhongPoint& pt, size_t li) co
 }
 
 template <unsigned C>
-void WhittedKernel<C>::drawLightPoints(const SampleKey* keys, int count, CameraHitScratch& scratch,
-                                       const Vec2f** points) const {
+void WhittedKernel<C>::drawLightPoints(const SampleKey* keys, int count, Scratch& scratch) const {
+  const Vec2f** points = scratch.lightPointsOf;
+  std::fill_n(points, kMaxPrecomputedLights, nullptr);
   int used = 0;
   for (size_t li = 0; li < scene_.lights.size() && li < kMaxPrecomputedLights; ++li) {
     const Light& light = scene_.lights[li];
     const int n = sampleCount(light);
-    if (isDelta(light) || used + count * n > CameraHitScratch::kMaxLightPoints) continue;
+    if (isDelta(light) || used + count * n > Scratch::kMaxLightPoints) continue;
     points[li] = scratch.lightPoints + used;
     // Per pixel: its run of samples key.index + i, sub-samples j, is one run of flat indices
     // (key.index + i)·n + j of its set.
@@ -323,12 +352,7 @@ void WhittedKernel<C>::addLight(const Queue& queue, size_t li, int& next, int en
 }
 
 template <unsigned C>
-Rgb WhittedKernel<C>::shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo,
-                                 float time, const Branch& branch, RayCounters& counters,
-                                 Rgb* perLight) const {
-  PhongPoint pt;
-  pt.sp = sp;
-  initPhongPoint(pt, m, wo, time, branch);
+Rgb WhittedKernel<C>::shadePhongAlone(PhongPoint& pt, RayCounters& counters, Rgb* perLight) const {
   Rgb L = ambient(pt);
   ShadowQueue<8> queue;
   for (size_t li = 0; li < scene_.lights.size(); ++li) {
@@ -381,34 +405,33 @@ Rgb WhittedKernel<C>::shadowTransmission(Ray shadow, bool atInfinity, RayCounter
 }
 
 template <unsigned C>
-Rgb WhittedKernel<C>::reflectRay(const Rgb& km, float gloss, const ShadingPoint& sp, const Ray& ray,
-                                 const Branch& branch, RayCounters& counters) const {
+void WhittedKernel<C>::spawnReflection(const Rgb& km, float gloss, const ShadingPoint& sp,
+                                       const Ray& ray, const Branch& branch, Generation& gen,
+                                       RayCounters& counters) const {
   // Seed 000 §4.8: no ray when k_m is black, past the depth limit, or when the branch's
   // throughput is negligible.
   const Branch next = branch.next(km, branch.media);
   if (km.isBlack() || next.depth > scene_.render.maxDepth ||
       next.throughput.maxChannel() < minThroughput_)
-    return {};
+    return;
   const Vec3f d = normalize(ray.d);
   const Vec3f n = faceForward(sp.ns, -d);
   Vec3f r = reflect(d, n);
   if (kGloss && gloss > 0) {
     // Glossy reflection (seed 000 §13.4.4): a perturbed ray below the surface returns black.
     r = perturb(r, gloss, branch.key->get2D(dimension(Dim::Gloss, branch.depth)));
-    if (dot(r, n) <= 0) return {};
+    if (dot(r, n) <= 0) return;
   }
   ++counters.reflection;
-  return km * Li(spawnRay(sp, r, ray.time), next, counters);
+  gen.add(spawnRay(sp, r, ray.time), next, km);
 }
 
 template <unsigned C>
-Rgb WhittedKernel<C>::shadeDielectric(const Hit& hit, const DielectricMaterial& m,
-                                      const ShadingPoint& sp, const Ray& ray, const Branch& branch,
-                                      RayCounters& counters) const {
-  if constexpr (!kMedia) {
-    return {};  // never called: without the capability there are no dielectrics
-  } else {
-    if (branch.depth + 1 > scene_.render.maxDepth) return {};
+void WhittedKernel<C>::spawnDielectric(const Hit& hit, const DielectricMaterial& m,
+                                       const ShadingPoint& sp, const Ray& ray, const Branch& branch,
+                                       Generation& gen, RayCounters& counters) const {
+  if constexpr (kMedia) {  // without the capability there are no dielectrics
+    if (branch.depth + 1 > scene_.render.maxDepth) return;
     const Vec3f d = normalize(ray.d);
     // Entering or leaving from the geometric normal and the ray, never the shading normal; the
     // interior list says which medium lies on the other side.
@@ -422,11 +445,10 @@ Rgb WhittedKernel<C>::shadeDielectric(const Hit& hit, const DielectricMaterial& 
     const float cosI = -dot(d, n);
     const float R = fresnel(m, cosI, etaI, etaT);
 
-    Rgb L;
     const Branch reflected = branch.next(Rgb{R, R, R}, branch.media);
     if (reflected.throughput.maxChannel() >= minThroughput_) {
       ++counters.reflection;
-      L += R * Li(spawnRay(sp, reflect(d, n), ray.time), reflected, counters);
+      gen.add(spawnRay(sp, reflect(d, n), ray.time), reflected, Rgb{R, R, R});
     }
     Vec3f t;
     const Branch refracted = branch.next(Rgb{1 - R, 1 - R, 1 - R}, across);
@@ -436,12 +458,11 @@ Rgb WhittedKernel<C>::shadeDielectric(const Hit& hit, const DielectricMaterial& 
         // Blurred translucency (seed 002 §9.3): the same square perturbation around t; a ray
         // that ends up on the incoming side returns black.
         t = perturb(t, m.blur, branch.key->get2D(dimension(Dim::Gloss, branch.depth, 1)));
-        if (dot(t, n) >= 0) return L;
+        if (dot(t, n) >= 0) return;
       }
       ++counters.refraction;
-      L += (1 - R) * Li(spawnRay(sp, t, ray.time), refracted, counters);
+      gen.add(spawnRay(sp, t, ray.time), refracted, Rgb{1 - R, 1 - R, 1 - R});
     }
-    return L;
   }
 }
 

@@ -2,8 +2,11 @@
 // Recursive ray tracing of seed 002 §9.1 Trace(r, d): local Phong / Blinn-Phong shading with
 // ambient light and shadows (optionally transparent), ideal mirror reflection, and dielectrics
 // with Fresnel, total internal reflection, Beer's law and nesting. Materials are dispatched
-// here and nowhere else.
+// here and nowhere else. The recursion runs breadth first, a generation of rays at a time
+// (shadeChunk), so that rays of one depth are traced together and their shading overlaps.
+#include <memory>
 #include <type_traits>
+#include <vector>
 
 #include "accel/accelerator.h"
 #include "core/rgb.h"
@@ -66,32 +69,33 @@ class WhittedKernel {
     for (const Light& light : scene.lights) shadowRaysPerPoint_ += sampleCount(light);
   }
 
-  // With `aov` (only where Caps has cap::kAovs), also records what the camera ray hit (its
-  // viewAxis must be set: the camera's unit view direction, for depth).
-  Radiance trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
-                 AovSample* aov = nullptr) const;
-  // The same for a camera ray whose closest hit is already known (traced with others as a
-  // coherent stream, Accelerator::intersectCoherent).
-  Radiance trace(const Ray& cameraRay, const Hit& cameraHit, const SampleKey& key,
-                 RayCounters& counters, AovSample* aov = nullptr) const;
-  // Where traceCameraHits keeps its pending hits, their shadow rays and light points (about
-  // 76 kB): one per thread or tile, reused for every chunk.
-  struct CameraHitScratch;
-  // The same as trace() for `count` camera samples at once (runs of consecutive samples of one
-  // or several pixels, as renderTile makes them): out[i] is what trace() gives for sample i,
-  // bit for bit, but in stages over all the samples (shading points and light samples of
-  // every Phong hit, then all their shadow rays, then each sample finished), so that the
-  // samples' independent chains of work run side by side instead of one after another. aovs,
-  // when given, holds a record pointer (or null) per sample.
+  // Where traceCameraHits keeps a chunk's pending shading points, their shadow rays, the
+  // area lights' points, and the rays each generation spawns: one per thread or tile, reused
+  // for every chunk.
+  struct Scratch;
+
+  // Radiance along `count` camera rays whose closest hits are known (traced together as a
+  // coherent stream, Accelerator::intersectCoherent), samples keys[i]: runs of consecutive
+  // samples of one or several pixels, as renderTile makes them. aovs, when given (only where
+  // Caps has cap::kAovs), holds a record pointer (or null) per sample, whose viewAxis must be
+  // set (the camera's unit view direction, for depth); the record receives what the camera
+  // ray hit. The work runs generation by generation (see shadeChunk): out[i] does not depend
+  // on which other samples share the call, bit for bit.
   void traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys, int count,
                        Radiance* out, AovSample* const* aovs, RayCounters& counters,
-                       CameraHitScratch& scratch) const;
+                       Scratch& scratch) const;
+  // One sample on its own (tests and tools): traceCameraHits for one ray.
+  Radiance trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
+                 AovSample* aov = nullptr) const;
+  Radiance trace(const Ray& cameraRay, const Hit& cameraHit, const SampleKey& key,
+                 RayCounters& counters, AovSample* aov = nullptr) const;
 
  private:
   static constexpr bool kMedia = (Caps & cap::kDielectrics) != 0;
   static constexpr bool kAreaLights = (Caps & cap::kAreaLights) != 0;
   static constexpr bool kGloss = (Caps & cap::kGloss) != 0;
   static constexpr bool kAovs = (Caps & cap::kAovs) != 0;
+  static constexpr int kChunk = 64;  // rays of one generation shaded together
 
   // Without dielectrics a ray is always in the outside world: no interior list to carry.
   struct NoMedia {
@@ -99,7 +103,7 @@ class WhittedKernel {
   };
   using Media = std::conditional_t<kMedia, MediumStack, NoMedia>;
 
-  struct Branch {  // what travels with a ray down the recursion
+  struct Branch {  // what travels with a ray down the tree of reflections and refractions
     int depth = 0;
     Rgb throughput{1, 1, 1};
     [[no_unique_address]] Media media;
@@ -110,12 +114,45 @@ class WhittedKernel {
     }
   };
 
-  Rgb Li(const Ray& ray, const Branch& branch, RayCounters& counters) const {
-    return shade(ray, accel_.intersect(ray), branch, counters);
-  }
-  // Radiance along `ray` given its closest hit.
-  Rgb shade(const Ray& ray, const Hit& hit, const Branch& branch, RayCounters& counters,
-            bool* hitSomething = nullptr, AovSample* aov = nullptr) const;
+  // The rays that one chunk of a generation spawns, and what the chunk keeps about its own
+  // rays while they are traced. A ray's radiance is (local + Σ weight · child radiance) ·
+  // absorbed, its children in the order spawned (seed 002 §9.1: reflection, then refraction).
+  struct Generation {
+    static constexpr int kCapacity = 2 * kChunk;  // a dielectric spawns two
+    // Per ray of the chunk: the light it returns before its children's (ambient and direct
+    // light), Beer's attenuation of the segment it travelled, and one past its last child.
+    Rgb local[kChunk];
+    Rgb absorbed[kChunk];
+    int childEnd[kChunk];
+    // The children, written before they are read.
+    UninitializedArray<Ray, kCapacity> rays;
+    UninitializedArray<Hit, kCapacity> hits;
+    UninitializedArray<Branch, kCapacity> branches;
+    UninitializedArray<Rgb, kCapacity> weight;  // what the parent multiplies its radiance by
+    UninitializedArray<Rgb, kCapacity> radiance;
+    int children = 0;
+
+    void add(const Ray& ray, const Branch& branch, const Rgb& w) {
+      rays[children] = ray;
+      branches[children] = branch;
+      weight[children] = w;
+      ++children;
+    }
+  };
+
+  // Radiance along `n` (at most kChunk) rays of one depth, given their closest hits, into
+  // radiance[i]. In stages over all of them, so that their independent chains of work run
+  // side by side: each hit's shading point, its direct light's samples queued and the rays it
+  // spawns; the queued shadow rays traced together (traceShadows); then the spawned rays traced
+  // as one stream and shaded as the next generation, recursively; then each ray's sum.
+  // aovs: at the camera only. cameraKeys: at the camera only, the samples' keys, from which an
+  // area light's points for the whole chunk are drawn at once.
+  void shadeChunk(const Ray* rays, const Hit* hits, const Branch* branches, int n, Rgb* radiance,
+                  AovSample* const* aovs, const SampleKey* cameraKeys, RayCounters& counters,
+                  Scratch& scratch) const;
+  // The generation that the chunks of depth `depth` spawn into (made on first use).
+  Generation& generation(Scratch& scratch, int depth) const;
+
   // Direct lighting of Phong surfaces (seed 000 eq. 4.4) runs in three steps, so that the
   // shadow rays of many shading points can be traced together: queueLight draws a light's
   // samples and queues one shadow ray per sample that could contribute, with what it adds if
@@ -151,14 +188,17 @@ class WhittedKernel {
   template <class Queue>
   void queueLight(const PhongPoint& pt, size_t li, const SamplePattern& pattern, int first,
                   int size, int count, Queue& queue, const Vec2f* points = nullptr) const;
-  // For traceCameraHits: the points of the area lights among the first kMaxPrecomputedLights
+  // For a camera chunk: the points of the area lights among the first kMaxPrecomputedLights
   // for the `count` camera samples of `keys` (runs of consecutive samples of a pixel), into
-  // the scratch; points[li] stays null for a delta light or one that no longer fits.
+  // the scratch; lightPointsOf[li] stays null for a delta light or one that no longer fits.
   static constexpr size_t kMaxPrecomputedLights = 8;
-  void drawLightPoints(const SampleKey* keys, int count, CameraHitScratch& scratch,
-                       const Vec2f** points) const;
+  void drawLightPoints(const SampleKey* keys, int count, Scratch& scratch) const;
   template <class Queue>
   void traceShadows(Queue& queue, RayCounters& counters) const;
+  // Traces the queued shadow rays and finishes the direct light of the shading points
+  // pending in the scratch (sums added to `local`); empties the queue.
+  void finishQueuedPoints(Scratch& scratch, Rgb* local, AovSample* const* aovs,
+                          RayCounters& counters) const;
   // Adds light `li`'s queued samples from queue position `next` on (before `end`, where the
   // shading point's queries end) to `sum`, in queue order.
   template <class Queue>
@@ -177,27 +217,26 @@ class WhittedKernel {
            std::holds_alternative<DirectionalLight>(light);
   }
   SamplePattern lightPattern(const PhongPoint& pt, size_t li) const;
-  // One shading point, its shadow rays traced on their own. `perLight`, when given, receives
-  // each light's contribution (AOVs of the camera hit).
-  Rgb shadePhong(const PhongMaterial& m, const ShadingPoint& sp, const Vec3f& wo, float time,
-                 const Branch& branch, RayCounters& counters, Rgb* perLight = nullptr) const;
+  // Ambient and direct light at a shading point whose shadow rays outnumber the shared queue:
+  // its lights are traced on their own, a few samples at a time. `perLight`, when given,
+  // receives each light's contribution (AOVs of the camera hit).
+  Rgb shadePhongAlone(PhongPoint& pt, RayCounters& counters, Rgb* perLight) const;
   void recordAov(const Ray& ray, const Hit& hit, const ShadingPoint& sp, const Material& material,
                  AovSample& aov) const;
   // Fraction of a light's intensity that reaches sp along the shadow ray: 0 or 1, or with
   // transparent shadows the product of the dielectric transmissions met on the way.
   // `shadow` is the first segment, as spawned from the shading point.
   Rgb shadowTransmission(Ray shadow, bool atInfinity, RayCounters& counters) const;
-  Rgb reflectRay(const Rgb& km, float gloss, const ShadingPoint& sp, const Ray& ray,
-                 const Branch& branch, RayCounters& counters) const;
-  Rgb shadeDielectric(const Hit& hit, const DielectricMaterial& m, const ShadingPoint& sp,
-                      const Ray& ray, const Branch& branch, RayCounters& counters) const;
+  // Spawn into `gen` the rays a surface sends on, where they are traced at all: the mirror
+  // ray of reflectance km (seed 000 §4.8, glossy §13.4.4), or a dielectric's reflected and
+  // refracted rays (Fresnel, total internal reflection, nesting).
+  void spawnReflection(const Rgb& km, float gloss, const ShadingPoint& sp, const Ray& ray,
+                       const Branch& branch, Generation& gen, RayCounters& counters) const;
+  void spawnDielectric(const Hit& hit, const DielectricMaterial& m, const ShadingPoint& sp,
+                       const Ray& ray, const Branch& branch, Generation& gen,
+                       RayCounters& counters) const;
   float iorOutside(const MediumStack& media) const;
   const DielectricMaterial* dielectric(uint32_t materialId) const;
-
-  // trace() for a camera hit, written into `out` (a Radiance returned and copied stalled on
-  // store forwarding).
-  void traceInto(const Ray& cameraRay, const Hit& cameraHit, const Branch& root,
-                 RayCounters& counters, AovSample* aov, Radiance& out) const;
 
   const Scene& scene_;
   const Accelerator& accel_;
@@ -205,19 +244,24 @@ class WhittedKernel {
   int shadowRaysPerPoint_ = 0;  // at most, over all lights: what a Phong point may queue
 
  public:
-  struct CameraHitScratch {
-    static constexpr int kMaxSamples = 64;  // hits pending at once
+  struct Scratch {
+    // The Phong points of a chunk whose direct light is queued.
     struct Pending {
       PhongPoint pt;
-      Branch root;
-      Rgb L;             // the ambient term, where the light sums start
+      int ray = 0;       // its ray's index in the chunk
       int queryEnd = 0;  // one past its last queued shadow ray
-      bool queued = false;
     };
-    Pending pending[kMaxSamples];
+    Pending pending[kChunk];
+    int pendingCount = 0;
     ShadowQueue<512> queue;
     static constexpr int kMaxLightPoints = 2048;  // 64 samples × 32 points, for example
     Vec2f lightPoints[kMaxLightPoints];
+    const Vec2f* lightPointsOf[kMaxPrecomputedLights] = {};  // per light; null: per point
+    bool lightPointsDrawn = false;
+    Branch roots[kChunk];
+    Rgb cameraRadiance[kChunk];
+    // generations[d]: the rays of depth d + 1, spawned by a chunk of depth d.
+    std::vector<std::unique_ptr<Generation>> generations;
   };
 };
 

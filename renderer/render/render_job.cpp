@@ -80,7 +80,7 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
   std::conditional_t<kAovs, AovSample[kCameraChunk], NoAovSample> records;
   AovSample* recordOf[kCameraChunk];
   CameraSampling::Points cameraPoints;
-  const auto scratch = std::make_unique<typename WhittedKernel<Caps>::CameraHitScratch>();
+  const auto scratch = std::make_unique<typename WhittedKernel<Caps>::Scratch>();
   const int pixelsPerChunk = std::max(1, kCameraChunk / rs.spp);
   const int samplesPerChunk = std::min(kCameraChunk, rs.spp);
   const double inv = 1.0 / rs.spp;

@@ -45,7 +45,7 @@ int compareBatchedWithOneByOne(const Scene& scene, const std::string& what) {
   std::vector<Radiance> batched(n);
   std::vector<AovSample> records(n);
   std::vector<AovSample*> recordOf(n);
-  const auto scratch = std::make_unique<WhittedIntegrator::CameraHitScratch>();
+  const auto scratch = std::make_unique<WhittedIntegrator::Scratch>();
   int compared = 0, differing = 0;
   for (int y = 0; y < kHeight; ++y)
     for (int x0 = 0; x0 < kWidth; x0 += pixelsPerCall) {
