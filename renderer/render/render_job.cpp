@@ -11,6 +11,9 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
 
 #include "camera/camera.h"
 #include "core/error.h"
@@ -57,7 +60,8 @@ struct FrameContext {
 // One tile with the integrator compiled for `Caps`: the lens and time dimensions are drawn and
 // AOVs recorded only where the capability set has them (leave out what is not needed).
 template <unsigned Caps>
-void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& counters) {
+void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& counters,
+                typename WhittedKernel<Caps>::Scratch& scratch) {
   constexpr bool kCameraSamples = (Caps & cap::kCameraSamples) != 0;
   constexpr bool kAovs = (Caps & cap::kAovs) != 0;
   const RenderSettings& rs = f.scene.render;
@@ -80,7 +84,6 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
   std::conditional_t<kAovs, AovSample[kCameraChunk], NoAovSample> records;
   AovSample* recordOf[kCameraChunk];
   CameraSampling::Points cameraPoints;
-  const auto scratch = std::make_unique<typename WhittedKernel<Caps>::Scratch>();
   const int pixelsPerChunk = std::max(1, kCameraChunk / rs.spp);
   const int samplesPerChunk = std::min(kCameraChunk, rs.spp);
   const double inv = 1.0 / rs.spp;
@@ -105,7 +108,7 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
             recordOf[i] = aovSamples ? &records[i] : nullptr;
           }
         integrator.traceCameraHits(rays, hits, keys, count, radiance, kAovs ? recordOf : nullptr,
-                                   counters, *scratch);
+                                   counters, scratch);
         for (int p = 0; p < pixels; ++p) {
           const int x = x0 + p;
           if (first == 0) {
@@ -139,11 +142,39 @@ void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& cou
     }
 }
 
-using TileRenderer = void (*)(const FrameContext&, const PixelWindow&, RayCounters&);
+// The tiles of one render, and what their loop shares besides the frame.
+struct TileWork {
+  const std::vector<PixelWindow>& tiles;
+  std::vector<RayCounters>& counters;  // per tile
+  Progress& progress;
+  std::atomic<bool>& skipped;  // set when a cancel left tiles out
+  int threads;
+};
+
+// Every tile with the integrator compiled for `Caps`. A thread keeps one scratch for all the
+// tiles it renders: made per tile, its allocation, clearing and page faults cost 1 % of a
+// render's time at 32-pixel tiles and 12 % at 8 (default scene, one thread).
+template <unsigned Caps>
+void renderTiles(const FrameContext& f, TileWork& work) {
+  using Scratch = typename WhittedKernel<Caps>::Scratch;
+  tbb::enumerable_thread_specific<std::unique_ptr<Scratch>> scratches;
+  runTiles(work.tiles, work.threads, [&](size_t i) {
+    if (f.opt.cancel && f.opt.cancel->load(std::memory_order_relaxed)) {
+      work.skipped = true;
+      return;
+    }
+    std::unique_ptr<Scratch>& scratch = scratches.local();
+    if (!scratch) scratch = std::make_unique<Scratch>();
+    renderTile<Caps>(f, work.tiles[i], work.counters[i], *scratch);
+    work.progress.advance(work.tiles[i].area(), work.counters[i].total());
+  });
+}
+
+using FrameRenderer = void (*)(const FrameContext&, TileWork&);
 
 template <unsigned... Caps>
-TileRenderer tileRenderer(unsigned caps, std::integer_sequence<unsigned, Caps...>) {
-  constexpr TileRenderer table[] = {&renderTile<Caps>...};
+FrameRenderer frameRenderer(unsigned caps, std::integer_sequence<unsigned, Caps...>) {
+  constexpr FrameRenderer table[] = {&renderTiles<Caps>...};
   return table[caps];
 }
 
@@ -198,8 +229,8 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   // AOV work happens only when AOVs are asked for (leave out what is not needed).
   const AovLayout aovLayout = AovLayout::create(opt.aovs, scene.lights.size(), film);
   const unsigned caps = opt.specialize ? kernelCaps(scene.features, opt.aovs.any()) : cap::kAll;
-  const TileRenderer renderTileWith =
-      tileRenderer(caps, std::make_integer_sequence<unsigned, cap::kAll + 1>{});
+  const FrameRenderer renderTilesWith =
+      frameRenderer(caps, std::make_integer_sequence<unsigned, cap::kAll + 1>{});
 
   const int threads = opt.threads > 0 ? opt.threads : defaultThreadCount();
   const int tileSize = effectiveTileSize(window, opt.tileSize, threads);
@@ -212,14 +243,8 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   const FrameContext frame{scene,          accel,   opt,       film,           camera,
                            cameraSampling, sampler, aovLayout, loggedNonfinite};
 
-  runTiles(tiles, threads, [&](size_t tileIndex) {
-    if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) {
-      skipped = true;
-      return;
-    }
-    renderTileWith(frame, tiles[tileIndex], tileCounters[tileIndex]);
-    progress.advance(tiles[tileIndex].area(), tileCounters[tileIndex].total());
-  });
+  TileWork work{tiles, tileCounters, progress, skipped, threads};
+  renderTilesWith(frame, work);
   progress.finish();
 
   RenderResult result{std::move(film), {}, skipped.load(), tileSize};
