@@ -410,9 +410,9 @@ void WhittedKernel<C>::spawnReflection(const Rgb& km, float gloss, const Shading
                                        RayCounters& counters) const {
   // Seed 000 §4.8: no ray when k_m is black, past the depth limit, or when the branch's
   // throughput is negligible.
-  const Branch next = branch.next(km, branch.media);
-  if (km.isBlack() || next.depth > scene_.render.maxDepth ||
-      next.throughput.maxChannel() < minThroughput_)
+  const Rgb throughput = branch.throughput * km;
+  if (km.isBlack() || branch.depth + 1 > scene_.render.maxDepth ||
+      throughput.maxChannel() < minThroughput_)
     return;
   const Vec3f d = normalize(ray.d);
   const Vec3f n = faceForward(sp.ns, -d);
@@ -423,7 +423,7 @@ void WhittedKernel<C>::spawnReflection(const Rgb& km, float gloss, const Shading
     if (dot(r, n) <= 0) return;
   }
   ++counters.reflection;
-  gen.add(spawnRay(sp, r, ray.time), next, km);
+  spawnRayInto(gen.add(branch, km, throughput, branch.media), sp, false, r, ray.time);
 }
 
 template <unsigned C>
@@ -445,15 +445,15 @@ void WhittedKernel<C>::spawnDielectric(const Hit& hit, const DielectricMaterial&
     const float cosI = -dot(d, n);
     const float R = fresnel(m, cosI, etaI, etaT);
 
-    const Branch reflected = branch.next(Rgb{R, R, R}, branch.media);
-    if (reflected.throughput.maxChannel() >= minThroughput_) {
+    const Rgb reflected = branch.throughput * Rgb{R, R, R};
+    if (reflected.maxChannel() >= minThroughput_) {
       ++counters.reflection;
-      gen.add(spawnRay(sp, reflect(d, n), ray.time), reflected, Rgb{R, R, R});
+      spawnRayInto(gen.add(branch, Rgb{R, R, R}, reflected, branch.media), sp, false, reflect(d, n),
+                   ray.time);
     }
     Vec3f t;
-    const Branch refracted = branch.next(Rgb{1 - R, 1 - R, 1 - R}, across);
-    if (R < 1 && refracted.throughput.maxChannel() >= minThroughput_ &&
-        refract(d, n, etaI / etaT, t)) {
+    const Rgb refracted = branch.throughput * Rgb{1 - R, 1 - R, 1 - R};
+    if (R < 1 && refracted.maxChannel() >= minThroughput_ && refract(d, n, etaI / etaT, t)) {
       if (kGloss && m.blur > 0) {
         // Blurred translucency (seed 002 §9.3): the same square perturbation around t; a ray
         // that ends up on the incoming side returns black.
@@ -461,7 +461,8 @@ void WhittedKernel<C>::spawnDielectric(const Hit& hit, const DielectricMaterial&
         if (dot(t, n) >= 0) return;
       }
       ++counters.refraction;
-      gen.add(spawnRay(sp, t, ray.time), refracted, Rgb{1 - R, 1 - R, 1 - R});
+      spawnRayInto(gen.add(branch, Rgb{1 - R, 1 - R, 1 - R}, refracted, across), sp, false, t,
+                   ray.time);
     }
   }
 }
