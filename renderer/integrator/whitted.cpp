@@ -95,9 +95,9 @@ void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
   auto& queue = scratch.queue;
   queue.size = 0;
   scratch.pendingCount = 0;
-  // Each hit's shading point; a Phong hit's light samples queued (the queue traced whenever
-  // the next point's might not fit) or, past the queue's size, traced on their own; the rays
-  // it spawns.
+  // Each hit's shading point; a Phong hit left pending for its direct light (the pending
+  // points lit whenever the next one's shadow rays might not fit the queue) or, past the
+  // queue's size, lit on its own; the rays it spawns.
   for (int i = 0; i < n; ++i) {
     const Ray& ray = rays[i];
     const Hit& hit = hits[i];
@@ -118,8 +118,8 @@ void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
     const Material& material = scene_.materials[scene_.geometry(hit).materialId].material;
     if (const auto* phong = std::get_if<PhongMaterial>(&material)) {
       const bool alone = shadowRaysPerPoint_ > queue.kCapacity;
-      if (!alone && queue.size + shadowRaysPerPoint_ > queue.kCapacity)
-        finishQueuedPoints(scratch, gen.local, aovs, counters);
+      if (!alone && (scratch.pendingCount + 1) * shadowRaysPerPoint_ > queue.kCapacity)
+        lightPendingPoints(scratch, gen.local, aovs, cameraKeys != nullptr, counters);
       // The next pending slot, also for a point traced alone (finished before the next hit).
       auto& p = scratch.pending[scratch.pendingCount];
       scene_.shadingPoint(ray, hit, p.pt.sp);
@@ -134,17 +134,7 @@ void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
           drawLightPoints(cameraKeys, n, scratch);
           scratch.lightPointsDrawn = true;
         }
-        for (size_t li = 0; li < scene_.lights.size(); ++li) {
-          const int samples = sampleCount(scene_.lights[li]);
-          const Vec2f* points =
-              cameraKeys && li < kMaxPrecomputedLights && scratch.lightPointsOf[li]
-                  ? scratch.lightPointsOf[li] + i * samples
-                  : nullptr;
-          queueLight(p.pt, li, points ? SamplePattern{} : lightPattern(p.pt, li), 0, samples,
-                     samples, queue, points);
-        }
         p.ray = i;
-        p.queryEnd = queue.size;
         ++scratch.pendingCount;
       }
       spawnReflection(phong->km, phong->gloss, p.pt.sp, ray, branch, gen, counters);
@@ -159,7 +149,7 @@ void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
     }
     gen.childEnd[i] = gen.children;
   }
-  finishQueuedPoints(scratch, gen.local, aovs, counters);
+  lightPendingPoints(scratch, gen.local, aovs, cameraKeys != nullptr, counters);
   // The next generation: the spawned rays traced as one stream, shaded a chunk at a time.
   if (gen.children > 0) {
     accel_.intersectCoherent(gen.rays.data(), gen.hits.data(), static_cast<size_t>(gen.children));
@@ -178,18 +168,40 @@ void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
 }
 
 template <unsigned C>
-void WhittedKernel<C>::finishQueuedPoints(Scratch& scratch, Rgb* local, AovSample* const* aovs,
-                                          RayCounters& counters) const {
+void WhittedKernel<C>::lightPendingPoints(Scratch& scratch, Rgb* local, AovSample* const* aovs,
+                                          bool camera, RayCounters& counters) const {
+  const int pending = scratch.pendingCount;
+  if (pending == 0) return;
   auto& queue = scratch.queue;
+  const size_t lights = scene_.lights.size();
+  // Light by light, every point's samples: the queue comes out sorted by light, and each
+  // light's rays, which start close together and converge on it, leave as one coherent run.
+  // rayEnd[li · kChunk + k]: one past point k's last ray towards light li.
+  std::vector<uint16_t>& rayEnd = scratch.rayEnd;
+  if (rayEnd.size() < lights * kChunk) rayEnd.resize(lights * kChunk);
+  queue.size = 0;
+  for (size_t li = 0; li < lights; ++li) {
+    const int samples = sampleCount(scene_.lights[li]);
+    const Vec2f* cameraPoints =
+        camera && li < kMaxPrecomputedLights ? scratch.lightPointsOf[li] : nullptr;
+    for (int k = 0; k < pending; ++k) {
+      const auto& p = scratch.pending[k];
+      const Vec2f* points = cameraPoints ? cameraPoints + p.ray * samples : nullptr;
+      queueLight(p.pt, li, points ? SamplePattern{} : lightPattern(p.pt, li), 0, samples, samples,
+                 queue, points);
+      rayEnd[li * kChunk + static_cast<size_t>(k)] = static_cast<uint16_t>(queue.size);
+    }
+  }
   traceShadows(queue, counters);
-  int next = 0;
-  for (int k = 0; k < scratch.pendingCount; ++k) {
+  for (int k = 0; k < pending; ++k) {
     const auto& p = scratch.pending[k];
     AovSample* aov = kAovs && aovs ? aovs[p.ray] : nullptr;
     Rgb L = local[p.ray];
-    for (size_t li = 0; li < scene_.lights.size(); ++li) {
+    for (size_t li = 0; li < lights; ++li) {
+      const size_t slot = li * kChunk + static_cast<size_t>(k);
+      const int begin = k > 0 ? rayEnd[slot - 1] : li > 0 ? rayEnd[slot - kChunk + pending - 1] : 0;
       Rgb sum;
-      addLight(queue, li, next, p.queryEnd, sum);
+      addVisible(queue, begin, rayEnd[slot], sum);
       addContribution(sum, li, L, aov ? aov->perLight : nullptr);
     }
     if (aov) aov->direct = L;
@@ -304,7 +316,6 @@ void WhittedKernel<C>::queueLight(const PhongPoint& pt, size_t li, const SampleP
       spawnRayInto(queue.rays[q], pt.sp, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target,
                    pt.time);
       queue.term[q] = f * ls.intensity;
-      queue.light[q] = static_cast<uint32_t>(li);
       queue.atInfinity[q] = ls.atInfinity;
     }
   }
@@ -326,29 +337,18 @@ void WhittedKernel<C>::traceShadows(Queue& queue, RayCounters& counters) const {
       queue.visible[i] = accel_.occluded(queue.rays[i]) ? Rgb{} : Rgb{1, 1, 1};
     return;
   }
-  // The rays towards one light start close together and converge (or run parallel), so they
-  // are traced together as a coherent stream, light by light: a stable counting sort by light
-  // (lights past the last bucket share it), the rays gathered in that order, their answers
-  // scattered back to the queue's slots.
-  constexpr size_t kBuckets = 32;
-  const auto bucket = [&](size_t i) { return std::min<size_t>(queue.light[i], kBuckets - 1); };
-  uint16_t start[kBuckets + 1] = {};
-  for (size_t i = 0; i < n; ++i) ++start[bucket(i) + 1];
-  for (size_t b = 0; b < kBuckets; ++b) start[b + 1] += start[b];
-  uint16_t order[Queue::kCapacity];
-  for (size_t i = 0; i < n; ++i) order[start[bucket(i)]++] = static_cast<uint16_t>(i);
-  UninitializedArray<Ray, Queue::kCapacity> sorted;
-  for (size_t k = 0; k < n; ++k) sorted[k] = queue.rays[order[k]];
+  // The queue is sorted by light (lightPendingPoints): each light's rays, which start close
+  // together and converge on it (or run parallel), are one coherent run of the stream.
   bool blocked[Queue::kCapacity];
-  accel_.occludedCoherent(sorted.data(), blocked, n);
-  for (size_t k = 0; k < n; ++k) queue.visible[order[k]] = blocked[k] ? Rgb{} : Rgb{1, 1, 1};
+  accel_.occludedCoherent(queue.rays.data(), blocked, n);
+  for (size_t i = 0; i < n; ++i) queue.visible[i] = blocked[i] ? Rgb{} : Rgb{1, 1, 1};
 }
 
 template <unsigned C>
 template <class Queue>
-void WhittedKernel<C>::addLight(const Queue& queue, size_t li, int& next, int end, Rgb& sum) const {
-  for (; next < end && queue.light[next] == li; ++next)
-    if (!queue.visible[next].isBlack()) sum += queue.term[next] * queue.visible[next];
+void WhittedKernel<C>::addVisible(const Queue& queue, int begin, int end, Rgb& sum) const {
+  for (int q = begin; q < end; ++q)
+    if (!queue.visible[q].isBlack()) sum += queue.term[q] * queue.visible[q];
 }
 
 template <unsigned C>
@@ -363,8 +363,7 @@ Rgb WhittedKernel<C>::shadePhongAlone(PhongPoint& pt, RayCounters& counters, Rgb
       queue.size = 0;
       queueLight(pt, li, pattern, first, std::min(queue.kCapacity, count - first), count, queue);
       traceShadows(queue, counters);
-      int next = 0;
-      addLight(queue, li, next, queue.size, sum);
+      addVisible(queue, 0, queue.size, sum);
     }
     addContribution(sum, li, L, perLight);
   }

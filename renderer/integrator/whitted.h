@@ -159,7 +159,7 @@ class WhittedKernel {
   // Direct lighting of Phong surfaces (seed 000 eq. 4.4) runs in three steps, so that the
   // shadow rays of many shading points can be traced together: queueLight draws a light's
   // samples and queues one shadow ray per sample that could contribute, with what it adds if
-  // unblocked; traceShadows finds what each ray lets through; addLight sums that per light.
+  // unblocked; traceShadows finds what each ray lets through; addVisible sums that per light.
   struct PhongPoint {
     const PhongMaterial* material = nullptr;
     ShadingPoint sp;
@@ -176,7 +176,6 @@ class WhittedKernel {
     UninitializedArray<Ray, Capacity> rays;
     UninitializedArray<Rgb, Capacity> term;     // f · intensity: what the sample adds unblocked
     UninitializedArray<Rgb, Capacity> visible;  // filled by traceShadows: the fraction arriving
-    uint32_t light[Capacity];
     bool atInfinity[Capacity];
     int size = 0;
   };
@@ -198,14 +197,14 @@ class WhittedKernel {
   void drawLightPoints(const SampleKey* keys, int count, Scratch& scratch) const;
   template <class Queue>
   void traceShadows(Queue& queue, RayCounters& counters) const;
-  // Traces the queued shadow rays and finishes the direct light of the shading points
-  // pending in the scratch (sums added to `local`); empties the queue.
-  void finishQueuedPoints(Scratch& scratch, Rgb* local, AovSample* const* aovs,
+  // The direct light of the shading points pending in the scratch, added to local[their ray]:
+  // every light's samples queued, light by light, the queue traced, the sums taken. `camera`:
+  // they are camera hits (their area lights' points may be drawn already). Empties both.
+  void lightPendingPoints(Scratch& scratch, Rgb* local, AovSample* const* aovs, bool camera,
                           RayCounters& counters) const;
-  // Adds light `li`'s queued samples from queue position `next` on (before `end`, where the
-  // shading point's queries end) to `sum`, in queue order.
+  // Adds what queued samples [begin, end) let through to `sum`, in queue order.
   template <class Queue>
-  void addLight(const Queue& queue, size_t li, int& next, int end, Rgb& sum) const;
+  void addVisible(const Queue& queue, int begin, int end, Rgb& sum) const;
   // Light li's share of a shading point, the mean over its samples (`sum` their total), added
   // to L, and kept in perLight[li] when given (per-light AOVs).
   void addContribution(const Rgb& sum, size_t li, Rgb& L, Rgb* perLight) const {
@@ -248,15 +247,15 @@ class WhittedKernel {
 
  public:
   struct Scratch {
-    // The Phong points of a chunk whose direct light is queued.
+    // The Phong points of a chunk whose direct light is still to be found.
     struct Pending {
       PhongPoint pt;
-      int ray = 0;       // its ray's index in the chunk
-      int queryEnd = 0;  // one past its last queued shadow ray
+      int ray = 0;  // its ray's index in the chunk
     };
     Pending pending[kChunk];
     int pendingCount = 0;
     ShadowQueue<512> queue;
+    std::vector<uint16_t> rayEnd;                 // lightPendingPoints' ranges of the queue
     static constexpr int kMaxLightPoints = 2048;  // 64 samples × 32 points, for example
     Vec2f lightPoints[kMaxLightPoints];
     const Vec2f* lightPointsOf[kMaxPrecomputedLights] = {};  // per light; null: per point
