@@ -53,7 +53,7 @@ constexpr Vec3f cross(const Vec3f& a, const Vec3f& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 inline float length(const Vec3f& a) { return std::sqrt(dot(a, a)); }
-inline Vec3f normalize(const Vec3f& a) { return a / length(a); }
+[[gnu::always_inline]] inline Vec3f normalize(const Vec3f& a) { return a / length(a); }
 inline Vec3f abs(const Vec3f& a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
 inline float maxComponent(const Vec3f& a) { return std::max(a.x, std::max(a.y, a.z)); }
 inline Vec3f min(const Vec3f& a, const Vec3f& b) {

@@ -66,14 +66,32 @@ inline bool refract(const Vec3f& d, const Vec3f& n, float eta, Vec3f& t) {
 }
 
 // Beer's law I(s) = I(0)·exp(ln(a)·s) per channel; a = 1 transmits fully even for s = ∞, and
-// a = 0 blocks fully even for s = 0⁺, so 0·∞ never reaches exp.
-inline float beerChannel(float a, float s) {
+// a = 0 blocks fully even for s = 0⁺, so 0·∞ never reaches exp. lnA: ln(a), which a medium
+// can take once (BeerMedium) instead of per segment.
+inline float beerChannel(float a, float s, float lnA) {
   if (a >= 1 || s <= 0) return 1;
   if (a <= 0 || std::isinf(s)) return 0;
-  return std::exp(std::log(a) * s);
+  return std::exp(lnA * s);
+}
+inline float beerChannel(float a, float s) {
+  return a > 0 && a < 1 ? beerChannel(a, s, std::log(a)) : beerChannel(a, s, 0);
 }
 inline Rgb beer(const Rgb& a, float s) {
   return {beerChannel(a.r, s), beerChannel(a.g, s), beerChannel(a.b, s)};
 }
+
+// A medium's attenuation per unit distance with its logarithms taken once: transmittance(s)
+// is beer(a, s), bit for bit.
+struct BeerMedium {
+  BeerMedium() = default;
+  explicit BeerMedium(const Rgb& attenuation) : a(attenuation), lnA{ln(a.r), ln(a.g), ln(a.b)} {}
+  Rgb transmittance(float s) const {
+    return {beerChannel(a.r, s, lnA.r), beerChannel(a.g, s, lnA.g), beerChannel(a.b, s, lnA.b)};
+  }
+
+ private:
+  static float ln(float a) { return a > 0 && a < 1 ? std::log(a) : 0; }  // only used in (0, 1)
+  Rgb a{1, 1, 1}, lnA{0, 0, 0};
+};
 
 }  // namespace glint

@@ -106,7 +106,7 @@ void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
     if constexpr (kMedia)
       if (!branch.media.empty())
         gen.absorbed[i] =
-            beer(dielectric(branch.media.innermostMaterial())->attenuation, hit.t * length(ray.d));
+            media_[branch.media.innermostMaterial()].transmittance(hit.t * length(ray.d));
     Rgb& local = gen.local[i];
     if (!hit) {
       local = scene_.render.background;
@@ -381,7 +381,7 @@ Rgb WhittedKernel<C>::shadowTransmission(Ray shadow, bool atInfinity, RayCounter
   for (int i = 0; i < kMaxShadowInterfaces; ++i) {
     const Hit hit = accel_.intersect(shadow);
     const float travelled = (hit ? hit.t : shadow.tMax) * length(shadow.d);
-    if (!media.empty()) T *= beer(dielectric(media.innermostMaterial())->attenuation, travelled);
+    if (!media.empty()) T *= media_[media.innermostMaterial()].transmittance(travelled);
     if (!hit) return T;
     const ShadingPoint next = scene_.shadingPoint(shadow, hit);
     const DielectricMaterial* d = dielectric(next.materialId);

@@ -15,6 +15,7 @@
 #include "integrator/aov.h"
 #include "integrator/kernel_caps.h"
 #include "integrator/medium_stack.h"
+#include "integrator/optics.h"
 #include "integrator/ray_counters.h"
 #include "scene/scene.h"
 
@@ -67,6 +68,12 @@ class WhittedKernel {
                 float minThroughput = kDefaultMinThroughput)
       : scene_(scene), accel_(accel), minThroughput_(minThroughput) {
     for (const Light& light : scene.lights) shadowRaysPerPoint_ += sampleCount(light);
+    if constexpr (kMedia) {
+      for (const NamedMaterial& m : scene.materials) {
+        const auto* d = std::get_if<DielectricMaterial>(&m.material);
+        media_.push_back(d ? BeerMedium(d->attenuation) : BeerMedium());
+      }
+    }
   }
 
   // Where traceCameraHits keeps a chunk's pending shading points, their shadow rays, the
@@ -243,7 +250,8 @@ class WhittedKernel {
   const Scene& scene_;
   const Accelerator& accel_;
   float minThroughput_;
-  int shadowRaysPerPoint_ = 0;  // at most, over all lights: what a Phong point may queue
+  int shadowRaysPerPoint_ = 0;     // at most, over all lights: what a Phong point may queue
+  std::vector<BeerMedium> media_;  // per material: what a dielectric's inside absorbs
 
  public:
   struct Scratch {

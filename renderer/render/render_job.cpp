@@ -60,12 +60,12 @@ struct FrameContext {
 // One tile with the integrator compiled for `Caps`: the lens and time dimensions are drawn and
 // AOVs recorded only where the capability set has them (leave out what is not needed).
 template <unsigned Caps>
-void renderTile(const FrameContext& f, const PixelWindow& tile, RayCounters& counters,
+void renderTile(const FrameContext& f, const WhittedKernel<Caps>& integrator,
+                const PixelWindow& tile, RayCounters& counters,
                 typename WhittedKernel<Caps>::Scratch& scratch) {
   constexpr bool kCameraSamples = (Caps & cap::kCameraSamples) != 0;
   constexpr bool kAovs = (Caps & cap::kAovs) != 0;
   const RenderSettings& rs = f.scene.render;
-  const WhittedKernel<Caps> integrator(f.scene, f.accel);
   const bool aovs = kAovs && f.opt.aovs.any();
   const bool aovSamples = kAovs && f.opt.aovs.needsSamples();
   const Vec3f viewAxis = -f.camera.w();
@@ -157,6 +157,7 @@ struct TileWork {
 template <unsigned Caps>
 void renderTiles(const FrameContext& f, TileWork& work) {
   using Scratch = typename WhittedKernel<Caps>::Scratch;
+  const WhittedKernel<Caps> integrator(f.scene, f.accel);  // const: shared by the threads
   tbb::enumerable_thread_specific<std::unique_ptr<Scratch>> scratches;
   runTiles(work.tiles, work.threads, [&](size_t i) {
     if (f.opt.cancel && f.opt.cancel->load(std::memory_order_relaxed)) {
@@ -165,7 +166,7 @@ void renderTiles(const FrameContext& f, TileWork& work) {
     }
     std::unique_ptr<Scratch>& scratch = scratches.local();
     if (!scratch) scratch = std::make_unique<Scratch>();
-    renderTile<Caps>(f, work.tiles[i], work.counters[i], *scratch);
+    renderTile<Caps>(f, integrator, work.tiles[i], work.counters[i], *scratch);
     work.progress.advance(work.tiles[i].area(), work.counters[i].total());
   });
 }

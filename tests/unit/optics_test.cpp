@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
 #include <limits>
 
 namespace glint {
@@ -77,6 +78,27 @@ TEST(Optics, BeerNeverProducesNaN) {
   EXPECT_EQ(beerChannel(0.5f, kInfinity), 0.0f);
   EXPECT_EQ(beerChannel(0, 0.001f), 0.0f);  // ln 0 = −∞ avoided
   EXPECT_EQ(beerChannel(0, 0), 1.0f);       // no distance, no absorption
+}
+
+// The integrator takes a medium's logarithms once (BeerMedium); that must change no bit of what
+// beer() gives, at the edges (a of 0 or 1, no distance, infinite distance) and in between.
+TEST(Optics, BeerMediumGivesBeerBitForBit) {
+  const float as[] = {0, 1e-30f, 0.01f, 0.5f, 0.92f, 0.999999f, 1};
+  const float ss[] = {0, 1e-6f, 0.37f, 1, 12.5f, 1e4f, kInfinity};
+  int compared = 0;
+  for (const float r : as)
+    for (const float g : as) {
+      const Rgb a{r, g, 0.5f};
+      const BeerMedium medium(a);
+      for (const float s : ss) {
+        const Rgb once = medium.transmittance(s), each = beer(a, s);
+        EXPECT_TRUE(std::memcmp(&once, &each, sizeof(Rgb)) == 0)
+            << "a (" << r << ", " << g << ") s " << s << ": " << once.r << " " << once.g
+            << " against " << each.r << " " << each.g;
+        ++compared;
+      }
+    }
+  EXPECT_EQ(compared, 7 * 7 * 7);
 }
 
 }  // namespace
