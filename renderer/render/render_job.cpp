@@ -166,8 +166,12 @@ void renderTiles(const FrameContext& f, TileWork& work) {
     }
     std::unique_ptr<Scratch>& scratch = scratches.local();
     if (!scratch) scratch = std::make_unique<Scratch>();
-    renderTile<Caps>(f, integrator, work.tiles[i], work.counters[i], *scratch);
-    work.progress.advance(work.tiles[i].area(), work.counters[i].total());
+    // Counted on this thread's stack: neighbouring tiles' counters share cache lines, which
+    // two threads would otherwise write in their inner loops.
+    RayCounters counters;
+    renderTile<Caps>(f, integrator, work.tiles[i], counters, *scratch);
+    work.counters[i] = counters;
+    work.progress.advance(work.tiles[i].area(), counters.total());
   });
 }
 
