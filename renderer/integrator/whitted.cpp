@@ -92,8 +92,7 @@ void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
                                   Scratch& scratch) const {
   Generation& gen = generation(scratch, branches[0].depth);
   gen.children = 0;
-  auto& queue = scratch.queue;
-  queue.size = 0;
+  const auto& queue = scratch.queue;
   scratch.pendingCount = 0;
   // Each hit's shading point; a Phong hit left pending for its direct light (the pending
   // points lit whenever the next one's shadow rays might not fit the queue) or, past the

@@ -152,9 +152,9 @@ class WhittedKernel {
 
   // Radiance along `n` (at most kChunk) rays of one depth, given their closest hits, into
   // radiance[i]. In stages over all of them, so that their independent chains of work run
-  // side by side: each hit's shading point, its direct light's samples queued and the rays it
-  // spawns; the queued shadow rays traced together (traceShadows); then the spawned rays traced
-  // as one stream and shaded as the next generation, recursively; then each ray's sum.
+  // side by side: each hit's shading point and the rays it spawns; the direct light of all the
+  // Phong hits, their shadow rays traced together (lightPendingPoints); then the spawned rays
+  // traced as one stream and shaded as the next generation, recursively; then each ray's sum.
   // aovs: at the camera only. cameraKeys: at the camera only, the samples' keys, from which an
   // area light's points for the whole chunk are drawn at once.
   void shadeChunk(const Ray* rays, const Hit* hits, const Branch* branches, int n, Rgb* radiance,
