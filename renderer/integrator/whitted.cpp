@@ -149,9 +149,16 @@ void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
     gen.childEnd[i] = gen.children;
   }
   lightPendingPoints(scratch, gen.local, aovs, cameraKeys != nullptr, counters);
-  // The next generation: the spawned rays traced as one stream, shaded a chunk at a time.
+  // The next generation: the spawned rays traced, then shaded a chunk at a time.
   if (gen.children > 0) {
-    accel_.intersectCoherent(gen.rays.data(), gen.hits.data(), static_cast<size_t>(gen.children));
+    // The camera hits' reflections and refractions leave neighbouring pixels close together
+    // and point alike: a coherent stream. Deeper generations have scattered: in a box of
+    // mirrors, 60 to 1000 bounces deep, a stream took 8-17 % longer than one ray at a time; on
+    // default and whitted the two measured within 2 % from the second generation on.
+    if (cameraKeys)
+      accel_.intersectCoherent(gen.rays.data(), gen.hits.data(), static_cast<size_t>(gen.children));
+    else
+      for (int c = 0; c < gen.children; ++c) gen.hits[c] = accel_.intersect(gen.rays[c]);
     for (int c = 0; c < gen.children; c += kChunk)
       shadeChunk(gen.rays.data() + c, gen.hits.data() + c, gen.branches.data() + c,
                  std::min(kChunk, gen.children - c), gen.radiance.data() + c, nullptr, nullptr,
