@@ -73,9 +73,9 @@ inline float beerChannel(float a, float s, float lnA) {
   if (a <= 0 || std::isinf(s)) return 0;
   return std::exp(lnA * s);
 }
-inline float beerChannel(float a, float s) {
-  return a > 0 && a < 1 ? beerChannel(a, s, std::log(a)) : beerChannel(a, s, 0);
-}
+// ln(a) where beerChannel uses it, a in (0, 1); 0 elsewhere, where it is never read.
+inline float lnAttenuation(float a) { return a > 0 && a < 1 ? std::log(a) : 0; }
+inline float beerChannel(float a, float s) { return beerChannel(a, s, lnAttenuation(a)); }
 inline Rgb beer(const Rgb& a, float s) {
   return {beerChannel(a.r, s), beerChannel(a.g, s), beerChannel(a.b, s)};
 }
@@ -84,13 +84,13 @@ inline Rgb beer(const Rgb& a, float s) {
 // is beer(a, s), bit for bit.
 struct BeerMedium {
   BeerMedium() = default;
-  explicit BeerMedium(const Rgb& attenuation) : a(attenuation), lnA{ln(a.r), ln(a.g), ln(a.b)} {}
+  explicit BeerMedium(const Rgb& attenuation)
+      : a(attenuation), lnA{lnAttenuation(a.r), lnAttenuation(a.g), lnAttenuation(a.b)} {}
   Rgb transmittance(float s) const {
     return {beerChannel(a.r, s, lnA.r), beerChannel(a.g, s, lnA.g), beerChannel(a.b, s, lnA.b)};
   }
 
  private:
-  static float ln(float a) { return a > 0 && a < 1 ? std::log(a) : 0; }  // only used in (0, 1)
   Rgb a{1, 1, 1}, lnA{0, 0, 0};
 };
 

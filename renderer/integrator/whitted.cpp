@@ -343,8 +343,9 @@ void WhittedKernel<C>::traceShadows(Queue& queue, RayCounters& counters) const {
       queue.visible[i] = accel_.occluded(queue.rays[i]) ? Rgb{} : Rgb{1, 1, 1};
     return;
   }
-  // The queue is sorted by light (lightPendingPoints): each light's rays, which start close
-  // together and converge on it (or run parallel), are one coherent run of the stream.
+  // The queue is sorted by light (lightPendingPoints queues light by light, shadePhongAlone
+  // one light at a time): each light's rays, which start close together and converge on it
+  // (or run parallel), are one coherent run of the stream.
   bool blocked[Queue::kCapacity];
   accel_.occludedCoherent(queue.rays.data(), blocked, n);
   for (size_t i = 0; i < n; ++i) queue.visible[i] = blocked[i] ? Rgb{} : Rgb{1, 1, 1};
