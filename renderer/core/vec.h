@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 namespace glint {
@@ -68,5 +69,17 @@ inline bool isFinite(const Vec3f& a) {
 // Reflect d about n (seed 000 §4.8: r = d − 2(d·n)n); n need not face d.
 constexpr Vec3f reflect(const Vec3f& d, const Vec3f& n) { return d - 2.0f * dot(d, n) * n; }
 constexpr Vec3f faceForward(const Vec3f& n, const Vec3f& v) { return dot(n, v) < 0 ? -n : n; }
+
+// Writes v into dst as one 8-byte store of (x, y) and one 4-byte store of z: the widths GCC
+// reads a Vec3f with (movq + movss). A load that only part of a pending store covers cannot be
+// forwarded from it and waits until the stores retire (~15 cycles), so a Vec3f written
+// component by component and read back soon after as a whole stalls. For results that are
+// read again at once (Scene::shadingPoint's).
+[[gnu::always_inline]] inline void storeWhole(Vec3f& dst, const Vec3f& v) {
+  using Pair = float __attribute__((vector_size(8)));
+  const Pair xy = {v.x, v.y};
+  std::memcpy(&dst.x, &xy, sizeof xy);
+  dst.z = v.z;
+}
 
 }  // namespace glint

@@ -206,9 +206,7 @@ void WhittedKernel<C>::lightPendingPoints(Scratch& scratch, Rgb* local, AovSampl
     for (size_t li = 0; li < lights; ++li) {
       const size_t slot = li * kChunk + static_cast<size_t>(k);
       const int begin = k > 0 ? rayEnd[slot - 1] : li > 0 ? rayEnd[slot - kChunk + pending - 1] : 0;
-      Rgb sum;
-      addVisible(queue, begin, rayEnd[slot], sum);
-      addContribution(sum, li, L, aov ? aov->perLight : nullptr);
+      addContribution(sumVisible(queue, begin, rayEnd[slot]), li, L, aov ? aov->perLight : nullptr);
     }
     if (aov) aov->direct = L;
     local[p.ray] = L;
@@ -332,30 +330,20 @@ template <class Queue>
 void WhittedKernel<C>::traceShadows(Queue& queue, RayCounters& counters) const {
   const auto n = static_cast<size_t>(queue.size);
   // Shadows are see-through only where there are dielectrics to see through.
-  if (kMedia && scene_.render.transparentShadows) {
+  if (transparentShadows()) {
     for (size_t i = 0; i < n; ++i)
       queue.visible[i] = shadowTransmission(queue.rays[i], queue.atInfinity[i], counters);
     return;
   }
   counters.shadow += n;
   if (n < kMinShadowStream) {
-    for (size_t i = 0; i < n; ++i)
-      queue.visible[i] = accel_.occluded(queue.rays[i]) ? Rgb{} : Rgb{1, 1, 1};
+    for (size_t i = 0; i < n; ++i) queue.blocked[i] = accel_.occluded(queue.rays[i]);
     return;
   }
   // The queue is sorted by light (lightPendingPoints queues light by light, shadePhongAlone
   // one light at a time): each light's rays, which start close together and converge on it
   // (or run parallel), are one coherent run of the stream.
-  bool blocked[Queue::kCapacity];
-  accel_.occludedCoherent(queue.rays.data(), blocked, n);
-  for (size_t i = 0; i < n; ++i) queue.visible[i] = blocked[i] ? Rgb{} : Rgb{1, 1, 1};
-}
-
-template <unsigned C>
-template <class Queue>
-void WhittedKernel<C>::addVisible(const Queue& queue, int begin, int end, Rgb& sum) const {
-  for (int q = begin; q < end; ++q)
-    if (!queue.visible[q].isBlack()) sum += queue.term[q] * queue.visible[q];
+  accel_.occludedCoherent(queue.rays.data(), queue.blocked, n);
 }
 
 template <unsigned C>
@@ -370,7 +358,7 @@ Rgb WhittedKernel<C>::shadePhongAlone(PhongPoint& pt, RayCounters& counters, Rgb
       queue.size = 0;
       queueLight(pt, li, pattern, first, std::min(queue.kCapacity, count - first), count, queue);
       traceShadows(queue, counters);
-      addVisible(queue, 0, queue.size, sum);
+      sum = sumVisible(queue, 0, queue.size, sum);
     }
     addContribution(sum, li, L, perLight);
   }

@@ -166,7 +166,7 @@ class WhittedKernel {
   // Direct lighting of Phong surfaces (seed 000 eq. 4.4) runs in three steps, so that the
   // shadow rays of many shading points can be traced together: queueLight draws a light's
   // samples and queues one shadow ray per sample that could contribute, with what it adds if
-  // unblocked; traceShadows finds what each ray lets through; addVisible sums that per light.
+  // unblocked; traceShadows finds what each ray lets through; sumVisible sums that per light.
   struct PhongPoint {
     const PhongMaterial* material = nullptr;
     ShadingPoint sp;
@@ -175,17 +175,21 @@ class WhittedKernel {
     float time = 0;
     const Branch* branch = nullptr;
   };
-  // Slots [0, size) are written by queueLight (all but `visible`) and traceShadows before
+  // Slots [0, size) are written by queueLight (all but the last two) and traceShadows before
   // anything reads them, so the arrays start uninitialised.
   template <int Capacity>
   struct ShadowQueue {
     static constexpr int kCapacity = Capacity;
     UninitializedArray<Ray, Capacity> rays;
-    UninitializedArray<Rgb, Capacity> term;     // f · intensity: what the sample adds unblocked
-    UninitializedArray<Rgb, Capacity> visible;  // filled by traceShadows: the fraction arriving
+    UninitializedArray<Rgb, Capacity> term;  // f · intensity: what the sample adds unblocked
     bool atInfinity[Capacity];
     int size = 0;
+    // Filled by traceShadows: with opaque shadows whether each ray is blocked; with transparent
+    // ones (transparentShadows()) the fraction of the light arriving.
+    bool blocked[Capacity];
+    UninitializedArray<Rgb, Capacity> visible;
   };
+  bool transparentShadows() const { return kMedia && scene_.render.transparentShadows; }
   // Fills everything in `pt` but its shading point, which must be set (in place: see
   // Scene::shadingPoint).
   void initPhongPoint(PhongPoint& pt, const PhongMaterial& m, const Vec3f& wo, float time,
@@ -209,9 +213,20 @@ class WhittedKernel {
   // they are camera hits (their area lights' points may be drawn already). Empties both.
   void lightPendingPoints(Scratch& scratch, Rgb* local, AovSample* const* aovs, bool camera,
                           RayCounters& counters) const;
-  // Adds what queued samples [begin, end) let through to `sum`, in queue order.
+  // `sum` plus what queued samples [begin, end) let through, added in queue order. Inlined: a
+  // delta light's range is one sample, and as a call its sum went through memory.
   template <class Queue>
-  void addVisible(const Queue& queue, int begin, int end, Rgb& sum) const;
+  [[gnu::always_inline]] Rgb sumVisible(const Queue& queue, int begin, int end,
+                                        Rgb sum = {}) const {
+    if (transparentShadows()) {
+      for (int q = begin; q < end; ++q)
+        if (!queue.visible[q].isBlack()) sum += queue.term[q] * queue.visible[q];
+    } else {
+      for (int q = begin; q < end; ++q)
+        if (!queue.blocked[q]) sum += queue.term[q];
+    }
+    return sum;
+  }
   // Light li's share of a shading point, the mean over its samples (`sum` their total), added
   // to L, and kept in perLight[li] when given (per-light AOVs).
   void addContribution(const Rgb& sum, size_t li, Rgb& L, Rgb* perLight) const {
