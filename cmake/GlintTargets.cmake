@@ -16,6 +16,10 @@ function(glint_warnings target)
   # Glint never reads errno after maths calls: without this, every std::sqrt carries a branch
   # to the library call that would set it, and loops with square roots do not vectorise.
   target_compile_options(${target} PRIVATE -fno-math-errno)
+  # No fused multiply-adds formed from a * b + c: files built for AVX2 or AVX-512 (and
+  # GLINT_NATIVE_ARCH builds) must round as the baseline build does, so that an image does not
+  # depend on the instruction set (geometry/sphere_lanes.h).
+  target_compile_options(${target} PRIVATE -ffp-contract=off)
   if(GLINT_NATIVE_ARCH)
     target_compile_options(${target} PRIVATE -march=native)
   endif()

@@ -1,0 +1,151 @@
+// intersectSphereLanes against intersectSphere, lane by lane and bit for bit, at every vector
+// width this CPU runs: a render must not depend on which rays Embree put in one packet.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/hash.h"
+#include "geometry/sphere_lanes.h"
+
+namespace glint {
+namespace {
+
+// A packet in Embree's layout, built from rays.
+struct Packet {
+  std::vector<float> o[3], d[3], tMin, tMax;
+  std::vector<int> valid;
+
+  void add(const Ray& r, bool isValid) {
+    for (int k = 0; k < 3; ++k) o[k].push_back(r.o[k]), d[k].push_back(r.d[k]);
+    tMin.push_back(r.tMin);
+    tMax.push_back(r.tMax);
+    valid.push_back(isValid ? -1 : 0);
+  }
+  RayLanes lanes() const {
+    return {{o[0].data(), o[1].data(), o[2].data()},
+            {d[0].data(), d[1].data(), d[2].data()},
+            tMin.data(),
+            tMax.data(),
+            valid.data()};
+  }
+  Ray ray(size_t i) const {
+    Ray r;
+    r.o = {o[0][i], o[1][i], o[2][i]};
+    r.d = {d[0][i], d[1][i], d[2][i]};
+    r.tMin = tMin[i];
+    r.tMax = tMax[i];
+    return r;
+  }
+};
+
+const Sphere kSphere{{0.25f, -0.5f, 1.0f}, 0.75f};
+
+// Rays of every kind the kernel branches on, by index: aimed at random points near the sphere
+// (hits from outside, misses, grazing), from inside it, from its surface through its centre
+// and along its tangent (q = 0 in intersectSphere), cut short by tMax before the sphere or started
+// past it by tMin, and invalid lanes holding NaN and infinities (Embree leaves whatever it likes
+// there).
+Ray caseRay(int i, bool& valid) {
+  auto u = [&](int k) { return toUnitFloat(hashKey(11, static_cast<uint32_t>(i), k)); };
+  const Vec3f c = kSphere.center;
+  const float r = kSphere.radius;
+  Ray ray;
+  valid = true;
+  ray.o = c + Vec3f{8 * u(0) - 4, 8 * u(1) - 4, 3 + u(2)};
+  const Vec3f target = c + 1.3f * r * Vec3f{2 * u(3) - 1, 2 * u(4) - 1, 2 * u(5) - 1};
+  ray.d = target - ray.o;
+  switch (i % 8) {
+    case 1:  // from inside
+      ray.o = c + 0.5f * r * Vec3f{2 * u(6) - 1, 2 * u(7) - 1, 2 * u(8) - 1};
+      break;
+    case 2:  // from the surface straight through the centre: hits the far side
+      ray.o = c + Vec3f{r, 0, 0};
+      ray.d = {-1, 0, 0};
+      break;
+    case 6:  // from the surface along the tangent
+      ray.o = c + Vec3f{r, 0, 0};
+      ray.d = {0, 1, 0};
+      break;
+    case 3:  // stops short
+      ray.tMax = 0.5f * u(9);
+      break;
+    case 4:  // starts late
+      ray.tMin = 0.5f + u(10);
+      break;
+    case 5:  // an ignored lane with garbage in it
+      valid = false;
+      ray.o = {std::numeric_limits<float>::quiet_NaN(), kInfinity, -kInfinity};
+      ray.d = {0, 0, 0};
+      break;
+    default:
+      break;
+  }
+  return ray;
+}
+
+TEST(SphereLanes, EveryWidthGivesTheScalarBitsLaneByLane) {
+  int widthsRun = 0;
+  for (int width : {4, 8, 16}) {
+    if (!sphereLaneWidthSupported(width)) continue;
+    ++widthsRun;
+    int hits = 0, misses = 0;
+    // Packet sizes Embree uses (4, 8, 16) and odd ones, which mix kernels and single lanes.
+    for (int n : {16, 8, 4, 13, 5, 1}) {
+      for (int packet = 0; packet < 200; ++packet) {
+        Packet p;
+        for (int l = 0; l < n; ++l) {
+          bool valid = true;
+          const Ray r = caseRay(packet * kMaxSphereLanes + l + n * 7919, valid);
+          p.add(r, valid);
+        }
+        float t[kMaxSphereLanes];
+        const uint32_t mask = intersectSphereLanes(kSphere, p.lanes(), n, t, width);
+        EXPECT_EQ(mask >> n, 0u) << "width " << width << ", n " << n;
+        for (int l = 0; l < n; ++l) {
+          const float expected = intersectSphere(kSphere, p.ray(size_t(l)));
+          const bool hit = p.valid[size_t(l)] != 0 && expected < p.tMax[size_t(l)];
+          ASSERT_EQ(bool(mask >> l & 1), hit) << "width " << width << ", n " << n << ", lane " << l;
+          if (!hit) {
+            ++misses;
+            continue;
+          }
+          ++hits;
+          EXPECT_EQ(std::bit_cast<uint32_t>(t[l]), std::bit_cast<uint32_t>(expected))
+              << "width " << width << ", n " << n << ", lane " << l << ": " << t[l] << " vs "
+              << expected;
+        }
+      }
+    }
+    // Both answers exercised at every width (about half the aimed rays hit).
+    EXPECT_GT(hits, 1000) << "width " << width;
+    EXPECT_GT(misses, 1000) << "width " << width;
+  }
+  EXPECT_GE(widthsRun, 1);  // four lanes run everywhere
+}
+
+TEST(SphereLanes, SurfacePointsLeavingAlongTheTangentOrThroughTheCentre) {
+  // From (1, −0.5, 1), on the sphere (every number exact): along the tangent (0, 1, 0) both
+  // roots are 0 (intersectSphere's q = 0), not inside (tMin, tMax) = (0, ∞): no hit. Through
+  // the centre (−1, 0, 0): the far side, at t = 2r = 1.5 exactly.
+  const Vec3f onSurface = kSphere.center + Vec3f{kSphere.radius, 0, 0};
+  for (int width : {4, 8, 16}) {
+    if (!sphereLaneWidthSupported(width)) continue;
+    Packet p;
+    for (int l = 0; l < width; ++l)
+      p.add({onSurface, l % 2 ? Vec3f{-1, 0, 0} : Vec3f{0, 1, 0}}, true);
+    float t[kMaxSphereLanes];
+    const uint32_t mask = intersectSphereLanes(kSphere, p.lanes(), width, t, width);
+    for (int l = 0; l < width; ++l) {
+      EXPECT_EQ(bool(mask >> l & 1), l % 2 == 1) << "width " << width << ", lane " << l;
+      if (l % 2) {
+        EXPECT_EQ(t[l], 1.5f) << "width " << width << ", lane " << l;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace glint
