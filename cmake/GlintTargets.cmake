@@ -18,7 +18,7 @@ function(glint_warnings target)
   target_compile_options(${target} PRIVATE -fno-math-errno)
   # No fused multiply-adds formed from a * b + c: files built for AVX2 or AVX-512 (and
   # GLINT_NATIVE_ARCH builds) must round as the baseline build does, so that an image does not
-  # depend on the instruction set (geometry/sphere_lanes.h).
+  # depend on the instruction set (geometry/shape_lanes.h).
   target_compile_options(${target} PRIVATE -ffp-contract=off)
   if(GLINT_NATIVE_ARCH)
     target_compile_options(${target} PRIVATE -march=native)

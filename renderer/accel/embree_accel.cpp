@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "geometry/sphere_lanes.h"
+#include "geometry/shape_lanes.h"
 #include "scene/scene.h"
 
 #include <embree3/rtcore_quaternion.h>
@@ -68,8 +68,8 @@ std::string embreeVersionString() {
 struct EmbreeAccel::UserShape {
   GeomKind kind;
   const Scene* scene = nullptr;
-  uint32_t index = 0;         // into scene->spheres or scene->quads
-  bool staticSphere = false;  // a sphere that does not move: packets test it lane-parallel
+  uint32_t index = 0;  // into scene->spheres or scene->quads
+  bool lanes = false;  // a quad or a sphere that does not move: packets test it lane-parallel
 };
 
 namespace {
@@ -105,9 +105,9 @@ void userBounds(const RTCBoundsFunctionArguments* args) {
 }
 
 // Lanes of a packet (coherent streams: 16 rays at a time where Embree runs AVX-512) that meet
-// a static sphere: tested side by side, the same bits as one at a time.
-uint32_t sphereHitLanes(const EmbreeAccel::UserShape& s, const RTCIntersectFunctionNArguments* args,
-                        RTCRayN* rays, float* t) {
+// a static sphere or a quad: tested side by side, the same bits as one at a time.
+uint32_t hitLanes(const EmbreeAccel::UserShape& s, const RTCIntersectFunctionNArguments* args,
+                  RTCRayN* rays, LaneHits& hits) {
   const unsigned N = args->N;
   const RayLanes lanes{
       {&RTCRayN_org_x(rays, N, 0), &RTCRayN_org_y(rays, N, 0), &RTCRayN_org_z(rays, N, 0)},
@@ -115,7 +115,9 @@ uint32_t sphereHitLanes(const EmbreeAccel::UserShape& s, const RTCIntersectFunct
       &RTCRayN_tnear(rays, N, 0),
       &RTCRayN_tfar(rays, N, 0),
       args->valid};
-  return intersectSphereLanes(s.scene->spheres[s.index], lanes, static_cast<int>(N), t);
+  const int n = static_cast<int>(N);
+  return s.kind == GeomKind::Sphere ? intersectLanes(s.scene->spheres[s.index], lanes, n, hits)
+                                    : intersectLanes(s.scene->quads[s.index], lanes, n, hits);
 }
 
 // Lane i of the packet hits at t, (u, v).
@@ -138,11 +140,11 @@ void userIntersect(const RTCIntersectFunctionNArguments* args) {
   const auto& s = *static_cast<const EmbreeAccel::UserShape*>(args->geometryUserPtr);
   RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
   RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
-  if (s.staticSphere && args->N > 1 && args->N <= unsigned(kMaxSphereLanes)) {
-    float t[kMaxSphereLanes];
-    for (uint32_t lanes = sphereHitLanes(s, args, rays, t); lanes != 0; lanes &= lanes - 1) {
+  if (s.lanes && args->N > 1 && args->N <= unsigned(kMaxLanes)) {
+    LaneHits found;
+    for (uint32_t lanes = hitLanes(s, args, rays, found); lanes != 0; lanes &= lanes - 1) {
       const auto i = static_cast<unsigned>(std::countr_zero(lanes));
-      recordHit(args, rays, hits, i, t[i], 0, 0);
+      recordHit(args, rays, hits, i, found.t[i], found.u[i], found.v[i]);
     }
     return;
   }
@@ -231,7 +233,7 @@ void EmbreeAccel::addGeometries(RTCScene rtcScene, uint32_t groupId) {
       case GeomKind::Quad: {
         auto shape = std::make_unique<UserShape>(
             UserShape{g.kind, &scene_, g.index,
-                      g.kind == GeomKind::Sphere && scene_.sphereCenterKeys[g.index].empty()});
+                      g.kind == GeomKind::Quad || scene_.sphereCenterKeys[g.index].empty()});
         geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
         // Time steps only for what moves: a static scene gets none.
         if (const size_t steps = scene_.timeSteps(g); steps > 1)

@@ -1,14 +1,16 @@
-// intersectSphereLanes against intersectSphere, lane by lane and bit for bit, at every vector
-// width this CPU runs: a render must not depend on which rays Embree put in one packet.
+// intersectLanes against intersectSphere and intersectQuad, lane by lane and bit for bit, at
+// every vector width this CPU runs: a render must not depend on which rays Embree put in one
+// packet.
 #include <gtest/gtest.h>
 
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "core/hash.h"
-#include "geometry/sphere_lanes.h"
+#include "geometry/shape_lanes.h"
 
 namespace glint {
 namespace {
@@ -86,10 +88,22 @@ Ray caseRay(int i, bool& valid) {
   return ray;
 }
 
-TEST(SphereLanes, EveryWidthGivesTheScalarBitsLaneByLane) {
+// A quad around the sphere's place, tilted, so that caseRay's rays hit and miss it alike.
+const Quad kQuad{{-0.5f, -1.25f, 0.75f}, {1.5f, 0.25f, 0}, {0.125f, 1.5f, 0.5f}};
+
+float scalarTest(const Sphere& s, const Ray& r, float& u, float& v) {
+  u = v = 0;
+  return intersectSphere(s, r);
+}
+float scalarTest(const Quad& q, const Ray& r, float& u, float& v) {
+  return intersectQuad(q, r, u, v);
+}
+
+template <class Shape>
+void expectScalarBits(const Shape& shape, const char* name) {
   int widthsRun = 0;
   for (int width : {4, 8, 16}) {
-    if (!sphereLaneWidthSupported(width)) continue;
+    if (!laneWidthSupported(width)) continue;
     ++widthsRun;
     int hits = 0, misses = 0;
     // Packet sizes Embree uses (4, 8, 16) and odd ones, which mix kernels and single lanes.
@@ -98,50 +112,62 @@ TEST(SphereLanes, EveryWidthGivesTheScalarBitsLaneByLane) {
         Packet p;
         for (int l = 0; l < n; ++l) {
           bool valid = true;
-          const Ray r = caseRay(packet * kMaxSphereLanes + l + n * 7919, valid);
+          const Ray r = caseRay(packet * kMaxLanes + l + n * 7919, valid);
           p.add(r, valid);
         }
-        float t[kMaxSphereLanes];
-        const uint32_t mask = intersectSphereLanes(kSphere, p.lanes(), n, t, width);
-        EXPECT_EQ(mask >> n, 0u) << "width " << width << ", n " << n;
+        LaneHits found;
+        const uint32_t mask = intersectLanes(shape, p.lanes(), n, found, width);
+        const std::string where =
+            std::string(name) + ", width " + std::to_string(width) + ", n " + std::to_string(n);
+        EXPECT_EQ(mask >> n, 0u) << where;
         for (int l = 0; l < n; ++l) {
-          const float expected = intersectSphere(kSphere, p.ray(size_t(l)));
-          const bool hit = p.valid[size_t(l)] != 0 && expected < p.tMax[size_t(l)];
-          ASSERT_EQ(bool(mask >> l & 1), hit) << "width " << width << ", n " << n << ", lane " << l;
+          float u = 0, v = 0;
+          const float t = scalarTest(shape, p.ray(size_t(l)), u, v);
+          const bool hit = p.valid[size_t(l)] != 0 && t < p.tMax[size_t(l)];
+          ASSERT_EQ(bool(mask >> l & 1), hit) << where << ", lane " << l;
           if (!hit) {
             ++misses;
             continue;
           }
           ++hits;
-          EXPECT_EQ(std::bit_cast<uint32_t>(t[l]), std::bit_cast<uint32_t>(expected))
-              << "width " << width << ", n " << n << ", lane " << l << ": " << t[l] << " vs "
-              << expected;
+          EXPECT_EQ(std::bit_cast<uint32_t>(found.t[l]), std::bit_cast<uint32_t>(t))
+              << where << ", lane " << l << ": " << found.t[l] << " vs " << t;
+          EXPECT_EQ(std::bit_cast<uint32_t>(found.u[l]), std::bit_cast<uint32_t>(u))
+              << where << ", lane " << l;
+          EXPECT_EQ(std::bit_cast<uint32_t>(found.v[l]), std::bit_cast<uint32_t>(v))
+              << where << ", lane " << l;
         }
       }
     }
-    // Both answers exercised at every width (about half the aimed rays hit).
-    EXPECT_GT(hits, 1000) << "width " << width;
-    EXPECT_GT(misses, 1000) << "width " << width;
+    // Both answers exercised at every width (a third or more of the aimed rays hit).
+    EXPECT_GT(hits, 1000) << name << ", width " << width;
+    EXPECT_GT(misses, 1000) << name << ", width " << width;
   }
   EXPECT_GE(widthsRun, 1);  // four lanes run everywhere
 }
 
-TEST(SphereLanes, SurfacePointsLeavingAlongTheTangentOrThroughTheCentre) {
+TEST(ShapeLanes, SpheresGiveTheScalarBitsLaneByLaneAtEveryWidth) {
+  expectScalarBits(kSphere, "sphere");
+}
+
+TEST(ShapeLanes, QuadsGiveTheScalarBitsLaneByLaneAtEveryWidth) { expectScalarBits(kQuad, "quad"); }
+
+TEST(ShapeLanes, SphereSurfacePointsLeavingAlongTheTangentOrThroughTheCentre) {
   // From (1, −0.5, 1), on the sphere (every number exact): along the tangent (0, 1, 0) both
   // roots are 0 (intersectSphere's q = 0), not inside (tMin, tMax) = (0, ∞): no hit. Through
   // the centre (−1, 0, 0): the far side, at t = 2r = 1.5 exactly.
   const Vec3f onSurface = kSphere.center + Vec3f{kSphere.radius, 0, 0};
   for (int width : {4, 8, 16}) {
-    if (!sphereLaneWidthSupported(width)) continue;
+    if (!laneWidthSupported(width)) continue;
     Packet p;
     for (int l = 0; l < width; ++l)
       p.add({onSurface, l % 2 ? Vec3f{-1, 0, 0} : Vec3f{0, 1, 0}}, true);
-    float t[kMaxSphereLanes];
-    const uint32_t mask = intersectSphereLanes(kSphere, p.lanes(), width, t, width);
+    LaneHits found;
+    const uint32_t mask = intersectLanes(kSphere, p.lanes(), width, found, width);
     for (int l = 0; l < width; ++l) {
       EXPECT_EQ(bool(mask >> l & 1), l % 2 == 1) << "width " << width << ", lane " << l;
       if (l % 2) {
-        EXPECT_EQ(t[l], 1.5f) << "width " << width << ", lane " << l;
+        EXPECT_EQ(found.t[l], 1.5f) << "width " << width << ", lane " << l;
       }
     }
   }
