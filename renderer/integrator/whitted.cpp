@@ -101,15 +101,17 @@ void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
     const Ray& ray = rays[i];
     const Hit& hit = hits[i];
     const Branch& branch = branches[i];
+    auto& sum = gen.sums[i];
     // Beer's law over the segment just travelled, in the medium the ray was inside.
+    sum.inMedium = !branch.media.empty();
     if constexpr (kMedia)
-      if (!branch.media.empty())
-        gen.absorbed[i] =
+      if (sum.inMedium)
+        sum.absorbed =
             media_[branch.media.innermostMaterial()].transmittance(hit.t * length(ray.d));
-    Rgb& local = gen.local[i];
+    Rgb& local = sum.local;
     if (!hit) {
       local = scene_.render.background;
-      gen.childEnd[i] = gen.children;
+      sum.childEnd = gen.children;
       continue;
     }
     local = {};
@@ -118,7 +120,7 @@ void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
     if (const auto* phong = std::get_if<PhongMaterial>(&material)) {
       const bool alone = shadowRaysPerPoint_ > queue.kCapacity;
       if (!alone && (scratch.pendingCount + 1) * shadowRaysPerPoint_ > queue.kCapacity)
-        lightPendingPoints(scratch, gen.local, aovs, cameraKeys != nullptr, counters);
+        lightPendingPoints(scratch, gen.sums, aovs, cameraKeys != nullptr, counters);
       // The next pending slot, also for a point traced alone (finished before the next hit).
       auto& p = scratch.pending[scratch.pendingCount];
       scene_.shadingPoint(ray, hit, p.pt.sp);
@@ -146,9 +148,9 @@ void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
         spawnDielectric(hit, std::get<DielectricMaterial>(material), sp, ray, branch, gen,
                         counters);
     }
-    gen.childEnd[i] = gen.children;
+    sum.childEnd = gen.children;
   }
-  lightPendingPoints(scratch, gen.local, aovs, cameraKeys != nullptr, counters);
+  lightPendingPoints(scratch, gen.sums, aovs, cameraKeys != nullptr, counters);
   // The next generation: the spawned rays traced, then shaded a chunk at a time.
   if (gen.children > 0) {
     // The camera hits' reflections and refractions leave neighbouring pixels close together
@@ -165,17 +167,19 @@ void WhittedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
                  counters, scratch);
   }
   for (int i = 0, c = 0; i < n; ++i) {
-    Rgb L = gen.local[i];
-    for (; c < gen.childEnd[i]; ++c) L += gen.weight[c] * gen.radiance[c];
+    const auto& sum = gen.sums[i];
+    Rgb L = sum.local;
+    for (; c < sum.childEnd; ++c) L += gen.weight[c] * gen.radiance[c];
     if constexpr (kMedia)
-      if (!branches[i].media.empty()) L = L * gen.absorbed[i];
+      if (sum.inMedium) L = L * sum.absorbed;
     radiance[i] = L;
   }
 }
 
 template <unsigned C>
-void WhittedKernel<C>::lightPendingPoints(Scratch& scratch, Rgb* local, AovSample* const* aovs,
-                                          bool camera, RayCounters& counters) const {
+void WhittedKernel<C>::lightPendingPoints(Scratch& scratch, typename Generation::Sum* sums,
+                                          AovSample* const* aovs, bool camera,
+                                          RayCounters& counters) const {
   const int pending = scratch.pendingCount;
   if (pending == 0) return;
   auto& queue = scratch.queue;
@@ -202,14 +206,14 @@ void WhittedKernel<C>::lightPendingPoints(Scratch& scratch, Rgb* local, AovSampl
   for (int k = 0; k < pending; ++k) {
     const auto& p = scratch.pending[k];
     AovSample* aov = kAovs && aovs ? aovs[p.ray] : nullptr;
-    Rgb L = local[p.ray];
+    Rgb L = sums[p.ray].local;
     for (size_t li = 0; li < lights; ++li) {
       const size_t slot = li * kChunk + static_cast<size_t>(k);
       const int begin = k > 0 ? rayEnd[slot - 1] : li > 0 ? rayEnd[slot - kChunk + pending - 1] : 0;
       addContribution(sumVisible(queue, begin, rayEnd[slot]), li, L, aov ? aov->perLight : nullptr);
     }
     if (aov) aov->direct = L;
-    local[p.ray] = L;
+    sums[p.ray].local = L;
   }
   queue.size = 0;
   scratch.pendingCount = 0;

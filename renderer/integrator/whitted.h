@@ -107,14 +107,17 @@ class WhittedKernel {
   // Without dielectrics a ray is always in the outside world: no interior list to carry.
   struct NoMedia {
     bool empty() const { return true; }
+    void assign(const NoMedia&) {}
   };
   using Media = std::conditional_t<kMedia, MediumStack, NoMedia>;
 
   struct Branch {  // what travels with a ray down the tree of reflections and refractions
     int depth = 0;
     Rgb throughput{1, 1, 1};
-    [[no_unique_address]] Media media;
     const SampleKey* key = nullptr;
+    // Last: a ray outside every dielectric writes and reads only the stack's size, in the
+    // same cache line as the fields above.
+    [[no_unique_address]] Media media;
   };
 
   // The rays that one chunk of a generation spawns, and what the chunk keeps about its own
@@ -122,11 +125,17 @@ class WhittedKernel {
   // absorbed, its children in the order spawned (seed 002 §9.1: reflection, then refraction).
   struct Generation {
     static constexpr int kCapacity = 2 * kChunk;  // a dielectric spawns two
-    // Per ray of the chunk: the light it returns before its children's (ambient and direct
-    // light), Beer's attenuation of the segment it travelled, and one past its last child.
-    Rgb local[kChunk];
-    Rgb absorbed[kChunk];
-    int childEnd[kChunk];
+    // Per ray of the chunk, what its sum needs, in one cache line: its sum is taken after
+    // every generation below it has been traced, and in a deep chain of mirrors these had left
+    // L1 by then, four lines per ray when they were four arrays (a quarter of shadeChunk's
+    // samples in a box of mirrors 1000 bounces deep sat on one of those loads).
+    struct Sum {
+      Rgb local;     // the light it returns before its children's (ambient and direct light)
+      Rgb absorbed;  // Beer's attenuation of the segment it travelled, where inMedium
+      int childEnd;  // one past its last child
+      bool inMedium;
+    };
+    Sum sums[kChunk];
     // The children, written before they are read.
     UninitializedArray<Ray, kCapacity> rays;
     UninitializedArray<Hit, kCapacity> hits;
@@ -143,7 +152,7 @@ class WhittedKernel {
       Branch& b = branches[children];
       b.depth = parent.depth + 1;
       b.throughput = throughput;
-      b.media = media;
+      b.media.assign(media);
       b.key = parent.key;
       weight[children] = w;
       return rays[children++];
@@ -208,11 +217,11 @@ class WhittedKernel {
   void drawLightPoints(const SampleKey* keys, int count, Scratch& scratch) const;
   template <class Queue>
   void traceShadows(Queue& queue, RayCounters& counters) const;
-  // The direct light of the shading points pending in the scratch, added to local[their ray]:
+  // The direct light of the shading points pending in the scratch, added to their ray's local:
   // every light's samples queued, light by light, the queue traced, the sums taken. `camera`:
   // they are camera hits (their area lights' points may be drawn already). Empties both.
-  void lightPendingPoints(Scratch& scratch, Rgb* local, AovSample* const* aovs, bool camera,
-                          RayCounters& counters) const;
+  void lightPendingPoints(Scratch& scratch, typename Generation::Sum* sums, AovSample* const* aovs,
+                          bool camera, RayCounters& counters) const;
   // `sum` plus what queued samples [begin, end) let through, added in queue order. Inlined: a
   // delta light's range is one sample, and as a call its sum went through memory.
   template <class Queue>
