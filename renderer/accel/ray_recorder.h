@@ -5,8 +5,8 @@
 // recorded render is never the timed one. With a stride k it keeps one query in k of each
 // thread (a coherent batch is one query, kept whole), picked by a hash of the query's number
 // so that no periodic pattern of the render's queries (a camera batch, then its shadow batch,
-// ...) aliases with the stride: a fixed subset with the render's mix of
-// ray kinds, in bounded memory, that can be replayed one ray at a time or as it was traced.
+// ...) aliases with the stride: a fixed subset with the render's mix of ray kinds, in bounded
+// memory, that can be replayed one ray at a time or as it was traced.
 #include <tbb/enumerable_thread_specific.h>
 
 #include <vector>
