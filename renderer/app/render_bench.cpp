@@ -52,60 +52,47 @@ RenderResult render(const Scene& scene, const Accelerator& accel, int threads, b
 // packets), which is the traversal the render itself pays.
 double replaySeconds(const Accelerator& embree, const std::vector<RecordedRay>& rays, int threads,
                      bool asTraced, int passes = 1) {
-  std::vector<size_t> queries;  // each query's first ray
-  for (size_t i = 0; i < rays.size(); i += std::max<uint32_t>(1, rays[i].query))
+  // Each query's first ray, and the rays it traces together: one by one, every ray is a query.
+  std::vector<size_t> queries;
+  size_t largest = 1;
+  for (size_t i = 0, size; i < rays.size(); i += size) {
+    size = asTraced ? std::max<uint32_t>(1, rays[i].query) : 1;
     queries.push_back(i);
+    largest = std::max(largest, size);
+  }
   tbb::task_arena arena(threads);
   const auto start = Clock::now();
   size_t hits = 0;
   arena.execute([&] {
-    for (int pass = 0; pass < passes; ++pass) {
-      if (!asTraced) {
-        hits += tbb::parallel_reduce(
-            tbb::blocked_range<size_t>(0, rays.size(), 4096), size_t(0),
-            [&](const tbb::blocked_range<size_t>& r, size_t n) {
-              enableFlushToZero();
-              for (size_t i = r.begin(); i != r.end(); ++i)
-                n += rays[i].occlusion ? embree.occluded(rays[i].ray)
-                                       : bool(embree.intersect(rays[i].ray));
-              return n;
-            },
-            std::plus<>());
-        continue;
-      }
+    for (int pass = 0; pass < passes; ++pass)
       hits += tbb::parallel_reduce(
-          tbb::blocked_range<size_t>(0, queries.size(), 1024), size_t(0),
+          tbb::blocked_range<size_t>(0, queries.size(), asTraced ? 1024 : 4096), size_t(0),
           [&](const tbb::blocked_range<size_t>& r, size_t n) {
             enableFlushToZero();
-            std::vector<Ray> batch;
-            std::vector<Hit> found;
-            std::unique_ptr<bool[]> blocked;
-            size_t blockedSize = 0;
+            std::vector<Ray> batch(largest);
+            std::vector<Hit> found(largest);
+            std::unique_ptr<bool[]> blocked(new bool[largest]);
             for (size_t q = r.begin(); q != r.end(); ++q) {
-              const RecordedRay& first = rays[queries[q]];
-              if (first.query <= 1) {
-                n += first.occlusion ? embree.occluded(first.ray)
-                                     : bool(embree.intersect(first.ray));
+              const RecordedRay* first = &rays[queries[q]];
+              const size_t size = asTraced ? first->query : 1;
+              if (size == 1) {
+                n += first->occlusion ? embree.occluded(first->ray)
+                                      : bool(embree.intersect(first->ray));
                 continue;
               }
-              batch.clear();
-              for (size_t i = 0; i < first.query; ++i) batch.push_back(rays[queries[q] + i].ray);
-              if (first.occlusion) {
-                if (blockedSize < batch.size()) blocked.reset(new bool[blockedSize = batch.size()]);
-                embree.occludedCoherent(batch.data(), blocked.get(), batch.size());
-                n += static_cast<size_t>(
-                    std::count(blocked.get(), blocked.get() + batch.size(), true));
+              for (size_t i = 0; i < size; ++i) batch[i] = first[i].ray;
+              if (first->occlusion) {
+                embree.occludedCoherent(batch.data(), blocked.get(), size);
+                n += static_cast<size_t>(std::count(blocked.get(), blocked.get() + size, true));
               } else {
-                found.resize(batch.size());
-                embree.intersectCoherent(batch.data(), found.data(), batch.size());
-                n += static_cast<size_t>(std::count_if(found.begin(), found.end(),
+                embree.intersectCoherent(batch.data(), found.data(), size);
+                n += static_cast<size_t>(std::count_if(found.begin(), found.begin() + long(size),
                                                        [](const Hit& h) { return bool(h); }));
               }
             }
             return n;
           },
           std::plus<>());
-    }
   });
   benchmark::DoNotOptimize(hits);
   return secondsSince(start) / passes;
