@@ -25,33 +25,6 @@ namespace glint {
 // its pixel by at most this much times the radiance behind it (docs/shading.md).
 inline constexpr float kDefaultMinThroughput = 1.0f / 1024.0f;
 
-// Which camera sample is being traced: keys every random number drawn along its paths.
-struct SampleKey {
-  SampleKey() = default;
-  SampleKey(const Sampler* s, int x, int y, int i)
-      : SampleKey(s, x, y, i, s ? s->pixelKey(x, y) : 0) {}
-  // With the pixel's key computed once for all its samples (Sampler::pixelKey).
-  SampleKey(const Sampler* s, int x, int y, int i, uint64_t key)
-      : sampler(s), px(x), py(y), index(i), pixelKey(key) {}
-
-  const Sampler* sampler = nullptr;
-  int px = 0, py = 0, index = 0;
-  uint64_t pixelKey = 0;
-
-  // A dimension's pattern, for drawing several sub-samples of it (a light's shadow samples).
-  SamplePattern pattern(uint32_t dim) const { return sampler->pattern(pixelKey, dim); }
-  Vec2f get2D(const SamplePattern& pattern, int sub, int count) const {
-    return sampler->get2DFor(pattern, index, sub, count);
-  }
-  // Sub-samples [firstSub, firstSub + size) of `count` at once, into out.
-  void get2D(const SamplePattern& pattern, int firstSub, int size, int count, Vec2f* out) const {
-    sampler->get2DFor(pattern, index, firstSub, size, count, out);
-  }
-  Vec2f get2D(uint32_t dim, int sub = 0, int count = 1) const {
-    return get2D(pattern(dim), sub, count);
-  }
-};
-
 struct Radiance {
   Rgb L;
   float alpha = 0;    // 1 when the camera ray hit geometry

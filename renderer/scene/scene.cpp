@@ -117,7 +117,7 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
     n = worldFromObject->normal(n);
     // A moving instance's transform is interpolated by Embree and by transformAt (ours). They
     // agree to a few ulps of the matrix, except the rotation angle: Embree's slerp takes a
-    // fast acos whose absolute error (~7e-5 rad measured; tests/render/motion_test.cpp)
+    // fast acos whose absolute error (~7e-5 rad measured; tests/scene/motion_test.cpp)
     // turns the object by that much more or less, moving a point by angle × its distance from
     // the pivot. Without this a shadow ray from a turning object is blocked by the object
     // itself in Embree's version of it.
