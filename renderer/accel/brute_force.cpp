@@ -32,6 +32,9 @@ void BruteForce::intersectGroup(uint32_t groupId, const Ray& ray, uint32_t instI
       case GeomKind::Quad:
         record(intersectQuad(scene_.quads[g.index], r, u, v), 0);
         break;
+      case GeomKind::Disk:
+        record(intersectDisk(scene_.disks[g.index], r), 0);
+        break;
       case GeomKind::Plane:
         break;  // shared loop in intersectPlanes
       case GeomKind::Instance: {

@@ -68,8 +68,9 @@ std::string embreeVersionString() {
 struct EmbreeAccel::UserShape {
   GeomKind kind;
   const Scene* scene = nullptr;
-  uint32_t index = 0;  // into scene->spheres or scene->quads
+  uint32_t index = 0;  // into scene->spheres, quads or disks
   bool lanes = false;  // a quad or a sphere that does not move: packets test it lane-parallel
+                       // (disks, which only visible lights make, are tested one ray at a time)
 };
 
 namespace {
@@ -86,6 +87,7 @@ Ray toRay(RTCRayN* rays, unsigned N, unsigned i) {
 
 float intersectUser(const EmbreeAccel::UserShape& s, const Ray& r, float& u, float& v) {
   if (s.kind == GeomKind::Sphere) return intersectSphere(s.scene->sphereAt(s.index, r.time), r);
+  if (s.kind == GeomKind::Disk) return intersectDisk(s.scene->disks[s.index], r);
   return intersectQuad(s.scene->quads[s.index], r, u, v);
 }
 
@@ -98,6 +100,8 @@ void userBounds(const RTCBoundsFunctionArguments* args) {
     const auto& keys = s.scene->sphereCenterKeys[s.index];
     const Sphere& sphere = s.scene->spheres[s.index];
     b = bounds(keys.empty() ? sphere : Sphere{keys[args->timeStep], sphere.radius});
+  } else if (s.kind == GeomKind::Disk) {
+    b = bounds(s.scene->disks[s.index]);
   } else {
     b = bounds(s.scene->quads[s.index]);
   }
@@ -230,10 +234,11 @@ void EmbreeAccel::addGeometries(RTCScene rtcScene, uint32_t groupId) {
         break;
       }
       case GeomKind::Sphere:
-      case GeomKind::Quad: {
-        auto shape = std::make_unique<UserShape>(
-            UserShape{g.kind, &scene_, g.index,
-                      g.kind == GeomKind::Quad || scene_.sphereCenterKeys[g.index].empty()});
+      case GeomKind::Quad:
+      case GeomKind::Disk: {
+        const bool lanes = g.kind == GeomKind::Quad ||
+                           (g.kind == GeomKind::Sphere && scene_.sphereCenterKeys[g.index].empty());
+        auto shape = std::make_unique<UserShape>(UserShape{g.kind, &scene_, g.index, lanes});
         geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
         // Time steps only for what moves: a static scene gets none.
         if (const size_t steps = scene_.timeSteps(g); steps > 1)

@@ -284,6 +284,9 @@ ReferenceBvh::ReferenceBvh(const Scene& scene, BvhSplit split) : scene_(scene) {
         case GeomKind::Quad:
           add(bounds(scene.quads[geom.index]), 0);
           break;
+        case GeomKind::Disk:
+          add(bounds(scene.disks[geom.index]), 0);
+          break;
         case GeomKind::Plane:
           break;  // unbounded: the shared plane loop
         case GeomKind::Instance: {
@@ -349,6 +352,9 @@ bool ReferenceBvh::intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray
       break;
     case GeomKind::Quad:
       t = intersectQuad(scene_.quads[g.index], r, u, v);
+      break;
+    case GeomKind::Disk:
+      t = intersectDisk(scene_.disks[g.index], r);
       break;
     case GeomKind::Plane:
       return false;

@@ -30,6 +30,7 @@ struct RenderArgs {
   std::string display;
   DisplaySettings ocio;
   std::string accel = "embree";
+  std::string integrator = "production";
   std::string sampler;
   std::string statsJson;
   std::optional<int> spp, width, height, maxDepth, threads;
@@ -97,7 +98,8 @@ nlohmann::json statsJson(const Scene& scene, const RenderStats& st) {
   j["nonfinite_samples"] = st.rays.nonfiniteSamples;
   j["features_used"] = scene.features.used();
   j["features_left_out"] = scene.features.leftOut();
-  j["kernel"] = kernelName(st.kernelCaps);
+  j["kernel"] =
+      st.integrator == IntegratorKind::Reference ? "reference" : kernelName(st.kernelCaps);
   return j;
 }
 
@@ -118,8 +120,11 @@ void printStats(const Scene& scene, const RenderStats& st) {
   std::printf("non-finite       %llu samples\n", (unsigned long long)st.rays.nonfiniteSamples);
   std::printf("features used    %s\n", join(scene.features.used()).c_str());
   std::printf("left out         %s\n", join(scene.features.leftOut()).c_str());
-  std::printf("kernel           %s (integrator compiled for these capabilities only)\n",
-              kernelName(st.kernelCaps).c_str());
+  if (st.integrator == IntegratorKind::Reference)
+    std::printf("kernel           reference (depth first, the oracle)\n");
+  else
+    std::printf("kernel           %s (compiled for these capabilities only)\n",
+                kernelName(st.kernelCaps).c_str());
 }
 
 // What must match for crops of one frame to merge: the scene's bytes and every setting that
@@ -139,20 +144,23 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
   const PixelWindow& w = result.film.window();
   const Camera camera(scene.cameraDesc, scene.render.width, scene.render.height);
   ExrMetadata m;
-  m.strings = {
-      {"Software", std::string("Glint ") + GLINT_VERSION},
-      {"glint:version", GLINT_VERSION},
-      {"glint:scene", scene.sourcePath},
-      {"glint:scene_hash", hex(scene.sourceHash)},
-      {"glint:settings_hash", hex(settingsHash(scene, a.accel, a.aovs + (a.half ? " half" : "")))},
-      {"glint:sampler", std::string(samplerName(scene.render.sampler))},
-      {"glint:accel", a.accel},
-      {"glint:seed", std::to_string(scene.render.seed)},  // 64-bit: kept exact as text
-      {"glint:crop", std::to_string(w.x0) + " " + std::to_string(w.x1) + " " +
-                         std::to_string(w.y0) + " " + std::to_string(w.y1)},
-      {"glint:commandline", commandLine()},
-      // The OCIO name of the rendering space in the bundled config.
-      {"glint:colorspace", "lin_rec709"}};
+  m.strings = {{"Software", std::string("Glint ") + GLINT_VERSION},
+               {"glint:version", GLINT_VERSION},
+               {"glint:scene", scene.sourcePath},
+               {"glint:scene_hash", hex(scene.sourceHash)},
+               {"glint:settings_hash",
+                hex(settingsHash(scene, a.accel,
+                                 a.aovs + (a.half ? " half" : "") +
+                                     (a.integrator == "production" ? "" : " " + a.integrator)))},
+               {"glint:integrator", a.integrator},
+               {"glint:sampler", std::string(samplerName(scene.render.sampler))},
+               {"glint:accel", a.accel},
+               {"glint:seed", std::to_string(scene.render.seed)},  // 64-bit: kept exact as text
+               {"glint:crop", std::to_string(w.x0) + " " + std::to_string(w.x1) + " " +
+                                  std::to_string(w.y0) + " " + std::to_string(w.y1)},
+               {"glint:commandline", commandLine()},
+               // The OCIO name of the rendering space in the bundled config.
+               {"glint:colorspace", "lin_rec709"}};
   m.ints = {{"glint:spp", scene.render.spp},
             {"glint:max_depth", scene.render.maxDepth},
             {"glint:partial", result.partial ? 1 : 0}};
@@ -174,6 +182,7 @@ int runRender(const RenderArgs& a) {
   opt.threads = a.threads.value_or(0);
   opt.tileSize = a.tileSize;
   opt.specialize = !a.noSpecialize;
+  parseIntegratorKind(a.integrator, opt.integrator);
   opt.crop = cropWindow(a, scene.render);
   opt.progress = !a.quiet;
   opt.tileOrder = a.tileOrder == "row" ? TileOrder::RowMajor : TileOrder::Morton;
@@ -241,6 +250,10 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--max-depth", args->maxDepth, "Recursion limit")->check(CLI::Range(0, 1000));
   cmd->add_option("--accel", args->accel, "Intersection backend")
       ->check(CLI::IsMember({"embree", "bvh", "brute"}));
+  cmd->add_option("--integrator", args->integrator,
+                  "production (default), or reference: seed 002's depth-first Trace, the oracle "
+                  "the production kernel is tested against (beauty only)")
+      ->check(CLI::IsMember({"production", "reference"}));
   cmd->add_option("--sampler", args->sampler, "Pixel sampler (overrides the scene)")
       ->check(CLI::IsMember({"regular", "random", "stratified", "sobol"}));
   cmd->add_option("--crop", args->crop, "Pixel bounds X0 X1 Y0 Y1 ([X0,X1) x [Y0,Y1))")

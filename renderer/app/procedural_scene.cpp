@@ -15,11 +15,10 @@ Scene makeProceduralScene(size_t triangles) {
   s.cameraDesc.eye = {0, 6, 14};
   s.cameraDesc.lookAt = {0, 0, 0};
   s.cameraDesc.vfovDegrees = 45;
-  PhongMaterial ground;
-  ground.kd.constant = {0.5f, 0.6f, 0.4f};
-  ground.ka = ground.kd;
-  ground.ambientFollowsDiffuse = true;
-  s.materials.push_back({"ground", ground});
+  Material ground = defaultMaterial(MaterialKind::Phong);
+  ground.name = "ground";
+  ground.surface.kd = ground.surface.ka = ColorTexture::uniform({0.5f, 0.6f, 0.4f});
+  s.materials.push_back(ground);
   s.lights.push_back(PointLight{{5, 12, 8}, {1, 1, 1}, Falloff::None});
 
   // n × n cells of two triangles each over [−10, 10]².

@@ -1,5 +1,6 @@
 #include "geometry/shapes.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -46,6 +47,15 @@ float intersectPlane(const Plane& p, const Ray& ray) {
   if (denom == 0) return kInfinity;
   const float t = dot(p.point - ray.o, p.normal) / denom;
   return (t > ray.tMin && t < ray.tMax) ? t : kInfinity;
+}
+
+float intersectDisk(const Disk& d, const Ray& ray) {
+  const float denom = dot(d.normal, ray.d);
+  if (denom == 0) return kInfinity;
+  const float t = dot(d.center - ray.o, d.normal) / denom;
+  if (!(t > ray.tMin && t < ray.tMax)) return kInfinity;
+  const Vec3f rel = ray.at(t) - d.center;
+  return dot(rel, rel) <= d.radius * d.radius ? t : kInfinity;
 }
 
 float intersectTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const Ray& ray, float& u,
@@ -95,6 +105,17 @@ Bounds3f bounds(const Quad& q) {
   b.extend(q.corner + q.edge2);
   b.extend(q.corner + q.edge1 + q.edge2);
   return b;
+}
+
+Bounds3f bounds(const Disk& d) {
+  // Per axis the disk reaches radius·sin of the angle between the axis and the normal,
+  // √(1 − n_i²); padded by a relative 2^-20 for the rounding of these terms.
+  const Vec3f n2 = mul(d.normal, d.normal);
+  const auto reach = [&](float ni2) {
+    return d.radius * std::sqrt(std::max(0.0f, 1 - ni2)) * (1 + 0x1p-20f);
+  };
+  const Vec3f e{reach(n2.x), reach(n2.y), reach(n2.z)};
+  return {d.center - e, d.center + e};
 }
 
 }  // namespace glint

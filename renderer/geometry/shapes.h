@@ -16,6 +16,12 @@ struct Quad {
   Vec3f corner, edge1, edge2;
 };
 
+// A flat disk: the points of the plane through `center` with unit `normal` within `radius`.
+struct Disk {
+  Vec3f center, normal;
+  float radius = 1;
+};
+
 // Infinite plane through `point`; `normal` is unit length.
 struct Plane {
   Vec3f point, normal;
@@ -26,11 +32,13 @@ struct Plane {
 float intersectSphere(const Sphere& s, const Ray& ray);
 float intersectQuad(const Quad& q, const Ray& ray, float& u, float& v);
 float intersectPlane(const Plane& p, const Ray& ray);
+float intersectDisk(const Disk& d, const Ray& ray);
 // Watertight ray–triangle test (Woop, Benthin, Wald 2013), Embree's barycentric convention.
 float intersectTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const Ray& ray, float& u,
                         float& v);
 
 Bounds3f bounds(const Sphere& s);
 Bounds3f bounds(const Quad& q);
+Bounds3f bounds(const Disk& d);
 
 }  // namespace glint

@@ -8,8 +8,10 @@
 // two overlapping spheres of the same glass behave as one piece.
 #include <algorithm>
 #include <cstdint>
+#include <vector>
 
 #include "geometry/hit.h"
+#include "materials/material.h"
 
 namespace glint {
 
@@ -30,16 +32,16 @@ class MediumStack {
 
   bool empty() const { return size_ == 0; }
   uint32_t innermostMaterial() const { return entries_[size_ - 1].materialId; }
-  MediumStack entered(uint64_t objectKey, uint32_t materialId) const {
-    MediumStack s = *this;
-    if (s.size_ < kCapacity) s.entries_[s.size_++] = {objectKey, materialId};
-    return s;
+  // This list with the object entered, or left, written into `out` (not returned: a returned
+  // stack was zeroed whole before it was filled, a 150-byte store per dielectric crossing).
+  void enterInto(MediumStack& out, uint64_t objectKey, uint32_t materialId) const {
+    out.assign(*this);
+    if (out.size_ < kCapacity) out.entries_[out.size_++] = {objectKey, materialId};
   }
-  MediumStack left(uint64_t objectKey) const {
-    MediumStack s;
+  void leaveInto(MediumStack& out, uint64_t objectKey) const {
+    out.size_ = 0;
     for (int i = 0; i < size_; ++i)
-      if (entries_[i].objectKey != objectKey) s.entries_[s.size_++] = entries_[i];
-    return s;
+      if (entries_[i].objectKey != objectKey) out.entries_[out.size_++] = entries_[i];
   }
 
  private:
@@ -48,7 +50,41 @@ class MediumStack {
     uint32_t materialId;
   };
   int size_ = 0;  // first: a stack that is empty is read and written in its first bytes
-  Entry entries_[kCapacity] = {};  // [0, size_) in use; the rest is never read
+  // [0, size_) in use; the rest is never read, so it is left uninitialised: zeroing it cost a
+  // 128-byte store per stack made (every dielectric crossing makes one).
+  Entry entries_[kCapacity];
 };
+
+// A ray meeting a dielectric's surface at a hit: which way it crosses, and the indices of
+// refraction on its side and across, from the interior list. Entering or leaving is decided by
+// the geometric normal ng and the ray's direction d, never the shading normal. Entering object
+// O: η_i is the current medium's, η_t O's. Leaving O: η_i is O's, η_t that of the medium that
+// remains once O is removed (1, the outside world, when none).
+struct Crossing {
+  bool entering = false;
+  float etaI = 1, etaT = 1;
+  MediumStack across;  // the interior list on the far side
+};
+
+inline float iorOf(const MediumStack& media, const std::vector<Material>& materials) {
+  return media.empty() ? 1.0f : materials[media.innermostMaterial()].dielectric.ior;
+}
+
+[[gnu::always_inline]] inline Crossing crossingAt(const MediumStack& media, const Hit& hit,
+                                                  uint32_t materialId, const Vec3f& d,
+                                                  const Vec3f& ng,
+                                                  const std::vector<Material>& materials) {
+  const uint64_t key = objectKey(hit);
+  const float ior = materials[materialId].dielectric.ior;
+  Crossing c;
+  c.entering = dot(d, ng) < 0;
+  if (c.entering)
+    media.enterInto(c.across, key, materialId);
+  else
+    media.leaveInto(c.across, key);
+  c.etaI = c.entering ? iorOf(media, materials) : ior;
+  c.etaT = c.entering ? ior : iorOf(c.across, materials);
+  return c;
+}
 
 }  // namespace glint

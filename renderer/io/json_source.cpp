@@ -226,8 +226,11 @@ JsonNode JsonNode::child(const nlohmann::json& value, const std::string& key) co
 }
 
 void JsonNode::checkKeys(std::initializer_list<std::string_view> allowed) const {
+  checkKeys(std::vector<std::string>(allowed.begin(), allowed.end()));
+}
+
+void JsonNode::checkKeys(const std::vector<std::string>& names) const {
   if (!isObject()) fail("must be an object, got " + typeName());
-  std::vector<std::string> names(allowed.begin(), allowed.end());
   for (const auto& item : value_->items()) {
     if (std::find(names.begin(), names.end(), item.key()) != names.end()) continue;
     const std::string hint = nearestName(item.key(), names);

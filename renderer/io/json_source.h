@@ -53,6 +53,7 @@ class JsonNode {
 
   // Object access. checkKeys rejects keys outside `allowed`, suggesting the nearest one.
   void checkKeys(std::initializer_list<std::string_view> allowed) const;
+  void checkKeys(const std::vector<std::string>& allowed) const;
   bool has(const std::string& key) const;
   JsonNode at(const std::string& key) const;  // required
   std::optional<JsonNode> get(const std::string& key) const;

@@ -68,14 +68,11 @@ void parseCamera(const JsonNode& n, const std::optional<Animation>& animation, C
 }
 
 ColorTexture parseColorTexture(const JsonNode& n) {
-  ColorTexture t;
-  if (n.isArray()) {
-    t.constant = n.color();
-    return t;
-  }
+  if (n.isArray()) return ColorTexture::uniform(n.color());
   n.checkKeys({"checker"});
   const JsonNode c = n.at("checker");
   c.checkKeys({"scale", "a", "b"});
+  ColorTexture t;
   t.checker = true;
   t.scale = c.has("scale") ? c.at("scale").number(0, 3.4e38f, true) : 1.0f;
   t.a = c.at("a").color();
@@ -83,43 +80,46 @@ ColorTexture parseColorTexture(const JsonNode& n) {
   return t;
 }
 
-Material parseMaterial(const JsonNode& n) {
+// Every material type is the general surface of seed 002 §9.1 with its own defaults
+// (materials/material.h); a dielectric adds its interface.
+Material parseMaterial(const std::string& name, const JsonNode& n) {
   const std::string type = n.at("type").choice({"phong", "mirror", "dielectric"});
-  if (type == "phong") {
-    n.checkKeys({"type", "ka", "kd", "ks", "exponent", "specular_model", "km", "gloss"});
-    PhongMaterial m;
-    m.kd.constant = {0.5f, 0.5f, 0.5f};
-    if (auto v = n.get("kd")) m.kd = parseColorTexture(*v);
-    m.ka = m.kd;  // documented default: ambient reflectance follows the diffuse colour
-    m.ambientFollowsDiffuse = true;
-    if (auto v = n.get("ka")) m.ka = parseColorTexture(*v), m.ambientFollowsDiffuse = false;
-    m.ks = n.color("ks", m.ks);
-    m.km = n.color("km", m.km);
-    if (auto v = n.get("exponent")) m.exponent = v->number(0, 1e9f);
-    if (auto v = n.get("specular_model"))
-      m.specularModel = v->choice({"blinn", "phong"}) == "blinn" ? SpecularModel::BlinnPhong
-                                                                 : SpecularModel::Phong;
-    if (auto v = n.get("gloss")) m.gloss = v->number(0, 3.4e38f);
-    return m;
+  const MaterialKind kind = type == "phong"    ? MaterialKind::Phong
+                            : type == "mirror" ? MaterialKind::Mirror
+                                               : MaterialKind::Dielectric;
+  std::vector<std::string> keys = {"type",           "ka",   "kd", "ks", "km", "ke", "exponent",
+                                   "specular_model", "gloss"};
+  if (kind == MaterialKind::Dielectric)
+    keys.insert(keys.end(), {"ior", "attenuation", "fresnel", "blur"});
+  n.checkKeys(keys);
+  Material m = defaultMaterial(kind);
+  m.name = name;
+  Surface& s = m.surface;
+  if (auto v = n.get("kd")) {
+    s.kd = parseColorTexture(*v);
+    if (s.ambientFollowsDiffuse) s.ka = s.kd;  // k_a follows k_d unless given
   }
-  if (type == "mirror") {
-    n.checkKeys({"type", "km", "gloss"});
-    MirrorMaterial m;
-    m.km = n.color("km", m.km);
-    if (auto v = n.get("gloss")) m.gloss = v->number(0, 3.4e38f);
-    return m;
-  }
-  n.checkKeys({"type", "ior", "attenuation", "fresnel", "blur"});
-  DielectricMaterial m;
-  if (auto v = n.get("ior")) m.ior = v->number(0, 1e3f, true);
+  if (auto v = n.get("ka")) s.ka = parseColorTexture(*v), s.ambientFollowsDiffuse = false;
+  if (auto v = n.get("ks")) s.ks = parseColorTexture(*v);
+  if (auto v = n.get("km")) s.km = parseColorTexture(*v);
+  if (auto v = n.get("ke")) s.ke = parseColorTexture(*v);
+  if (auto v = n.get("exponent")) s.exponent = v->number(0, 1e9f);
+  if (auto v = n.get("specular_model"))
+    s.specularModel =
+        v->choice({"blinn", "phong"}) == "blinn" ? SpecularModel::BlinnPhong : SpecularModel::Phong;
+  if (auto v = n.get("gloss")) s.gloss = v->number(0, 3.4e38f);
+  if (kind != MaterialKind::Dielectric) return m;
+  Dielectric& d = m.dielectric;
+  if (auto v = n.get("ior")) d.ior = v->number(0, 1e3f, true);
   if (auto v = n.get("attenuation")) {
-    m.attenuation = v->color();
-    if (m.attenuation.maxChannel() > 1) v->fail("each channel must be in [0, 1]");
+    const Rgb a = v->color();
+    if (a.maxChannel() > 1) v->fail("each channel must be in [0, 1]");
+    d.absorption = BeerMedium(a);
   }
   if (auto v = n.get("fresnel"))
-    m.fresnel =
+    d.fresnel =
         v->choice({"exact", "schlick"}) == "exact" ? FresnelModel::Exact : FresnelModel::Schlick;
-  if (auto v = n.get("blur")) m.blur = v->number(0, 3.4e38f);
+  if (auto v = n.get("blur")) d.blur = v->number(0, 3.4e38f);
   return m;
 }
 
@@ -152,10 +152,11 @@ Light parseLight(const SceneBuilder& b, const JsonNode& n) {
       l.emission = v->choice({"seed", "radiance"}) == "seed" ? Emission::Seed : Emission::Radiance;
     if (l.emission == Emission::Radiance && n.has("falloff"))
       n.at("falloff").fail("radiance emission always falls off with 1/r²; remove \"falloff\"");
+    if (auto v = n.get("visible")) l.visible = v->boolean();
   };
   if (type == "quad") {
-    n.checkKeys(
-        {"type", "corner", "edge1", "edge2", "intensity", "samples", "falloff", "emission"});
+    n.checkKeys({"type", "corner", "edge1", "edge2", "intensity", "samples", "falloff", "emission",
+                 "visible"});
     const Vec3f corner = b.toRender(n.at("corner"));
     const Vec3f edge1 = n.at("edge1").vec3(), edge2 = n.at("edge2").vec3();
     if (!(length(cross(edge1, edge2)) > 0))
@@ -164,8 +165,8 @@ Light parseLight(const SceneBuilder& b, const JsonNode& n) {
     common(l);
     return l;
   }
-  n.checkKeys(
-      {"type", "center", "normal", "radius", "intensity", "samples", "falloff", "emission"});
+  n.checkKeys({"type", "center", "normal", "radius", "intensity", "samples", "falloff", "emission",
+               "visible"});
   // Named before the constructor call: its arguments have no order of evaluation, and which
   // bad field is reported first should not depend on the compiler.
   const Vec3f center = b.toRender(n.at("center"));
@@ -173,6 +174,36 @@ Light parseLight(const SceneBuilder& b, const JsonNode& n) {
   DiskLight l(center, normal, n.at("radius").number(0, 3.4e38f, true));
   common(l);
   return l;
+}
+
+// A visible area light is also a surface of the world: a quad or disk where the light is, whose
+// material emits the light's radiance (AreaEmission::emittedRadiance) and reflects nothing. Its
+// object id follows the objects' (objects.size() + the light's index).
+void addLightSurfaces(Scene& s, uint32_t objectCount) {
+  for (size_t li = 0; li < s.lights.size(); ++li) {
+    const auto* quad = std::get_if<QuadLight>(&s.lights[li]);
+    const auto* disk = std::get_if<DiskLight>(&s.lights[li]);
+    const AreaEmission* e = quad ? static_cast<const AreaEmission*>(quad) : disk;
+    if (!e || !e->visible) continue;
+    Material m = defaultMaterial(MaterialKind::Phong);
+    m.name = "lights[" + std::to_string(li) + "]";
+    m.surface.kd = m.surface.ka = ColorTexture{};
+    m.surface.ke = ColorTexture::uniform(e->emittedRadiance(quad ? quad->area() : disk->area()));
+    m.surface.emissionSides =
+        e->emission == Emission::Radiance ? EmissionSides::Front : EmissionSides::Both;
+    const auto materialId = static_cast<uint32_t>(s.materials.size());
+    s.materials.push_back(std::move(m));
+    Geometry g{GeomKind::Quad, 0, materialId, objectCount + static_cast<uint32_t>(li)};
+    if (quad) {
+      g.index = static_cast<uint32_t>(s.quads.size());
+      s.quads.push_back({quad->corner(), quad->edge1(), quad->edge2()});
+    } else {
+      g.kind = GeomKind::Disk;
+      g.index = static_cast<uint32_t>(s.disks.size());
+      s.disks.push_back({disk->center(), disk->normal(), disk->radius()});
+    }
+    s.groups[0].geometries.push_back(g);
+  }
 }
 
 void parseScene(SceneBuilder& b, const JsonNode& root, std::optional<int> frame) {
@@ -185,7 +216,7 @@ void parseScene(SceneBuilder& b, const JsonNode& root, std::optional<int> frame)
   if (auto mats = root.get("materials"))
     for (const std::string& name : mats->keys()) {
       b.materialIds[name] = static_cast<uint32_t>(s.materials.size());
-      s.materials.push_back({name, parseMaterial(mats->at(name))});
+      s.materials.push_back(parseMaterial(name, mats->at(name)));
     }
   if (auto lights = root.get("lights"))
     for (const JsonNode& l : lights->elements()) s.lights.push_back(parseLight(b, l));
@@ -206,6 +237,7 @@ void parseScene(SceneBuilder& b, const JsonNode& root, std::optional<int> frame)
     }
   const JsonNode objects = root.at("objects");
   for (size_t i = 0; i < objects.size(); ++i) addObject(b, objects[i], 0, static_cast<uint32_t>(i));
+  addLightSurfaces(s, static_cast<uint32_t>(objects.size()));
   // An animated scene's keys span its frames: keep just this frame's shutter of them.
   if (s.animation) resampleMotionToFrame(s, *s.animation);
   s.features = computeFeatures(s);

@@ -1,21 +1,8 @@
 #include "lights/light.h"
 
-#include <cmath>
+#include "core/frame.h"
 
 namespace glint {
-
-namespace {
-
-// Orthonormal tangents of unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited").
-void tangents(const Vec3f& n, Vec3f& t, Vec3f& b) {
-  const float sign = std::copysign(1.0f, n.z);
-  const float a = -1.0f / (sign + n.z);
-  const float c = n.x * n.y * a;
-  t = {1 + sign * n.x * n.x * a, sign * c, -sign * n.x};
-  b = {c, sign + n.y * n.y * a, -n.y};
-}
-
-}  // namespace
 
 QuadLight::QuadLight(const Vec3f& corner, const Vec3f& edge1, const Vec3f& edge2)
     : corner_(corner), edge1_(edge1), edge2_(edge2) {
@@ -27,7 +14,7 @@ QuadLight::QuadLight(const Vec3f& corner, const Vec3f& edge1, const Vec3f& edge2
 DiskLight::DiskLight(const Vec3f& center, const Vec3f& normal, float radius)
     : center_(center), normal_(normal), radius_(radius), area_(kPi * radius * radius) {
   Vec3f t, b;
-  tangents(normal, t, b);
+  orthonormalBasis(normal, t, b);
   axisX_ = radius * t;
   axisY_ = radius * b;
 }

@@ -5,7 +5,9 @@
 //    intensity and falloff rule, so a shrinking light converges to the point light.
 //  - Radiance ("emission": "radiance"): a one-sided emitter of radiance `intensity`, with the
 //    cosine at the light and inverse-square distance, so lit surfaces show k_d × irradiance.
-// Area lights are not visible to camera rays; they light surfaces only.
+// An area light with "visible": true is also a surface of the scene that camera, reflected and
+// refracted rays see (the loader adds it, with the radiance emittedRadiance gives); otherwise
+// area lights only light surfaces.
 #include <algorithm>
 #include <cmath>
 #include <variant>
@@ -37,6 +39,16 @@ struct AreaEmission {
   int samples = 1;
   Falloff falloff = Falloff::None;
   Emission emission = Emission::Seed;
+  bool visible = false;
+
+  // The radiance the light's surface shows when visible. In radiance mode, `intensity` on the
+  // emitting side (and black behind). In seed mode, intensity / area on both sides: the
+  // radiance of a flat emitter of that area whose intensity along its normal is `intensity`,
+  // so that, seen from far enough along its axis, it lights a surface as the point lights it
+  // stands for do (at distance 1 when they do not fall off).
+  Rgb emittedRadiance(float area) const {
+    return emission == Emission::Radiance ? intensity : intensity * (1.0f / area);
+  }
 };
 
 // A parallelogram; emits towards edge1 × edge2 in radiance mode. The edges must span a
@@ -86,6 +98,12 @@ struct LightSample {
 
 // Shadow samples per camera sample: 1 for delta lights (nothing to sample).
 int lightSampleCount(const Light& light);
+
+// A light's share of a shading point: the mean of what its `count` samples let through, `sum`
+// their total (seed 000 §13.4.2: an area light is the average of point lights over its area).
+inline Rgb meanOverSamples(const Rgb& sum, int count) {
+  return count == 1 ? sum : sum * (1.0f / static_cast<float>(count));
+}
 
 // The sample of a light at point y on it (the lighting parameters and, in radiance mode, the
 // light's unit normal and area), seen from p.

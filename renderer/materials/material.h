@@ -1,65 +1,79 @@
 #pragma once
-// Materials are a closed set, visited in one place (integrator/whitted.cpp). Every key of
-// SCENE_FORMAT.md is kept here even where the integrator does not use it yet.
-#include <cstdint>
+// A material: the general surface of seed 002 §9.1 (surface.h) that every material has, and for
+// a dielectric a refracting interface (dielectric.h). The scene's three material types are this
+// one model with different defaults (docs/scene-format.md):
+//   phong       k_d 0.5; no highlight, no mirror
+//   mirror      k_m 1; everything else black
+//   dielectric  an interface of index 1.5; the surface black
+// and for all three k_a = k_d unless given.
+// forEachCoherentRay() is the one place where what a material is decides what happens at a hit.
 #include <string>
-#include <variant>
 
-#include "core/affine.h"
-#include "core/rgb.h"
-#include "core/vec.h"
+#include "core/sampler.h"
+#include "geometry/shading_point.h"
+#include "materials/dielectric.h"
+#include "materials/surface.h"
 
 namespace glint {
 
-// A colour that is either constant or a procedural 3D checker (seed 001 §9 item 9).
-struct ColorTexture {
-  Rgb constant;
-  bool checker = false;
-  Rgb a, b;
-  float scale = 1;
+enum class MaterialKind { Phong, Mirror, Dielectric };
 
-  // At a render-space point: the checker is fixed in world space, so the point is moved back
-  // by the scene's worldOrigin (in double) before the cells are counted.
-  Rgb eval(const Vec3f& renderP, const Vec3d& worldOrigin) const {
-    return checker ? checkerAt(renderP, worldOrigin) : constant;
-  }
-  bool isBlack() const { return checker ? a.isBlack() && b.isBlack() : constant.isBlack(); }
-
- private:
-  Rgb checkerAt(const Vec3f& renderP, const Vec3d& worldOrigin) const;
-};
-
-enum class SpecularModel { BlinnPhong, Phong };
-enum class FresnelModel { Exact, Schlick };
-
-struct PhongMaterial {
-  ColorTexture ka, kd;
-  // ka is kd (the scene gave no "ka"): the ambient term reuses the diffuse colour already
-  // looked up at the shading point instead of evaluating the same texture twice.
-  bool ambientFollowsDiffuse = false;
-  Rgb ks, km;
-  float exponent = 32;
-  SpecularModel specularModel = SpecularModel::BlinnPhong;
-  float gloss = 0;
-};
-
-struct MirrorMaterial {
-  Rgb km{1, 1, 1};
-  float gloss = 0;
-};
-
-struct DielectricMaterial {
-  float ior = 1.5f;
-  Rgb attenuation{1, 1, 1};  // fraction kept per unit distance inside (Beer)
-  FresnelModel fresnel = FresnelModel::Exact;
-  float blur = 0;
-};
-
-using Material = std::variant<PhongMaterial, MirrorMaterial, DielectricMaterial>;
-
-struct NamedMaterial {
+struct Material {
   std::string name;
-  Material material;
+  MaterialKind kind = MaterialKind::Phong;
+  Surface surface;
+  Dielectric dielectric;  // read only when kind is Dielectric
+
+  bool refracts() const { return kind == MaterialKind::Dielectric; }
 };
+
+// The defaults of each kind, above.
+Material defaultMaterial(MaterialKind kind);
+
+// The most rays forEachCoherentRay sends: a dielectric's surface mirror, and its interface's
+// reflection and refraction.
+inline constexpr int kMaxCoherentRays = 3;
+
+// The rays a hit sends on (Trace's r_r and r_t, seed 002 §9.1), for unit d arriving at the
+// point (sp, at), each handed to send(direction, weight, crosses) in Trace's order: the
+// surface's mirror ray (k_m), then a dielectric's reflected and refracted rays. `weight`
+// multiplies the radiance the ray brings back; `crosses` says it crosses the surface into or
+// out of the object. etaI and etaT are the indices on the ray's side and across (the interior
+// list knows them; read only for a dielectric). A glossy mirror or a blurred refraction draws
+// its sample from `key` at `depth`, the depth of the arriving ray. (A callback rather than an
+// array of rays: rays written to memory and read back at once stalled on store forwarding.)
+template <class Send>
+[[gnu::always_inline]] inline void forEachCoherentRay(const Material& m, const ShadingPoint& sp,
+                                                      const SurfacePoint& at, const Vec3f& d,
+                                                      float etaI, float etaT, const SampleKey& key,
+                                                      int depth, Send&& send) {
+  // The surface's coherent reflection k_m·L(r).
+  if (!at.km.isBlack()) {
+    const Surface& s = m.surface;
+    const Vec2f u = s.gloss > 0 ? key.get2D(dimension(Dim::Gloss, depth)) : Vec2f{};
+    Vec3f r;
+    if (mirrorDirection(d, at.n, s.gloss, u, r)) send(r, at.km, false);
+  }
+  if (!m.refracts()) return;
+  // The interface: the normal is the geometric one turned against the ray, never the shading
+  // normal, so that which side is which is decided where the medium boundary really is.
+  const Dielectric& g = m.dielectric;
+  const Vec3f n = dot(d, sp.ng) < 0 ? sp.ng : -sp.ng;
+  const Dielectric::Split split = g.split(d, n, etaI, etaT);
+  send(split.reflected, Rgb{split.R, split.R, split.R}, false);
+  if (!split.refracts) return;
+  Vec3f t = split.refracted;
+  if (g.blur > 0) {
+    // Blurred translucency (seed 002 §9.3): the same square perturbation around t; a ray that
+    // ends up back on the incoming side returns black.
+    t = perturb(t, g.blur, key.get2D(dimension(Dim::Gloss, depth, 1)));
+    if (dot(t, n) >= 0) return;
+  }
+  const float T = 1 - split.R;
+  send(t, Rgb{T, T, T}, true);
+}
+
+// What the albedo AOV shows: k_d where the surface is diffuse, else k_m; 1 for a dielectric.
+Rgb albedo(const Material& m, const SurfacePoint& at);
 
 }  // namespace glint

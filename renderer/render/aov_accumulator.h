@@ -9,7 +9,7 @@
 
 #include "film/film.h"
 #include "integrator/aov.h"
-#include "integrator/whitted.h"
+#include "integrator/radiance.h"
 
 namespace glint {
 

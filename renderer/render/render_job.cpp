@@ -19,7 +19,8 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/sampler.h"
-#include "integrator/whitted.h"
+#include "integrator/batched_kernel.h"
+#include "integrator/reference.h"
 #include "render/aov_accumulator.h"
 #include "render/progress.h"
 #include "render/tile_scheduler.h"
@@ -57,12 +58,39 @@ struct FrameContext {
   std::atomic<int>& loggedNonfinite;
 };
 
-// One tile with the integrator compiled for `Caps`: the lens and time dimensions are drawn and
-// AOVs recorded only where the capability set has them (leave out what is not needed).
+// Shades a chunk of camera samples with the production kernel: their rays traced as one
+// coherent stream (Embree traces it as packets), their hits shaded together (traceCameraHits),
+// so that one sample's memory misses and dependent chains overlap another's.
 template <unsigned Caps>
-void renderTile(const FrameContext& f, const WhittedKernel<Caps>& integrator,
-                const PixelWindow& tile, RayCounters& counters,
-                typename WhittedKernel<Caps>::Scratch& scratch) {
+struct ProductionShading {
+  const BatchedKernel<Caps>& kernel;
+  const Accelerator& accel;
+  typename BatchedKernel<Caps>::Scratch& scratch;
+  Hit hits[kCameraChunk];
+
+  void operator()(const Ray* rays, const SampleKey* keys, int count, Radiance* out,
+                  AovSample* const* records, RayCounters& counters) {
+    accel.intersectCoherent(rays, hits, static_cast<size_t>(count));
+    kernel.traceCameraHits(rays, hits, keys, count, out, records, counters, scratch);
+  }
+};
+
+// The same with the reference integrator, depth first, one sample at a time.
+struct ReferenceShading {
+  const ReferenceIntegrator& integrator;
+
+  void operator()(const Ray* rays, const SampleKey* keys, int count, Radiance* out,
+                  AovSample* const*, RayCounters& counters) const {
+    for (int i = 0; i < count; ++i) out[i] = integrator.radiance(rays[i], keys[i], counters);
+  }
+};
+
+// One tile, its camera samples shaded in chunks by `shade` (ProductionShading or
+// ReferenceShading). The lens and time dimensions are drawn and AOVs recorded only where the
+// capability set `Caps` has them (leave out what is not needed).
+template <unsigned Caps, class Shading>
+void renderTile(const FrameContext& f, Shading& shade, const PixelWindow& tile,
+                RayCounters& counters) {
   constexpr bool kCameraSamples = (Caps & cap::kCameraSamples) != 0;
   constexpr bool kAovs = (Caps & cap::kAovs) != 0;
   const RenderSettings& rs = f.scene.render;
@@ -70,14 +98,11 @@ void renderTile(const FrameContext& f, const WhittedKernel<Caps>& integrator,
   const bool aovSamples = kAovs && f.opt.aovs.needsSamples();
   const Vec3f viewAxis = -f.camera.w();
   PixelAovs pixelAovs(f.aovLayout);
-  // Camera rays leave together in chunks: Embree traces a coherent stream as packets
-  // (docs/performance.md), and their hits are shaded together (traceCameraHits), so one
-  // sample's memory misses and dependent chains overlap another's. Below kCameraChunk spp a
-  // chunk holds several whole pixels along the row; from it on, a run of one pixel's samples.
-  // Samples are still summed per pixel in index order. The arrays live per tile: declared per
-  // pixel, their initialisation cost 13 % of a 1-spp render.
+  // Camera samples are made and shaded in chunks. Below kCameraChunk spp a chunk holds several
+  // whole pixels along the row; from it on, a run of one pixel's samples. Samples are still
+  // summed per pixel in index order. The arrays live per tile: declared per pixel, their
+  // initialisation cost 13 % of a 1-spp render.
   Ray rays[kCameraChunk];
-  Hit hits[kCameraChunk];
   SampleKey keys[kCameraChunk];
   Radiance radiance[kCameraChunk];
   // Without AOVs no records exist (the compiler cleared 264 bytes per sample for them).
@@ -100,15 +125,13 @@ void renderTile(const FrameContext& f, const WhittedKernel<Caps>& integrator,
           f.cameraSampling.pixelRays<kCameraSamples>(f.sampler, x0 + p, y, first, runLength,
                                                      keys + p * runLength, rays + p * runLength,
                                                      cameraPoints);
-        f.accel.intersectCoherent(rays, hits, static_cast<size_t>(count));
         if constexpr (kAovs)
           for (int i = 0; i < count; ++i) {
             records[i] = AovSample{};
             records[i].viewAxis = viewAxis;
             recordOf[i] = aovSamples ? &records[i] : nullptr;
           }
-        integrator.traceCameraHits(rays, hits, keys, count, radiance, kAovs ? recordOf : nullptr,
-                                   counters, scratch);
+        shade(rays, keys, count, radiance, kAovs ? recordOf : nullptr, counters);
         for (int p = 0; p < pixels; ++p) {
           const int x = x0 + p;
           if (first == 0) {
@@ -151,27 +174,45 @@ struct TileWork {
   int threads;
 };
 
-// Every tile with the integrator compiled for `Caps`. A thread keeps one scratch for all the
-// tiles it renders: made per tile, its allocation, clearing and page faults cost 5 % of a
-// render's time at 32-pixel tiles and 18 % at 8 (default scene, one thread).
-template <unsigned Caps>
-void renderTiles(const FrameContext& f, TileWork& work) {
-  using Scratch = typename WhittedKernel<Caps>::Scratch;
-  const WhittedKernel<Caps> integrator(f.scene, f.accel);  // const: shared by the threads
-  tbb::enumerable_thread_specific<std::unique_ptr<Scratch>> scratches;
+// Runs tile(i, counters) for every tile on the scheduler, unless cancelled.
+template <class RenderOneTile>
+void forEachTile(const FrameContext& f, TileWork& work, RenderOneTile&& tile) {
   runTiles(work.tiles, work.threads, [&](size_t i) {
     if (f.opt.cancel && f.opt.cancel->load(std::memory_order_relaxed)) {
       work.skipped = true;
       return;
     }
-    std::unique_ptr<Scratch>& scratch = scratches.local();
-    if (!scratch) scratch = std::make_unique<Scratch>();
     // Counted on this thread's stack: neighbouring tiles' counters share cache lines, which
     // two threads would otherwise write in their inner loops.
     RayCounters counters;
-    renderTile<Caps>(f, integrator, work.tiles[i], counters, *scratch);
+    tile(i, counters);
     work.counters[i] = counters;
     work.progress.advance(work.tiles[i].area(), counters.total());
+  });
+}
+
+// Every tile with the production kernel compiled for `Caps`. A thread keeps one scratch for all
+// the tiles it renders: made per tile, its allocation, clearing and page faults cost 5 % of a
+// render's time at 32-pixel tiles and 18 % at 8 (default scene, one thread).
+template <unsigned Caps>
+void renderTiles(const FrameContext& f, TileWork& work) {
+  using Scratch = typename BatchedKernel<Caps>::Scratch;
+  const BatchedKernel<Caps> kernel(f.scene, f.accel);  // const: shared by the threads
+  tbb::enumerable_thread_specific<std::unique_ptr<Scratch>> scratches;
+  forEachTile(f, work, [&](size_t i, RayCounters& counters) {
+    std::unique_ptr<Scratch>& scratch = scratches.local();
+    if (!scratch) scratch = std::make_unique<Scratch>();
+    ProductionShading<Caps> shade{kernel, f.accel, *scratch, {}};
+    renderTile<Caps>(f, shade, work.tiles[i], counters);
+  });
+}
+
+// Every tile with the reference integrator (beauty only, no AOVs).
+void renderTilesReference(const FrameContext& f, TileWork& work) {
+  const ReferenceIntegrator integrator(f.scene, f.accel);
+  forEachTile(f, work, [&](size_t i, RayCounters& counters) {
+    ReferenceShading shade{integrator};
+    renderTile<cap::kCameraSamples>(f, shade, work.tiles[i], counters);
   });
 }
 
@@ -184,6 +225,16 @@ FrameRenderer frameRenderer(unsigned caps, std::integer_sequence<unsigned, Caps.
 }
 
 }  // namespace
+
+bool parseIntegratorKind(const std::string& name, IntegratorKind& out) {
+  if (name == "production")
+    out = IntegratorKind::Production;
+  else if (name == "reference")
+    out = IntegratorKind::Reference;
+  else
+    return false;
+  return true;
+}
 
 void checkSampleSets(const Scene& scene) {
   const int64_t spp = scene.render.spp;
@@ -233,9 +284,13 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   const Sampler sampler(rs.sampler, rs.spp, rs.seed);
   // AOV work happens only when AOVs are asked for (leave out what is not needed).
   const AovLayout aovLayout = AovLayout::create(opt.aovs, scene.lights.size(), film);
+  if (opt.integrator == IntegratorKind::Reference && opt.aovs.any())
+    throw UsageError("the reference integrator renders the beauty only: drop --aov");
   const unsigned caps = opt.specialize ? kernelCaps(scene.features, opt.aovs.any()) : cap::kAll;
   const FrameRenderer renderTilesWith =
-      frameRenderer(caps, std::make_integer_sequence<unsigned, cap::kAll + 1>{});
+      opt.integrator == IntegratorKind::Reference
+          ? &renderTilesReference
+          : frameRenderer(caps, std::make_integer_sequence<unsigned, cap::kAll + 1>{});
 
   const int threads = opt.threads > 0 ? opt.threads : defaultThreadCount();
   const int tileSize = effectiveTileSize(window, opt.tileSize, threads);
@@ -255,6 +310,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   RenderResult result{std::move(film), {}, skipped.load(), tileSize};
   for (const RayCounters& c : tileCounters) result.stats.rays += c;
   result.stats.kernelCaps = caps;
+  result.stats.integrator = opt.integrator;
   result.stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;

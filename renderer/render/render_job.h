@@ -10,12 +10,15 @@
 #include "camera/camera.h"
 #include "film/film.h"
 #include "integrator/aov.h"
+#include "integrator/batched_kernel.h"
 #include "integrator/ray_counters.h"
-#include "integrator/whitted.h"
 #include "render/tile_scheduler.h"
 #include "scene/scene.h"
 
 namespace glint {
+
+enum class IntegratorKind { Production, Reference };
+bool parseIntegratorKind(const std::string& name, IntegratorKind& out);
 
 struct RenderOptions {
   int threads = 0;    // 0 = all cores
@@ -27,8 +30,11 @@ struct RenderOptions {
   // finish, and the result is marked partial. Unrendered pixels stay at zero, alpha 0.
   const std::atomic<bool>* cancel = nullptr;
   AovSet aovs;  // none by default
-  // Run the integrator compiled for exactly the scene's capabilities (integrator/kernel_caps.h);
-  // false forces the general path (`--no-specialize`), which gives the same bytes, slower.
+  // The production kernel (integrator/batched_kernel.h), or its oracle, the depth-first
+  // reference integrator (integrator/reference.h: `--integrator reference`, beauty only).
+  IntegratorKind integrator = IntegratorKind::Production;
+  // Run the kernel compiled for exactly the scene's capabilities (scene/features.h); false
+  // forces the general path (`--no-specialize`), which gives the same bytes, slower.
   bool specialize = true;
   // Test hook: sees (and may alter) every camera sample before it reaches the film, so tests
   // can force a NaN through the real path. Never set in production.
@@ -106,7 +112,8 @@ class CameraSampling {
 struct RenderStats {
   double seconds = 0;
   RayCounters rays;
-  unsigned kernelCaps = 0;  // the capability set the integrator was compiled for
+  IntegratorKind integrator = IntegratorKind::Production;
+  unsigned kernelCaps = 0;  // the capability set the production kernel was compiled for
 };
 
 struct RenderResult {

@@ -22,6 +22,7 @@ std::vector<std::pair<const char*, bool>> table(const Features& f) {
           {"refraction", f.refraction},
           {"absorption", f.absorption},
           {"textures", f.textures},
+          {"emission", f.emission},
           {"ambient", f.ambient},
           {"transparent_shadows", f.transparentShadows}};
 }
@@ -52,23 +53,42 @@ Features computeFeatures(const Scene& scene) {
   for (const auto& keys : scene.sphereCenterKeys) f.motion |= !keys.empty();
   for (const auto& m : scene.meshes) f.motion |= m.deforming();
   for (const auto& inst : scene.instances) f.motion |= !inst.motion.empty();
-  for (const auto& nm : scene.materials) {
-    if (const auto* ph = std::get_if<PhongMaterial>(&nm.material)) {
-      f.specular |= !ph->ks.isBlack();
-      f.reflection |= !ph->km.isBlack();
-      f.gloss |= !ph->km.isBlack() && ph->gloss > 0;
-      f.textures |= ph->kd.checker || ph->ka.checker;
-    } else if (const auto* m = std::get_if<MirrorMaterial>(&nm.material)) {
-      f.reflection |= !m->km.isBlack();
-      f.gloss |= !m->km.isBlack() && m->gloss > 0;
-    } else if (const auto* d = std::get_if<DielectricMaterial>(&nm.material)) {
+  for (const Material& m : scene.materials) {
+    const Surface& s = m.surface;
+    f.specular |= !s.ks.isBlack();
+    f.reflection |= s.reflectsCoherently();
+    f.gloss |= s.reflectsCoherently() && s.gloss > 0;
+    f.emission |= s.emits();
+    for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke}) f.textures |= t->checker;
+    if (m.refracts()) {
       f.refraction = f.reflection = true;
-      f.absorption |= !(d->attenuation == Rgb{1, 1, 1});
-      f.gloss |= d->blur > 0;
+      f.absorption |= m.dielectric.absorption.absorbs();
+      f.gloss |= m.dielectric.blur > 0;
     }
   }
   f.transparentShadows = scene.render.transparentShadows && f.refraction && f.shadows;
   return f;
+}
+
+unsigned kernelCaps(const Features& f, bool aovs) {
+  unsigned c = 0;
+  if (f.refraction) c |= cap::kDielectrics;
+  if (f.areaLights) c |= cap::kAreaLights;
+  if (f.gloss) c |= cap::kGloss;
+  if (f.depthOfField || f.motion) c |= cap::kCameraSamples;
+  if (aovs) c |= cap::kAovs;
+  return c;
+}
+
+std::string kernelName(unsigned caps) {
+  if (caps == cap::kAll) return "general";
+  if (caps == 0) return "plain";
+  static const char* const names[cap::kCount] = {"dielectrics", "area_lights", "gloss",
+                                                 "camera_samples", "aovs"};
+  std::string out;
+  for (unsigned i = 0; i < cap::kCount; ++i)
+    if (caps & (1u << i)) out += (out.empty() ? "" : "+") + std::string(names[i]);
+  return out;
 }
 
 }  // namespace glint

@@ -97,6 +97,16 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
       n = cross(q.edge1, q.edge2);
       break;
     }
+    case GeomKind::Disk: {
+      // As a plane: the point on the ray projected onto the disk's plane.
+      const Disk& d = disks[g.index];
+      const Vec3f onRay = oObj + hit.t * dObj;
+      const Vec3f rel = onRay - d.center;
+      p = onRay - dot(rel, d.normal) * d.normal;
+      pError = gamma(6) * (abs(onRay) + abs(d.center) + abs(rel));
+      n = d.normal;
+      break;
+    }
     case GeomKind::Plane: {
       const Plane& pl = planes[g.index];
       const Vec3f onRay = oObj + hit.t * dObj;
@@ -155,6 +165,9 @@ Bounds3f Scene::groupBounds(uint32_t groupId) const {
         break;
       case GeomKind::Quad:
         b.extend(bounds(quads[g.index]));
+        break;
+      case GeomKind::Disk:
+        b.extend(bounds(disks[g.index]));
         break;
       case GeomKind::Plane:
         break;

@@ -21,7 +21,7 @@
 
 namespace glint {
 
-enum class GeomKind : uint8_t { Mesh, Sphere, Quad, Plane, Instance };
+enum class GeomKind : uint8_t { Mesh, Sphere, Quad, Disk, Plane, Instance };
 
 // One entry of a group. A hit's geomId is this entry's index in its group, so every backend
 // reports the same ids.
@@ -86,7 +86,7 @@ class Scene {
   // Everything below lives in render space: world space minus this point, the camera's eye
   // (io/placement.h). Add it back to name a world position.
   Vec3d worldOrigin;
-  std::vector<NamedMaterial> materials;
+  std::vector<Material> materials;
   std::vector<Light> lights;
 
   std::vector<Group> groups;  // groups[0] is the world
@@ -95,6 +95,7 @@ class Scene {
   // Per sphere: centre keys over [0, 1] when it moves (seed 000 §13.4.5), else empty.
   std::vector<std::vector<Vec3f>> sphereCenterKeys;
   std::vector<Quad> quads;
+  std::vector<Disk> disks;  // the surfaces of visible disk lights
   std::vector<Plane> planes;
   // Per plane, its entry in groups[0] (planes live only there): every ray tests every plane
   // (accel/accelerator.h), and must not walk the whole world to find them.

@@ -2,7 +2,7 @@
 // estimator's variance and fixed seeds.
 #include <gtest/gtest.h>
 
-#include "integrator/whitted.h"
+#include "integrator/batched_kernel.h"
 #include "render/render_job.h"
 #include "test_util.h"
 
@@ -39,7 +39,7 @@ std::string floorUnder(const std::string& light, int samples) {
 float irradianceAtOrigin(const LoadedScene& s, int px) {
   const Sampler sampler(SamplerKind::Stratified, 1, 11);
   RayCounters counters;
-  return WhittedIntegrator(s.scene, *s.accel)
+  return GeneralKernel(s.scene, *s.accel)
       .trace({{0, 1, 0}, {0, -1, 0}}, SampleKey{&sampler, px, 0, 0}, counters)
       .L.r;
 }

@@ -2,7 +2,7 @@
 // scale-aware offset must neither re-hit the source surface nor jump through a thin gap.
 #include <gtest/gtest.h>
 
-#include "integrator/optics.h"
+#include "materials/fresnel.h"
 #include "render/render_job.h"
 #include "test_util.h"
 

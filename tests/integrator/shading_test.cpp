@@ -1,44 +1,14 @@
 // The shading layer against closed forms (seed 000 §4.5–4.8, §13.1; seed 001 §5–7).
 #include <gtest/gtest.h>
 
-#include "integrator/optics.h"
-#include "integrator/whitted.h"
-#include "test_util.h"
+#include "trace_both.h"
 
 namespace glint {
 namespace {
 
-struct Traced {
-  Scene scene;
-  std::unique_ptr<Accelerator> accel;
-  Rgb trace(const Ray& ray, float minThroughput = kDefaultMinThroughput) const {
-    RayCounters counters;
-    const Sampler sampler(SamplerKind::Stratified, 1, 0);
-    return WhittedIntegrator(scene, *accel, minThroughput)
-        .trace(ray, SampleKey{&sampler, 0, 0, 0}, counters)
-        .L;
-  }
-};
-
-// The eye sits at the world origin, so render space (world − eye, io/placement.h) is world
-// space and the rays below are written in world coordinates.
-Traced load(const std::string& body) {
-  Traced t{
-      test::sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]}, )" + body + "}"),
-      nullptr};
-  t.accel = makeAccelerator(AccelKind::Embree, t.scene);
-  return t;
-}
-
-Ray rayTo(Vec3f from, Vec3f to) { return {from, normalize(to - from)}; }
-
-// spawnRay moves an origin off the surface by its error bound: for a face at coordinate c
-// (all vertices at c) that is γ₇·|c| ≈ 3.5 ulps of c, plus one ulp of rounding. A path through
-// an absorbing medium is shortened by that at each entry, and Beer's factor a^s errs by about
-// |ln a|·(shortening) relative. Tolerances use 16 ulps of c, above that bound.
-double spawnOffset(float coordinate) {
-  return 16.0 * (std::nextafter(coordinate, kInfinity) - coordinate);
-}
+using test::load;
+using test::rayTo;
+using test::spawnOffset;
 
 TEST(Shading, LambertUnderPointLightWithFalloff) {
   // Light at (1, 2, 0) over the origin: cosθ = 2/√5, r² = 5 → L = k_d·I·cosθ / r².
@@ -99,67 +69,109 @@ TEST(Shading, MirrorFacingUniformBackground) {
 
 // A glass slab of thickness 0.5 (z in [−0.25, 0.25]) seen at normal incidence against a
 // background of 1; a black wall behind the viewer absorbs everything reflected back.
-std::string slabScene(const char* attenuation, int maxDepth) {
+std::string slabScene(const char* attenuation, int maxDepth, const std::string& extra = "") {
   return std::string(R"("render": {"background": [1,1,1], "max_depth": )") +
          std::to_string(maxDepth) + R"(},
     "materials": {"g": {"type": "dielectric", "ior": 1.5, "attenuation": )" +
-         attenuation +
-         R"(}, "black": {"type": "phong", "kd": [0,0,0], "ka": [0,0,0]}},
+         attenuation + extra + R"(}, "black": {"type": "phong", "kd": [0,0,0]}},
     "objects": [{"type": "box", "min": [-50,-50,-0.25], "max": [50,50,0.25], "material": "g"},
                 {"type": "quad", "corner": [-50,-50,8], "edge1": [100,0,0], "edge2": [0,100,0], "material": "black"}])";
 }
 
-// Transmission of the slab summed over internal bounces k = 0..K:
-// (1 − R)²·A·Σ (R²A²)^k with A = a^d the Beer factor of one crossing.
-double slabSeries(double R, double A, int K) {
+// The slab's light at depth limit D (D ≥ 1), A the Beer factor of one crossing. The camera ray
+// (depth 0) enters the front face; the ray of depth d ≥ 1 crosses the slab and meets the back
+// face for odd d, the front face for even d, carrying (1 − R)·R^(d−1)·A^d. At a back face its
+// refracted part (1 − R) leaves into the background (1) when d + 1 ≤ D. Past the limit Trace
+// returns the background, so the deepest ray, of depth D, brings its whole weight back:
+//   L = Σ_{k=0}^{⌊D/2⌋−1} (1 − R)²·R^{2k}·A^{2k+1} + (1 − R)·R^{D−1}·A^D.
+double slabAtDepthLimit(double R, double A, int D) {
   double sum = 0;
-  for (int k = 0; k <= K; ++k) sum += std::pow(R * R * A * A, k);
-  return (1 - R) * (1 - R) * A * sum;
+  for (int k = 0; k < D / 2; ++k)
+    sum += (1 - R) * (1 - R) * std::pow(R, 2 * k) * std::pow(A, 2 * k + 1);
+  return sum + (1 - R) * std::pow(R, D - 1) * std::pow(A, D);
 }
 
 TEST(Shading, GlassSlabAtNormalIncidence) {
   const double R = 0.04;  // ((1.5 − 1)/(1.5 + 1))²
-  // Camera ray at depth 0; the k-th internal bounce leaves at depth 2 + 2k ≤ max_depth = 8,
-  // so k = 0..3 are traced when no throughput cutoff applies.
-  const auto clear = load(slabScene("[1,1,1]", 8));
   const Ray ray{{0, 0, 5}, {0, 0, -1}};
-  EXPECT_NEAR(clear.trace(ray, 0).r, slabSeries(R, 1, 3), 1e-6);
+  // No throughput cutoff: every branch down to max_depth 8 is traced.
+  const auto clear = test::load(slabScene("[1,1,1]", 8));
+  EXPECT_NEAR(clear.trace(ray, 0).r, slabAtDepthLimit(R, 1, 8), 1e-6);
   // With Beer: a = (0.5, 0.8, 1) per unit over d = 0.5 → A = a^0.5 per crossing.
-  const auto tinted = load(slabScene("[0.5,0.8,1]", 8));
+  const auto tinted = test::load(slabScene("[0.5,0.8,1]", 8));
   const Rgb L = tinted.trace(ray, 0);
   // Each crossing starts a few ulps of 0.25 inside the slab; the direct path dominates the sum.
   const double beerTol = std::fabs(std::log(0.5)) * spawnOffset(0.25f) * 1.1;
-  EXPECT_NEAR(L.r, slabSeries(R, std::sqrt(0.5), 3), beerTol);
-  EXPECT_NEAR(L.g, slabSeries(R, std::sqrt(0.8), 3), beerTol);
-  EXPECT_NEAR(L.b, slabSeries(R, 1, 3), 1e-6);
-  // max_depth 2 keeps only the direct crossing (k = 0).
-  EXPECT_NEAR(load(slabScene("[1,1,1]", 2)).trace(ray, 0).r, slabSeries(R, 1, 0), 1e-6);
+  EXPECT_NEAR(L.r, slabAtDepthLimit(R, std::sqrt(0.5), 8), beerTol);
+  EXPECT_NEAR(L.g, slabAtDepthLimit(R, std::sqrt(0.8), 8), beerTol);
+  EXPECT_NEAR(L.b, slabAtDepthLimit(R, 1, 8), 1e-6);
+  // At max_depth 2 the ray reflected inside at the back face (depth 2) meets the front face,
+  // and both its children return the background: L = (1 − R)² + (1 − R)·R = 1 − R.
+  EXPECT_NEAR(test::load(slabScene("[1,1,1]", 2)).trace(ray, 0).r, 1 - R, 1e-6);
+  EXPECT_NEAR(slabAtDepthLimit(R, 1, 2), 1 - R, 1e-12);  // the series says the same
 }
 
 TEST(Shading, ThroughputCutoffChangesNoPixelByMoreThanItsBound) {
   // The cutoff drops branches whose weight is below 1/1024; behind them is radiance ≤ 1 here,
-  // so the pixel moves by less than 1/1024 — on the slab it drops the k ≥ 2 bounces (weight
-  // (1−R)²R⁴ ≈ 2.4e-6) and keeps k = 1 ((1−R)²R² ≈ 1.5e-3).
-  const auto clear = load(slabScene("[1,1,1]", 8));
+  // so the pixel moves by less than 1/1024 — on the slab it drops the rays of depth ≥ 4
+  // (weight (1−R)R³ ≈ 6.1e-5) and keeps depth 3 ((1−R)R² ≈ 1.5e-3), whose refracted part
+  // leaves: L = (1 − R)²(1 + R²).
+  const auto clear = test::load(slabScene("[1,1,1]", 8));
   const Ray ray{{0, 0, 5}, {0, 0, -1}};
   const float exact = clear.trace(ray, 0).r;
   const float cut = clear.trace(ray).r;
   EXPECT_LE(std::fabs(exact - cut), kDefaultMinThroughput);
-  EXPECT_NEAR(cut, slabSeries(0.04, 1, 1), 1e-6);
+  EXPECT_NEAR(cut, 0.96 * 0.96 * (1 + 0.04 * 0.04), 1e-6);
+}
+
+TEST(Shading, GlassSlabWithAHighlight) {
+  // The same slab with k_s = 0.5 (Blinn, p = 80) under a point light of intensity 2 on the
+  // view axis at z = 2: at the front face l = v = n, so h = n and the highlight adds
+  // k_s·I·1 = 1 to the slab's light. The back face's highlight is in the slab's shadow (opaque
+  // shadows), and inside the slab the front face turns away from the light.
+  const std::string light =
+      R"(, "lights": [{"type": "point", "position": [0,0,2], "intensity": [2,2,2]}])";
+  const auto t =
+      test::load(slabScene("[1,1,1]", 8, R"(, "ks": [0.5,0.5,0.5], "exponent": 80)") + light);
+  EXPECT_NEAR(t.trace({{0, 0, 5}, {0, 0, -1}}).r, 0.96 * 0.96 * (1 + 0.04 * 0.04) + 0.5 * 2, 1e-6);
+}
+
+TEST(Shading, MirrorWithAHighlight) {
+  // A mirror (k_m 0.9) with k_s 0.25 facing a point light of intensity 2 on the view axis:
+  // L = k_s·I + k_m × background, the reflected ray escaping to the background 0.5.
+  const auto t = test::load(R"("render": {"background": [0.5,0.5,0.5]},
+    "materials": {"m": {"type": "mirror", "km": [0.9,0.9,0.9], "ks": [0.25,0.25,0.25], "exponent": 40}},
+    "lights": [{"type": "point", "position": [0,0,2], "intensity": [2,2,2]}],
+    "objects": [{"type": "quad", "corner": [-1,-1,0], "edge1": [2,0,0], "edge2": [0,2,0], "material": "m"}])");
+  EXPECT_NEAR(t.trace({{0, 0, 5}, {0, 0, -1}}).r, 0.25 * 2 + 0.9 * 0.5, 1e-6);
+}
+
+TEST(Shading, MirrorAtDepthLimitZeroShowsTheBackground) {
+  // Seed 002 §9.1: Trace(r, d) returns the background colour for d > d_max, so a mirror seen
+  // at max_depth 0 shows k_m × background, exactly.
+  const auto t = test::load(R"("render": {"background": [0.5, 0.25, 1], "max_depth": 0},
+    "materials": {"m": {"type": "mirror", "km": [0.9, 0.8, 0.7]}},
+    "objects": [{"type": "quad", "corner": [-1,-1,0], "edge1": [2,0,0], "edge2": [0,2,0], "material": "m"},
+                {"type": "quad", "corner": [-9,-9,9], "edge1": [18,0,0], "edge2": [0,18,0], "material": "m"}])");
+  const Rgb L = t.trace({{0.3f, 0.2f, 5}, {0, 0, -1}});
+  EXPECT_EQ(L.r, 0.9f * 0.5f);
+  EXPECT_EQ(L.g, 0.8f * 0.25f);
+  EXPECT_EQ(L.b, 0.7f * 1.0f);
 }
 
 TEST(Shading, NestedDielectricsUseTheSurroundingMedium) {
   // A glass sphere (1.5) inside a water sphere (1.33), both centred: at normal incidence the
-  // glass interface reflects ((1.5 − 1.33)/(1.5 + 1.33))², not ((1.5 − 1)/(1.5 + 1))². With a
-  // black wall behind the viewer and background 1 beyond, the transmitted light is
-  // (1−R_w)²(1−R_g)² with one pass (no bounces traced at max_depth 4).
-  const auto t = load(R"("render": {"background": [1,1,1], "max_depth": 4},
+  // glass interface reflects ((1.5 − 1.33)/(1.5 + 1.33))², not ((1.5 − 1)/(1.5 + 1))². Behind
+  // them a surface emits 1; at max_depth 4 only the straight pass reaches it (the ray of
+  // depth 4), so L = (1−R_w)²(1−R_g)²: every other path needs more depth and returns the
+  // background, black.
+  const auto t = load(R"("render": {"max_depth": 4},
     "materials": {"glass": {"type": "dielectric", "ior": 1.5},
                   "water": {"type": "dielectric", "ior": 1.33},
-                  "black": {"type": "phong", "kd": [0,0,0], "ka": [0,0,0]}},
+                  "lamp": {"type": "phong", "kd": [0,0,0], "ke": [1,1,1]}},
     "objects": [{"type": "sphere", "center": [0,0,0], "radius": 2, "material": "water"},
                 {"type": "sphere", "center": [0,0,0], "radius": 1, "material": "glass"},
-                {"type": "quad", "corner": [-50,-50,8], "edge1": [100,0,0], "edge2": [0,100,0], "material": "black"}])");
+                {"type": "quad", "corner": [-50,-50,-8], "edge1": [100,0,0], "edge2": [0,100,0], "material": "lamp"}])");
   const double Rw = std::pow(0.33 / 2.33, 2), Rg = std::pow(0.17 / 2.83, 2);
   EXPECT_NEAR(t.trace({{0, 0, 5}, {0, 0, -1}}, 0).r, (1 - Rw) * (1 - Rw) * (1 - Rg) * (1 - Rg),
               1e-6);
@@ -183,6 +195,107 @@ TEST(Shading, TransparentShadowsCarryFresnelAndBeer) {
               0.96 * 0.96 * 0.5 * std::log(2.0) * spawnOffset(1.0f) * 1.1);
 }
 
+// A Lambert floor (k_d = 1) at y = 0 lit from straight above by a point light of intensity 1
+// at y = 6, seen from straight above: unshadowed it reads 1. `media` are the dielectric boxes
+// around it, in the order listed; shadows are transparent.
+std::string floorInside(const std::string& materials, const std::string& media) {
+  return R"("render": {"transparent_shadows": true},
+    "materials": {"floor": {"type": "phong", "kd": [1,1,1], "ka": [0,0,0]}, )" +
+         materials + R"(},
+    "lights": [{"type": "point", "position": [0,6,0], "intensity": [1,1,1]}],
+    "objects": [{"type": "plane", "point": [0,0,0], "normal": [0,1,0], "material": "floor"}, )" +
+         media + "]";
+}
+
+TEST(Shading, FloorUnderWaterIsLitThroughIt) {
+  // Two units of water above the floor (a = 0.5 per unit, ior 1, so no Fresnel): the light
+  // crosses them on its way down and again on its way up to the eye, 0.5²·0.5² = 0.0625. The
+  // shadow ray starts inside the water, with the interior list of the ray that reached the
+  // floor. Each crossing may be shortened by a spawn offset at y = 2 (spawnOffset).
+  const auto t = load(
+      floorInside(R"("water": {"type": "dielectric", "ior": 1, "attenuation": [0.5,0.5,0.5]})",
+                  R"({"type": "box", "min": [-9,-1,-9], "max": [9,2,9], "material": "water"})"));
+  EXPECT_NEAR(t.trace({{0, 5, 0}, {0, -1, 0}}).r, 0.0625,
+              0.0625 * std::log(2.0) * 2 * spawnOffset(2.0f) * 1.1);
+}
+
+TEST(Shading, ShadowRaysLeaveNestedMediaThroughTheirIndices) {
+  // The floor in water (1.33) inside a glass block (1.5), no absorption, everything at normal
+  // incidence: the light crosses air→glass and glass→water, the eye's ray the same, so
+  // L = (1 − R_ag)²(1 − R_gw)². The shadow ray leaves the water into glass (not into air) and
+  // then the glass into air. Fainter paths fall under the throughput cutoff.
+  const auto t =
+      load(floorInside(R"("water": {"type": "dielectric", "ior": 1.33},
+                                     "glass": {"type": "dielectric", "ior": 1.5})",
+                       R"({"type": "box", "min": [-9,-2,-9], "max": [9,2,9], "material": "glass"},
+                                     {"type": "box", "min": [-8,-1,-8], "max": [8,1,8], "material": "water"})"));
+  const double Rag = 0.04, Rgw = std::pow(0.17 / 2.83, 2);
+  EXPECT_NEAR(t.trace({{0, 5, 0}, {0, -1, 0}}).r, std::pow(1 - Rag, 2) * std::pow(1 - Rgw, 2),
+              1e-6);
+}
+
+TEST(Shading, EmissionIsSeenDirectlyAndInAMirror) {
+  // A surface with k_e (seed 002 §9.1's own emission) shows k_e to a ray that meets it, and a
+  // mirror (k_m = 0.5) in front of it shows k_m·k_e; emission lights nothing else.
+  const auto t = load(R"("materials": {
+      "lamp": {"type": "phong", "kd": [0,0,0], "ke": [4,3.5,3]},
+      "chrome": {"type": "mirror", "km": [0.5,0.5,0.5]}},
+    "objects": [{"type": "quad", "corner": [-1,-1,-2], "edge1": [2,0,0], "edge2": [0,2,0], "material": "lamp"},
+                {"type": "quad", "corner": [2,-1,0], "edge1": [0,0,-2], "edge2": [0,2,0], "material": "chrome"}])");
+  const Rgb direct = t.trace({{0, 0, 5}, {0, 0, -1}});
+  EXPECT_EQ(direct, (Rgb{4, 3.5f, 3}));
+  // The mirror is the plane x = 2; a ray from (0, 0, 1) to (2, 0, −1) reflects to (0, 0, −3)
+  // and meets the lamp at z = −2 on the way.
+  const Rgb mirrored = t.trace(rayTo({0, 0, 1}, {2, 0, -1}));
+  EXPECT_NEAR(mirrored.r, 2, 1e-6);
+  EXPECT_NEAR(mirrored.g, 1.75, 1e-6);
+  EXPECT_NEAR(mirrored.b, 1.5, 1e-6);
+}
+
+// A quad light of intensity 2 and area 4 facing down (edge1 × edge2 = −4y) at y = 3, visible.
+std::string visibleLight(const char* emission) {
+  return std::string(R"("materials": {"chrome": {"type": "mirror", "km": [0.5,0.5,0.5]}},
+    "lights": [{"type": "quad", "corner": [-1,3,-1], "edge1": [2,0,0], "edge2": [0,0,2],
+                "intensity": [2,2,2], "samples": 4, "visible": true, "emission": ")") +
+         emission + R"("}],
+    "objects": [{"type": "quad", "corner": [-5,0,-5], "edge1": [0,0,10], "edge2": [10,0,0], "material": "chrome"}])";
+}
+
+TEST(Shading, VisibleAreaLightsShowTheirRadiance) {
+  // Radiance mode: the light shows its intensity from below (its emitting side), black from
+  // above; and in a mirror (k_m = 0.5) half of it.
+  const auto radiance = load(visibleLight("radiance"));
+  EXPECT_EQ(radiance.trace({{0, 1, 0}, {0, 1, 0}}).r, 2.0f);
+  EXPECT_EQ(radiance.trace({{0, 5, 0}, {0, -1, 0}}).r, 0.0f);  // the back; the mirror is hidden
+  EXPECT_EQ(radiance.trace(rayTo({0.2f, 1, 0}, {0, 0, 0})).r, 1.0f);
+  // Seed mode: intensity / area = 0.5 from both sides.
+  const auto seed = load(visibleLight("seed"));
+  EXPECT_EQ(seed.trace({{0, 1, 0}, {0, 1, 0}}).r, 0.5f);
+  EXPECT_EQ(seed.trace({{0, 5, 0}, {0, -1, 0}}).r, 0.5f);
+}
+
+TEST(Shading, AVisibleLightDoesNotShadowItsOwnLight) {
+  // The light's own surface must not block its shadow rays: a floor lit by it reads the same,
+  // bit for bit, whether the light is visible or not.
+  for (const char* emission : {"seed", "radiance"}) {
+    const std::string floor = R"(,
+      "materials": {"m": {"type": "phong", "kd": [1,1,1], "ka": [0,0,0]}},
+      "objects": [{"type": "plane", "point": [0,0,0], "normal": [0,1,0], "material": "m"}])";
+    const auto light = [&](bool visible) {
+      return std::string(R"("lights": [{"type": "quad", "corner": [-1,3,-1], "edge1": [2,0,0],
+        "edge2": [0,0,2], "intensity": [2,2,2], "samples": 16, "emission": ")") +
+             emission + R"(", "visible": )" + (visible ? "true" : "false") + "}]";
+    };
+    const auto hidden = load(light(false) + floor), shown = load(light(true) + floor);
+    for (const Vec3f target : {Vec3f{0, 0, 0}, Vec3f{0.7f, 0, -0.3f}, Vec3f{3, 0, 2}}) {
+      const Ray ray = rayTo({0.1f, 2, 0.2f}, target);
+      const float a = hidden.trace(ray).r, b = shown.trace(ray).r;
+      EXPECT_GT(a, 0.0f) << emission;
+      EXPECT_EQ(a, b) << emission << ": the light's surface shadows its own light";
+    }
+  }
+}
+
 TEST(Shading, GlassSphereConservesEnergy) {
   // No lights, no absorption, background 1: every path ends in the background with total
   // weight ≤ 1, so no pixel may exceed 1 (+1e-4 for float rounding).
@@ -192,7 +305,7 @@ TEST(Shading, GlassSphereConservesEnergy) {
     "materials": {"g": {"type": "dielectric", "ior": 1.5}},
     "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "g"}]})");
   const auto accel = makeAccelerator(AccelKind::Embree, s);
-  const WhittedIntegrator integrator(s, *accel, 0);
+  const GeneralKernel integrator(s, *accel, 0);
   RayCounters counters;
   const Sampler sampler(SamplerKind::Stratified, 1, 0);
   float maxL = 0;
@@ -227,13 +340,13 @@ TEST(Shading, CheckerStaysFixedInTheWorldWhereverTheCameraIs) {
       return "[" + std::to_string(c.x) + ", " + std::to_string(y) + ", " + std::to_string(c.z) +
              "]";
     };
-    Traced t{test::sceneFromText(R"({"render": {"ambient": [1,1,1]},
-      "camera": {"eye": )" + at(c.y) +
-                                 R"(, "look_at": )" + at(0) + R"(, "up": [0,0,-1]},
+    test::Traced t{test::sceneFromText(R"({"render": {"ambient": [1,1,1]},
+      "camera": {"eye": )" + at(c.y) + R"(, "look_at": )" +
+                                       at(0) + R"(, "up": [0,0,-1]},
       "materials": {"m": {"type": "phong", "kd": [0,0,0],
         "ka": {"checker": {"scale": 1, "a": [0.9,0.9,0.9], "b": [0.1,0.1,0.1]}}}},
       "objects": [{"type": "plane", "point": [0,0,0], "normal": [0,1,0], "material": "m"}]})"),
-             nullptr};
+                   nullptr};
     t.accel = makeAccelerator(AccelKind::Embree, t.scene);
     const Rgb L = t.trace({{0, 0, 0}, {0, -1, 0}});  // from the eye, in render space
     EXPECT_FLOAT_EQ(L.r, c.expected) << "eye " << at(c.y);

@@ -57,29 +57,52 @@ TEST(SceneParse, MaterialsKeepEveryKey) {
     "materials": {
       "p": {"type": "phong", "ka": [0.1,0,0], "kd": {"checker": {"scale": 2, "a": [1,1,1], "b": [0,0,0]}},
             "ks": [0.3,0.3,0.3], "exponent": 100, "specular_model": "phong", "km": [0.2,0.2,0.2]},
-      "m": {"type": "mirror", "km": [0.9, 0.8, 0.7]},
-      "g": {"type": "dielectric", "ior": 1.33, "attenuation": [0.9, 1, 0.9], "fresnel": "schlick"}
+      "m": {"type": "mirror", "km": [0.9, 0.8, 0.7], "ks": [0.1,0.1,0.1], "ke": [2,2,2]},
+      "g": {"type": "dielectric", "ior": 1.33, "attenuation": [0.9, 1, 0.9], "fresnel": "schlick",
+            "ks": [0.5,0.5,0.5], "exponent": 80, "blur": 0.1}
     }, "objects": []})");
   ASSERT_EQ(s.materials.size(), 3u);
   const auto named = [&](const std::string& name) -> const Material& {
     for (const auto& m : s.materials)
-      if (m.name == name) return m.material;
+      if (m.name == name) return m;
     throw std::runtime_error("no material " + name);
   };
-  const auto& p = std::get<PhongMaterial>(named("p"));
+  const Surface& p = named("p").surface;
+  EXPECT_EQ(named("p").kind, MaterialKind::Phong);
   EXPECT_TRUE(p.kd.checker);
   EXPECT_EQ(p.kd.scale, 2);
   EXPECT_EQ(p.ka.constant, (Rgb{0.1f, 0, 0}));
   EXPECT_FALSE(p.ambientFollowsDiffuse);  // its own ka: the ambient term must evaluate it
   EXPECT_EQ(p.specularModel, SpecularModel::Phong);
   EXPECT_EQ(p.exponent, 100);
-  EXPECT_EQ(p.km, (Rgb{0.2f, 0.2f, 0.2f}));
-  EXPECT_EQ(std::get<MirrorMaterial>(named("m")).km, (Rgb{0.9f, 0.8f, 0.7f}));
-  const auto& g = std::get<DielectricMaterial>(named("g"));
-  EXPECT_FLOAT_EQ(g.ior, 1.33f);
-  EXPECT_EQ(g.fresnel, FresnelModel::Schlick);
+  EXPECT_EQ(p.km.constant, (Rgb{0.2f, 0.2f, 0.2f}));
+  // A mirror takes the general surface's keys: a highlight and emission.
+  const Material& m = named("m");
+  EXPECT_EQ(m.kind, MaterialKind::Mirror);
+  EXPECT_EQ(m.surface.km.constant, (Rgb{0.9f, 0.8f, 0.7f}));
+  EXPECT_EQ(m.surface.ks.constant, (Rgb{0.1f, 0.1f, 0.1f}));
+  EXPECT_EQ(m.surface.ke.constant, (Rgb{2, 2, 2}));
+  EXPECT_TRUE(m.surface.kd.isBlack());  // the mirror's default
+  // So does a dielectric, besides its interface.
+  const Material& g = named("g");
+  EXPECT_TRUE(g.refracts());
+  EXPECT_FLOAT_EQ(g.dielectric.ior, 1.33f);
+  EXPECT_EQ(g.dielectric.fresnel, FresnelModel::Schlick);
+  EXPECT_EQ(g.dielectric.absorption.attenuation(), (Rgb{0.9f, 1, 0.9f}));
+  EXPECT_EQ(g.dielectric.blur, 0.1f);
+  EXPECT_EQ(g.surface.ks.constant, (Rgb{0.5f, 0.5f, 0.5f}));
+  EXPECT_EQ(g.surface.exponent, 80);
   EXPECT_TRUE(s.features.absorption);
   EXPECT_TRUE(s.features.textures);
+  EXPECT_TRUE(s.features.emission);
+  EXPECT_TRUE(s.features.specular);
+}
+
+TEST(SceneParse, InterfaceKeysBelongToDielectricsOnly) {
+  EXPECT_EQ(test::sceneErrorOf(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
+    "materials": {"p": {"type": "phong",
+      "ior": 1.5}}, "objects": []})"),
+            "scene.json:3: materials.p.ior: unknown key");
 }
 
 // Without "ka" the ambient reflectance is the diffuse texture (SCENE_FORMAT.md), and the
@@ -88,12 +111,34 @@ TEST(SceneParse, AmbientFollowsDiffuseWithoutKa) {
   const Scene s = sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
     "materials": {"p": {"type": "phong", "kd": {"checker": {"scale": 2, "a": [1,0,0], "b": [0,0,1]}}}},
     "objects": []})");
-  const auto& p = std::get<PhongMaterial>(s.materials.at(0).material);
+  const Surface& p = s.materials.at(0).surface;
   EXPECT_TRUE(p.ambientFollowsDiffuse);
   EXPECT_TRUE(p.ka.checker);
   EXPECT_EQ(p.ka.a, p.kd.a);
   EXPECT_EQ(p.ka.b, p.kd.b);
   EXPECT_EQ(p.ka.scale, p.kd.scale);
+}
+
+TEST(SceneParse, AVisibleAreaLightIsAlsoASurface) {
+  // A visible quad light adds a quad to the world whose material emits its radiance; an
+  // invisible one adds nothing.
+  const Scene s = sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
+    "lights": [{"type": "quad", "corner": [-1,3,-1], "edge1": [2,0,0], "edge2": [0,0,2],
+                "intensity": [2,2,2], "emission": "radiance", "visible": true},
+               {"type": "disk", "center": [0,3,0], "normal": [0,-1,0], "radius": 1,
+                "intensity": [2,2,2]}],
+    "materials": {"m": {"type": "phong"}},
+    "objects": [{"type": "sphere", "center": [0,0,-5], "radius": 1, "material": "m"}]})");
+  ASSERT_EQ(s.groups[0].geometries.size(), 2u);
+  const Geometry& g = s.groups[0].geometries[1];
+  EXPECT_EQ(g.kind, GeomKind::Quad);
+  EXPECT_EQ(g.objectId, 1u);  // after the one object
+  const Material& m = s.materials.at(g.materialId);
+  EXPECT_EQ(m.name, "lights[0]");
+  EXPECT_EQ(m.surface.ke.constant, (Rgb{2, 2, 2}));
+  EXPECT_EQ(m.surface.emissionSides, EmissionSides::Front);
+  EXPECT_FALSE(m.surface.reflectsLights());
+  EXPECT_TRUE(s.features.emission);
 }
 
 TEST(SceneParse, EveryObjectType) {

@@ -7,7 +7,7 @@
 #include "core/hash.h"
 #include "film/compare.h"
 #include "film/exr_output.h"
-#include "integrator/optics.h"
+#include "materials/fresnel.h"
 #include "stress_util.h"
 
 namespace glint {

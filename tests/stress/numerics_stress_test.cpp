@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "geometry/shapes.h"
-#include "integrator/optics.h"
+#include "materials/beer.h"
+#include "materials/fresnel.h"
+#include "materials/snell.h"
 #include "stress_util.h"
 
 namespace glint {

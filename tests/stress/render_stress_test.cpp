@@ -6,7 +6,6 @@
 #include <filesystem>
 #include <fstream>
 
-#include "integrator/optics.h"
 #include "stress_util.h"
 
 namespace glint {

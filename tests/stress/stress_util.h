@@ -1,7 +1,10 @@
 #pragma once
-// Shared by the stress suite: render a scene text in-process and read pixels back.
+// Shared by the stress suite: render a scene text in-process and read pixels back. Every
+// stress scene is also rendered by the reference integrator, the production kernel's oracle,
+// which must give the same image (oracle_util.h).
 #include <optional>
 
+#include "oracle_util.h"
 #include "render/render_job.h"
 #include "test_util.h"
 
@@ -13,8 +16,14 @@ inline RenderResult renderText(const std::string& text, AccelKind kind = AccelKi
   const auto accel = makeAccelerator(kind, s);
   RenderOptions opt;
   opt.progress = false;
-  opt.sampleHook = std::move(hook);
-  return renderScene(s, *accel, opt);
+  RenderResult production = [&] {
+    RenderOptions withHook = opt;
+    withHook.sampleHook = hook;
+    return renderScene(s, *accel, withHook);
+  }();
+  // A hook alters samples on their way to the film (a forced NaN): not the optics.
+  if (!hook) test::expectReferenceAgrees(s, *accel, opt, production.film, "stress scene");
+  return production;
 }
 
 inline std::string num(double v) {

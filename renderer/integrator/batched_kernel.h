@@ -1,0 +1,235 @@
+#pragma once
+// The production integrator: seed 002 §9.1's recursive ray tracing, organised for speed.
+// integrator/reference.h is the same algorithm written depth first, as plainly as the seed's
+// pseudocode, and the oracle this kernel must match (tests/integrator/reference_test.cpp). This
+// file owns only the order in which rays are traced and where their data live; what happens at
+// a surface is decided in materials/ and what a light delivers in lights/.
+//  - Rays of one depth are shaded a chunk at a time, a generation (shadeChunk): the hits'
+//    shading points and the rays they spawn, then the chunk's direct light, then the spawned
+//    rays as the next generation, then each ray's sum.
+//  - The direct light of a chunk's lit points is queued light by light and the shadow rays
+//    traced together, as coherent streams (lightPendingPoints, traceShadows).
+//  - The camera hits' reflections and refractions leave as one coherent stream.
+// Compiled once per capability set (scene/features.h): code for a capability the set lacks is
+// left out, not skipped at run time.
+#include <memory>
+#include <type_traits>
+#include <vector>
+
+#include "accel/accelerator.h"
+#include "core/rgb.h"
+#include "core/sampler.h"
+#include "core/uninitialized_array.h"
+#include "integrator/aov.h"
+#include "integrator/medium_stack.h"
+#include "integrator/radiance.h"
+#include "integrator/ray_counters.h"
+#include "scene/features.h"
+#include "scene/scene.h"
+
+namespace glint {
+
+template <unsigned Caps>
+class BatchedKernel {
+ public:
+  BatchedKernel(const Scene& scene, const Accelerator& accel,
+                float minThroughput = kDefaultMinThroughput);
+
+  // Where a thread keeps a chunk's pending lit points, their shadow rays, the area lights'
+  // points, and the rays each generation spawns: one per thread, reused for every chunk.
+  struct Scratch;
+
+  // Radiance along `count` camera rays whose closest hits are known (traced together as a
+  // coherent stream, Accelerator::intersectCoherent), samples keys[i]: runs of consecutive
+  // samples of one or several pixels, as renderTile makes them. aovs, when given (only where
+  // Caps has cap::kAovs), holds a record pointer (or null) per sample, whose viewAxis must be
+  // set (the camera's unit view direction, for depth); the record receives what the camera
+  // ray hit. out[i] does not depend on which other samples share the call, bit for bit.
+  void traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys, int count,
+                       Radiance* out, AovSample* const* aovs, RayCounters& counters,
+                       Scratch& scratch) const;
+  // One sample on its own (tests and tools): traceCameraHits for one ray.
+  Radiance trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
+                 AovSample* aov = nullptr) const;
+
+ private:
+  static constexpr bool kMedia = (Caps & cap::kDielectrics) != 0;
+  static constexpr bool kAreaLights = (Caps & cap::kAreaLights) != 0;
+  static constexpr bool kAovs = (Caps & cap::kAovs) != 0;
+  static constexpr int kChunk = 64;  // rays of one generation shaded together
+
+  // Without dielectrics a ray is always in the outside world: no interior list to carry.
+  struct NoMedia {
+    bool empty() const { return true; }
+    void assign(const NoMedia&) {}
+  };
+  using Media = std::conditional_t<kMedia, MediumStack, NoMedia>;
+
+  struct Branch {  // what travels with a ray down the tree of reflections and refractions
+    int depth = 0;
+    Rgb throughput{1, 1, 1};
+    const SampleKey* key = nullptr;
+    // Last: a ray outside every dielectric writes and reads only the stack's size, in the
+    // same cache line as the fields above.
+    [[no_unique_address]] Media media;
+  };
+
+  // The rays that one chunk of a generation spawns, and what the chunk keeps about its own
+  // rays while they are traced. A ray's radiance is (local + Σ weight · child radiance) ·
+  // absorbed, its children in the order spawned (seed 002 §9.1: reflection, then refraction).
+  struct Generation {
+    static constexpr int kCapacity = kMaxCoherentRays * kChunk;
+    // Per ray of the chunk, what its sum needs, in one cache line: in a deep chain of mirrors
+    // these leave L1 before the sum is taken, and as separate arrays each ray missed four lines.
+    struct Sum {
+      Rgb local;     // the light it returns before its children's (emission, ambient, direct)
+      Rgb absorbed;  // Beer's attenuation of the segment it travelled, where inMedium
+      int childEnd;  // one past its last child
+      bool inMedium;
+    };
+    Sum sums[kChunk];
+    // The children, written before they are read.
+    UninitializedArray<Ray, kCapacity> rays;
+    UninitializedArray<Hit, kCapacity> hits;
+    UninitializedArray<Branch, kCapacity> branches;
+    UninitializedArray<Rgb, kCapacity> weight;  // what the parent multiplies its radiance by
+    UninitializedArray<Rgb, kCapacity> radiance;
+    int children = 0;
+
+    // A child of `parent` with weight w (its throughput parent.throughput · w) in `media`;
+    // returns its ray's slot for the caller to write. Written in place: a Branch built in a
+    // temporary and copied in was reloaded before its stores had landed (store forwarding).
+    Ray& add(const Branch& parent, const Rgb& w, const Rgb& throughput, const Media& media) {
+      Branch& b = branches[children];
+      b.depth = parent.depth + 1;
+      b.throughput = throughput;
+      b.media.assign(media);
+      b.key = parent.key;
+      weight[children] = w;
+      return rays[children++];
+    }
+  };
+
+  // Radiance along `n` (at most kChunk) rays of one depth, given their closest hits, into
+  // radiance[i]. aovs: at the camera only. cameraKeys: at the camera only, the samples' keys,
+  // from which an area light's points for the whole chunk are drawn at once.
+  void shadeChunk(const Ray* rays, const Hit* hits, const Branch* branches, int n, Rgb* radiance,
+                  AovSample* const* aovs, const SampleKey* cameraKeys, RayCounters& counters,
+                  Scratch& scratch) const;
+  // The generation that the chunks of depth `depth` spawn into (made on first use).
+  Generation& generation(Scratch& scratch, int depth) const;
+  // Spawns into `gen` the rays the material at a hit sends on (materials' forEachCoherentRay),
+  // each that its throughput keeps, for `ray` arriving along unit d: the interior list goes
+  // with a refracted ray across the surface.
+  void spawnCoherent(const Hit& hit, const Material& m, const ShadingPoint& sp,
+                     const SurfacePoint& at, const Ray& ray, const Vec3f& d, const Branch& branch,
+                     Generation& gen, RayCounters& counters) const;
+
+  // A hit whose surface reflects the lights (materials' reflectsLights), waiting for its
+  // direct light: AccLightSource's loop, run for many points at once.
+  struct LitPoint {
+    const Material* material = nullptr;
+    ShadingPoint sp;
+    SurfacePoint at;
+    float time = 0;
+    const Branch* branch = nullptr;
+  };
+  // One shadow ray per light sample that can contribute, with what it adds unblocked. Slots
+  // [0, size) are written by queueLight and traceShadows before anything reads them.
+  template <int Capacity>
+  struct ShadowQueue {
+    static constexpr int kCapacity = Capacity;
+    UninitializedArray<Ray, Capacity> rays;
+    UninitializedArray<Rgb, Capacity> term;  // reflected light · intensity: what it adds unblocked
+    bool atInfinity[Capacity];
+    UninitializedArray<const Media*, Capacity> media;  // where the ray starts (transparent shadows)
+    int size = 0;
+    // Filled by traceShadows: with opaque shadows whether each ray is blocked; with transparent
+    // ones (transparentShadows()) the fraction of the light arriving.
+    bool blocked[Capacity];
+    UninitializedArray<Rgb, Capacity> visible;
+  };
+  bool transparentShadows() const { return kMedia && scene_.render.transparentShadows; }
+  // Queues samples [first, first + size) of light `li`'s `count` for the point (pattern: the
+  // light's sample set; `points`, when given: the set's points for this point, drawn already).
+  template <class Queue>
+  void queueLight(const LitPoint& pt, size_t li, const SamplePattern& pattern, int first, int size,
+                  int count, Queue& queue, const Vec2f* points = nullptr) const;
+  // For a camera chunk: the points of the area lights among the first kMaxPrecomputedLights
+  // for the `count` camera samples of `keys` (runs of consecutive samples of a pixel), into
+  // the scratch; lightPointsOf[li] stays null for a delta light or one that no longer fits.
+  static constexpr size_t kMaxPrecomputedLights = 8;
+  void drawLightPoints(const SampleKey* keys, int count, Scratch& scratch) const;
+  template <class Queue>
+  void traceShadows(Queue& queue, RayCounters& counters) const;
+  // The direct light of the points pending in the scratch, added to their ray's local: every
+  // light's samples queued, light by light, the queue traced, the sums taken. `camera`: they
+  // are camera hits (their area lights' points may be drawn already). Empties both.
+  void lightPendingPoints(Scratch& scratch, typename Generation::Sum* sums, AovSample* const* aovs,
+                          bool camera, RayCounters& counters) const;
+  // `sum` plus what queued samples [begin, end) let through, added in queue order. Inlined: a
+  // delta light's range is one sample, and as a call its sum went through memory.
+  template <class Queue>
+  [[gnu::always_inline]] Rgb sumVisible(const Queue& queue, int begin, int end,
+                                        Rgb sum = {}) const {
+    if (transparentShadows()) {
+      for (int q = begin; q < end; ++q)
+        if (!queue.visible[q].isBlack()) sum += queue.term[q] * queue.visible[q];
+    } else {
+      for (int q = begin; q < end; ++q)
+        if (!queue.blocked[q]) sum += queue.term[q];
+    }
+    return sum;
+  }
+  // Light li's share (the mean over its samples, `sum` their total) added to L, and kept in
+  // perLight[li] when given (per-light AOVs).
+  void addContribution(const Rgb& sum, size_t li, Rgb& L, Rgb* perLight) const {
+    const Rgb contribution = meanOverSamples(sum, sampleCount(scene_.lights[li]));
+    L += contribution;
+    if (perLight && li < size_t(AovSet::kMaxLights)) perLight[li] = contribution;
+  }
+  int sampleCount(const Light& light) const { return kAreaLights ? lightSampleCount(light) : 1; }
+  static bool isDelta(const Light& light) {
+    return !kAreaLights || std::holds_alternative<PointLight>(light) ||
+           std::holds_alternative<DirectionalLight>(light);
+  }
+  SamplePattern lightPattern(const LitPoint& pt, size_t li) const;
+  // Direct light at a point whose shadow rays outnumber the shared queue: its lights traced on
+  // their own, a few samples at a time, added to L. `perLight`, when given, receives each
+  // light's contribution (AOVs of the camera hit).
+  void lightAlone(const LitPoint& pt, Rgb& L, RayCounters& counters, Rgb* perLight) const;
+  void recordAov(const Ray& ray, const Hit& hit, const Material& m, const ShadingPoint& sp,
+                 const SurfacePoint& at, AovSample& aov) const;
+
+  const Scene& scene_;
+  const Accelerator& accel_;
+  float minThroughput_;
+  int shadowRaysPerPoint_ = 0;  // at most, over all lights: what a lit point may queue
+
+ public:
+  struct Scratch {
+    // The lit points of a chunk whose direct light is still to be found; the slot after the
+    // last pending one holds the lit hit being shaded.
+    struct Pending {
+      LitPoint pt;
+      int ray = 0;  // its ray's index in the chunk
+    };
+    Pending pending[kChunk];
+    int pendingCount = 0;
+    ShadowQueue<512> queue;
+    std::vector<uint16_t> rayEnd;                 // lightPendingPoints' ranges of the queue
+    static constexpr int kMaxLightPoints = 2048;  // 64 samples × 32 points, for example
+    Vec2f lightPoints[kMaxLightPoints];
+    const Vec2f* lightPointsOf[kMaxPrecomputedLights] = {};  // per light; null: per point
+    bool lightPointsDrawn = false;
+    Branch roots[kChunk];
+    Rgb cameraRadiance[kChunk];
+    // generations[d]: the rays of depth d + 1, spawned by a chunk of depth d.
+    std::vector<std::unique_ptr<Generation>> generations;
+  };
+};
+
+// Every capability: renders any scene (`glint render --no-specialize`).
+using GeneralKernel = BatchedKernel<cap::kAll>;
+
+}  // namespace glint

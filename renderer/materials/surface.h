@@ -1,0 +1,136 @@
+#pragma once
+// The general surface of seed 002 §9.1, which every material has. Light leaving a surface point
+// towards the viewer is the sum of
+//   - its own emission k_e and the ambient light it reflects, k_a·I_a   (ambientAndEmission)
+//   - per light source, the diffuse and specular light it reflects      (reflectedLight)
+//     k_d·I·max(0, n·l) + k_s·I·max(0, n·h)^p   (Blinn-Phong; Phong: max(0, r·v)^p)
+//   - coherently reflected light k_m·L(r), r the mirror direction,      (mirrorDirection)
+//     perturbed over a square of width `gloss` for a glossy surface
+// each per RGB channel. The seeds' coefficients multiply intensities directly: there is no 1/π,
+// so a white Lambert surface under a unit light at normal incidence reads 1 (docs/shading.md).
+// Surfaces are two-sided: the shading normal is turned towards the viewer.
+#include <cmath>
+
+#include "core/affine.h"
+#include "core/rgb.h"
+#include "core/vec.h"
+#include "geometry/shading_point.h"
+#include "materials/gloss.h"
+#include "materials/texture.h"
+
+namespace glint {
+
+enum class SpecularModel { BlinnPhong, Phong };
+
+// k_e is seen from both sides, or (a one-sided emitter: an area light in radiance mode) only
+// from the side its geometric normal points to.
+enum class EmissionSides { Both, Front };
+
+struct Surface {
+  ColorTexture ka, kd, ks, km, ke;
+  // ka is kd (the scene gave no "ka"): the ambient term reuses the diffuse colour already
+  // looked up at the point instead of evaluating the same texture twice.
+  bool ambientFollowsDiffuse = false;
+  float exponent = 32;
+  SpecularModel specularModel = SpecularModel::BlinnPhong;
+  float gloss = 0;
+  EmissionSides emissionSides = EmissionSides::Both;
+
+  // Whether AccLightSource's loop over the lights can add anything (k_d or k_s not black).
+  [[gnu::always_inline]] bool reflectsLights() const { return !kd.isBlack() || !ks.isBlack(); }
+  [[gnu::always_inline]] bool reflectsCoherently() const { return !km.isBlack(); }
+  [[gnu::always_inline]] bool emits() const { return !ke.isBlack(); }
+};
+
+// A surface at one hit, seen from one direction: its textures looked up there, once.
+struct SurfacePoint {
+  Vec3f n;   // unit shading normal, on the viewer's side
+  Vec3f wo;  // unit, towards the viewer
+  Rgb kd, ks, km;
+};
+
+// The hot path inlines these (and materials' forEachCoherentRay): called out of line per hit and
+// per light sample, their results came back through memory (7 % of a default render).
+[[gnu::always_inline]] inline SurfacePoint lookUp(const Surface& s, const ShadingPoint& sp,
+                                                  const Vec3f& wo, const Vec3d& worldOrigin) {
+  SurfacePoint at;
+  at.n = faceForward(sp.ns, wo);
+  at.wo = wo;
+  at.kd = s.kd.eval(sp.p, worldOrigin);
+  at.ks = s.ks.eval(sp.p, worldOrigin);
+  at.km = s.km.eval(sp.p, worldOrigin);
+  return at;
+}
+
+// AccLightSource's first line: c = ambient intensity + own emission (seed 002 §9.1), with
+// `ambientLight` the scene's I_a.
+[[gnu::always_inline]] inline Rgb ambientAndEmission(const Surface& s, const SurfacePoint& at,
+                                                     const ShadingPoint& sp,
+                                                     const Rgb& ambientLight,
+                                                     const Vec3d& worldOrigin) {
+  const Rgb ka = s.ambientFollowsDiffuse ? at.kd : s.ka.eval(sp.p, worldOrigin);
+  Rgb c = ka * ambientLight;
+  if (s.emits() && (s.emissionSides == EmissionSides::Both || dot(at.wo, sp.ng) > 0))
+    c += s.ke.eval(sp.p, worldOrigin);
+  return c;
+}
+
+// cosine^exponent of the highlight's lobe, cosine in [0, 1]. Scenes nearly always give whole
+// exponents; those are raised by repeated squaring, a handful of multiplies instead of powf's
+// logarithm and exponential. Squaring doubles the relative error it is given, so the result is
+// within about 2·exponent float roundings of the exact power: the same order as the change one
+// ulp of the cosine makes to cosine^exponent.
+inline float specularPower(float cosine, float exponent) {
+  // Whole: the integer conversion is exact in that range (std::floor is a libm call here).
+  if (!(exponent >= 0 && exponent <= 65535 &&
+        static_cast<float>(static_cast<unsigned>(exponent)) == exponent))
+    return std::pow(cosine, exponent);
+  float result = 1, base = cosine;
+  for (auto n = static_cast<unsigned>(exponent); n != 0; n >>= 1) {
+    if (n & 1) result *= base;
+    base *= base;
+  }
+  return result;
+}
+
+// The highlight's lobe for light arriving along unit wi (seed 000 eq. 4.4, seed 001 §5.3):
+// max(0, n·h)^p with h halfway between wi and wo (Blinn-Phong), or max(0, r·wo)^p with r the
+// mirror image of the light direction (Phong).
+[[gnu::always_inline]] inline float highlightLobe(const Surface& s, const SurfacePoint& at,
+                                                  const Vec3f& wi) {
+  const float cosine = s.specularModel == SpecularModel::BlinnPhong
+                           ? dot(at.n, normalize(wi + at.wo))
+                           : dot(reflect(-wi, at.n), at.wo);
+  return specularPower(std::max(0.0f, cosine), s.exponent);
+}
+
+// Whether light arriving along unit wi reaches the side of the surface the viewer sees: from
+// behind, a light adds nothing, and no shadow ray need be traced for it.
+[[gnu::always_inline]] inline bool facesLight(const SurfacePoint& at, const Vec3f& wi) {
+  return dot(at.n, wi) > 0;
+}
+
+// What the surface reflects towards the viewer of a light of unit intensity arriving along
+// unit wi: diffuse plus the highlight. Black for light from behind the surface.
+[[gnu::always_inline]] inline Rgb reflectedLight(const Surface& s, const SurfacePoint& at,
+                                                 const Vec3f& wi) {
+  const float cosL = dot(at.n, wi);
+  if (cosL <= 0) return {};
+  Rgb f = at.kd * cosL;                                         // diffuse: Lambert's cosine
+  if (!at.ks.isBlack()) f += at.ks * highlightLobe(s, at, wi);  // the highlight
+  return f;
+}
+
+// The direction coherent reflection leaves in, for unit d arriving at a point whose normal n
+// faces against d: the mirror direction r = d − 2(d·n)n (seed 000 §4.8), perturbed by `gloss`
+// with the sample u for a glossy surface. False where a perturbed ray would leave below the
+// surface (it returns black).
+[[gnu::always_inline]] inline bool mirrorDirection(const Vec3f& d, const Vec3f& n, float gloss,
+                                                   Vec2f u, Vec3f& r) {
+  r = reflect(d, n);
+  if (gloss <= 0) return true;
+  r = perturb(r, gloss, u);
+  return dot(r, n) > 0;
+}
+
+}  // namespace glint

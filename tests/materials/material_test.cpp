@@ -1,0 +1,146 @@
+// Materials as a whole (materials/material.h): each type's defaults, and the rays a hit sends
+// on (coherentRays), in Trace's order, with their weights.
+#include "materials/material.h"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+namespace glint {
+namespace {
+
+ShadingPoint pointFacingUp() {
+  ShadingPoint sp;
+  sp.ng = sp.ns = {0, 1, 0};
+  return sp;
+}
+
+// One ray a hit sends on, as forEachCoherentRay hands it over.
+struct CoherentRay {
+  Vec3f direction;
+  Rgb weight;
+  bool crosses = false;
+};
+
+// The rays material m sends on for unit d arriving at sp, from etaI into etaT.
+std::vector<CoherentRay> raysFrom(const Material& m, const ShadingPoint& sp, const Vec3f& d,
+                                  const SampleKey& key, float etaI = 1, float etaT = 1.5f) {
+  std::vector<CoherentRay> out;
+  forEachCoherentRay(m, sp, lookUp(m.surface, sp, -d, {}), d, etaI, etaT, key, 0,
+                     [&](const Vec3f& direction, const Rgb& weight, bool crosses) {
+                       out.push_back({direction, weight, crosses});
+                     });
+  EXPECT_LE(out.size(), size_t(kMaxCoherentRays));
+  return out;
+}
+
+struct Arrival {
+  const Sampler sampler{SamplerKind::Stratified, 1, 0};
+  const SampleKey key{&sampler, 0, 0, 0};
+  const ShadingPoint sp = pointFacingUp();
+
+  // The rays material m sends on for a ray straight down.
+  std::vector<CoherentRay> rays(const Material& m) const {
+    return raysFrom(m, sp, {0, -1, 0}, key);
+  }
+};
+
+TEST(Material, EachTypeHasItsDefaults) {
+  const Material phong = defaultMaterial(MaterialKind::Phong);
+  EXPECT_EQ(phong.surface.kd.constant, (Rgb{0.5f, 0.5f, 0.5f}));
+  EXPECT_TRUE(phong.surface.ambientFollowsDiffuse);
+  EXPECT_TRUE(phong.surface.reflectsLights());
+  EXPECT_FALSE(phong.surface.reflectsCoherently() || phong.surface.emits() || phong.refracts());
+  const Material mirror = defaultMaterial(MaterialKind::Mirror);
+  EXPECT_EQ(mirror.surface.km.constant, (Rgb{1, 1, 1}));
+  EXPECT_FALSE(mirror.surface.reflectsLights() || mirror.refracts());
+  const Material glass = defaultMaterial(MaterialKind::Dielectric);
+  EXPECT_TRUE(glass.refracts());
+  EXPECT_EQ(glass.dielectric.ior, 1.5f);
+  EXPECT_FALSE(glass.surface.reflectsLights() || glass.surface.reflectsCoherently());
+}
+
+TEST(Material, AMirrorSendsOneRayWeightedByKm) {
+  Material mirror = defaultMaterial(MaterialKind::Mirror);
+  mirror.surface.km = ColorTexture::uniform({0.9f, 0.8f, 0.7f});
+  const auto out = Arrival{}.rays(mirror);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].direction, (Vec3f{0, 1, 0}));
+  EXPECT_EQ(out[0].weight, (Rgb{0.9f, 0.8f, 0.7f}));
+  EXPECT_FALSE(out[0].crosses);
+  EXPECT_TRUE(Arrival{}.rays(defaultMaterial(MaterialKind::Phong)).empty());  // k_m black: none
+}
+
+TEST(Material, GlassReflectsThenRefracts) {
+  const auto out = Arrival{}.rays(defaultMaterial(MaterialKind::Dielectric));
+  ASSERT_EQ(out.size(), 2u);
+  // Fresnel's 0.04 back up, the other 0.96 down across the surface.
+  EXPECT_EQ(out[0].direction, (Vec3f{0, 1, 0}));
+  EXPECT_NEAR(out[0].weight.r, 0.04f, 1e-7);
+  EXPECT_FALSE(out[0].crosses);
+  EXPECT_EQ(out[1].direction, (Vec3f{0, -1, 0}));
+  EXPECT_NEAR(out[1].weight.g, 0.96f, 1e-7);
+  EXPECT_TRUE(out[1].crosses);
+}
+
+TEST(Material, GlassWithKmReflectsItsSurfaceFirst) {
+  // The surface's k_m is a reflection of its own, before the interface's (Trace's order:
+  // reflection, then refraction).
+  Material glass = defaultMaterial(MaterialKind::Dielectric);
+  glass.surface.km = ColorTexture::uniform({0.1f, 0.1f, 0.1f});
+  const auto out = Arrival{}.rays(glass);
+  ASSERT_EQ(out.size(), 3u);
+  EXPECT_EQ(out[0].weight, (Rgb{0.1f, 0.1f, 0.1f}));
+  EXPECT_NEAR(out[1].weight.b, 0.04f, 1e-7);
+  EXPECT_TRUE(out[2].crosses);
+}
+
+TEST(Material, TotalInternalReflectionSendsOneRay) {
+  // Straight down at a 45° tilted surface from inside glass: past the critical angle.
+  Arrival hit;
+  const Material glass = defaultMaterial(MaterialKind::Dielectric);
+  ShadingPoint sp;
+  sp.ng = sp.ns = normalize(Vec3f{1, 1, 0});
+  const auto out = raysFrom(glass, sp, {0, -1, 0}, hit.key, 1.5f, 1);
+  ASSERT_EQ(out.size(), 1u);
+  EXPECT_EQ(out[0].weight, (Rgb{1, 1, 1}));
+  EXPECT_NEAR(out[0].direction.x, 1, 1e-6);  // reflected off the 45° face: sideways
+}
+
+TEST(Material, BlurredRefractionThatTurnsBackIsDropped) {
+  // A frosted glass with a square far wider than the refracted ray's angle to the surface: some
+  // perturbed rays end up on the incoming side and return black; the others still cross.
+  Material frosted = defaultMaterial(MaterialKind::Dielectric);
+  frosted.dielectric.blur = 40;
+  ShadingPoint sp;
+  sp.ng = sp.ns = {0, 1, 0};
+  const Vec3f d = normalize(Vec3f{1, -0.05f, 0});  // grazing
+  int dropped = 0, crossing = 0;
+  for (int i = 0; i < 64; ++i) {
+    const Sampler sampler(SamplerKind::Random, 1, static_cast<uint64_t>(i));
+    const SampleKey key(&sampler, 0, 0, 0);
+    const auto out = raysFrom(frosted, sp, d, key);
+    if (out.size() == 2) {
+      EXPECT_LT(out[1].direction.y, 0);  // a kept refracted ray goes into the glass
+      ++crossing;
+    } else {
+      EXPECT_EQ(out.size(), 1u);
+      ++dropped;
+    }
+  }
+  EXPECT_GT(dropped, 0);
+  EXPECT_GT(crossing, 0);
+}
+
+TEST(Material, AlbedoIsKdElseKmAndOneForGlass) {
+  const Arrival hit;
+  Material m = defaultMaterial(MaterialKind::Phong);
+  EXPECT_EQ(albedo(m, lookUp(m.surface, hit.sp, {0, 1, 0}, {})), (Rgb{0.5f, 0.5f, 0.5f}));
+  m = defaultMaterial(MaterialKind::Mirror);
+  EXPECT_EQ(albedo(m, lookUp(m.surface, hit.sp, {0, 1, 0}, {})), (Rgb{1, 1, 1}));
+  m = defaultMaterial(MaterialKind::Dielectric);
+  EXPECT_EQ(albedo(m, lookUp(m.surface, hit.sp, {0, 1, 0}, {})), (Rgb{1, 1, 1}));
+}
+
+}  // namespace
+}  // namespace glint
