@@ -44,7 +44,6 @@ struct RenderArgs {
   std::string aovs;
   std::string compression = "zip";
   bool stats = false;
-  bool noSpecialize = false;
   bool quiet = false;
 };
 
@@ -98,8 +97,7 @@ nlohmann::json statsJson(const Scene& scene, const RenderStats& st) {
   j["nonfinite_samples"] = st.rays.nonfiniteSamples;
   j["features_used"] = scene.features.used();
   j["features_left_out"] = scene.features.leftOut();
-  j["kernel"] =
-      st.integrator == IntegratorKind::Reference ? "reference" : kernelName(st.kernelCaps);
+  j["integrator"] = st.integrator == IntegratorKind::Reference ? "reference" : "production";
   return j;
 }
 
@@ -120,11 +118,9 @@ void printStats(const Scene& scene, const RenderStats& st) {
   std::printf("non-finite       %llu samples\n", (unsigned long long)st.rays.nonfiniteSamples);
   std::printf("features used    %s\n", join(scene.features.used()).c_str());
   std::printf("left out         %s\n", join(scene.features.leftOut()).c_str());
-  if (st.integrator == IntegratorKind::Reference)
-    std::printf("kernel           reference (depth first, the oracle)\n");
-  else
-    std::printf("kernel           %s (compiled for these capabilities only)\n",
-                kernelName(st.kernelCaps).c_str());
+  std::printf("integrator       %s\n", st.integrator == IntegratorKind::Reference
+                                           ? "reference (depth first, the oracle)"
+                                           : "production (batched)");
 }
 
 // What must match for crops of one frame to merge: the scene's bytes and every setting that
@@ -181,7 +177,6 @@ int runRender(const RenderArgs& a) {
   RenderOptions opt;
   opt.threads = a.threads.value_or(0);
   opt.tileSize = a.tileSize;
-  opt.specialize = !a.noSpecialize;
   parseIntegratorKind(a.integrator, opt.integrator);
   opt.crop = cropWindow(a, scene.render);
   opt.progress = !a.quiet;
@@ -268,9 +263,6 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_flag("--multipart", args->multipart, "One EXR part per AOV (default: layers in one)");
   cmd->add_option("--compression", args->compression, "EXR compression (default zip)")
       ->check(CLI::IsMember(exrCompressions()));
-  cmd->add_flag("--no-specialize", args->noSpecialize,
-                "Run the general integrator instead of the one compiled for the scene's "
-                "capabilities (same image; for benchmarks)");
   cmd->add_flag("--stats", args->stats, "Print render statistics");
   cmd->add_option("--stats-json", args->statsJson, "Write render statistics as JSON");
   cmd->add_flag("--quiet", args->quiet, "No progress or info messages");

@@ -34,13 +34,11 @@ double bestOf(int runs, F&& f) {
   return best;
 }
 
-RenderResult render(const Scene& scene, const Accelerator& accel, int threads, bool specialize,
-                    int tileSize = 32) {
+RenderResult render(const Scene& scene, const Accelerator& accel, int threads, int tileSize = 32) {
   RenderOptions opt;
   opt.threads = threads;
   opt.tileSize = tileSize;
   opt.progress = false;
-  opt.specialize = specialize;
   return renderScene(scene, accel, opt);
 }
 
@@ -143,7 +141,7 @@ double share(double part, double whole) { return whole > 0 ? 100 * part / whole 
 
 double bestRenderSeconds(const Scene& scene, const Accelerator& accel, int threads, int tileSize,
                          int runs) {
-  return bestOf(runs, [&] { return render(scene, accel, threads, true, tileSize).stats.seconds; });
+  return bestOf(runs, [&] { return render(scene, accel, threads, tileSize).stats.seconds; });
 }
 
 int64_t sceneGeometryBytes(const Scene& scene, const EmbreeAccel& embree) {
@@ -165,10 +163,10 @@ nlohmann::json benchWholeRender(const Scene& scene, const EmbreeAccel& embree,
                                 const RenderBenchOptions& opt) {
   nlohmann::json j;
   const int n = opt.threads;
-  // One specialised render first: its ray count sizes the recording below, and it counts as
-  // the first of the timed runs.
-  RenderStats stats = render(scene, embree, n, true).stats;
-  double special = stats.seconds;
+  // One render first: its ray count sizes the recording below, and it counts as the first of
+  // the timed runs.
+  RenderStats stats = render(scene, embree, n).stats;
+  double seconds = stats.seconds;
 
   // The Embree limit: the render's rays, recorded in an untimed render (a fixed subset of
   // about kMaxRecorded, one query in `stride` of each thread so the mix of kinds is kept),
@@ -177,39 +175,34 @@ nlohmann::json benchWholeRender(const Scene& scene, const EmbreeAccel& embree,
   const uint64_t stride =
       std::max<uint64_t>(1, (stats.rays.total() + kMaxRecorded - 1) / kMaxRecorded);
   RayRecorder recorder(embree, stride);
-  render(scene, recorder, n, true);
+  render(scene, recorder, n);
   const std::vector<RecordedRay> recorded = recorder.take();
   // Each replay repeats the recorded rays for about a render's duration, so that a short
   // replay cannot fall into a quiet moment of a shared machine that the render did not see.
   const int passes =
-      std::max(1, static_cast<int>(special / replaySeconds(embree, recorded, n, false)));
+      std::max(1, static_cast<int>(seconds / replaySeconds(embree, recorded, n, false)));
 
-  // Interleave specialised runs, general runs and replays so that drift hits them all alike.
-  double general = 1e300, replay = 1e300, traced = 1e300;
+  // Interleave renders and replays so that drift hits them all alike.
+  double replay = 1e300, traced = 1e300;
   for (int run = 0; run < opt.runs; ++run) {
     if (run > 0) {
-      const RenderResult r = render(scene, embree, n, true);
-      special = std::min(special, r.stats.seconds);
+      const RenderResult r = render(scene, embree, n);
+      seconds = std::min(seconds, r.stats.seconds);
       stats = r.stats;
     }
-    general = std::min(general, render(scene, embree, n, false).stats.seconds);
     replay = std::min(replay, replaySeconds(embree, recorded, n, false, passes));
     traced = std::min(traced, replaySeconds(embree, recorded, n, true, passes));
   }
   const RayCounters& rays = stats.rays;
-  const double mrays = double(rays.total()) / special * 1e-6;
-  std::printf("\nwhole render   %d threads, best of %d, kernel %s\n", n, opt.runs,
-              kernelName(stats.kernelCaps).c_str());
+  const double mrays = double(rays.total()) / seconds * 1e-6;
+  std::printf("\nwhole render   %d threads, best of %d: %.3f s\n", n, opt.runs, seconds);
   std::printf("rays           %llu: camera %llu, shadow %llu, reflection %llu, refraction %llu\n",
               (unsigned long long)rays.total(), (unsigned long long)rays.camera,
               (unsigned long long)rays.shadow, (unsigned long long)rays.reflection,
               (unsigned long long)rays.refraction);
   std::printf("rate           %.2f Mrays/s, %.2f Mrays/s per thread\n", mrays, mrays / n);
-  std::printf("specialised    %.3f s, general %.3f s: gain %.3fx\n", special, general,
-              general / special);
-
   const double replayRate = double(recorded.size()) / replay;
-  const double ratio = double(rays.total()) / replayRate / special;
+  const double ratio = double(rays.total()) / replayRate / seconds;
   std::printf(
       "embree limit   %zu of the rays (one query in %llu) replayed through Embree alone, one by "
       "one, at %.2f Mrays/s: ratio %.3f\n",
@@ -226,18 +219,15 @@ nlohmann::json benchWholeRender(const Scene& scene, const EmbreeAccel& embree,
 
   const double sampling = bestOf(opt.runs, [&] { return samplingSeconds(scene, n); });
   const double film = bestOf(opt.runs, [&] { return filmSeconds(scene); });
-  const double rest = std::max(0.0, special - traversal - sampling - film);
+  const double rest = std::max(0.0, seconds - traversal - sampling - film);
   std::printf(
       "time split     traversal %.3f s (%.0f%%), camera sampling %.3f s (%.0f%%), film %.4f s "
       "(%.1f%%), shading and the rest %.3f s (%.0f%%)\n",
-      traversal, share(traversal, special), sampling, share(sampling, special), film,
-      share(film, special), rest, share(rest, special));
+      traversal, share(traversal, seconds), sampling, share(sampling, seconds), film,
+      share(film, seconds), rest, share(rest, seconds));
 
-  j["kernel"] = kernelName(stats.kernelCaps);
   j["threads"] = n;
-  j["render_seconds"] = special;
-  j["general_seconds"] = general;
-  j["specialization_gain"] = general / special;
+  j["render_seconds"] = seconds;
   j["rays"] = {{"camera", rays.camera},
                {"shadow", rays.shadow},
                {"reflection", rays.reflection},

@@ -26,7 +26,8 @@ struct ShadingPoint {
 // (Written into `r` rather than returned: a Ray built in a temporary and copied into an array
 // was reloaded whole before its stores had landed, a stall on every shadow ray in perf.)
 inline constexpr float kShadowRayEnd = 1.0f - 1.0f / 4096.0f;
-inline void spawnRayInto(Ray& r, const ShadingPoint& sp, bool toPoint, const Vec3f& v, float time) {
+[[gnu::always_inline]] inline void spawnRayInto(Ray& r, const ShadingPoint& sp, bool toPoint,
+                                                const Vec3f& v, float time) {
   r.o = offsetRayOrigin(sp.p, sp.pError, sp.ng, toPoint ? v - sp.p : v);
   r.d = toPoint ? v - r.o : v;
   r.tMin = 0;

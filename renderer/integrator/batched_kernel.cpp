@@ -15,15 +15,19 @@ constexpr size_t kMinShadowStream = 8;
 
 }  // namespace
 
-template <unsigned C>
-BatchedKernel<C>::BatchedKernel(const Scene& scene, const Accelerator& accel, float minThroughput)
+BatchedKernel::BatchedKernel(const Scene& scene, const Accelerator& accel, float minThroughput)
     : scene_(scene), accel_(accel), minThroughput_(minThroughput) {
-  for (const Light& light : scene.lights) shadowRaysPerPoint_ += sampleCount(light);
+  for (const Light& light : scene.lights) {
+    const bool delta = std::holds_alternative<PointLight>(light) ||
+                       std::holds_alternative<DirectionalLight>(light);
+    lights_.push_back({lightSampleCount(light), delta});
+    shadowRaysPerPoint_ += lights_.back().samples;
+    areaLights_ |= !delta;
+  }
 }
 
-template <unsigned C>
-Radiance BatchedKernel<C>::trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
-                                 AovSample* aov) const {
+Radiance BatchedKernel::trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
+                              AovSample* aov) const {
   const auto scratch = std::make_unique<Scratch>();
   const Hit hit = accel_.intersect(cameraRay);
   Radiance r;
@@ -31,17 +35,16 @@ Radiance BatchedKernel<C>::trace(const Ray& cameraRay, const SampleKey& key, Ray
   return r;
 }
 
-template <unsigned C>
-void BatchedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys,
-                                       int count, Radiance* out, AovSample* const* aovs,
-                                       RayCounters& counters, Scratch& scratch) const {
+void BatchedKernel::traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys,
+                                    int count, Radiance* out, AovSample* const* aovs,
+                                    RayCounters& counters, Scratch& scratch) const {
   counters.camera += static_cast<uint64_t>(count);
   for (int begin = 0; begin < count; begin += kChunk) {
     const int n = std::min(kChunk, count - begin);
     for (int i = 0; i < n; ++i) scratch.roots[i].key = &keys[begin + i];  // the rest never changes
     scratch.lightPointsDrawn = false;
     shadeChunk(rays + begin, hits + begin, scratch.roots, n, scratch.cameraRadiance,
-               kAovs && aovs ? aovs + begin : nullptr, keys + begin, counters, scratch);
+               aovs ? aovs + begin : nullptr, keys + begin, counters, scratch);
     for (int i = 0; i < n; ++i) {
       Radiance& r = out[begin + i];
       r.L = scratch.cameraRadiance[i];
@@ -51,20 +54,16 @@ void BatchedKernel<C>::traceCameraHits(const Ray* rays, const Hit* hits, const S
   }
 }
 
-template <unsigned C>
-typename BatchedKernel<C>::Generation& BatchedKernel<C>::generation(Scratch& scratch,
-                                                                    int depth) const {
+BatchedKernel::Generation& BatchedKernel::generation(Scratch& scratch, int depth) const {
   auto& generations = scratch.generations;
   while (generations.size() <= static_cast<size_t>(depth))
     generations.push_back(std::make_unique<Generation>());
   return *generations[static_cast<size_t>(depth)];
 }
 
-template <unsigned C>
-void BatchedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch* branches, int n,
-                                  Rgb* radiance, AovSample* const* aovs,
-                                  const SampleKey* cameraKeys, RayCounters& counters,
-                                  Scratch& scratch) const {
+void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* branches, int n,
+                               Rgb* radiance, AovSample* const* aovs, const SampleKey* cameraKeys,
+                               RayCounters& counters, Scratch& scratch) const {
   const int depth = branches[0].depth;  // every ray of a chunk has the same
   Generation& gen = generation(scratch, depth);
   gen.children = 0;
@@ -86,18 +85,17 @@ void BatchedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
     const Branch& branch = branches[i];
     // Beer's law over the segment just travelled, in the medium the ray was inside.
     sum.inMedium = !branch.media.empty();
-    if constexpr (kMedia)
-      if (sum.inMedium)
-        sum.absorbed =
-            scene_.materials[branch.media.innermostMaterial()].dielectric.absorption.transmittance(
-                hit.t * length(ray.d));
+    if (sum.inMedium)
+      sum.absorbed =
+          scene_.materials[branch.media.innermostMaterial()].dielectric.absorption.transmittance(
+              hit.t * length(ray.d));
     if (!hit) {
       local = scene_.render.background;
       sum.childEnd = gen.children;
       continue;
     }
     const Material& m = scene_.materials[scene_.geometry(hit).materialId];
-    AovSample* aov = kAovs && aovs ? aovs[i] : nullptr;
+    AovSample* aov = aovs ? aovs[i] : nullptr;
     const Vec3f wo = normalize(-ray.d);
     // AccLightSource: what the surface emits and reflects of the ambient light now; the light
     // sources' share, for a surface that reflects them, when the pending points are lit (or at
@@ -132,7 +130,7 @@ void BatchedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
       lightAlone(pt, local, counters, aov ? aov->perLight : nullptr);
       if (aov) aov->direct = local;
     } else {
-      if (kAreaLights && cameraKeys && !scratch.lightPointsDrawn) {
+      if (areaLights_ && cameraKeys && !scratch.lightPointsDrawn) {
         drawLightPoints(cameraKeys, n, scratch);
         scratch.lightPointsDrawn = true;
       }
@@ -165,22 +163,19 @@ void BatchedKernel<C>::shadeChunk(const Ray* rays, const Hit* hits, const Branch
     const auto& sum = gen.sums[i];
     Rgb L = sum.local;
     for (; c < sum.childEnd; ++c) L += gen.weight[c] * gen.radiance[c];
-    if constexpr (kMedia)
-      if (sum.inMedium) L = L * sum.absorbed;
+    if (sum.inMedium) L = L * sum.absorbed;
     radiance[i] = L;
   }
 }
 
-template <unsigned C>
-void BatchedKernel<C>::spawnCoherent(const Hit& hit, const Material& m, const ShadingPoint& sp,
-                                     const SurfacePoint& at, const Ray& ray, const Vec3f& d,
-                                     const Branch& branch, Generation& gen,
-                                     RayCounters& counters) const {
-  const bool refracts = kMedia && m.refracts();
-  if (!refracts && !m.surface.reflectsCoherently()) return;
+void BatchedKernel::spawnCoherent(const Hit& hit, const Material& m, const ShadingPoint& sp,
+                                  const SurfacePoint& at, const Ray& ray, const Vec3f& d,
+                                  const Branch& branch, Generation& gen,
+                                  RayCounters& counters) const {
+  if (!m.refracts() && !m.surface.reflectsCoherently()) return;
   const bool traced = branch.depth + 1 <= scene_.render.maxDepth;
   // Spawns each ray that its throughput keeps; `across`: the interior list beyond the surface.
-  const auto spawnInto = [&](const Media& across) {
+  const auto spawnInto = [&](const MediumStack& across) {
     return [&](const Vec3f& direction, const Rgb& weight, bool crosses) {
       const Rgb throughput = branch.throughput * weight;
       if (throughput.maxChannel() < minThroughput_) return;
@@ -189,21 +184,19 @@ void BatchedKernel<C>::spawnCoherent(const Hit& hit, const Material& m, const Sh
                    direction, ray.time);
     };
   };
-  if constexpr (kMedia)
-    if (refracts) {
-      // The indices on both sides, from the interior list.
-      const Crossing c = crossingAt(branch.media, hit, sp.materialId, d, sp.ng, scene_.materials);
-      forEachCoherentRay(m, sp, at, d, c.etaI, c.etaT, *branch.key, branch.depth,
-                         spawnInto(c.across));
-      return;
-    }
+  if (m.refracts()) {
+    // The indices on both sides, from the interior list.
+    const Crossing c = crossingAt(branch.media, hit, sp.materialId, d, sp.ng, scene_.materials);
+    forEachCoherentRay(m, sp, at, d, c.etaI, c.etaT, *branch.key, branch.depth,
+                       spawnInto(c.across));
+    return;
+  }
   forEachCoherentRay(m, sp, at, d, 1, 1, *branch.key, branch.depth, spawnInto(branch.media));
 }
 
-template <unsigned C>
-void BatchedKernel<C>::lightPendingPoints(Scratch& scratch, typename Generation::Sum* sums,
-                                          AovSample* const* aovs, bool camera,
-                                          RayCounters& counters) const {
+void BatchedKernel::lightPendingPoints(Scratch& scratch, Generation::Sum* sums,
+                                       AovSample* const* aovs, bool camera,
+                                       RayCounters& counters) const {
   const int pending = scratch.pendingCount;
   if (pending == 0) return;
   auto& queue = scratch.queue;
@@ -215,7 +208,15 @@ void BatchedKernel<C>::lightPendingPoints(Scratch& scratch, typename Generation:
   if (rayEnd.size() < lights * kChunk) rayEnd.resize(lights * kChunk);
   queue.size = 0;
   for (size_t li = 0; li < lights; ++li) {
-    const int samples = sampleCount(scene_.lights[li]);
+    if (lights_[li].delta) {
+      // One shadow ray per point and no sample drawn: the loop says so once per light.
+      for (int k = 0; k < pending; ++k) {
+        queueSample(scratch.pending[k].pt, scene_.lights[li], {0.5f, 0.5f}, queue);
+        rayEnd[li * kChunk + static_cast<size_t>(k)] = static_cast<uint16_t>(queue.size);
+      }
+      continue;
+    }
+    const int samples = lights_[li].samples;
     const Vec2f* cameraPoints =
         camera && li < kMaxPrecomputedLights ? scratch.lightPointsOf[li] : nullptr;
     for (int k = 0; k < pending; ++k) {
@@ -229,7 +230,7 @@ void BatchedKernel<C>::lightPendingPoints(Scratch& scratch, typename Generation:
   traceShadows(queue, counters);
   for (int k = 0; k < pending; ++k) {
     const auto& p = scratch.pending[k];
-    AovSample* aov = kAovs && aovs ? aovs[p.ray] : nullptr;
+    AovSample* aov = aovs ? aovs[p.ray] : nullptr;
     Rgb L = sums[p.ray].local;
     for (size_t li = 0; li < lights; ++li) {
       const size_t slot = li * kChunk + static_cast<size_t>(k);
@@ -243,10 +244,9 @@ void BatchedKernel<C>::lightPendingPoints(Scratch& scratch, typename Generation:
   scratch.pendingCount = 0;
 }
 
-template <unsigned C>
-void BatchedKernel<C>::recordAov(const Ray& ray, const Hit& hit, const Material& m,
-                                 const ShadingPoint& sp, const SurfacePoint& at,
-                                 AovSample& aov) const {
+void BatchedKernel::recordAov(const Ray& ray, const Hit& hit, const Material& m,
+                              const ShadingPoint& sp, const SurfacePoint& at,
+                              AovSample& aov) const {
   aov.hit = true;
   aov.depth = dot(sp.p - ray.o, aov.viewAxis);
   aov.normal = faceForward(sp.ns, -ray.d);
@@ -258,24 +258,21 @@ void BatchedKernel<C>::recordAov(const Ray& ray, const Hit& hit, const Material&
   aov.albedo = albedo(m, at);
 }
 
-template <unsigned C>
-SamplePattern BatchedKernel<C>::lightPattern(const LitPoint& pt, size_t li) const {
+SamplePattern BatchedKernel::lightPattern(const LitPoint& pt, size_t li) const {
   // Delta lights take one shadow ray and draw no sample; area lights average `samples` points
   // from their own stratified, shuffled set (seed 000 §13.4.2). Without area lights every
   // light is a delta light.
-  if (isDelta(scene_.lights[li])) return {};
+  if (lights_[li].delta) return {};
   return pt.branch->key->pattern(dimension(Dim::Light, pt.branch->depth, static_cast<int>(li)));
 }
 
-template <unsigned C>
-void BatchedKernel<C>::drawLightPoints(const SampleKey* keys, int count, Scratch& scratch) const {
+void BatchedKernel::drawLightPoints(const SampleKey* keys, int count, Scratch& scratch) const {
   const Vec2f** points = scratch.lightPointsOf;
   std::fill_n(points, kMaxPrecomputedLights, nullptr);
   int used = 0;
   for (size_t li = 0; li < scene_.lights.size() && li < kMaxPrecomputedLights; ++li) {
-    const Light& light = scene_.lights[li];
-    const int n = sampleCount(light);
-    if (isDelta(light) || used + count * n > Scratch::kMaxLightPoints) continue;
+    const int n = lights_[li].samples;
+    if (lights_[li].delta || used + count * n > Scratch::kMaxLightPoints) continue;
     points[li] = scratch.lightPoints + used;
     // Per pixel: its run of samples key.index + i, sub-samples j, is one run of flat indices
     // (key.index + i)·n + j of its set.
@@ -289,14 +286,10 @@ void BatchedKernel<C>::drawLightPoints(const SampleKey* keys, int count, Scratch
   }
 }
 
-template <unsigned C>
 template <class Queue>
-void BatchedKernel<C>::queueLight(const LitPoint& pt, size_t li, const SamplePattern& pattern,
-                                  int first, int size, int count, Queue& queue,
-                                  const Vec2f* points) const {
-  const Light& light = scene_.lights[li];
-  const bool delta = isDelta(light);
-  const Surface& surface = pt.material->surface;
+void BatchedKernel::queueLight(const LitPoint& pt, size_t li, const SamplePattern& pattern,
+                               int first, int size, int count, Queue& queue,
+                               const Vec2f* points) const {
   // Sample points are drawn a batch ahead of their shadow rays: drawing one is a long chain of
   // dependent integer operations (sampler.cpp), and a batch's chains run side by side.
   constexpr int kBatch = 8;
@@ -304,38 +297,24 @@ void BatchedKernel<C>::queueLight(const LitPoint& pt, size_t li, const SamplePat
   for (int begin = first; begin < first + size; begin += kBatch) {
     const int n = std::min(kBatch, first + size - begin);
     const Vec2f* u = batch;
-    if (delta)
-      batch[0] = {0.5f, 0.5f};
-    else if (points)
+    if (points)
       u = points + begin;
     else
       pt.branch->key->get2D(pattern, begin, n, count, batch);
-    for (int j = 0; j < n; ++j) {
-      const LightSample ls = sampleLight(light, pt.sp.p, u[j]);
-      if (!facesLight(pt.at, ls.wi) || ls.intensity.isBlack()) continue;
-      const Rgb f = reflectedLight(surface, pt.at, ls.wi);
-      const int q = queue.size++;
-      spawnRayInto(queue.rays[q], pt.sp, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target,
-                   pt.time);
-      queue.term[q] = f * ls.intensity;
-      queue.atInfinity[q] = ls.atInfinity;
-      if (transparentShadows()) queue.media[q] = &pt.branch->media;
-    }
+    for (int j = 0; j < n; ++j) queueSample(pt, scene_.lights[li], u[j], queue);
   }
 }
 
-template <unsigned C>
 template <class Queue>
-void BatchedKernel<C>::traceShadows(Queue& queue, RayCounters& counters) const {
+void BatchedKernel::traceShadows(Queue& queue, RayCounters& counters) const {
   const auto n = static_cast<size_t>(queue.size);
   // Shadows are see-through only where there are dielectrics to see through.
-  if constexpr (kMedia)
-    if (transparentShadows()) {
-      for (size_t i = 0; i < n; ++i)
-        queue.visible[i] = transparentShadow(scene_, accel_, queue.rays[i], queue.atInfinity[i],
-                                             *queue.media[i], minThroughput_, counters);
-      return;
-    }
+  if (transparentShadows()) {
+    for (size_t i = 0; i < n; ++i)
+      queue.visible[i] = transparentShadow(scene_, accel_, queue.rays[i], queue.atInfinity[i],
+                                           *queue.media[i], minThroughput_, counters);
+    return;
+  }
   counters.shadow += n;
   if (n < kMinShadowStream) {
     for (size_t i = 0; i < n; ++i) queue.blocked[i] = accel_.occluded(queue.rays[i]);
@@ -347,39 +326,24 @@ void BatchedKernel<C>::traceShadows(Queue& queue, RayCounters& counters) const {
   accel_.occludedCoherent(queue.rays.data(), queue.blocked, n);
 }
 
-template <unsigned C>
-void BatchedKernel<C>::lightAlone(const LitPoint& pt, Rgb& L, RayCounters& counters,
-                                  Rgb* perLight) const {
+void BatchedKernel::lightAlone(const LitPoint& pt, Rgb& L, RayCounters& counters,
+                               Rgb* perLight) const {
   ShadowQueue<8> queue;
   for (size_t li = 0; li < scene_.lights.size(); ++li) {
-    const int count = sampleCount(scene_.lights[li]);
+    const int count = lights_[li].samples;
     const SamplePattern pattern = lightPattern(pt, li);
     Rgb sum;
     for (int first = 0; first < count; first += queue.kCapacity) {
       queue.size = 0;
-      queueLight(pt, li, pattern, first, std::min(queue.kCapacity, count - first), count, queue);
+      if (lights_[li].delta)
+        queueSample(pt, scene_.lights[li], {0.5f, 0.5f}, queue);
+      else
+        queueLight(pt, li, pattern, first, std::min(queue.kCapacity, count - first), count, queue);
       traceShadows(queue, counters);
       sum = sumVisible(queue, 0, queue.size, sum);
     }
     addContribution(sum, li, L, perLight);
   }
 }
-
-// Every capability set, so render_job.cpp can pick any of them (scene/features.h).
-static_assert(cap::kAll == 31, "instantiate every capability set below");
-#define GLINT_KERNELS_4(base)               \
-  template class BatchedKernel<(base)>;     \
-  template class BatchedKernel<(base) + 1>; \
-  template class BatchedKernel<(base) + 2>; \
-  template class BatchedKernel<(base) + 3>;
-GLINT_KERNELS_4(0)
-GLINT_KERNELS_4(4)
-GLINT_KERNELS_4(8)
-GLINT_KERNELS_4(12)
-GLINT_KERNELS_4(16)
-GLINT_KERNELS_4(20)
-GLINT_KERNELS_4(24)
-GLINT_KERNELS_4(28)
-#undef GLINT_KERNELS_4
 
 }  // namespace glint

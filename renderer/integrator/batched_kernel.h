@@ -10,10 +10,7 @@
 //  - The direct light of a chunk's lit points is queued light by light and the shadow rays
 //    traced together, as coherent streams (lightPendingPoints, traceShadows).
 //  - The camera hits' reflections and refractions leave as one coherent stream.
-// Compiled once per capability set (scene/features.h): code for a capability the set lacks is
-// left out, not skipped at run time.
 #include <memory>
-#include <type_traits>
 #include <vector>
 
 #include "accel/accelerator.h"
@@ -24,12 +21,10 @@
 #include "integrator/medium_stack.h"
 #include "integrator/radiance.h"
 #include "integrator/ray_counters.h"
-#include "scene/features.h"
 #include "scene/scene.h"
 
 namespace glint {
 
-template <unsigned Caps>
 class BatchedKernel {
  public:
   BatchedKernel(const Scene& scene, const Accelerator& accel,
@@ -41,10 +36,10 @@ class BatchedKernel {
 
   // Radiance along `count` camera rays whose closest hits are known (traced together as a
   // coherent stream, Accelerator::intersectCoherent), samples keys[i]: runs of consecutive
-  // samples of one or several pixels, as renderTile makes them. aovs, when given (only where
-  // Caps has cap::kAovs), holds a record pointer (or null) per sample, whose viewAxis must be
-  // set (the camera's unit view direction, for depth); the record receives what the camera
-  // ray hit. out[i] does not depend on which other samples share the call, bit for bit.
+  // samples of one or several pixels, as renderTile makes them. aovs, when given, holds a
+  // record pointer (or null) per sample, whose viewAxis must be set (the camera's unit view
+  // direction, for depth); the record receives what the camera ray hit. out[i] does not depend on
+  // which other samples share the call, bit for bit.
   void traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys, int count,
                        Radiance* out, AovSample* const* aovs, RayCounters& counters,
                        Scratch& scratch) const;
@@ -53,17 +48,7 @@ class BatchedKernel {
                  AovSample* aov = nullptr) const;
 
  private:
-  static constexpr bool kMedia = (Caps & cap::kDielectrics) != 0;
-  static constexpr bool kAreaLights = (Caps & cap::kAreaLights) != 0;
-  static constexpr bool kAovs = (Caps & cap::kAovs) != 0;
   static constexpr int kChunk = 64;  // rays of one generation shaded together
-
-  // Without dielectrics a ray is always in the outside world: no interior list to carry.
-  struct NoMedia {
-    bool empty() const { return true; }
-    void assign(const NoMedia&) {}
-  };
-  using Media = std::conditional_t<kMedia, MediumStack, NoMedia>;
 
   struct Branch {  // what travels with a ray down the tree of reflections and refractions
     int depth = 0;
@@ -71,7 +56,7 @@ class BatchedKernel {
     const SampleKey* key = nullptr;
     // Last: a ray outside every dielectric writes and reads only the stack's size, in the
     // same cache line as the fields above.
-    [[no_unique_address]] Media media;
+    MediumStack media;
   };
 
   // The rays that one chunk of a generation spawns, and what the chunk keeps about its own
@@ -99,7 +84,7 @@ class BatchedKernel {
     // A child of `parent` with weight w (its throughput parent.throughput · w) in `media`;
     // returns its ray's slot for the caller to write. Written in place: a Branch built in a
     // temporary and copied in was reloaded before its stores had landed (store forwarding).
-    Ray& add(const Branch& parent, const Rgb& w, const Rgb& throughput, const Media& media) {
+    Ray& add(const Branch& parent, const Rgb& w, const Rgb& throughput, const MediumStack& media) {
       Branch& b = branches[children];
       b.depth = parent.depth + 1;
       b.throughput = throughput;
@@ -142,16 +127,33 @@ class BatchedKernel {
     UninitializedArray<Ray, Capacity> rays;
     UninitializedArray<Rgb, Capacity> term;  // reflected light · intensity: what it adds unblocked
     bool atInfinity[Capacity];
-    UninitializedArray<const Media*, Capacity> media;  // where the ray starts (transparent shadows)
+    // Where each ray starts: the interior list of its point's ray (transparent shadows).
+    UninitializedArray<const MediumStack*, Capacity> media;
     int size = 0;
     // Filled by traceShadows: with opaque shadows whether each ray is blocked; with transparent
     // ones (transparentShadows()) the fraction of the light arriving.
     bool blocked[Capacity];
     UninitializedArray<Rgb, Capacity> visible;
   };
-  bool transparentShadows() const { return kMedia && scene_.render.transparentShadows; }
-  // Queues samples [first, first + size) of light `li`'s `count` for the point (pattern: the
-  // light's sample set; `points`, when given: the set's points for this point, drawn already).
+  bool transparentShadows() const { return scene_.render.transparentShadows; }
+  // Queues the shadow ray of one sample of `light` at the point, u its point on the light
+  // (ignored by a delta light), unless the light is behind the surface or black: the shadow
+  // ray and what the light adds if it is not blocked.
+  template <class Queue>
+  [[gnu::always_inline]] void queueSample(const LitPoint& pt, const Light& light, Vec2f u,
+                                          Queue& queue) const {
+    const LightSample ls = sampleLight(light, pt.sp.p, u);
+    if (!facesLight(pt.at, ls.wi) || ls.intensity.isBlack()) return;
+    const Rgb f = reflectedLight(pt.material->surface, pt.at, ls.wi);
+    const int q = queue.size++;
+    spawnRayInto(queue.rays[q], pt.sp, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target, pt.time);
+    queue.term[q] = f * ls.intensity;
+    queue.atInfinity[q] = ls.atInfinity;
+    if (transparentShadows()) queue.media[q] = &pt.branch->media;
+  }
+  // Queues samples [first, first + size) of area light `li`'s `count` for the point (pattern:
+  // the light's sample set; `points`, when given: the set's points for this point, drawn
+  // already).
   template <class Queue>
   void queueLight(const LitPoint& pt, size_t li, const SamplePattern& pattern, int first, int size,
                   int count, Queue& queue, const Vec2f* points = nullptr) const;
@@ -184,15 +186,16 @@ class BatchedKernel {
   // Light li's share (the mean over its samples, `sum` their total) added to L, and kept in
   // perLight[li] when given (per-light AOVs).
   void addContribution(const Rgb& sum, size_t li, Rgb& L, Rgb* perLight) const {
-    const Rgb contribution = meanOverSamples(sum, sampleCount(scene_.lights[li]));
+    const Rgb contribution = meanOverSamples(sum, lights_[li].samples);
     L += contribution;
     if (perLight && li < size_t(AovSet::kMaxLights)) perLight[li] = contribution;
   }
-  int sampleCount(const Light& light) const { return kAreaLights ? lightSampleCount(light) : 1; }
-  static bool isDelta(const Light& light) {
-    return !kAreaLights || std::holds_alternative<PointLight>(light) ||
-           std::holds_alternative<DirectionalLight>(light);
-  }
+  // Per light, what the loops over lights ask of it, looked up once: its shadow samples per
+  // point and whether it is a delta light (one shadow ray, no sample drawn).
+  struct LightInfo {
+    int samples;
+    bool delta;
+  };
   SamplePattern lightPattern(const LitPoint& pt, size_t li) const;
   // Direct light at a point whose shadow rays outnumber the shared queue: its lights traced on
   // their own, a few samples at a time, added to L. `perLight`, when given, receives each
@@ -204,6 +207,8 @@ class BatchedKernel {
   const Scene& scene_;
   const Accelerator& accel_;
   float minThroughput_;
+  std::vector<LightInfo> lights_;
+  bool areaLights_ = false;     // some light is not a delta light
   int shadowRaysPerPoint_ = 0;  // at most, over all lights: what a lit point may queue
 
  public:
@@ -228,8 +233,5 @@ class BatchedKernel {
     std::vector<std::unique_ptr<Generation>> generations;
   };
 };
-
-// Every capability: renders any scene (`glint render --no-specialize`).
-using GeneralKernel = BatchedKernel<cap::kAll>;
 
 }  // namespace glint

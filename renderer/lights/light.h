@@ -90,10 +90,10 @@ using Light = std::variant<PointLight, DirectionalLight, QuadLight, DiskLight>;
 // What one light sample delivers at a point: direction to it, where the shadow ray must reach,
 // and the intensity arriving there (falloff and, in radiance mode, the geometry term applied).
 struct LightSample {
+  Rgb intensity;
   Vec3f wi;      // unit, from the point towards the light
   Vec3f target;  // the sampled point on the light (unused for directional lights)
   bool atInfinity = false;
-  Rgb intensity;
 };
 
 // Shadow samples per camera sample: 1 for delta lights (nothing to sample).
@@ -107,9 +107,10 @@ inline Rgb meanOverSamples(const Rgb& sum, int count) {
 
 // The sample of a light at point y on it (the lighting parameters and, in radiance mode, the
 // light's unit normal and area), seen from p.
-inline LightSample lightSampleFrom(const Vec3f& p, const Vec3f& y, const Rgb& intensity,
-                                   Falloff falloff, Emission emission, const Vec3f& lightNormal,
-                                   float area) {
+[[gnu::always_inline]] inline LightSample lightSampleFrom(const Vec3f& p, const Vec3f& y,
+                                                          const Rgb& intensity, Falloff falloff,
+                                                          Emission emission,
+                                                          const Vec3f& lightNormal, float area) {
   const Vec3f toLight = y - p;
   // One square root and one division serve the direction and the inverse square.
   const float invDist = 1.0f / std::sqrt(dot(toLight, toLight));
@@ -130,7 +131,7 @@ inline LightSample lightSampleFrom(const Vec3f& p, const Vec3f& y, const Rgb& in
 // `u` in [0, 1)² picks the point on an area light; ignored by delta lights. Inline: out of
 // line, every sample came back through memory, a 40-byte struct stored field by field and
 // loaded in 16-byte moves, which stalls the load (docs/performance.md).
-inline LightSample sampleLight(const Light& light, const Vec3f& p, Vec2f u) {
+[[gnu::always_inline]] inline LightSample sampleLight(const Light& light, const Vec3f& p, Vec2f u) {
   if (const auto* pl = std::get_if<PointLight>(&light))
     return lightSampleFrom(p, pl->position, pl->intensity, pl->falloff, Emission::Seed, {}, 0);
   if (const auto* q = std::get_if<QuadLight>(&light))

@@ -9,7 +9,6 @@
 #include <limits>
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -19,6 +18,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/sampler.h"
+#include "core/uninitialized_array.h"
 #include "integrator/batched_kernel.h"
 #include "integrator/reference.h"
 #include "render/aov_accumulator.h"
@@ -28,8 +28,6 @@
 namespace glint {
 
 namespace {
-
-struct NoAovSample {};  // the per-sample AOV record of a kernel without AOVs
 
 // MemAvailable of /proc/meminfo (Linux: what can be allocated without swapping), 0 if unknown.
 uint64_t availableMemoryBytes() {
@@ -44,6 +42,9 @@ uint64_t availableMemoryBytes() {
 }
 
 constexpr int kMaxLoggedNonfinite = 5;
+
+// The record of a sample when only the beauty's variance is asked for.
+const AovSample kNoRecord{};
 
 // What every tile of one render shares.
 struct FrameContext {
@@ -61,11 +62,10 @@ struct FrameContext {
 // Shades a chunk of camera samples with the production kernel: their rays traced as one
 // coherent stream (Embree traces it as packets), their hits shaded together (traceCameraHits),
 // so that one sample's memory misses and dependent chains overlap another's.
-template <unsigned Caps>
 struct ProductionShading {
-  const BatchedKernel<Caps>& kernel;
+  const BatchedKernel& kernel;
   const Accelerator& accel;
-  typename BatchedKernel<Caps>::Scratch& scratch;
+  BatchedKernel::Scratch& scratch;
   Hit hits[kCameraChunk];
 
   void operator()(const Ray* rays, const SampleKey* keys, int count, Radiance* out,
@@ -86,16 +86,13 @@ struct ReferenceShading {
 };
 
 // One tile, its camera samples shaded in chunks by `shade` (ProductionShading or
-// ReferenceShading). The lens and time dimensions are drawn and AOVs recorded only where the
-// capability set `Caps` has them (leave out what is not needed).
-template <unsigned Caps, class Shading>
+// ReferenceShading). AOV records are made only when AOVs are asked for.
+template <class Shading>
 void renderTile(const FrameContext& f, Shading& shade, const PixelWindow& tile,
                 RayCounters& counters) {
-  constexpr bool kCameraSamples = (Caps & cap::kCameraSamples) != 0;
-  constexpr bool kAovs = (Caps & cap::kAovs) != 0;
   const RenderSettings& rs = f.scene.render;
-  const bool aovs = kAovs && f.opt.aovs.any();
-  const bool aovSamples = kAovs && f.opt.aovs.needsSamples();
+  const bool aovs = f.opt.aovs.any();
+  const bool aovSamples = f.opt.aovs.needsSamples();
   const Vec3f viewAxis = -f.camera.w();
   PixelAovs pixelAovs(f.aovLayout);
   // Camera samples are made and shaded in chunks. Below kCameraChunk spp a chunk holds several
@@ -105,8 +102,9 @@ void renderTile(const FrameContext& f, Shading& shade, const PixelWindow& tile,
   Ray rays[kCameraChunk];
   SampleKey keys[kCameraChunk];
   Radiance radiance[kCameraChunk];
-  // Without AOVs no records exist (the compiler cleared 264 bytes per sample for them).
-  std::conditional_t<kAovs, AovSample[kCameraChunk], NoAovSample> records;
+  // Written only when AOVs are asked for (cleared per sample, they cost 264 bytes of stores
+  // each).
+  UninitializedArray<AovSample, kCameraChunk> records;
   AovSample* recordOf[kCameraChunk];
   CameraSampling::Points cameraPoints;
   const int pixelsPerChunk = std::max(1, kCameraChunk / rs.spp);
@@ -122,16 +120,15 @@ void renderTile(const FrameContext& f, Shading& shade, const PixelWindow& tile,
         const int runLength = std::min(samplesPerChunk, rs.spp - first);
         const int count = pixels * runLength;
         for (int p = 0; p < pixels; ++p)
-          f.cameraSampling.pixelRays<kCameraSamples>(f.sampler, x0 + p, y, first, runLength,
-                                                     keys + p * runLength, rays + p * runLength,
-                                                     cameraPoints);
-        if constexpr (kAovs)
+          f.cameraSampling.pixelRays(f.sampler, x0 + p, y, first, runLength, keys + p * runLength,
+                                     rays + p * runLength, cameraPoints);
+        if (aovSamples)
           for (int i = 0; i < count; ++i) {
             records[i] = AovSample{};
             records[i].viewAxis = viewAxis;
-            recordOf[i] = aovSamples ? &records[i] : nullptr;
+            recordOf[i] = &records[i];
           }
-        shade(rays, keys, count, radiance, kAovs ? recordOf : nullptr, counters);
+        shade(rays, keys, count, radiance, aovSamples ? recordOf : nullptr, counters);
         for (int p = 0; p < pixels; ++p) {
           const int x = x0 + p;
           if (first == 0) {
@@ -142,8 +139,7 @@ void renderTile(const FrameContext& f, Shading& shade, const PixelWindow& tile,
             Radiance& r = radiance[i];
             if (f.opt.sampleHook) f.opt.sampleHook(x, y, r);
             if (!r.L.isFinite()) r.L = {}, r.valid = false;
-            if constexpr (kAovs)
-              if (aovs) pixelAovs.add(r, records[i]);  // an invalid sample adds no AOV record
+            if (aovs) pixelAovs.add(r, aovSamples ? records[i] : kNoRecord);
             sum[3] += r.alpha;
             if (!r.valid) {
               // A non-finite sample never reaches the film: it counts as black.
@@ -191,19 +187,18 @@ void forEachTile(const FrameContext& f, TileWork& work, RenderOneTile&& tile) {
   });
 }
 
-// Every tile with the production kernel compiled for `Caps`. A thread keeps one scratch for all
-// the tiles it renders: made per tile, its allocation, clearing and page faults cost 5 % of a
-// render's time at 32-pixel tiles and 18 % at 8 (default scene, one thread).
-template <unsigned Caps>
-void renderTiles(const FrameContext& f, TileWork& work) {
-  using Scratch = typename BatchedKernel<Caps>::Scratch;
-  const BatchedKernel<Caps> kernel(f.scene, f.accel);  // const: shared by the threads
+// Every tile with the production kernel. A thread keeps one scratch for all the tiles it
+// renders: made per tile, its allocation, clearing and page faults cost 5 % of a render's time
+// at 32-pixel tiles and 18 % at 8 (default scene, one thread).
+void renderTilesProduction(const FrameContext& f, TileWork& work) {
+  using Scratch = BatchedKernel::Scratch;
+  const BatchedKernel kernel(f.scene, f.accel);  // const: shared by the threads
   tbb::enumerable_thread_specific<std::unique_ptr<Scratch>> scratches;
   forEachTile(f, work, [&](size_t i, RayCounters& counters) {
     std::unique_ptr<Scratch>& scratch = scratches.local();
     if (!scratch) scratch = std::make_unique<Scratch>();
-    ProductionShading<Caps> shade{kernel, f.accel, *scratch, {}};
-    renderTile<Caps>(f, shade, work.tiles[i], counters);
+    ProductionShading shade{kernel, f.accel, *scratch, {}};
+    renderTile(f, shade, work.tiles[i], counters);
   });
 }
 
@@ -212,16 +207,8 @@ void renderTilesReference(const FrameContext& f, TileWork& work) {
   const ReferenceIntegrator integrator(f.scene, f.accel);
   forEachTile(f, work, [&](size_t i, RayCounters& counters) {
     ReferenceShading shade{integrator};
-    renderTile<cap::kCameraSamples>(f, shade, work.tiles[i], counters);
+    renderTile(f, shade, work.tiles[i], counters);
   });
-}
-
-using FrameRenderer = void (*)(const FrameContext&, TileWork&);
-
-template <unsigned... Caps>
-FrameRenderer frameRenderer(unsigned caps, std::integer_sequence<unsigned, Caps...>) {
-  constexpr FrameRenderer table[] = {&renderTiles<Caps>...};
-  return table[caps];
 }
 
 }  // namespace
@@ -286,11 +273,6 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   const AovLayout aovLayout = AovLayout::create(opt.aovs, scene.lights.size(), film);
   if (opt.integrator == IntegratorKind::Reference && opt.aovs.any())
     throw UsageError("the reference integrator renders the beauty only: drop --aov");
-  const unsigned caps = opt.specialize ? kernelCaps(scene.features, opt.aovs.any()) : cap::kAll;
-  const FrameRenderer renderTilesWith =
-      opt.integrator == IntegratorKind::Reference
-          ? &renderTilesReference
-          : frameRenderer(caps, std::make_integer_sequence<unsigned, cap::kAll + 1>{});
 
   const int threads = opt.threads > 0 ? opt.threads : defaultThreadCount();
   const int tileSize = effectiveTileSize(window, opt.tileSize, threads);
@@ -304,12 +286,14 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
                            cameraSampling, sampler, aovLayout, loggedNonfinite};
 
   TileWork work{tiles, tileCounters, progress, skipped, threads};
-  renderTilesWith(frame, work);
+  if (opt.integrator == IntegratorKind::Reference)
+    renderTilesReference(frame, work);
+  else
+    renderTilesProduction(frame, work);
   progress.finish();
 
   RenderResult result{std::move(film), {}, skipped.load(), tileSize};
   for (const RayCounters& c : tileCounters) result.stats.rays += c;
-  result.stats.kernelCaps = caps;
   result.stats.integrator = opt.integrator;
   result.stats.seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -33,9 +33,6 @@ struct RenderOptions {
   // The production kernel (integrator/batched_kernel.h), or its oracle, the depth-first
   // reference integrator (integrator/reference.h: `--integrator reference`, beauty only).
   IntegratorKind integrator = IntegratorKind::Production;
-  // Run the kernel compiled for exactly the scene's capabilities (scene/features.h); false
-  // forces the general path (`--no-specialize`), which gives the same bytes, slower.
-  bool specialize = true;
   // Test hook: sees (and may alter) every camera sample before it reaches the film, so tests
   // can force a NaN through the real path. Never set in production.
   std::function<void(int x, int y, Radiance& sample)> sampleHook;
@@ -64,12 +61,11 @@ class CameraSampling {
   };
   // The rays of `count` consecutive samples of one pixel (keys[i].index = keys[0].index + i),
   // into out: each dimension's points are drawn in runs, where the sampler draws them side by
-  // side (sampler.cpp). kMayDraw = false (a kernel without cap::kCameraSamples: no lens,
-  // nothing moves) leaves the two checks out at compile time; the rays are the same.
-  template <bool kMayDraw = true>
+  // side (sampler.cpp).
   void rays(const SampleKey* keys, int count, Ray* out, Points& points) const {
     const SampleKey& key = keys[0];
-    const bool drawLens = kMayDraw && camera_.hasLens(), drawTime = kMayDraw && openShutter_;
+    // The lens and time dimensions only where there is a lens, or motion under an open shutter.
+    const bool drawLens = camera_.hasLens(), drawTime = openShutter_;
     for (int first = 0; first < count; first += Points::kRun) {
       const int n = std::min(Points::kRun, count - first);
       const int index = key.index + first;
@@ -88,18 +84,16 @@ class CameraSampling {
     }
   }
   // The keys and rays of samples [first, first + count) of pixel (x, y).
-  template <bool kMayDraw = true>
   void pixelRays(const Sampler& sampler, int x, int y, int first, int count, SampleKey* keys,
                  Ray* out, Points& points) const {
     const uint64_t pixelKey = sampler.pixelKey(x, y);
     for (int i = 0; i < count; ++i) keys[i] = SampleKey(&sampler, x, y, first + i, pixelKey);
-    rays<kMayDraw>(keys, count, out, points);
+    rays(keys, count, out, points);
   }
-  template <bool kMayDraw = true>
   Ray ray(const SampleKey& key) const {
     Ray r;
     Points points;
-    rays<kMayDraw>(&key, 1, &r, points);
+    rays(&key, 1, &r, points);
     return r;
   }
 
@@ -113,7 +107,6 @@ struct RenderStats {
   double seconds = 0;
   RayCounters rays;
   IntegratorKind integrator = IntegratorKind::Production;
-  unsigned kernelCaps = 0;  // the capability set the production kernel was compiled for
 };
 
 struct RenderResult {

@@ -22,7 +22,7 @@ struct Traced {
     const Sampler sampler(SamplerKind::Stratified, 1, seed);
     const SampleKey key(&sampler, px, 0, 0);
     RayCounters counters;
-    const Rgb production = GeneralKernel(scene, *accel, minThroughput).trace(ray, key, counters).L;
+    const Rgb production = BatchedKernel(scene, *accel, minThroughput).trace(ray, key, counters).L;
     const Rgb reference =
         ReferenceIntegrator(scene, *accel, minThroughput).radiance(ray, key, counters).L;
     EXPECT_EQ(production, reference) << "the production kernel and its oracle disagree";

@@ -131,3 +131,38 @@ TEST(Aov, MultipartWritesOnePartPerAovWithItsOwnType) {
 
 }  // namespace
 }  // namespace glint
+
+#include <filesystem>
+
+#include "io/scene_loader.h"
+#include "render/render_job.h"
+
+namespace glint {
+namespace {
+
+TEST(Aov, AskingForAovsChangesNoBeautyPixel) {
+  // AOV records are filled by the same kernel that shades the beauty: every bundled scene's
+  // beauty must be the same bytes with every AOV asked for and with none.
+  int scenes = 0;
+  for (const auto& e : std::filesystem::directory_iterator(GLINT_SCENES_DIR)) {
+    if (e.path().extension() != ".json") continue;
+    Scene scene = loadSceneFile(e.path().string());
+    scene.render.width = 32;
+    scene.render.height = 24;
+    scene.render.spp = 2;
+    const auto accel = makeAccelerator(AccelKind::Embree, scene);
+    RenderOptions opt;
+    opt.progress = false;
+    const std::vector<float> plain = renderScene(scene, *accel, opt).film.toFloatRgba();
+    opt.aovs =
+        AovSet::parse("depth,normal,albedo,position,objectid,direct,indirect,lights,variance");
+    const RenderResult withAovs = renderScene(scene, *accel, opt);
+    EXPECT_EQ(plain, withAovs.film.toFloatRgba()) << e.path();
+    EXPECT_GE(withAovs.film.planes().size(), 8u) << e.path();
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 14);
+}
+
+}  // namespace
+}  // namespace glint
