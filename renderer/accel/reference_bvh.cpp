@@ -240,15 +240,6 @@ std::string_view bvhSplitName(BvhSplit s) {
   return "?";
 }
 
-bool parseBvhSplit(std::string_view name, BvhSplit& out) {
-  for (auto s : {BvhSplit::Sah, BvhSplit::Median, BvhSplit::Midpoint})
-    if (bvhSplitName(s) == name) {
-      out = s;
-      return true;
-    }
-  return false;
-}
-
 ReferenceBvh::ReferenceBvh(const Scene& scene, BvhSplit split) : scene_(scene) {
   const auto start = std::chrono::steady_clock::now();
   trees_.resize(scene.groups.size());

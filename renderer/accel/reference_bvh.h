@@ -17,7 +17,6 @@ namespace glint {
 
 enum class BvhSplit { Sah, Median, Midpoint };
 std::string_view bvhSplitName(BvhSplit);
-bool parseBvhSplit(std::string_view name, BvhSplit& out);
 
 struct BvhStats {
   double buildSeconds = 0;

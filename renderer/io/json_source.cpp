@@ -353,11 +353,6 @@ Rgb JsonNode::color() const {
           (*this)[2].number(0, 3.4e38f)};
 }
 
-float JsonNode::number(const std::string& key, float dflt) const {
-  const auto n = get(key);
-  return n ? n->number() : dflt;
-}
-
 Vec3f JsonNode::vec3(const std::string& key, Vec3f dflt) const {
   const auto n = get(key);
   return n ? n->vec3() : dflt;

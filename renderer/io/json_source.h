@@ -78,7 +78,6 @@ class JsonNode {
   Rgb color() const;        // every channel ≥ 0
 
   // Optional-key helpers: the default when the key is absent.
-  float number(const std::string& key, float dflt) const;
   Vec3f vec3(const std::string& key, Vec3f dflt) const;
   Rgb color(const std::string& key, Rgb dflt) const;
 
