@@ -81,8 +81,11 @@ tiles_and_animation() {
     same_pixels "$WORK/still.exr" "$WORK/still-ref.exr"
   check "the merged frame records its 4 crops" [ "$(attribute "$WORK/still.exr" glint:merged_crops)" = 4 ]
   # SLURM_CPUS_PER_TASK=1 → --threads 1 in every task.
-  check "each task rendered with the CPUs Slurm gave it (--threads 1)" \
-    grep -q -- "--threads 1" <(iinfo -v "$WORK"/still.farm/tiles/t00[0-3].exr)
+  local tile
+  for tile in "$WORK"/still.farm/tiles/t00[0-3].exr; do
+    check "task $(basename "$tile" .exr) rendered with the CPUs Slurm gave it (--threads 1)" \
+      grep -q -- "--threads 1" <(iinfo -v "$tile")
+  done
   check "no task left a partial tile behind" \
     [ -z "$(find "$WORK/still.farm/tiles" -name '*.rendering.exr')" ]
 

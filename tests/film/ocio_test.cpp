@@ -39,14 +39,17 @@ TEST(Ocio, RawIsTheIdentity) {
 }
 
 TEST(Ocio, AcesViewTonemapsHighlights) {
-  // The ACES SDR rendering compresses highlights: scene value 16 stays below display 1.0 in
-  // every channel, where the Standard view clips it.
+  // The ACES SDR rendering compresses highlights instead of clipping them: scene values 0.18,
+  // 1, 4 and 16 (grey) map to strictly increasing display values, all below 1.0, where the
+  // Standard view applies the sRGB encoding alone, 16 → 1.055·16^(1/2.4) − 0.055 = 3.2946 (the
+  // display image then clips it to 1).
   DisplaySettings aces;
   aces.view = "ACES 1.0 - SDR Video";
-  const std::vector<float> out = through(aces, {16, 16, 16, 0.18f, 0.18f, 0.18f});
-  EXPECT_LT(out[0], 1.0f);
-  EXPECT_GT(out[0], 0.9f);
-  EXPECT_LT(out[3], out[0]);
+  const std::vector<float> out = through(aces, {0.18f, 0.18f, 0.18f, 1, 1, 1, 4, 4, 4, 16, 16, 16});
+  for (int i = 0; i < 3; ++i) EXPECT_LT(out[size_t(3 * i)], out[size_t(3 * i + 3)]) << i;
+  EXPECT_LT(out[9], 1.0f);
+  const std::vector<float> standard = through(DisplaySettings{}, {16, 16, 16});
+  for (float v : standard) EXPECT_NEAR(v, 1.055 * std::pow(16.0, 1 / 2.4) - 0.055, 1e-3);
 }
 
 TEST(Ocio, EnvironmentConfigIsUsedAndBadConfigsAreNamed) {

@@ -80,8 +80,15 @@ TEST(FarFromOrigin, TranslatedSceneMatchesTheOriginal) {
         compareImages(imageFromFilm(stress::renderText(farScene(offset)).film), base);
     RecordProperty("relmse_at_" + num(offset), num(e.relmse));
     std::printf("translated by %g: relMSE %.3g\n", offset, e.relmse);
-    if (offset < 1e13) {
-      EXPECT_LE(e.relmse, 1e-3) << "offset " << offset;
+    // Up to 1.2e6 the rebased floats are those of the untranslated scene: the same image. At
+    // 1.2e9 and 1.2e12 positions move by at most half the double spacing there (1.2e-7 and
+    // 1.2e-4, up to 2.4e-4 of the spheres' radius): only samples within that distance of a
+    // silhouette or shadow edge can change, a share of the frame of order 1e-4 at 1.2e12,
+    // so relMSE stays far below 1e-6.
+    if (offset < 1e7) {
+      EXPECT_EQ(e.relmse, 0) << "offset " << offset;
+    } else if (offset < 1e13) {
+      EXPECT_LE(e.relmse, 1e-6) << "offset " << offset;
     }
   }
 }
@@ -229,7 +236,10 @@ TEST(SpherePrecision, SilhouettesMatchDoublePrecision) {
         const bool hit = cx * cx + cy * cy + cz * cz < c.radius * c.radius && b < 0;
         mismatched += hit != (r.film.pixel(x, y)[3] > 0.5);
       }
-    EXPECT_LE(mismatched, int(0.001 * N * N) + 0) << "radius " << c.radius;
+    // Only a pixel centre whose ray passes within float rounding of the rim (a relative 2⁻²² or
+    // so of the distance to the sphere) can fall on either side in float and double: of the
+    // 64 × 64 centres, a few along the silhouette at most; 0.1 % is 4 pixels.
+    EXPECT_LE(mismatched, N * N / 1000) << "radius " << c.radius;
   }
 }
 
@@ -262,7 +272,9 @@ TEST(EmbreeVsBvh, TenMillionRandomRays) {
   const CrossCheck check(embree, {&bvh});
   castRandomRays(s, check, 10000000, 21);
   const CrossCheckStats& st = check.stats();
-  EXPECT_EQ(st.rays, 10000000u);
+  // Most rays start inside the soup's bounds: without many hits on both sides the agreement
+  // below would say little (1 % of 10⁷ is 10⁵ compared hits).
+  EXPECT_GE(st.relDt.size(), st.rays / 100);
   EXPECT_GE(st.hitAgreement(), 1 - 1e-6);
   EXPECT_GE(st.occlusionAgreement(), 1 - 1e-6);
   for (const auto& line : st.firstDisagreements) std::printf("disagreement: %s\n", line.c_str());
