@@ -341,12 +341,9 @@ void EmbreeAccel::intersectStream(const Ray* rays, Hit* hits, size_t n, bool coh
 
 void EmbreeAccel::occludedCoherent(const Ray* rays, bool* blocked, size_t n) const {
   // A closest-hit stream: a ray is blocked when it hits anything before its tMax, as with
-  // rtcOccluded1. Embree's own occlusion stream, rtcOccluded1M, measured about as fast but spun
-  // forever inside Embree 3.13.5's AVX-512 packet traversal of an instanced scene in the
-  // sanitizer build (only with ASan's detect_stack_use_after_return; docs/performance.md), while
-  // the closest-hit stream passes the same test there. Not through intersectStream: planes are
-  // tested first, so a ray a plane blocks is not traced, and no Hit is built (through
-  // intersectStream, default rendered 5–7 % slower, best of 15 interleaved renders).
+  // rtcOccluded1. Not rtcOccluded1M: as fast, but it hung inside Embree 3.13.5's AVX-512 packet
+  // traversal of an instanced scene under ASan (docs/performance.md). Not intersectStream: planes
+  // are tested first and no Hit is built, 5–7 % of a default render.
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;

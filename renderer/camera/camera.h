@@ -35,9 +35,7 @@ class Camera {
     generateRay(x, y, lens, ray);
     return ray;
   }
-  // The same, written into `ray` (all fields): a Ray returned by value and copied into the
-  // renderer's array was reloaded before its stores landed (a store-forwarding stall per
-  // camera ray, perf annotate).
+  // The same, written into `ray` (all fields; a returned copy stalled on store forwarding).
   void generateRay(float x, float y, Vec2f lens, Ray& ray) const;
   bool hasLens() const { return desc_.apertureRadius > 0; }
 

@@ -46,8 +46,7 @@ inline float nextFloatDown(float x) { return -nextFloatUp(-x); }
   Vec3f offset = d * ng;
   if (dot(w, ng) < 0) offset = -offset;
   const Vec3f po = p + offset;
-  // Per coordinate, not through po[i]: indexing kept po in memory, and reading it back whole
-  // after a store to one coordinate stalled (store forwarding, seen in perf annotate).
+  // Per coordinate, not through po[i]: indexing kept po in memory (store forwarding).
   const auto away = [](float x, float o) {
     return o > 0 ? nextFloatUp(x) : o < 0 ? nextFloatDown(x) : x;
   };

@@ -1,8 +1,7 @@
 #pragma once
-// N objects of T whose storage is not written when the array is made. For scratch queues whose
+// N objects of T whose storage is not written when the array is made, for scratch queues whose
 // slots are always written before they are read: an array of T would run T's default member
-// initialisers on every slot each time the queue is made (a `rep stos` and a store per field
-// that perf showed at the top of WhittedKernel::shadePhong, which makes a queue per hit).
+// initialisers on every slot each time a queue is made.
 #include <cstddef>
 #include <new>
 #include <type_traits>

@@ -22,9 +22,8 @@ struct ShadingPoint {
 // surface on the side it heads to, offset by p's error bound (offsetRayOrigin). With
 // `toPoint`, `v` is a point and the ray a shadow ray towards it: t in (0, 1) covers the segment
 // and stops just short of the point, by a relative 2^-12 of the segment, so the light's own
-// surface never occludes it. Otherwise `v` is the direction and the ray unbounded.
-// (Written into `r` rather than returned: a Ray built in a temporary and copied into an array
-// was reloaded whole before its stores had landed, a stall on every shadow ray in perf.)
+// surface never occludes it. Otherwise `v` is the direction and the ray unbounded. (Written
+// into `r`, not returned: a returned copy stalled on store forwarding.)
 inline constexpr float kShadowRayEnd = 1.0f - 1.0f / 4096.0f;
 [[gnu::always_inline]] inline void spawnRayInto(Ray& r, const ShadingPoint& sp, bool toPoint,
                                                 const Vec3f& v, float time) {

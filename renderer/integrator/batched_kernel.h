@@ -190,8 +190,9 @@ class BatchedKernel {
     L += contribution;
     if (perLight && li < size_t(AovSet::kMaxLights)) perLight[li] = contribution;
   }
-  // Per light, what the loops over lights ask of it, looked up once: its shadow samples per
-  // point and whether it is a delta light (one shadow ray, no sample drawn).
+  // Per light, what the loops over lights ask of it, looked up once (asked of the variant per
+  // light and point, it cost 4-7 % of a render): its shadow samples per point and whether it
+  // is a delta light (one shadow ray, no sample drawn).
   struct LightInfo {
     int samples;
     bool delta;

@@ -22,9 +22,8 @@ class MediumStack {
   static constexpr int kCapacity = 8;  // deeper nesting than this is ignored (outermost kept)
 
   // Becomes a copy of o, writing only the entries in use: every spawned ray carries a copy
-  // (Generation::add), and most stacks are empty or nearly so. Assigned whole, the stack was
-  // 136 bytes written per ray, and in a chain of mirror bounces each copy landed in a buffer
-  // that had left the cache.
+  // (Generation::add), most stacks are empty or nearly so, and 136 bytes per ray missed the
+  // cache in long chains of mirror bounces.
   void assign(const MediumStack& o) {
     size_ = o.size_;
     std::copy_n(o.entries_, o.size_, entries_);

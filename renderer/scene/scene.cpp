@@ -48,8 +48,7 @@ size_t Scene::timeSteps(const Geometry& g) const {
 void Scene::shadingPoint(const Ray& ray, const Hit& hit, ShadingPoint& sp) const {
   GLINT_CHECK(bool(hit));
   // Object space = world space outside instances; inside, go through the instance transform.
-  // (A pointer, not an optional Transform: GCC cleared the optional's 128 bytes on every call,
-  // 15 % of this function's time in perf.)
+  // (A pointer, not an optional Transform, whose 128 bytes GCC cleared on every call.)
   if (hit.instId == kInvalidId) return shadingPoint(ray, hit, nullptr, sp);
   const Transform worldFromObject =
       instances[groups[0].geometries[hit.instId].index].transformAt(ray.time);
@@ -141,9 +140,8 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
       }
     }
   }
-  // Stored whole (storeWhole): the caller reads them back at once. Written component by
-  // component, each 8-byte read of (x, y) waited for the stores to retire (perf annotate put
-  // 16 % of WhittedKernel::shadeChunk's samples on the read of ns, on the default scene).
+  // Stored as 8 + 4 bytes (storeWhole), the widths the caller reads them back with at once:
+  // store forwarding.
   storeWhole(sp.p, p);
   storeWhole(sp.pError, pError);
   const Vec3f ng = normalize(n);

@@ -110,8 +110,8 @@ class Scene {
     shadingPoint(ray, hit, sp);
     return sp;
   }
-  // The same written into `sp`, for callers that keep it: copied out of a returned temporary,
-  // it was reloaded before its stores had landed (a store-forwarding stall, perf annotate).
+  // The same written into `sp`, for callers that keep it (a returned copy stalled on store
+  // forwarding).
   void shadingPoint(const Ray& ray, const Hit& hit, ShadingPoint& sp) const;
   // Bounds of everything finite in the world (planes excluded).
   Bounds3f worldBounds() const;
