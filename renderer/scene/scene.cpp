@@ -4,6 +4,20 @@
 
 namespace glint {
 
+namespace {
+
+// A point on the ray projected onto the plane through `point` with unit `normal`, and its
+// error bound: the projection cancels the along-normal error of o + t·d; what is left is
+// rounding of the subtraction and the dot product, relative to the magnitudes involved.
+void projectOntoPlane(const Vec3f& onRay, const Vec3f& point, const Vec3f& normal, Vec3f& p,
+                      Vec3f& pError) {
+  const Vec3f rel = onRay - point;
+  p = onRay - dot(rel, normal) * normal;
+  pError = gamma(6) * (abs(onRay) + abs(point) + abs(rel));
+}
+
+}  // namespace
+
 const Geometry& Scene::geometry(const Hit& hit) const {
   if (hit.instId == kInvalidId) return groups[0].geometries[hit.geomId];
   const Geometry& inst = groups[0].geometries[hit.instId];
@@ -96,27 +110,14 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
       n = cross(q.edge1, q.edge2);
       break;
     }
-    case GeomKind::Disk: {
-      // As a plane: the point on the ray projected onto the disk's plane.
-      const Disk& d = disks[g.index];
-      const Vec3f onRay = oObj + hit.t * dObj;
-      const Vec3f rel = onRay - d.center;
-      p = onRay - dot(rel, d.normal) * d.normal;
-      pError = gamma(6) * (abs(onRay) + abs(d.center) + abs(rel));
-      n = d.normal;
+    case GeomKind::Disk:
+      n = disks[g.index].normal;
+      projectOntoPlane(oObj + hit.t * dObj, disks[g.index].center, n, p, pError);
       break;
-    }
-    case GeomKind::Plane: {
-      const Plane& pl = planes[g.index];
-      const Vec3f onRay = oObj + hit.t * dObj;
-      const Vec3f rel = onRay - pl.point;
-      p = onRay - dot(rel, pl.normal) * pl.normal;
-      // The projection cancels the along-normal error of o + t·d; what is left is rounding of
-      // the subtraction and the dot product, relative to the magnitudes involved.
-      pError = gamma(6) * (abs(onRay) + abs(pl.point) + abs(rel));
-      n = pl.normal;
+    case GeomKind::Plane:
+      n = planes[g.index].normal;
+      projectOntoPlane(oObj + hit.t * dObj, planes[g.index].point, n, p, pError);
       break;
-    }
     case GeomKind::Instance:
       GLINT_CHECK(false);
   }

@@ -13,8 +13,22 @@
 namespace glint {
 namespace {
 
-// Each bundled scene at a small size (every pixel still runs the whole path), with its own
-// effects, depth limit and spp.
+// A bundled scene at a small size: every pixel still runs the whole path, with the scene's own
+// effects and depth limit, at no more than `spp` samples.
+Scene small(const std::string& path, int width, int height, int spp) {
+  Scene scene = loadSceneFile(path);
+  scene.render.width = width;
+  scene.render.height = height;
+  scene.render.spp = std::min(scene.render.spp, spp);
+  return scene;
+}
+
+RenderOptions quiet() {
+  RenderOptions opt;
+  opt.progress = false;
+  return opt;
+}
+
 struct Bundled {
   std::string name;
   Scene scene;
@@ -25,16 +39,11 @@ std::vector<Bundled> bundledScenes() {
   for (const auto& dir : {std::string(GLINT_SCENES_DIR), std::string(GLINT_SCENES_DIR) + "/peers"})
     for (const auto& e : std::filesystem::directory_iterator(dir)) {
       if (e.path().extension() != ".json") continue;
-      Scene scene;
       try {
-        scene = loadSceneFile(e.path().string());
+        out.push_back({e.path().filename().string(), small(e.path().string(), 48, 32, 4)});
       } catch (const SceneError&) {
         continue;  // a peer scene whose mesh is not installed (cornell_box: embree-tools)
       }
-      scene.render.width = 48;
-      scene.render.height = 32;
-      scene.render.spp = std::min(scene.render.spp, 4);
-      out.push_back({e.path().filename().string(), std::move(scene)});
     }
   return out;
 }
@@ -43,11 +52,9 @@ TEST(ReferenceIntegrator, AgreesWithTheProductionKernelOnEveryBundledScene) {
   const std::vector<Bundled> scenes = bundledScenes();
   ASSERT_GE(scenes.size(), 14u);
   for (const Bundled& b : scenes) {
-    RenderOptions opt;
-    opt.progress = false;
     const auto accel = makeAccelerator(AccelKind::Embree, b.scene);
-    const RenderResult production = renderScene(b.scene, *accel, opt);
-    test::expectReferenceAgrees(b.scene, *accel, opt, production.film, b.name);
+    const RenderResult production = renderScene(b.scene, *accel, quiet());
+    test::expectReferenceAgrees(b.scene, *accel, quiet(), production.film, b.name);
   }
 }
 
@@ -55,26 +62,18 @@ TEST(ReferenceIntegrator, AgreesBitForBitWhereOneKernelTracesEveryRay) {
   // Glint's reference BVH answers a batch of rays one at a time with the same code as a single
   // ray: then no difference is allowed anywhere, moving scenes included.
   for (const char* name : {"animation.json", "motion_blur.json", "whitted.json"}) {
-    Scene scene = loadSceneFile(std::string(GLINT_SCENES_DIR) + "/" + name);
-    scene.render.width = 40;
-    scene.render.height = 30;
-    scene.render.spp = 2;
-    RenderOptions opt;
-    opt.progress = false;
+    const Scene scene = small(std::string(GLINT_SCENES_DIR) + "/" + name, 40, 30, 2);
     const auto accel = makeAccelerator(AccelKind::Bvh, scene);
-    const RenderResult production = renderScene(scene, *accel, opt);
-    EXPECT_EQ(test::expectReferenceAgrees(scene, *accel, opt, production.film, name), 0) << name;
+    const RenderResult production = renderScene(scene, *accel, quiet());
+    EXPECT_EQ(test::expectReferenceAgrees(scene, *accel, quiet(), production.film, name), 0)
+        << name;
   }
 }
 
 TEST(ReferenceIntegrator, CountsTheSameRays) {
   // Both trace the same tree: the same camera, shadow, reflection and refraction rays.
-  Scene scene = loadSceneFile(std::string(GLINT_SCENES_DIR) + "/whitted.json");
-  scene.render.width = 32;
-  scene.render.height = 24;
-  scene.render.spp = 2;
-  RenderOptions opt;
-  opt.progress = false;
+  const Scene scene = small(std::string(GLINT_SCENES_DIR) + "/whitted.json", 32, 24, 2);
+  RenderOptions opt = quiet();
   const auto accel = makeAccelerator(AccelKind::Embree, scene);
   const RayCounters production = renderScene(scene, *accel, opt).stats.rays;
   opt.integrator = IntegratorKind::Reference;
