@@ -2,33 +2,54 @@
 // Quotient and remainder by a divisor fixed at run time, with multiplications instead of a
 // divide instruction (Lemire, Kaser, Kurz, "Faster Remainder by Direct Computation", 2019):
 // exact for every 32-bit dividend. The stratified sampler divides by the same few counts (the
-// samples of a set, the sides of its grid) millions of times per frame.
+// samples of a set, the sides of its grid) for every point it draws, one at a time or in
+// lanes (core/lanes.h): U is uint32_t or lanes of them, and each lane gets the same bits.
+#include <bit>
 #include <cstdint>
+
+#include "core/lanes.h"
 
 namespace glint {
 
 class FastDivisor {
  public:
   FastDivisor() = default;
-  // M = ⌈2^64 / d⌉; d = 1 would need 2^64, so it keeps M = 0 and takes the quotient as is.
-  explicit FastDivisor(uint32_t d) : d_(d), m_(d > 1 ? UINT64_MAX / d + 1 : 0) {}
+  // M = ⌈2^64 / d⌉. A power of two (1 included, which would need M = 2^64) divides by a shift:
+  // most sets are powers of two (spp, light samples), and a shift is a fraction of the products.
+  explicit FastDivisor(uint32_t d)
+      : d_(d),
+        m_(d > 1 ? UINT64_MAX / d + 1 : 0),
+        shift_(std::has_single_bit(d) ? std::countr_zero(d) : -1) {}
 
   uint32_t divisor() const { return d_; }
-  uint32_t quotient(uint32_t a) const {
-    return d_ == 1 ? a : static_cast<uint32_t>(mulHigh(m_, a));
+
+  template <class U>
+  [[gnu::always_inline]] U quotient(U a) const {
+    if (shift_ >= 0) return a >> static_cast<uint32_t>(shift_);
+    return convertLanes<U>(mulHigh(m_, widen(a)));
   }
-  uint32_t remainder(uint32_t a) const {
-    return static_cast<uint32_t>(mulHigh(m_ * a, d_));  // the fraction a/d, times d
+  template <class U>
+  [[gnu::always_inline]] U remainder(U a) const {
+    if (shift_ >= 0) return a & (d_ - 1);
+    return convertLanes<U>(mulHigh(m_ * widen(a), d_));  // the fraction a/d, times d
   }
 
  private:
-  __extension__ using U128 = unsigned __int128;
-  static uint64_t mulHigh(uint64_t a, uint64_t b) {
-    return static_cast<uint64_t>((static_cast<U128>(a) * b) >> 64);
+  // The high 64 bits of x·y for y < 2^32, from two 32 × 32 → 64-bit products (a vector unit
+  // has no wider multiply): x·y = x_hi·y·2^32 + x_lo·y, and x_hi·y + ⌊x_lo·y / 2^32⌋ cannot
+  // overflow 64 bits. Either side may be one value for all lanes.
+  template <class X, class Y>
+  [[gnu::always_inline]] static auto mulHigh(X x, Y y) {
+    return ((x >> 32) * y + ((x & 0xffffffffu) * y >> 32)) >> 32;
+  }
+  template <class U>
+  [[gnu::always_inline]] static auto widen(U a) {
+    return convertLanes<typename Lanes<U>::U64>(a);
   }
 
   uint32_t d_ = 1;
   uint64_t m_ = 0;
+  int shift_ = 0;  // log2 d for a power of two, else −1
 };
 
 }  // namespace glint

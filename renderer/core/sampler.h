@@ -39,11 +39,10 @@ constexpr uint32_t dimension(Dim kind, int depth = 0, int index = 0) {
 struct SamplePattern {
   uint64_t hash = 0;          // hashKey(seed, px, py, dim): keys each sample's jitter
   uint32_t scramble[3] = {};  // stratified: the permutation key; sobol: index, x, y scrambles
+  // A regular sampler's pixel dimension: cell centres. Regular grids are for pixel offsets
+  // only; a regular render's other dimensions are stratified.
+  bool cellCentres = false;
 };
-
-// Test hook: power-of-two sets drawn with the portable build of the sampler's vector lanes
-// even on a CPU with AVX2 (sampler.cpp), so that tests hold both builds to the same bits.
-void forcePortableSamplerLanes(bool force);
 
 class Sampler {
  public:
@@ -53,42 +52,25 @@ class Sampler {
   SamplerKind kind() const { return kind_; }
   int samplesPerPixel() const { return spp_; }
 
-  // Offset inside pixel (px, py) for sample `index` in [0, spp), each coordinate in [0, 1).
-  Vec2f pixelSample(int px, int py, int index) const {
-    return pixelSampleFor(pattern(pixelKey(px, py), dimension(Dim::Pixel)), index);
-  }
-  // A 2D sample of dimension `dim` for sample `index`, stratified over the spp samples of the
-  // pixel and over `count` sub-samples (e.g. shadow samples per camera sample).
-  Vec2f get2D(int px, int py, int index, uint32_t dim, int sub = 0, int count = 1) const {
-    return get2DFor(pattern(pixelKey(px, py), dim), index, sub, count);
-  }
-
-  // The same in steps, for callers that draw many samples: the pixel's key (the hash of seed
-  // and pixel), computed once per pixel; a dimension's pattern, which extends it by one more
-  // step, computed once for all the samples drawn from it (e.g. once per light at a shading
-  // point, not once per shadow sample). The values are exactly those above.
+  // A sample is drawn in steps, each computed once for all that share it: the pixel's key
+  // (the hash of seed and pixel), once per pixel; a dimension's pattern, which extends it by
+  // one more step, once for all the samples drawn from it (e.g. once per light at a shading
+  // point, not once per shadow sample).
   uint64_t pixelKey(int px, int py) const;
   SamplePattern pattern(uint64_t pixelKey, uint32_t dim) const;
-  Vec2f pixelSampleFor(const SamplePattern& pixel, int index) const;
-  // pixelSampleFor for samples [first, first + size), into out.
-  void pixelSamplesFor(const SamplePattern& pixel, int first, int size, Vec2f* out) const;
-  // get2DFor(pattern, first + j) into out[j] for j in [0, size): a dimension drawn once per
-  // sample (lens, time) for a run of one pixel's samples.
-  void get2DRange(const SamplePattern& pattern, int first, int size, Vec2f* out) const {
-    get2DFor(pattern, first, 0, size, 1, out);
-  }
-  Vec2f get2DFor(const SamplePattern& pattern, int index, int sub = 0, int count = 1) const;
-  // get2DFor(pattern, index, firstSub + j, count) into out[j] for j in [0, size): the same
-  // values, drawn side by side (for power-of-two sets in vector lanes, sampler.cpp). Flat
-  // indices index·count + firstSub + j run on across sub-samples into the next samples'.
-  void get2DFor(const SamplePattern& pattern, int index, int firstSub, int size, int count,
-                Vec2f* out) const;
+
+  // Sample `index` in [0, spp) of the pattern's dimension, each coordinate in [0, 1),
+  // stratified over the spp samples of the pixel and over `count` sub-samples (e.g. shadow
+  // samples per camera sample): flat index index·count + sub of a set of spp·count. For the
+  // pixel dimension, the offset inside the pixel.
+  Vec2f get2D(const SamplePattern& pattern, int index, int sub = 0, int count = 1) const;
+  // get2D(pattern, index, firstSub + j, count) into out[j] for j in [0, size): the same
+  // values, drawn side by side (sampler.cpp). Flat indices index·count + firstSub + j run on
+  // across sub-samples into the next samples' (a run of a pixel's samples with count 1).
+  void get2D(const SamplePattern& pattern, int index, int firstSub, int size, int count,
+             Vec2f* out) const;
 
  private:
-  static Vec2f stratified2D(const SamplePattern& pattern, int index, int n);
-  static void stratified2D(const SamplePattern& pattern, int first, int size, int n, Vec2f* out);
-  static Vec2f sobol2D(const SamplePattern& pattern, int index);
-
   SamplerKind kind_;
   int spp_;
   uint64_t seed_;
@@ -110,11 +92,11 @@ struct SampleKey {
   // A dimension's pattern, for drawing several sub-samples of it (a light's shadow samples).
   SamplePattern pattern(uint32_t dim) const { return sampler->pattern(pixelKey, dim); }
   Vec2f get2D(const SamplePattern& pattern, int sub, int count) const {
-    return sampler->get2DFor(pattern, index, sub, count);
+    return sampler->get2D(pattern, index, sub, count);
   }
-  // Sub-samples [firstSub, firstSub + size) of `count` at once, into out.
+  // Sub-samples [firstSub, firstSub + size) of `count` at once, into out (Sampler::get2D).
   void get2D(const SamplePattern& pattern, int firstSub, int size, int count, Vec2f* out) const {
-    sampler->get2DFor(pattern, index, firstSub, size, count, out);
+    sampler->get2D(pattern, index, firstSub, size, count, out);
   }
   Vec2f get2D(uint32_t dim, int sub = 0, int count = 1) const {
     return get2D(pattern(dim), sub, count);

@@ -68,12 +68,10 @@ class CameraSampling {
     const bool drawLens = camera_.hasLens(), drawTime = openShutter_;
     for (int first = 0; first < count; first += Points::kRun) {
       const int n = std::min(Points::kRun, count - first);
-      const int index = key.index + first;
-      key.sampler->pixelSamplesFor(key.pattern(dimension(Dim::Pixel)), index, n, points.pixel);
-      if (drawLens)
-        key.sampler->get2DRange(key.pattern(dimension(Dim::Lens)), index, n, points.lens);
-      if (drawTime)
-        key.sampler->get2DRange(key.pattern(dimension(Dim::Time)), index, n, points.time);
+      // Samples key.index + first + i: flat indices of sets with one sub-sample per sample.
+      key.get2D(key.pattern(dimension(Dim::Pixel)), first, n, 1, points.pixel);
+      if (drawLens) key.get2D(key.pattern(dimension(Dim::Lens)), first, n, 1, points.lens);
+      if (drawTime) key.get2D(key.pattern(dimension(Dim::Time)), first, n, 1, points.time);
       for (int i = 0; i < n; ++i) {
         Ray& r = out[first + i];
         camera_.generateRay(static_cast<float>(key.px) + points.pixel[i].x,
