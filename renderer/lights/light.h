@@ -130,7 +130,7 @@ inline Rgb meanOverSamples(const Rgb& sum, int count) {
 
 // `u` in [0, 1)² picks the point on an area light; ignored by delta lights. Inline: out of
 // line, every sample came back through memory, a 40-byte struct stored field by field and
-// loaded in 16-byte moves, which stalls the load (docs/performance.md).
+// loaded in 16-byte moves, which stalls the load (store forwarding).
 [[gnu::always_inline]] inline LightSample sampleLight(const Light& light, const Vec3f& p, Vec2f u) {
   if (const auto* pl = std::get_if<PointLight>(&light))
     return lightSampleFrom(p, pl->position, pl->intensity, pl->falloff, Emission::Seed, {}, 0);
