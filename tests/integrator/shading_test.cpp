@@ -318,12 +318,6 @@ TEST(Shading, GlassSphereConservesEnergy) {
   EXPECT_GT(maxL, 0.5f);  // the sphere transmits most of the background: not trivially dark
 }
 
-}  // namespace
-}  // namespace glint
-
-namespace glint {
-namespace {
-
 TEST(Shading, CheckerStaysFixedInTheWorldWhereverTheCameraIs) {
   // Scenes load into render space (world − eye); the checker must still count world cells.
   // Straight down from each eye the ray meets the plane y = 0 at world (x, 0, z); ambient light

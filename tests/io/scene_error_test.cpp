@@ -127,12 +127,6 @@ TEST(SceneError, MotionKeysAreValidated) {
             "scene.json:1: camera.shutter[1]: must be <= 1, got 2");
 }
 
-}  // namespace
-}  // namespace glint
-
-namespace glint {
-namespace {
-
 TEST(SceneError, PlacedGeometryBeyondTheFloatRangeAndNonRegularMeshFiles) {
   // Each value is in range on its own; placed (scaled or translated) it overflows float. The
   // renderer would otherwise meet inf/NaN bounds; the loader names the object instead.

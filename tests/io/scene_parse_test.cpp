@@ -216,12 +216,6 @@ TEST(SceneParse, GroupsArePlacedByInstancesNotCopied) {
   EXPECT_TRUE(s.features.instancing);
 }
 
-}  // namespace
-}  // namespace glint
-
-namespace glint {
-namespace {
-
 TEST(SceneParse, EveryBundledSceneLoads) {
   // The examples are documentation; a format change that breaks one must fail here.
   int count = 0;
@@ -232,12 +226,6 @@ TEST(SceneParse, EveryBundledSceneLoads) {
   }
   EXPECT_GE(count, 4);
 }
-
-}  // namespace
-}  // namespace glint
-
-namespace glint {
-namespace {
 
 TEST(SceneParse, MeshFilesInPlyAndGltf) {
   // square.ply: the unit square as 2 triangles. triangle.gltf: one triangle (0,0,0), (2,0,0),
@@ -256,12 +244,6 @@ TEST(SceneParse, MeshFilesInPlyAndGltf) {
   EXPECT_EQ(s.meshes[1].bounds().hi, (Vec3f{2, 2, 1}));
 }
 
-}  // namespace
-}  // namespace glint
-
-namespace glint {
-namespace {
-
 TEST(SceneParse, MirroringTransformsKeepNormalsOutward) {
   // scale x by −1 mirrors: the box's triangles and the quad must keep their normals pointing
   // away from the solid (box) and along the mirrored normal (quad: (0,0,1) stays (0,0,1)).
@@ -279,12 +261,6 @@ TEST(SceneParse, MirroringTransformsKeepNormalsOutward) {
   }
   EXPECT_GT(cross(s.quads[0].edge1, s.quads[0].edge2).z, 0);
 }
-
-}  // namespace
-}  // namespace glint
-
-namespace glint {
-namespace {
 
 TEST(SceneParse, PositionsLoadIntoRenderSpaceAroundTheEye) {
   // Everything is placed in double and shifted by −eye before rounding to float

@@ -3,8 +3,11 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <filesystem>
 #include <map>
 
+#include "io/scene_loader.h"
+#include "render/render_job.h"
 #include "test_util.h"
 
 namespace glint {
@@ -128,17 +131,6 @@ TEST(Aov, MultipartWritesOnePartPerAovWithItsOwnType) {
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.output.find("unknown AOV \"motion\""), std::string::npos) << bad.output;
 }
-
-}  // namespace
-}  // namespace glint
-
-#include <filesystem>
-
-#include "io/scene_loader.h"
-#include "render/render_job.h"
-
-namespace glint {
-namespace {
 
 TEST(Aov, AskingForAovsChangesNoBeautyPixel) {
   // AOV records are filled by the same kernel that shades the beauty: every bundled scene's

@@ -4,6 +4,7 @@
 
 #include <optional>
 
+#include "core/hash.h"
 #include "render/render_job.h"
 #include "test_util.h"
 
@@ -148,14 +149,6 @@ TEST(Motion, BackendsAgreeOnMovingGeometry) {
   // none over a 768-pixel image.
   EXPECT_EQ(differing, 0);
 }
-
-}  // namespace
-}  // namespace glint
-
-#include "core/hash.h"
-
-namespace glint {
-namespace {
 
 TEST(Motion, ATurningObjectDoesNotShadowItself) {
   // A slab turning 3.9° about y with a light straight in front of its long face: every shadow
