@@ -188,21 +188,24 @@ int runRender(const RenderArgs& a) {
   AccelKind kind = AccelKind::Embree;
   parseAccelKind(a.accel, kind);
 
-  if (!a.display.empty()) {
-    // Check the display image's format and the OCIO config, display, view and look before
-    // spending the render on them.
-    checkDisplayImagePath(a.display);
-    DisplayTransform check(a.ocio);
-  }
-  const auto accel = makeAccelerator(kind, scene);
-  const RenderResult result = renderScene(scene, *accel, opt);
-
   std::string out = a.output;
   if (out.empty())
     out = (a.scenePath.empty() ? std::string("default")
                                : std::filesystem::path(a.scenePath).stem().string()) +
           (scene.animation ? ".####.exr" : ".exr");
   if (scene.animation) out = frameFileName(out, scene.animation->frame);
+  // Every output, and the display image's format and the OCIO config, display, view and look,
+  // are checked before the render is spent on them.
+  checkOutputPath(out);
+  if (!a.statsJson.empty() && a.statsJson != "-") checkOutputPath(a.statsJson);
+  if (!a.display.empty()) {
+    checkOutputPath(a.display);
+    checkDisplayImagePath(a.display);
+    DisplayTransform check(a.ocio);
+  }
+  const auto accel = makeAccelerator(kind, scene);
+  const RenderResult result = renderScene(scene, *accel, opt);
+
   writeExr(out, result.film, exrMetadata(a, scene, result), {a.half, a.compression, a.multipart});
   if (!a.display.empty()) writeDisplayImage(a.display, result.film, a.ocio);
   if (!a.statsJson.empty()) {

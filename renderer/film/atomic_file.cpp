@@ -1,26 +1,98 @@
 #include "film/atomic_file.h"
 
 #include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
+#include <climits>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 
 #include "core/error.h"
+#include "core/hash.h"
+#include "core/input_files.h"
 
 namespace glint {
 
+namespace fs = std::filesystem;
+
 namespace {
 
-std::string temporaryPathFor(const std::filesystem::path& finalPath) {
+// Temporary files start with this, then the host's tag, the writing process's id and a
+// counter: a later write in the same directory recognises those whose process has died.
+constexpr std::string_view kTemporaryMarker = ".glint-tmp-";
+constexpr size_t kNameMax = NAME_MAX;
+
+// 8 hex digits of the host name's hash: on a directory shared by a farm's hosts, a process id
+// means something only on its own host.
+const std::string& hostTag() {
+  static const std::string tag = [] {
+    char name[HOST_NAME_MAX + 1] = {};
+    ::gethostname(name, sizeof name - 1);
+    char hex[9];
+    std::snprintf(hex, sizeof hex, "%08x", static_cast<unsigned>(hashBytes(name)));
+    return std::string(hex);
+  }();
+  return tag;
+}
+
+// ".glint-tmp-HOST-PID-N-NAME.EXT": the final name's stem is cut to keep the whole within
+// NAME_MAX, and its extension kept last, since image writers choose the format by it.
+std::string temporaryNameFor(const fs::path& finalPath) {
   static std::atomic<unsigned> counter{0};
-  const std::string name = "." + finalPath.filename().string() + ".tmp" +
-                           std::to_string(::getpid()) + "-" + std::to_string(counter++) +
-                           finalPath.extension().string();
-  return (finalPath.parent_path() / name).string();
+  const std::string prefix = std::string(kTemporaryMarker) + hostTag() + "-" +
+                             std::to_string(::getpid()) + "-" + std::to_string(counter++) + "-";
+  const std::string extension = finalPath.extension().string();
+  if (prefix.size() + extension.size() > kNameMax)
+    throw UsageError("cannot write " + finalPath.string() + ": its extension is too long");
+  std::string stem = finalPath.stem().string();
+  stem.resize(std::min(stem.size(), kNameMax - prefix.size() - extension.size()));
+  return prefix + stem + extension;
+}
+
+// Removes this host's temporary files in `dir` whose writing process no longer exists (killed
+// before it could clean up). Another live process's files, and other hosts', are left alone.
+void removeStaleTemporaries(const fs::path& dir) {
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec), end;
+       !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind(kTemporaryMarker, 0) != 0) continue;
+    const std::string rest = name.substr(kTemporaryMarker.size());
+    if (rest.rfind(hostTag() + "-", 0) != 0) continue;
+    const long pid = std::strtol(rest.c_str() + hostTag().size() + 1, nullptr, 10);
+    if (pid <= 0 || pid == ::getpid()) continue;
+    if (::kill(static_cast<pid_t>(pid), 0) == 0 || errno != ESRCH) continue;  // alive, or not ours
+    std::error_code ignored;
+    fs::remove(it->path(), ignored);
+  }
+}
+
+const char* kindOf(mode_t mode) {
+  if (S_ISLNK(mode)) return "a symbolic link";
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
+
+// An output may replace only a regular file that this run did not read: renaming over a
+// device, a link or a directory entry the user did not mean would destroy it.
+void checkReplaceable(const std::string& finalPath) {
+  struct stat st {};
+  if (::lstat(finalPath.c_str(), &st) != 0) return;  // nothing there yet
+  if (!S_ISREG(st.st_mode))
+    throw UsageError("refusing to write " + finalPath + ": it exists and is " + kindOf(st.st_mode) +
+                     ", which an output never replaces");
+  if (isInputFile(finalPath))
+    throw UsageError("refusing to write " + finalPath + ": it is one of this run's inputs");
 }
 
 void fsyncPath(const std::string& path, bool directory) {
@@ -34,28 +106,43 @@ void fsyncPath(const std::string& path, bool directory) {
 
 }  // namespace
 
+void checkOutputPath(const std::string& finalPath) {
+  const fs::path target(finalPath);
+  const fs::path dir = target.parent_path().empty() ? "." : target.parent_path();
+  if (!fs::is_directory(dir))
+    throw UsageError("cannot write " + finalPath + ": directory " + dir.string() +
+                     " does not exist");
+  checkReplaceable(finalPath);
+}
+
 void writeFileAtomically(const std::string& finalPath,
                          const std::function<void(const std::string&)>& write) {
-  const std::filesystem::path target(finalPath);
-  const std::filesystem::path dir = target.parent_path().empty() ? "." : target.parent_path();
-  if (!std::filesystem::is_directory(dir))
-    throw GlintError("cannot write " + finalPath + ": directory " + dir.string() +
-                     " does not exist");
-  const std::string tmp = temporaryPathFor(target);
+  checkOutputPath(finalPath);
+  const fs::path target(finalPath);
+  const fs::path dir = target.parent_path().empty() ? "." : target.parent_path();
+  removeStaleTemporaries(dir);
+  const std::string tmp = (dir / temporaryNameFor(target)).string();
   try {
     write(tmp);
     fsyncPath(tmp, false);
+    checkReplaceable(finalPath);  // again: something may have appeared there while we wrote
     if (std::rename(tmp.c_str(), finalPath.c_str()) != 0)
       throw GlintError("cannot rename " + tmp + " to " + finalPath + ": " + std::strerror(errno));
   } catch (...) {
     std::error_code ignored;
-    std::filesystem::remove(tmp, ignored);
+    fs::remove(tmp, ignored);
     throw;
   }
   fsyncPath(dir.string(), true);  // make the rename itself durable (best effort)
 }
 
 void writeTextFileAtomically(const std::string& finalPath, const std::string& text) {
+  if (finalPath == "-") {  // CLI.md: JSON outputs take `-` for standard output
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    if (std::fflush(stdout) != 0)
+      throw GlintError(std::string("cannot write to standard output: ") + std::strerror(errno));
+    return;
+  }
   writeFileAtomically(finalPath, [&](const std::string& tmp) {
     std::ofstream f(tmp, std::ios::binary);
     f << text;

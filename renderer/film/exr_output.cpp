@@ -7,6 +7,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/input_files.h"
 #include "film/atomic_file.h"
 
 namespace glint {
@@ -133,6 +134,7 @@ void writeExr(const std::string& path, const Film& film, const ExrMetadata& meta
 }
 
 Image readImage(const std::string& path) {
+  noteInputFile(path);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw GlintError("cannot read " + path + ": " + OIIO::geterror());
   const OIIO::ImageSpec& spec = in->spec();

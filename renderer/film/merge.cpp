@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/input_files.h"
 #include "film/atomic_file.h"
 
 namespace glint {
@@ -18,6 +19,7 @@ struct Crop {
 };
 
 Crop readCrop(const std::string& path) {
+  noteInputFile(path);
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw GlintError("cannot read " + path + ": " + OIIO::geterror());
   Crop c{path, in->spec(), {}};

@@ -8,11 +8,13 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/input_files.h"
 
 namespace glint {
 
 TriangleMesh loadMeshFile(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw GlintError("mesh file not found: " + path);
+  noteInputFile(path);
   Assimp::Importer importer;
   // Meshes are shaded flat from their triangles for now, so normals and UVs are not imported.
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_COLORS |

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/hash.h"
+#include "core/input_files.h"
 #include "core/log.h"
 #include "core/sampler.h"
 #include "io/animation.h"
@@ -264,6 +265,7 @@ Scene loadSceneText(const std::string& text, const std::string& fileName,
 Scene loadSceneFile(const std::string& path, std::optional<int> frame) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError({path, 0}, "", "cannot open the scene file");
+  noteInputFile(path);
   std::stringstream ss;
   ss << in.rdbuf();
   const std::filesystem::path p(path);

@@ -73,10 +73,38 @@ TEST(Cli, FailedWriteLeavesThePreviousFileAndNoTemporaries) {
   size_t entries = 0;
   for (const auto& e : fs::directory_iterator(dir)) entries += bool(e.is_regular_file());
   EXPECT_EQ(entries, 1u) << "a temporary file was left behind";
-  // A missing directory is a clear runtime error.
+  // A missing directory is a usage error, found before rendering.
   const auto m = runGlint("render " + scene + " --quiet -o /no/such/dir/x.exr");
-  EXPECT_EQ(m.exitCode, 1);
+  EXPECT_EQ(m.exitCode, 2);
   EXPECT_NE(m.output.find("does not exist"), std::string::npos) << m.output;
+}
+
+TEST(Cli, OutputsNeverReplaceTheSceneALinkOrADevice) {
+  // Each is refused before rendering, with exit 2, and left as it was.
+  const fs::path dir = test::tempDir() / "refused";
+  fs::create_directories(dir);
+  const std::string scene = test::writeTemp("refused.json", kSmallScene);
+  const auto asScene = runGlint("render " + scene + " --quiet -o " + scene);
+  EXPECT_EQ(asScene.exitCode, 2);
+  EXPECT_NE(asScene.output.find("one of this run's inputs"), std::string::npos) << asScene.output;
+  EXPECT_EQ(slurp(scene), kSmallScene);
+  const fs::path link = dir / "link.exr";
+  fs::remove(link);
+  fs::create_symlink(scene, link);
+  const auto viaLink = runGlint("render " + scene + " --quiet --display " + link.string());
+  EXPECT_EQ(viaLink.exitCode, 2);
+  EXPECT_NE(viaLink.output.find("symbolic link"), std::string::npos) << viaLink.output;
+  EXPECT_TRUE(fs::is_symlink(link));
+  EXPECT_EQ(slurp(scene), kSmallScene);
+  // A character device (the stats JSON to /dev/null) is refused too; "-" is standard output.
+  const auto device = runGlint("render " + scene + " --quiet -o " + (dir / "a.exr").string() +
+                               " --stats-json /dev/null");
+  EXPECT_EQ(device.exitCode, 2);
+  EXPECT_TRUE(fs::is_character_file("/dev/null"));
+  const auto dash =
+      runGlint("render " + scene + " --quiet -o " + (dir / "a.exr").string() + " --stats-json -");
+  EXPECT_EQ(dash.exitCode, 0);
+  EXPECT_NE(dash.output.find("\"rays_total\""), std::string::npos) << dash.output;
 }
 
 TEST(Cli, SameImageForAnyThreadCountTileSizeAndCrop) {
