@@ -98,7 +98,7 @@ int runBench(const BenchArgs& a) {
   std::stringstream list(a.accels);
   for (std::string name; std::getline(list, name, ',');) {
     AccelKind k;
-    if (!parseAccelKind(name, k)) throw UsageError("--accel: unknown backend \"" + name + "\"");
+    if (!parseAccelKind(name, k)) throw UsageError("--accel: unknown backend " + inQuotes(name));
     kinds.push_back(k);
   }
   if (kinds.empty()) throw UsageError("--accel: name at least one backend");
@@ -300,8 +300,10 @@ CommandRunner addBenchCommand(CLI::App& app) {
   cmd->add_option("scene", args->scenePath, "Scene file (.json); omitted: the default scene")
       ->check(CLI::ExistingFile);
   cmd->add_option("--accel", args->accels, "Comma-separated backends (embree, bvh, brute)");
+  // A heightfield beyond 2^28 triangles would not fit this machine's memory (80 B each).
   cmd->add_option("--procedural", args->procedural,
-                  "Benchmark a generated heightfield of about this many triangles instead");
+                  "Benchmark a generated heightfield of about this many triangles instead")
+      ->check(wholeNumberUpTo(uint64_t{1} << 28));
   cmd->add_option("--threads", args->threads, "Threads for the all-threads runs (default: all)")
       ->check(CLI::Range(1, 4096));
   cmd->add_option("--random-rays", args->randomRays, "Random rays per pass")

@@ -60,21 +60,21 @@ int runConverge(const ConvergeArgs& a) {
     try {
       spps.push_back(std::stoi(s));
     } catch (const std::exception&) {
-      throw UsageError("--spp: \"" + s + "\" is not a sample count");
+      throw UsageError("--spp: " + inQuotes(s) + " is not a sample count");
     }
     if (spps.back() < 1) throw UsageError("--spp: sample counts must be ≥ 1");
   }
   std::vector<SamplerKind> samplers;
   for (const auto& s : split(a.samplers)) {
     SamplerKind k;
-    if (!parseSamplerKind(s, k)) throw UsageError("--sampler: unknown sampler \"" + s + "\"");
+    if (!parseSamplerKind(s, k)) throw UsageError("--sampler: unknown sampler " + inQuotes(s));
     samplers.push_back(k);
   }
   if (samplers.empty()) samplers.push_back(scene.render.sampler);
   std::vector<AccelKind> accels;
   for (const auto& s : split(a.accels)) {
     AccelKind k;
-    if (!parseAccelKind(s, k)) throw UsageError("--accel: unknown backend \"" + s + "\"");
+    if (!parseAccelKind(s, k)) throw UsageError("--accel: unknown backend " + inQuotes(s));
     accels.push_back(k);
   }
 

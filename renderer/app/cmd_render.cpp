@@ -237,7 +237,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
   addDisplayOptions(*cmd, args->ocio);
   cmd->add_option("--spp", args->spp, "Samples per pixel")
       ->check(CLI::Range(1, static_cast<int>(kMaxSampleSet)));
-  cmd->add_option("--seed", args->seed, "Scene seed");
+  cmd->add_option("--seed", args->seed, "Scene seed")->check(wholeNumberUpTo(UINT64_MAX));
   cmd->add_option("--frame", args->frame,
                   "Frame of an animated scene (default: its first); -o NAME.####.exr numbers "
                   "the file");

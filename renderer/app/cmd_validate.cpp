@@ -127,7 +127,8 @@ CommandRunner addValidateCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--rays", args->rays, "Random rays besides the scene's own")
       ->check(CLI::Range(0, 1 << 30));
-  cmd->add_option("--seed", args->seed, "Seed of the random rays");
+  cmd->add_option("--seed", args->seed, "Seed of the random rays")
+      ->check(wholeNumberUpTo(UINT64_MAX));
   cmd->add_option("--spp", args->spp, "Camera samples per pixel for the scene's rays")
       ->check(CLI::Range(0, 1 << 16));
   cmd->add_option("--min-agreement", args->minAgreement,

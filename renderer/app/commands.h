@@ -3,6 +3,9 @@
 // returns the process exit code when run.
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cstdint>
+#include <cstdlib>
 #include <functional>
 
 #include "film/display.h"
@@ -31,6 +34,22 @@ CommandRunner addConvergeCommand(CLI::App& app);
 void addDisplayOptions(CLI::App& cmd, DisplaySettings& settings);
 
 CommandRunner addConvertCommand(CLI::App& app);
+
+// Accepts a whole number that fits `max` and is not negative. CLI11 reads "-1" into an unsigned
+// option as 2^64 − 1 and an overflowing one as the largest value: both are refused instead.
+inline CLI::Validator wholeNumberUpTo(uint64_t max) {
+  return CLI::Validator(
+      [max](std::string& text) -> std::string {
+        errno = 0;
+        char* end = nullptr;
+        const unsigned long long v = std::strtoull(text.c_str(), &end, 0);
+        if (text.empty() || text.find('-') != std::string::npos || *end != '\0' ||
+            errno == ERANGE || v > max)
+          return "must be a whole number from 0 to " + std::to_string(max) + ", got " + text;
+        return {};
+      },
+      "UINT");
+}
 
 // The command line as typed, for EXR metadata.
 const std::string& commandLine();

@@ -50,7 +50,7 @@ bool parseFrame(std::string_view s, int& out) {
 
 FrameRange parseFrameRange(const std::string& text, const std::string& what) {
   const auto bad = [&](const std::string& why) {
-    return UsageError(what + ": " + why + ", got \"" + text + "\" (write A-B or A)");
+    return UsageError(what + ": " + why + ", got " + inQuotes(text) + " (write A-B or A)");
   };
   const size_t dash = text.find('-');
   FrameRange r;

@@ -19,6 +19,14 @@ std::string formatSceneError(const FileLoc& loc, const std::string& path,
 SceneError::SceneError(const FileLoc& loc, const std::string& path, const std::string& problem)
     : GlintError(formatSceneError(loc, path, problem)), loc_(loc), path_(path), problem_(problem) {}
 
+std::string excerpt(const std::string& text) {
+  constexpr size_t kMaxEchoed = 200;
+  if (text.size() <= kMaxEchoed) return text;
+  return text.substr(0, kMaxEchoed) + "… (" + std::to_string(text.size()) + " characters)";
+}
+
+std::string inQuotes(const std::string& value) { return "\"" + excerpt(value) + "\""; }
+
 size_t editDistance(const std::string& a, const std::string& b) {
   std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
   for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;

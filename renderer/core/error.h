@@ -35,6 +35,11 @@ class SceneError : public GlintError {
   std::string path_, problem_;
 };
 
+// Text from the input, for a message: cut to its first 200 characters ("… (N characters)"), so
+// that hostile input (a 10 MB enum value) cannot flood the terminal. inQuotes() adds the quotes.
+std::string excerpt(const std::string& text);
+std::string inQuotes(const std::string& value);
+
 // Edit distance, for "did you mean" suggestions on unknown keys and names.
 size_t editDistance(const std::string& a, const std::string& b);
 

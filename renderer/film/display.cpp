@@ -25,13 +25,13 @@ OCIO::ConstConfigRcPtr loadConfig(const std::string& path, std::string& source) 
   try {
     if (!path.empty()) {
       if (!std::filesystem::is_regular_file(path))
-        throw GlintError("OCIO config not found: " + path);
+        throw UsageError("OCIO config not found: " + path);
       source = path;
       return OCIO::Config::CreateFromFile(path.c_str());
     }
     if (const char* env = std::getenv("OCIO"); env && *env) {
       if (!std::filesystem::is_regular_file(env))
-        throw GlintError("the OCIO config named by $OCIO was not found: " + std::string(env));
+        throw UsageError("the OCIO config named by $OCIO was not found: " + std::string(env));
       source = std::string("$OCIO = ") + env;
       return OCIO::Config::CreateFromFile(env);
     }
@@ -39,7 +39,7 @@ OCIO::ConstConfigRcPtr loadConfig(const std::string& path, std::string& source) 
     std::istringstream in(kBundledOcioConfig);
     return OCIO::Config::CreateFromStream(in);
   } catch (const OCIO::Exception& e) {
-    throw GlintError("cannot load the OCIO config " + source + ": " + e.what());
+    throw UsageError("cannot load the OCIO config " + source + ": " + e.what());
   }
 }
 
@@ -60,8 +60,8 @@ DisplayTransform::DisplayTransform(const DisplaySettings& s) : impl_(new Impl) {
       knownDisplay |= display == config->getDisplay(d);
     }
     if (!knownDisplay)
-      throw GlintError("OCIO (" + source_ + "): no display \"" + display +
-                       "\"; displays: " + displays);
+      throw UsageError("OCIO (" + source_ + "): no display " + inQuotes(display) +
+                       "; displays: " + displays);
     const std::string view = s.view.empty() ? config->getDefaultView(display.c_str()) : s.view;
     std::string views;
     bool knownView = false;
@@ -70,8 +70,8 @@ DisplayTransform::DisplayTransform(const DisplaySettings& s) : impl_(new Impl) {
       knownView |= view == config->getView(display.c_str(), v);
     }
     if (!knownView)
-      throw GlintError("OCIO (" + source_ + "): display \"" + display + "\" has no view \"" + view +
-                       "\"; views: " + views);
+      throw UsageError("OCIO (" + source_ + "): display " + inQuotes(display) + " has no view " +
+                       inQuotes(view) + "; views: " + views);
     const auto group = OCIO::GroupTransform::Create();
     if (!s.look.empty()) {
       const auto look = OCIO::LookTransform::Create();
@@ -88,7 +88,7 @@ DisplayTransform::DisplayTransform(const DisplaySettings& s) : impl_(new Impl) {
     impl_->cpu = config->getProcessor(group)->getDefaultCPUProcessor();
   } catch (const OCIO::Exception& e) {
     delete impl_;
-    throw GlintError("OCIO (" + source_ + "): " + e.what());
+    throw UsageError("OCIO (" + source_ + "): " + excerpt(e.what()));
   } catch (...) {
     delete impl_;
     throw;

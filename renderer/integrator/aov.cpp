@@ -31,7 +31,7 @@ AovSet AovSet::parse(const std::string& list) {
     if (!found) {
       std::string all;
       for (const auto& n : names()) all += (all.empty() ? "" : ", ") + n;
-      throw UsageError("--aov: unknown AOV \"" + name + "\"; known: " + all);
+      throw UsageError("--aov: unknown AOV " + inQuotes(name) + "; known: " + all);
     }
   }
   return set;

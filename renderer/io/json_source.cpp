@@ -96,7 +96,11 @@ class LineRecorder : public nlohmann::json_sax<json> {
       return stop("a key is " + std::to_string(k.size()) + " characters long; keys and names " +
                   "may have at most " + std::to_string(kMaxKeyLength));
     stack_.back().key = childPointer(stack_.back().pointer, escapePointerToken(k));
-    lines_.emplace(stack_.back().key, lineNow(1));
+    // nlohmann keeps the last of duplicate keys; a scene that says two things is refused.
+    const auto [first, isNew] = lines_.emplace(stack_.back().key, lineNow(1));
+    if (!isNew)
+      return stop("duplicate key " + inQuotes(k) + " (first on line " +
+                  std::to_string(first->second) + "): a key may appear once in an object");
     return true;
   }
   bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override {
@@ -170,9 +174,11 @@ std::string formatNumber(double v) {
 
 JsonDocument::JsonDocument(const std::string& text, std::string fileName)
     : fileName_(std::move(fileName)) {
+  // Lines end at LF, CR LF, or a lone CR (old Mac files), as editors count them.
   std::vector<size_t> lineStarts{0};
   for (size_t i = 0; i < text.size(); ++i)
-    if (text[i] == '\n') lineStarts.push_back(i + 1);
+    if (text[i] == '\n' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n')))
+      lineStarts.push_back(i + 1);
   const auto lineOfOffset = [&](size_t offset) {
     return static_cast<int>(std::upper_bound(lineStarts.begin(), lineStarts.end(), offset) -
                             lineStarts.begin());
@@ -246,7 +252,7 @@ bool JsonNode::has(const std::string& key) const {
 JsonNode JsonNode::at(const std::string& key) const {
   if (!isObject()) fail("must be an object, got " + typeName());
   const auto it = value_->find(key);
-  if (it == value_->end()) fail("missing required key \"" + key + "\"");
+  if (it == value_->end()) fail("missing required key " + inQuotes(key));
   return child(*it, key);
 }
 
@@ -309,7 +315,8 @@ int JsonNode::integer(int lo, int hi) const {
 }
 
 uint64_t JsonNode::unsignedInteger() const {
-  if (!value_->is_number_unsigned()) fail("must be a non-negative integer, got " + raw().dump());
+  if (!value_->is_number_unsigned())
+    fail("must be a non-negative integer, got " + excerpt(raw().dump()));
   return value_->get<uint64_t>();
 }
 
@@ -330,12 +337,13 @@ std::string JsonNode::choice(std::initializer_list<std::string_view> options) co
   std::string list;
   for (const auto& n : names) list += (list.empty() ? "\"" : ", \"") + n + "\"";
   const std::string hint = nearestName(s, names);
-  fail("must be one of " + list + ", got \"" + s + "\"" +
+  fail("must be one of " + list + ", got " + inQuotes(s) +
        (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
 }
 
 Vec3d JsonNode::vec3d() const {
-  if (!isArray() || value_->size() != 3) fail("must be an array of 3 numbers, got " + raw().dump());
+  if (!isArray() || value_->size() != 3)
+    fail("must be an array of 3 numbers, got " + excerpt(raw().dump()));
   return {(*this)[0].real(), (*this)[1].real(), (*this)[2].real()};
 }
 
@@ -348,7 +356,8 @@ Vec3f JsonNode::direction() const {
 }
 
 Rgb JsonNode::color() const {
-  if (!isArray() || value_->size() != 3) fail("must be an RGB triple, got " + raw().dump());
+  if (!isArray() || value_->size() != 3)
+    fail("must be an RGB triple, got " + excerpt(raw().dump()));
   return {(*this)[0].number(0, 3.4e38f), (*this)[1].number(0, 3.4e38f),
           (*this)[2].number(0, 3.4e38f)};
 }
@@ -367,6 +376,11 @@ std::string nearestName(const std::string& name, const std::vector<std::string>&
   std::string best;
   size_t bestDist = std::max<size_t>(2, name.size() / 3) + 1;
   for (const auto& c : candidates) {
+    // The distance is at least the difference in length: skip what cannot win (and a 10 MB
+    // value's quadratic comparison).
+    const size_t lengthGap =
+        name.size() > c.size() ? name.size() - c.size() : c.size() - name.size();
+    if (lengthGap >= bestDist) continue;
     const size_t d = editDistance(name, c);
     if (d < bestDist) {
       bestDist = d;

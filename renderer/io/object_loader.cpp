@@ -25,7 +25,7 @@ uint32_t materialOf(SceneBuilder& b, const JsonNode& obj) {
   std::vector<std::string> names;
   for (const auto& [k, v] : b.materialIds) names.push_back(k);
   const std::string hint = nearestName(name, names);
-  n.fail("no material named \"" + name + "\"" +
+  n.fail("no material named " + inQuotes(name) +
          (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
 }
 
@@ -406,7 +406,7 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
       std::vector<std::string> names;
       for (const auto& [k, v] : b.groupIds) names.push_back(k);
       const std::string hint = nearestName(g.string(), names);
-      g.fail("no group named \"" + g.string() + "\"" +
+      g.fail("no group named " + inQuotes(g.string()) +
              (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
     }
     addInstance(b, it->second, place.transform(), std::move(transformKeys), objectId,

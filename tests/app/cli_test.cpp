@@ -107,6 +107,20 @@ TEST(Cli, OutputsNeverReplaceTheSceneALinkOrADevice) {
   EXPECT_NE(dash.output.find("\"rays_total\""), std::string::npos) << dash.output;
 }
 
+TEST(Cli, OutOfRangeNumbersAreRefusedNotWrapped) {
+  // An unsigned option given -1 or more than 2^64 − 1 would otherwise read as 2^64 − 1.
+  const std::string scene = test::writeTemp("numbers.json", kSmallScene);
+  const std::string out = " --quiet -o " + (test::tempDir() / "n.exr").string();
+  for (const std::string bad : {"--seed -1", "--seed 100000000000000000000", "--seed 1e20"}) {
+    const auto r = runGlint("render " + scene + out + " " + bad);
+    EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
+  }
+  EXPECT_EQ(runGlint("render " + scene + out + " --seed 18446744073709551615").exitCode, 0);
+  const auto bench = runGlint("bench --procedural -1");
+  EXPECT_EQ(bench.exitCode, 2);
+  EXPECT_NE(bench.output.find("whole number"), std::string::npos) << bench.output;
+}
+
 TEST(Cli, SameImageForAnyThreadCountTileSizeAndCrop) {
   const std::string scene = test::writeTemp("det.json", kSmallScene);
   const auto path = [](const char* n) { return (test::tempDir() / n).string(); };

@@ -80,8 +80,17 @@ TEST(Ocio, EnvironmentConfigIsUsedAndBadConfigsAreNamed) {
   const auto r = test::runGlint("render --quiet --width 8 --height 8 --spp 1 -o " +
                                 (test::tempDir() / "o.exr").string() + " --display " +
                                 (test::tempDir() / "o.png").string() + " --ocio-config /nope.ocio");
-  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.exitCode, 2);  // a usage error (CLI.md), found before rendering
   EXPECT_NE(r.output.find("OCIO config not found: /nope.ocio"), std::string::npos) << r.output;
+  // An unknown view or look likewise: exit 2, and no frame written.
+  for (const std::string bad : {"--view Filmic", "--look NoSuchLook", "--ocio-display Nope"}) {
+    const std::string exr = (test::tempDir() / "never.exr").string();
+    const auto u =
+        test::runGlint("render --quiet --width 8 --height 8 --spp 1 -o " + exr + " --display " +
+                       (test::tempDir() / "never.png").string() + " " + bad);
+    EXPECT_EQ(u.exitCode, 2) << bad << ": " << u.output;
+    EXPECT_FALSE(std::filesystem::exists(exr)) << bad;
+  }
 }
 
 TEST(Ocio, ConvertDevelopsTheSameImageAsRender) {

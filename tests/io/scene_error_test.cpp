@@ -49,6 +49,46 @@ TEST(SceneError, WrongTypeAndBadVector) {
       "scene.json:4: render.spp: must be an integer, got string");
 }
 
+TEST(SceneError, DuplicateKeysNameBothLines) {
+  // JSON parsers keep the last of two equal keys; a scene that gives a value twice is refused,
+  // at the second key's line, naming the first's.
+  EXPECT_EQ(test::sceneErrorOf("{\"render\": {\"spp\": 4,\n"  // line 1
+                               "  \"seed\": 2,\n"             // line 2
+                               "  \"spp\": 64}}"),            // line 3
+            "scene.json:3: duplicate key \"spp\" (first on line 1): a key may appear once in an "
+            "object");
+  // The same key in two different objects is fine: the error is the next one, the missing camera.
+  EXPECT_EQ(
+      test::sceneErrorOf("{\"render\": {\"spp\": 4}, \"objects\": [{\"spp\": 1}, {\"spp\": 2}]}")
+          .find("duplicate"),
+      std::string::npos);
+}
+
+TEST(SceneError, LoneCarriageReturnsEndLines) {
+  // A file with classic Mac line endings (CR alone): the bad radius is on line 8.
+  std::string text =
+      std::string(kHead) +
+      "\"objects\": [\n"
+      "  {\"type\": \"sphere\", \"center\": [0,0,0], \"radius\": 1, \"material\": \"red\"},\n"
+      "  {\"type\": \"sphere\", \"center\": [0,2,0],\n"
+      "   \"material\": \"red\",\n"
+      "   \"radius\": -1}\n"
+      "]}";
+  for (char& c : text)
+    if (c == '\n') c = '\r';
+  EXPECT_EQ(test::sceneErrorOf(text), "scene.json:8: objects[1].radius: must be > 0, got -1");
+}
+
+TEST(SceneError, HugeValuesAreNotEchoedInFull) {
+  // A 10 MB enum value: the message keeps its first 200 characters and says how long it was.
+  const std::string huge(10'000'000, 'x');
+  const std::string error =
+      test::sceneErrorOf(std::string(kHead) + "\"objects\": [{\"type\": \"" + huge + "\"}]}");
+  EXPECT_LT(error.size(), 600u);
+  EXPECT_NE(error.find(std::string(200, 'x') + "… (10000000 characters)"), std::string::npos)
+      << error.substr(0, 300);
+}
+
 TEST(SceneError, UnknownMaterialAndEnumSuggest) {
   EXPECT_EQ(test::sceneErrorOf(
                 std::string(kHead) +
