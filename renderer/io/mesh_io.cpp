@@ -20,10 +20,22 @@ TriangleMesh loadMeshFile(const std::string& path) {
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_COLORS |
                                                           aiComponent_TEXCOORDS |
                                                           aiComponent_MATERIALS);
-  const aiScene* s = importer.ReadFile(
-      path, aiProcess_Triangulate | aiProcess_RemoveComponent | aiProcess_SortByPType);
+  // Read with no processing but Assimp's own validation: its post-processing steps index
+  // vertices through the faces before any check of ours, and a face naming a vertex that does
+  // not exist made them read and write out of bounds.
+  const aiScene* s = importer.ReadFile(path, aiProcess_ValidateDataStructure);
   if (!s || !s->mRootNode)
-    throw GlintError("cannot read mesh " + path + ": " + importer.GetErrorString());
+    throw GlintError("cannot read mesh " + path + ": " + excerpt(importer.GetErrorString()));
+  for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
+    const aiMesh* m = s->mMeshes[mi];
+    for (unsigned f = 0; f < m->mNumFaces; ++f)
+      for (unsigned c = 0; c < m->mFaces[f].mNumIndices; ++c)
+        if (m->mFaces[f].mIndices[c] >= m->mNumVertices)
+          throw GlintError("mesh " + path + ": face " + std::to_string(f) + " of mesh " +
+                           std::to_string(mi) + " names vertex " +
+                           std::to_string(m->mFaces[f].mIndices[c]) + ", but there are only " +
+                           std::to_string(m->mNumVertices));
+  }
   // Check for NaN and Inf before Assimp joins vertices: its vertex welding compares positions
   // and would silently merge or drop non-finite ones.
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi)
@@ -34,6 +46,9 @@ TriangleMesh loadMeshFile(const std::string& path) {
                          std::to_string(mi) + " is not finite (" + std::to_string(p.x) + ", " +
                          std::to_string(p.y) + ", " + std::to_string(p.z) + ")");
     }
+  s = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_RemoveComponent |
+                                   aiProcess_SortByPType);
+  if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
   s = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices |
                                    aiProcess_PreTransformVertices);
   if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
