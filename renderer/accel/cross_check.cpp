@@ -30,6 +30,19 @@ std::string formatRay(const Ray& r) {
   return buf;
 }
 
+std::string rayProblem(const Ray& r) {
+  const auto finite = [](const Vec3f& v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+  };
+  if (!finite(r.o)) return "the origin is not finite";
+  if (!finite(r.d)) return "the direction is not finite";
+  if (r.d.x == 0 && r.d.y == 0 && r.d.z == 0) return "the direction is zero";
+  if (!(r.tMin >= 0)) return "tmin must be ≥ 0";
+  if (!(r.tMax >= r.tMin)) return "tmax must be ≥ tmin";
+  if (!(r.time >= 0 && r.time <= 1)) return "time must be in [0, 1]";
+  return {};
+}
+
 bool parseRay(const std::string& text, Ray& r) {
   std::istringstream in(text);
   double v[9];
@@ -99,11 +112,17 @@ bool CrossCheck::occluded(const Ray& ray) const {
   return a;
 }
 
-void castRandomRays(const Scene& scene, const Accelerator& accel, int count, uint64_t seed) {
+Bounds3f randomRayOrigins(const Scene& scene) {
   Bounds3f b = scene.worldBounds();
   if (b.empty()) b = {{-1, -1, -1}, {1, 1, 1}};
   const Vec3f margin = 0.1f * b.diagonal() + Vec3f{1e-3f, 1e-3f, 1e-3f};
-  b = {b.lo - margin, b.hi + margin};
+  constexpr float kRange = 1e18f;
+  const Vec3f range{kRange, kRange, kRange};
+  return {max(b.lo - margin, -range), min(b.hi + margin, range)};
+}
+
+void castRandomRays(const Scene& scene, const Accelerator& accel, int count, uint64_t seed) {
+  const Bounds3f b = randomRayOrigins(scene);
   for (int i = 0; i < count; ++i) {
     const auto u = [&](int k) { return toUnitFloat(hashKey(seed, 0x7a11da7e, i, k)); };
     Ray r;

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "core/bounds.h"
 
 namespace glint {
 
@@ -52,9 +53,17 @@ class CrossCheck final : public Accelerator {
 // time", and back. parseRay returns false on malformed input.
 std::string formatRay(const Ray& ray);
 bool parseRay(const std::string& text, Ray& ray);
+// Why Embree must not be given `ray` (its debug checks abort the process), or "" if it may:
+// origin and direction finite, direction not zero, 0 ≤ tMin ≤ tMax (tMax may be infinite), time
+// in [0, 1].
+std::string rayProblem(const Ray& ray);
 std::string formatHit(const Hit& hit);
 
 class Scene;
+// Where random rays start: the scene's bounds grown by 10 %, kept within ±1e18, where Embree
+// takes ray origins (beyond 1.8e18 its checks abort; a scene may hold geometry farther out).
+Bounds3f randomRayOrigins(const Scene& scene);
+
 // Casts `count` random rays through `accel` (closest hit and occlusion each): origins uniform in
 // the scene's bounds grown by 10 %, directions uniform on the sphere, times uniform in [0, 1].
 void castRandomRays(const Scene& scene, const Accelerator& accel, int count, uint64_t seed);

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "accel/accelerator.h"
+#include "accel/cross_check.h"
 #include "accel/embree_accel.h"
 #include "accel/reference_bvh.h"
 #include "app/commands.h"
@@ -64,8 +65,7 @@ RaySets makeRays(const Scene& scene, const Accelerator& accel, int randomCount) 
                              : sampleLight(scene.lights[0], sp.p, {0.5f, 0.5f}).target;
     sets.shadow.push_back(spawnRayTo(sp, target, 0));
   }
-  Bounds3f b = scene.worldBounds();
-  if (b.empty()) b = {{-1, -1, -1}, {1, 1, 1}};
+  const Bounds3f b = randomRayOrigins(scene);
   for (int i = 0; i < randomCount; ++i) {
     const auto u = [&](int k) { return toUnitFloat(hashKey(99, i, k)); };
     const float z = 1 - 2 * u(3), phi = 2 * kPi * u(4), s = std::sqrt(std::max(0.0f, 1 - z * z));

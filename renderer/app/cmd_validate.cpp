@@ -53,6 +53,7 @@ int runValidate(const ValidateArgs& a) {
     Ray r;
     if (!parseRay(a.ray, r))
       throw UsageError("--ray: expected 9 numbers: ox oy oz dx dy dz tmin tmax time");
+    if (const std::string why = rayProblem(r); !why.empty()) throw UsageError("--ray: " + why);
     std::printf("ray %s\n", formatRay(r).c_str());
     for (const Accelerator* acc : std::vector<const Accelerator*>{&embree, &bvh, brute.get()})
       if (acc)

@@ -121,6 +121,25 @@ TEST(Cli, OutOfRangeNumbersAreRefusedNotWrapped) {
   EXPECT_NE(bench.output.find("whole number"), std::string::npos) << bench.output;
 }
 
+TEST(Cli, NoInputReachesAnEmbreeAssertion) {
+  // Embree aborts (exit 134) on a ray with a negative tmin, a NaN, or an origin beyond 1.8e18:
+  // validate's --ray is checked first, and its random rays start within ±1e18 even when the
+  // scene holds geometry farther out (which render handles).
+  for (const std::string bad : {"0 1 5 0 0 -1 -1 100 0", "nan 1 5 0 0 -1 0 100 0",
+                                "0 1 5 0 0 0 0 100 0", "0 1 5 0 0 -1 0 100 2"}) {
+    const auto r = runGlint("validate --ray \"" + bad + "\"");
+    EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
+  }
+  const std::string far =
+      test::writeTemp("far.json", R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+      "materials": {"m": {"type": "phong"}},
+      "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"},
+                  {"type": "quad", "corner": [1e19,0,0], "edge1": [1,0,0], "edge2": [0,1,0],
+                   "material": "m"}]})");
+  const auto v = runGlint("validate " + far + " --rays 2000");
+  EXPECT_EQ(v.exitCode, 0) << v.output;
+}
+
 TEST(Cli, SameImageForAnyThreadCountTileSizeAndCrop) {
   const std::string scene = test::writeTemp("det.json", kSmallScene);
   const auto path = [](const char* n) { return (test::tempDir() / n).string(); };
