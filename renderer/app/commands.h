@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <functional>
 
+#include "core/error.h"
 #include "film/display.h"
 
 namespace glint {
@@ -45,7 +46,8 @@ inline CLI::Validator wholeNumberUpTo(uint64_t max) {
         const unsigned long long v = std::strtoull(text.c_str(), &end, 0);
         if (text.empty() || text.find('-') != std::string::npos || *end != '\0' ||
             errno == ERANGE || v > max)
-          return "must be a whole number from 0 to " + std::to_string(max) + ", got " + text;
+          return "must be a whole number from 0 to " + std::to_string(max) + ", got " +
+                 excerpt(text);
         return {};
       },
       "UINT");
