@@ -104,11 +104,15 @@ void fsyncPath(const std::string& path, bool directory) {
   if (rc != 0 && !directory) throw GlintError("cannot sync " + path + ": " + std::strerror(err));
 }
 
+// The directory an output goes into ("." for a bare name).
+fs::path directoryOf(const fs::path& target) {
+  return target.parent_path().empty() ? "." : target.parent_path();
+}
+
 }  // namespace
 
 void checkOutputPath(const std::string& finalPath) {
-  const fs::path target(finalPath);
-  const fs::path dir = target.parent_path().empty() ? "." : target.parent_path();
+  const fs::path dir = directoryOf(finalPath);
   if (!fs::is_directory(dir))
     throw UsageError("cannot write " + finalPath + ": directory " + dir.string() +
                      " does not exist");
@@ -119,7 +123,7 @@ void writeFileAtomically(const std::string& finalPath,
                          const std::function<void(const std::string&)>& write) {
   checkOutputPath(finalPath);
   const fs::path target(finalPath);
-  const fs::path dir = target.parent_path().empty() ? "." : target.parent_path();
+  const fs::path dir = directoryOf(target);
   removeStaleTemporaries(dir);
   const std::string tmp = (dir / temporaryNameFor(target)).string();
   try {

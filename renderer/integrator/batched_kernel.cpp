@@ -18,8 +18,7 @@ constexpr size_t kMinShadowStream = 8;
 BatchedKernel::BatchedKernel(const Scene& scene, const Accelerator& accel, float minThroughput)
     : scene_(scene), accel_(accel), minThroughput_(minThroughput) {
   for (const Light& light : scene.lights) {
-    const bool delta = std::holds_alternative<PointLight>(light) ||
-                       std::holds_alternative<DirectionalLight>(light);
+    const bool delta = isDeltaLight(light);
     lights_.push_back({lightSampleCount(light), delta});
     shadowRaysPerPoint_ += lights_.back().samples;
     areaLights_ |= !delta;

@@ -68,8 +68,7 @@ Rgb ReferenceIntegrator::accLightSource(const Material& m, const ShadingPoint& q
     // its own stratified set (seed 000 §13.4.2).
     const Light& light = scene_.lights[li];
     const int samples = lightSampleCount(light);
-    const bool delta = std::holds_alternative<PointLight>(light) ||
-                       std::holds_alternative<DirectionalLight>(light);
+    const bool delta = isDeltaLight(light);
     const SamplePattern pattern =
         delta ? SamplePattern{}
               : branch.key->pattern(dimension(Dim::Light, branch.depth, static_cast<int>(li)));

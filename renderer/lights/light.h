@@ -96,6 +96,12 @@ struct LightSample {
   bool atInfinity = false;
 };
 
+// A delta light (point or directional): one shadow ray, and no sample drawn on it.
+inline bool isDeltaLight(const Light& light) {
+  return std::holds_alternative<PointLight>(light) ||
+         std::holds_alternative<DirectionalLight>(light);
+}
+
 // Shadow samples per camera sample: 1 for delta lights (nothing to sample).
 int lightSampleCount(const Light& light);
 
