@@ -1,7 +1,5 @@
 #include <glint_version.h>
 
-#include <atomic>
-#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -12,6 +10,7 @@
 #include "camera/camera.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/interrupt.h"
 #include "core/log.h"
 #include "core/sampler.h"
 #include "film/atomic_file.h"
@@ -46,17 +45,6 @@ struct RenderArgs {
   bool stats = false;
   bool quiet = false;
 };
-
-// Set by SIGINT/SIGTERM: the render stops handing out tiles and writes what it has.
-std::atomic<bool> gInterrupted{false};
-static_assert(std::atomic<bool>::is_always_lock_free, "the signal handler needs a lock-free flag");
-
-// The first signal asks for a clean stop; the handler then steps aside, so a second one ends
-// the process at once (for a write that hangs, say).
-extern "C" void onInterrupt(int sig) {
-  gInterrupted.store(true);
-  std::signal(sig, SIG_DFL);
-}
 
 std::string hex(uint64_t v) {
   char buf[17];
@@ -181,10 +169,8 @@ int runRender(const RenderArgs& a) {
   opt.crop = cropWindow(a, scene.render);
   opt.progress = !a.quiet;
   opt.tileOrder = a.tileOrder == "row" ? TileOrder::RowMajor : TileOrder::Morton;
-  opt.cancel = &gInterrupted;
+  opt.cancel = &interrupt::requested();
   opt.aovs = AovSet::parse(a.aovs);
-  std::signal(SIGINT, onInterrupt);
-  std::signal(SIGTERM, onInterrupt);
   AccelKind kind = AccelKind::Embree;
   parseAccelKind(a.accel, kind);
 
@@ -204,6 +190,11 @@ int runRender(const RenderArgs& a) {
     DisplayTransform check(a.ocio);
   }
   const auto accel = makeAccelerator(kind, scene);
+  // From here a signal stops the render and the frame so far is written (CLI.md).
+  const interrupt::RenderPhase stopCleanlyOnSignal;
+  log::info("rendering " + std::to_string(scene.render.width) + "x" +
+            std::to_string(scene.render.height) + " at " + std::to_string(scene.render.spp) +
+            " spp to " + out);
   const RenderResult result = renderScene(scene, *accel, opt);
 
   writeExr(out, result.film, exrMetadata(a, scene, result), {a.half, a.compression, a.multipart});
@@ -218,6 +209,10 @@ int runRender(const RenderArgs& a) {
   if (result.partial) {
     // CLI.md: interrupted → a valid partial EXR (unrendered pixels have alpha 0), exit 130.
     log::warning("interrupted: wrote the partial frame " + out + " (glint:partial = 1)");
+    return kExitInterrupted;
+  }
+  if (interrupt::requested()) {
+    log::warning("interrupted while writing: " + out + " holds the complete frame");
     return kExitInterrupted;
   }
   log::info("wrote " + out + (a.display.empty() ? "" : " and " + a.display));

@@ -9,6 +9,7 @@
 #include <functional>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "film/display.h"
 
 namespace glint {
@@ -17,7 +18,7 @@ namespace glint {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitRuntime = 1;
 inline constexpr int kExitUsage = 2;
-inline constexpr int kExitInterrupted = 130;
+inline constexpr int kExitInterrupted = interrupt::kExitCode;
 
 using CommandRunner = std::function<int()>;
 

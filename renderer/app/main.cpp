@@ -1,4 +1,5 @@
 #include "app/commands.h"
+#include "core/interrupt.h"
 
 #include <csignal>
 
@@ -6,5 +7,6 @@ int main(int argc, char** argv) {
   // A file size limit should fail the write (EFBIG) so the temporary file is cleaned up, not
   // kill the process half-way through it.
   std::signal(SIGXFSZ, SIG_IGN);
+  glint::interrupt::install();  // before anything is loaded: every phase can be interrupted
   return glint::runCli(argc, argv);
 }

@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/input_files.h"
+#include "core/interrupt.h"
 
 namespace glint {
 
@@ -126,6 +127,7 @@ void writeFileAtomically(const std::string& finalPath,
   const fs::path dir = directoryOf(target);
   removeStaleTemporaries(dir);
   const std::string tmp = (dir / temporaryNameFor(target)).string();
+  const interrupt::TemporaryFile removedIfInterrupted(tmp);
   try {
     write(tmp);
     fsyncPath(tmp, false);

@@ -37,7 +37,9 @@ void Progress::print(bool final) {
   const double elapsed =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   const double fraction = static_cast<double>(done_) / static_cast<double>(total_);
-  const double eta = fraction > 0 ? elapsed * (1 - fraction) / fraction : 0;
+  char eta[32] = "ETA unknown";  // until some work is done
+  if (fraction > 0)
+    std::snprintf(eta, sizeof eta, "ETA %.1fs", elapsed * (1 - fraction) / fraction);
   const double mrays = elapsed > 0 ? static_cast<double>(rays_) / elapsed * 1e-6 : 0;
   if (tty_) {
     constexpr int kWidth = 30;
@@ -45,12 +47,12 @@ void Progress::print(bool final) {
     char bar[kWidth + 1];
     for (int i = 0; i < kWidth; ++i) bar[i] = i < filled ? '#' : '.';
     bar[kWidth] = 0;
-    std::fprintf(stderr, "\r[%s] %5.1f%%  %.1f Mrays/s  %.1fs elapsed  ETA %.1fs   ", bar,
-                 100 * fraction, mrays, elapsed, eta);
+    std::fprintf(stderr, "\r[%s] %5.1f%%  %.1f Mrays/s  %.1fs elapsed  %s   ", bar, 100 * fraction,
+                 mrays, elapsed, eta);
     if (final) std::fputc('\n', stderr);
   } else if (!final || fraction < 1) {
-    std::fprintf(stderr, "glint: %3.0f%%  %.1f Mrays/s  %.1fs elapsed  ETA %.1fs\n", 100 * fraction,
-                 mrays, elapsed, eta);
+    std::fprintf(stderr, "glint: %3.0f%%  %.1f Mrays/s  %.1fs elapsed  %s\n", 100 * fraction, mrays,
+                 elapsed, eta);
   }
   std::fflush(stderr);
 }

@@ -85,10 +85,17 @@ struct ReferenceShading {
   }
 };
 
+// Whether a cancel was asked for; polled between chunks, so a render stops within one chunk of
+// samples per thread at any spp, not at the end of a tile.
+bool cancelled(const RenderOptions& opt) {
+  return opt.cancel && opt.cancel->load(std::memory_order_relaxed);
+}
+
 // One tile, its camera samples shaded in chunks by `shade` (ProductionShading or
-// ReferenceShading). AOV records are made only when AOVs are asked for.
+// ReferenceShading). AOV records are made only when AOVs are asked for. Returns false when a
+// cancel stopped it: the pixel being summed then, and those after it, stay unrendered.
 template <class Shading>
-void renderTile(const FrameContext& f, Shading& shade, const PixelWindow& tile,
+bool renderTile(const FrameContext& f, Shading& shade, const PixelWindow& tile,
                 RayCounters& counters) {
   const RenderSettings& rs = f.scene.render;
   const bool aovs = f.opt.aovs.any();
@@ -117,6 +124,7 @@ void renderTile(const FrameContext& f, Shading& shade, const PixelWindow& tile,
       // Samples [first, first + runLength) of each of the pixels; several pixels only when
       // their samples all fit (runLength = spp).
       for (int first = 0; first < rs.spp; first += samplesPerChunk) {
+        if (cancelled(f.opt)) return false;
         const int runLength = std::min(samplesPerChunk, rs.spp - first);
         const int count = pixels * runLength;
         for (int p = 0; p < pixels; ++p)
@@ -159,6 +167,7 @@ void renderTile(const FrameContext& f, Shading& shade, const PixelWindow& tile,
         }
       }
     }
+  return true;
 }
 
 // The tiles of one render, and what their loop shares besides the frame.
@@ -170,19 +179,23 @@ struct TileWork {
   int threads;
 };
 
-// Runs tile(i, counters) for every tile on the scheduler, unless cancelled.
+// Runs tile(i, counters) for every tile on the scheduler, until a cancel stops them.
 template <class RenderOneTile>
 void forEachTile(const FrameContext& f, TileWork& work, RenderOneTile&& tile) {
   runTiles(work.tiles, work.threads, [&](size_t i) {
-    if (f.opt.cancel && f.opt.cancel->load(std::memory_order_relaxed)) {
+    if (cancelled(f.opt)) {
       work.skipped = true;
       return;
     }
     // Counted on this thread's stack: neighbouring tiles' counters share cache lines, which
     // two threads would otherwise write in their inner loops.
     RayCounters counters;
-    tile(i, counters);
+    const bool complete = tile(i, counters);
     work.counters[i] = counters;
+    if (!complete) {
+      work.skipped = true;
+      return;
+    }
     work.progress.advance(work.tiles[i].area(), counters.total());
   });
 }
@@ -198,7 +211,7 @@ void renderTilesProduction(const FrameContext& f, TileWork& work) {
     std::unique_ptr<Scratch>& scratch = scratches.local();
     if (!scratch) scratch = std::make_unique<Scratch>();
     ProductionShading shade{kernel, f.accel, *scratch, {}};
-    renderTile(f, shade, work.tiles[i], counters);
+    return renderTile(f, shade, work.tiles[i], counters);
   });
 }
 
@@ -207,7 +220,7 @@ void renderTilesReference(const FrameContext& f, TileWork& work) {
   const ReferenceIntegrator integrator(f.scene, f.accel);
   forEachTile(f, work, [&](size_t i, RayCounters& counters) {
     ReferenceShading shade{integrator};
-    renderTile(f, shade, work.tiles[i], counters);
+    return renderTile(f, shade, work.tiles[i], counters);
   });
 }
 

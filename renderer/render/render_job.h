@@ -26,8 +26,9 @@ struct RenderOptions {
   TileOrder tileOrder = TileOrder::Morton;
   std::optional<PixelWindow> crop;  // default: the full frame
   bool progress = true;
-  // When set to true (by a signal handler), no further tiles are started; tiles in flight
-  // finish, and the result is marked partial. Unrendered pixels stay at zero, alpha 0.
+  // When set to true (by a signal handler), each thread stops after its chunk of samples in
+  // flight, and the result is marked partial. Unrendered pixels, and a pixel whose samples were
+  // not all taken, stay at zero, alpha 0.
   const std::atomic<bool>* cancel = nullptr;
   AovSet aovs;  // none by default
   // The production kernel (integrator/batched_kernel.h), or its oracle, the depth-first

@@ -1,7 +1,12 @@
 // Frame output: EXR options and metadata, interrupted renders, crops merged into the frame.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <OpenImageIO/imageio.h>
+
+#include <fstream>
+#include <iterator>
 
 #include "film/exr_output.h"
 #include "film/merge.h"
@@ -64,6 +69,31 @@ TEST(Output, MetadataHalfAndCompression) {
             2);
 }
 
+// Runs `glint ARGS` in the background, sends `signal` once `ready` (a shell condition over
+// $pid and $log, the process's stderr) holds, and returns the exit status and stderr. The signal
+// is sent once: a second one ends the process at once (core/interrupt.h).
+struct Interrupted {
+  int exitCode;
+  std::string log;
+};
+Interrupted interruptWhen(const std::string& args, const std::string& ready,
+                          const std::string& signal, const std::string& logName) {
+  const std::string log = tmp(logName);
+  const std::string cmd = "bash -c 'log=" + log + "; " + std::string(GLINT_BINARY) + " " + args +
+                          " 2>$log & pid=$!; for i in $(seq 600); do " + ready +
+                          " && break; sleep 0.1; done; kill -" + signal +
+                          " $pid; wait $pid; exit $?' >/dev/null 2>&1";
+  const int status = std::system(cmd.c_str());
+  std::ifstream in(log);
+  return {WEXITSTATUS(status), std::string(std::istreambuf_iterator<char>(in), {})};
+}
+
+// Under way: the render said it is rendering, which it does once a signal no longer ends the
+// process but stops the render (core/interrupt.h).
+const std::string kRendering = "grep -qs rendering $log";
+// Some pixels done: the first progress line (a tenth of the frame).
+const std::string kTenthDone = "grep -qs % $log";
+
 TEST(Output, InterruptedRenderLeavesAValidPartialExr) {
   // A render of several seconds interrupted once under way: exit 130 (CLI.md), an EXR that reads
   // back, marked glint:partial = 1, with unrendered pixels at alpha 0 and rendered ones at 1.
@@ -73,18 +103,10 @@ TEST(Output, InterruptedRenderLeavesAValidPartialExr) {
       "edge2": [0,100,0], "material": "m"})");
   const std::string scene = test::writeTemp("slow.json", text);
   const std::string out = tmp("partial.exr");
-  // One SIGINT once the render is under way (its first progress line): a background job of a
-  // non-interactive shell starts with SIGINT ignored until Glint installs its handler, which on
-  // a loaded machine can take longer than a fixed wait, and a second signal ends the process
-  // at once (onInterrupt), so the signal is sent once, after the handler is certainly in place.
-  const std::string log = tmp("partial.log");
-  const std::string cmd =
-      "bash -c '" + std::string(GLINT_BINARY) + " render " + scene +
-      " --spp 4096 --width 96 --height 64 --threads 1 -o " + out + " 2>" + log +
-      " & pid=$!; for i in $(seq 600); do grep -qs % " + log +
-      " && break; sleep 0.1; done; kill -INT $pid; wait $pid; exit $?' >/dev/null 2>&1";
-  const int status = std::system(cmd.c_str());
-  ASSERT_EQ(WEXITSTATUS(status), 130);
+  const Interrupted run =
+      interruptWhen("render " + scene + " --spp 4096 --width 96 --height 64 --threads 1 -o " + out,
+                    kTenthDone, "INT", "partial.log");
+  ASSERT_EQ(run.exitCode, 130) << run.log;
   const OIIO::ImageSpec s = specOf(out);
   EXPECT_EQ(s.get_int_attribute("glint:partial", -1), 1);
   const Image img = readImage(out);
@@ -96,6 +118,38 @@ TEST(Output, InterruptedRenderLeavesAValidPartialExr) {
   EXPECT_GT(rendered, 0);
   EXPECT_GT(empty, 0);
   EXPECT_EQ(rendered + empty, 96 * 64);
+}
+
+TEST(Output, AnInterruptStopsAOnePixelFrameAtAnySampleCount) {
+  // One pixel of 2^28 samples is one tile: a cancel honoured only between tiles let it run to
+  // the end (rc 0, a complete frame). Polled between chunks of 64 samples, SIGTERM stops it
+  // mid-pixel: exit 130, a partial EXR whose unfinished pixel is unrendered (RGBA all 0).
+  const std::string out = tmp("one_pixel.exr");
+  const Interrupted run =
+      interruptWhen("render --width 1 --height 1 --spp 268435456 --threads 1 -o " + out, kRendering,
+                    "TERM", "one_pixel.log");
+  ASSERT_EQ(run.exitCode, 130) << run.log;
+  EXPECT_NE(run.log.find("wrote the partial frame"), std::string::npos) << run.log;
+  EXPECT_EQ(specOf(out).get_int_attribute("glint:partial", -1), 1);
+  EXPECT_EQ(readImage(out).pixels, std::vector<float>(4, 0.0f));
+}
+
+TEST(Output, AnInterruptWhileLoadingEndsAtOnceWithExit130) {
+  // The scene is a FIFO nobody writes to, so loading blocks for ever: SIGTERM there (once
+  // /proc shows the handler installed: SigCgt bit 14 is SIGTERM) must end the process with 130
+  // and say so, not 143 in silence, and write nothing.
+  const std::string fifo = tmp("never_written.json");
+  fs::remove(fifo);
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const std::string out = tmp("never.exr");
+  const std::string handlerInstalled =
+      "(( 0x$(grep SigCgt /proc/$pid/status | cut -f2) & 0x4000 ))";
+  const Interrupted run =
+      interruptWhen("render " + fifo + " -o " + out, handlerInstalled, "TERM", "loading.log");
+  EXPECT_EQ(run.exitCode, 130) << run.log;
+  EXPECT_NE(run.log.find("terminated (SIGTERM)"), std::string::npos) << run.log;
+  EXPECT_FALSE(fs::exists(out));
+  fs::remove(fifo);
 }
 
 TEST(Output, CropsMergeIntoTheFullFrameByteForByte) {

@@ -1,0 +1,40 @@
+#pragma once
+// SIGINT and SIGTERM (Ctrl-C, Slurm's kill with its grace period) end Glint promptly in every
+// phase, with exit 130 (CLI.md). Outside a render they end the process at once from the handler,
+// after removing the temporary file being written, if any: nothing was rendered that a partial
+// frame could keep. While a render runs (RenderPhase) they only raise the flag the render loop
+// polls between chunks of camera samples, so the frame rendered so far is still written. A
+// second signal always ends the process at once.
+#include <atomic>
+#include <string>
+
+namespace glint::interrupt {
+
+inline constexpr int kExitCode = 130;
+
+// Installs the handlers; main() calls it first, so that loading a scene is covered too.
+void install();
+
+// Whether a signal asked the render to stop. The render loop polls it.
+const std::atomic<bool>& requested();
+
+// While one exists, a signal asks the render to stop instead of ending the process.
+class RenderPhase {
+ public:
+  RenderPhase();
+  ~RenderPhase();
+  RenderPhase(const RenderPhase&) = delete;
+  RenderPhase& operator=(const RenderPhase&) = delete;
+};
+
+// While one exists, a signal that ends the process removes `path` first (a temporary file
+// that would otherwise outlive an interrupted write). One at a time; `path` up to PATH_MAX.
+class TemporaryFile {
+ public:
+  explicit TemporaryFile(const std::string& path);
+  ~TemporaryFile();
+  TemporaryFile(const TemporaryFile&) = delete;
+  TemporaryFile& operator=(const TemporaryFile&) = delete;
+};
+
+}  // namespace glint::interrupt
