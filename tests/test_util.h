@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "core/error.h"
@@ -24,6 +25,11 @@ inline std::string writeTemp(const std::string& name, const std::string& text) {
   const auto path = tempDir() / name;
   std::ofstream(path) << text;
   return path.string();
+}
+
+inline std::string readFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 inline Scene sceneFromText(const std::string& text) {

@@ -74,7 +74,7 @@ std::optional<PixelWindow> cropWindow(const RenderArgs& a, const RenderSettings&
   return w;
 }
 
-nlohmann::json statsJson(const Scene& scene, const RenderStats& st) {
+nlohmann::json statsJson(const Scene& scene, const RenderStats& st, uint64_t clampedValues) {
   nlohmann::json j;
   j["seconds"] = st.seconds;
   j["rays_total"] = st.rays.total();
@@ -83,6 +83,7 @@ nlohmann::json statsJson(const Scene& scene, const RenderStats& st) {
                {"reflection", st.rays.reflection},
                {"refraction", st.rays.refraction}};
   j["nonfinite_samples"] = st.rays.nonfiniteSamples;
+  j["clamped_values"] = clampedValues;  // beyond the EXR channel type's range (writeExr)
   j["features_used"] = scene.features.used();
   j["features_left_out"] = scene.features.leftOut();
   j["integrator"] = st.integrator == IntegratorKind::Reference ? "reference" : "production";
@@ -197,10 +198,15 @@ int runRender(const RenderArgs& a) {
             " spp to " + out);
   const RenderResult result = renderScene(scene, *accel, opt);
 
-  writeExr(out, result.film, exrMetadata(a, scene, result), {a.half, a.compression, a.multipart});
+  const uint64_t clamped = writeExr(out, result.film, exrMetadata(a, scene, result),
+                                    {a.half, a.compression, a.multipart});
+  if (clamped > 0)
+    log::warning(std::to_string(clamped) + " values beyond " +
+                 (a.half ? "half-float's ±65504" : "float's range") +
+                 " were clamped to it (glint:clamped_values)");
   if (!a.display.empty()) writeDisplayImage(a.display, result.film, a.ocio);
   if (!a.statsJson.empty()) {
-    writeTextFileAtomically(a.statsJson, statsJson(scene, result.stats).dump(2) + "\n");
+    writeTextFileAtomically(a.statsJson, statsJson(scene, result.stats, clamped).dump(2) + "\n");
   }
   if (a.stats) printStats(scene, result.stats);
   if (result.stats.rays.nonfiniteSamples > 0)

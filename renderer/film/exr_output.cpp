@@ -4,7 +4,9 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
+#include <limits>
 
 #include "core/error.h"
 #include "core/input_files.h"
@@ -51,21 +53,37 @@ std::vector<Part> layoutParts(const Film& film, const std::vector<double>& rgba,
   return parts;
 }
 
-// The pixels of a part in its native per-channel types, interleaved.
-std::vector<unsigned char> packPart(const Part& part, size_t pixels) {
+// The largest finite value of a channel type: half's is 65504, far below what a hot spot or a
+// variance reaches, and a value past it would be written as +Inf.
+double largestFinite(OIIO::TypeDesc type) {
+  if (type == OIIO::TypeDesc::HALF) return 65504.0;
+  return static_cast<double>(std::numeric_limits<float>::max());
+}
+
+// The pixels of a part in its native per-channel types, interleaved. Values beyond a type's
+// finite range are clamped to it and counted in `clamped`: an EXR never holds Inf or NaN.
+std::vector<unsigned char> packPart(const Part& part, size_t pixels, uint64_t& clamped) {
   size_t bytesPerPixel = 0;
   for (const Channel& c : part.channels) bytesPerPixel += c.type.size();
   std::vector<unsigned char> out(pixels * bytesPerPixel);
   unsigned char* dst = out.data();
   for (size_t p = 0; p < pixels; ++p)
     for (const Channel& c : part.channels) {
-      const double v = (*c.source)[p * c.stride + c.offset];
+      double v = (*c.source)[p * c.stride + c.offset];
+      if (c.type == OIIO::TypeDesc::UINT) {
+        const auto u = static_cast<uint32_t>(v);
+        std::memcpy(dst, &u, 4);
+        dst += 4;
+        continue;
+      }
+      const double limit = largestFinite(c.type);
+      if (!(std::abs(v) <= limit)) {
+        v = std::isnan(v) ? 0.0 : std::copysign(limit, v);
+        ++clamped;
+      }
       if (c.type == OIIO::TypeDesc::HALF) {
         const Imath::half h(static_cast<float>(v));
         std::memcpy(dst, &h, 2);
-      } else if (c.type == OIIO::TypeDesc::UINT) {
-        const auto u = static_cast<uint32_t>(v);
-        std::memcpy(dst, &u, 4);
       } else {
         const auto f = static_cast<float>(v);
         std::memcpy(dst, &f, 4);
@@ -77,8 +95,8 @@ std::vector<unsigned char> packPart(const Part& part, size_t pixels) {
 
 }  // namespace
 
-void writeExr(const std::string& path, const Film& film, const ExrMetadata& meta,
-              const ExrOptions& options) {
+uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
+                  const ExrOptions& options) {
   const PixelWindow& w = film.window();
   std::vector<double> rgba(static_cast<size_t>(w.area()) * 4);
   for (int y = w.y0; y < w.y1; ++y)
@@ -86,6 +104,12 @@ void writeExr(const std::string& path, const Film& film, const ExrMetadata& meta
       std::copy_n(film.pixel(x, y), 4,
                   &rgba[(size_t(y - w.y0) * size_t(w.width()) + size_t(x - w.x0)) * 4]);
   const std::vector<Part> parts = layoutParts(film, rgba, options.half, options.multipart);
+  // Packed before the headers are made, so that they can say how many values were clamped.
+  uint64_t clamped = 0;
+  std::vector<std::vector<unsigned char>> packed;
+  for (const Part& part : parts) packed.push_back(packPart(part, size_t(w.area()), clamped));
+  meta.ints.push_back(
+      {"glint:clamped_values", static_cast<int>(std::min<uint64_t>(clamped, INT32_MAX))});
 
   std::vector<OIIO::ImageSpec> specs;
   for (const Part& part : parts) {
@@ -125,12 +149,12 @@ void writeExr(const std::string& path, const Film& film, const ExrMetadata& meta
     for (size_t i = 0; i < parts.size(); ++i) {
       if (i > 0 && !out->open(tmp, specs[i], OIIO::ImageOutput::AppendSubimage))
         throw GlintError("cannot write " + path + ": " + out->geterror());
-      const std::vector<unsigned char> data = packPart(parts[i], size_t(w.area()));
-      if (!out->write_image(OIIO::TypeDesc::UNKNOWN, data.data()))
+      if (!out->write_image(OIIO::TypeDesc::UNKNOWN, packed[i].data()))
         throw GlintError("cannot write " + path + ": " + out->geterror());
     }
     if (!out->close()) throw GlintError("cannot write " + path + ": " + out->geterror());
   });
+  return clamped;
 }
 
 Image readImage(const std::string& path) {

@@ -2,6 +2,7 @@
 // Writes the film as an OpenEXR file through OpenImageIO: RGBA (float or half; alpha =
 // coverage) and AOV planes, layered in one part or one part each, the chosen compression, the
 // data window = the crop inside the full display window, and Glint's metadata (docs/output.md).
+#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -28,8 +29,11 @@ struct ExrOptions {
 // The compression names OpenEXR (through OpenImageIO) accepts.
 const std::vector<std::string>& exrCompressions();
 
-void writeExr(const std::string& path, const Film& film, const ExrMetadata& meta,
-              const ExrOptions& options = {});
+// Returns how many values lay beyond their channel type's finite range (±65504 for half,
+// ±FLT_MAX for float) and were clamped to it; the file records the count as
+// glint:clamped_values (saturating at 2^31 − 1). Nothing written is Inf or NaN.
+uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
+                  const ExrOptions& options = {});
 
 // Reads an EXR's RGBA (full data window) as float; used by tests and `glint compare`.
 struct Image {

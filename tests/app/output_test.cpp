@@ -5,9 +5,6 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include <fstream>
-#include <iterator>
-
 #include "film/exr_output.h"
 #include "film/merge.h"
 #include "test_util.h"
@@ -84,8 +81,7 @@ Interrupted interruptWhen(const std::string& args, const std::string& ready,
                           " && break; sleep 0.1; done; kill -" + signal +
                           " $pid; wait $pid; exit $?' >/dev/null 2>&1";
   const int status = std::system(cmd.c_str());
-  std::ifstream in(log);
-  return {WEXITSTATUS(status), std::string(std::istreambuf_iterator<char>(in), {})};
+  return {WEXITSTATUS(status), test::readFile(log)};
 }
 
 // Under way: the render said it is rendering, which it does once a signal no longer ends the

@@ -4,6 +4,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <filesystem>
+#include <limits>
 #include <map>
 
 #include "io/scene_loader.h"
@@ -109,6 +110,32 @@ TEST(Aov, VarianceOfAHalfCoveredPixel) {
   EXPECT_FLOAT_EQ(ch.at("A")[0], 0.5f);
   EXPECT_NEAR(ch.at("variance.R")[0], 1.0 / 12, 1e-7);
   EXPECT_EQ(ch.at("id")[0], 1.0f);
+}
+
+TEST(Aov, ValuesBeyondTheirChannelTypeAreClampedNeverInfinite) {
+  // The half-covered pixel above with L = 1e20: mean 5e19 (beyond half's 65504), variance of
+  // the mean (4·(5e19)²/3)/4 = 8.3e38 (beyond float's 3.4e38). Written as they are, they would
+  // be +Inf; each is clamped to its type's largest finite value, and counted.
+  const std::string scene = test::writeTemp("hot.json", R"({
+    "render": {"width": 1, "height": 1, "spp": 4, "sampler": "regular", "ambient": [1e20,1e20,1e20]},
+    "camera": {"type": "orthographic", "eye": [0,0,5], "look_at": [0,0,0], "height": 1},
+    "materials": {"w": {"type": "phong", "ka": [1,1,1], "kd": [0,0,0]}},
+    "objects": [{"type": "quad", "corner": [0,-1,0], "edge1": [1,0,0], "edge2": [0,2,0], "material": "w"}]})");
+  const std::string out = (test::tempDir() / "hot.exr").string();
+  const std::string stats = (test::tempDir() / "hot.json.stats").string();
+  const auto run = test::runGlint("render " + scene + " --quiet --half --aov variance -o " + out +
+                                  " --stats-json " + stats);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const auto ch = readChannels(out);
+  EXPECT_EQ(ch.at("R")[0], 65504.0f);  // half's largest finite value
+  EXPECT_EQ(ch.at("A")[0], 0.5f);
+  EXPECT_EQ(ch.at("variance.G")[0], std::numeric_limits<float>::max());
+  // R, G, B (half) and the three variance channels (float).
+  auto in = OIIO::ImageInput::open(out);
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().get_int_attribute("glint:clamped_values", -1), 6);
+  EXPECT_NE(run.output.find("6 values beyond half-float's"), std::string::npos) << run.output;
+  EXPECT_NE(test::readFile(stats).find("\"clamped_values\": 6"), std::string::npos);
 }
 
 TEST(Aov, MultipartWritesOnePartPerAovWithItsOwnType) {
