@@ -1,8 +1,6 @@
 #include "io/scene_loader.h"
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "core/hash.h"
 #include "core/input_files.h"
@@ -263,13 +261,10 @@ Scene loadSceneText(const std::string& text, const std::string& fileName,
 }
 
 Scene loadSceneFile(const std::string& path, std::optional<int> frame) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError({path, 0}, "", "cannot open the scene file");
-  noteInputFile(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
+  const std::string text =
+      readInputFile(path, kMaxSceneFileBytes, "a JSON scene (large meshes belong in mesh files)");
   const std::filesystem::path p(path);
-  return loadSceneText(ss.str(), path, p.parent_path().string(), frame);
+  return loadSceneText(text, path, p.parent_path().string(), frame);
 }
 
 }  // namespace glint

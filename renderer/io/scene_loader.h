@@ -8,6 +8,10 @@
 
 namespace glint {
 
+// A JSON scene's size limit: parsed, each byte costs about 10 in memory, and a scene's own
+// geometry at this size is millions of inline triangles, which belong in mesh files.
+inline constexpr size_t kMaxSceneFileBytes = size_t{128} << 20;
+
 // `frame`: which frame of an animated scene (default: its first); asking a still scene for one
 // is a UsageError (io/animation.h).
 Scene loadSceneFile(const std::string& path, std::optional<int> frame = std::nullopt);

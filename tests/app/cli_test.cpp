@@ -121,6 +121,16 @@ TEST(Cli, OutOfRangeNumbersAreRefusedNotWrapped) {
   EXPECT_NE(bench.output.find("whole number"), std::string::npos) << bench.output;
 }
 
+TEST(Cli, AnEndlessSceneFileIsRefusedAtItsSizeLimit) {
+  // /dev/zero never ends: read whole, it took all memory. Read up to kMaxSceneFileBytes
+  // (128 MiB), then refused as a usage error naming the file and the limit.
+  const auto r = runGlint("render /dev/zero -o " + (test::tempDir() / "zero.exr").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("/dev/zero is larger than 128 MiB, the limit of a JSON scene"),
+            std::string::npos)
+      << r.output;
+}
+
 TEST(Cli, NoInputReachesAnEmbreeAssertion) {
   // Embree aborts (exit 134) on a ray with a negative tmin, a NaN, or an origin beyond 1.8e18:
   // validate's --ray is checked first, and its random rays start within ±1e18 even when the
