@@ -52,13 +52,11 @@ void Camera::generateRay(float x, float y, Vec2f lens, Ray& ray) const {
   }
 }
 
-}  // namespace glint
-
-namespace glint {
-
 Mat4 Camera::worldToCamera() const {
+  // OpenEXR's camera space is left-handed, looking down +z: rows u, v and −w (Glint's w points
+  // backwards).
   Mat4 m;
-  const Vec3f axes[3] = {u_, v_, w_};
+  const Vec3f axes[3] = {u_, v_, -w_};
   for (int r = 0; r < 3; ++r) {
     m(r, 0) = axes[r].x;
     m(r, 1) = axes[r].y;
@@ -69,15 +67,22 @@ Mat4 Camera::worldToCamera() const {
 }
 
 Mat4 Camera::worldToNdc() const {
+  // Camera (x, y, z) to NDC: x/(2·halfWidth) + 1/2 and 1/2 − y/(2·halfHeight), divided by the
+  // depth z under perspective (w' = z). z' = 1 makes z'/w' = 1/z, so the matrix stays
+  // invertible and a tool can turn an NDC point back into a ray.
   Mat4 p;
-  p(0, 0) = 1 / halfWidth_;
-  p(1, 1) = 1 / halfHeight_;
+  p(0, 0) = 0.5f / halfWidth_;
+  p(1, 1) = -0.5f / halfHeight_;
   if (desc_.projection == Projection::Perspective) {
-    // x_ndc = x / (−z · halfWidth): w' = −z carries the perspective divide.
+    p(0, 2) = 0.5f;
+    p(1, 2) = 0.5f;
     p(2, 2) = 0;
     p(2, 3) = 1;
-    p(3, 2) = -1;
+    p(3, 2) = 1;
     p(3, 3) = 0;
+  } else {
+    p(0, 3) = 0.5f;
+    p(1, 3) = 0.5f;
   }
   return p * worldToCamera();
 }

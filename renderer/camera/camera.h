@@ -39,9 +39,10 @@ class Camera {
   void generateRay(float x, float y, Vec2f lens, Ray& ray) const;
   bool hasLens() const { return desc_.apertureRadius > 0; }
 
-  // World to camera space (x right, y up, the camera looking down −z) and world to normalised
-  // device coordinates (x, y in [−1, 1] across the image, y up; perspective needs the divide by
-  // w). Column-vector convention: p' = M·p.
+  // OpenEXR's standard worldToCamera and worldToNDC (ImfStandardAttributes.h): camera space is
+  // left-handed, the camera at the origin looking down +z, x right, y up; NDC has (0, 0) at the
+  // top-left and (1, 1) at the bottom-right of the full image, after the divide by w. Here in
+  // the column-vector convention p' = M·p; the EXR holds the transpose (Imath's p' = p·M).
   Mat4 worldToCamera() const;
   Mat4 worldToNdc() const;
 

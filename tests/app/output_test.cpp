@@ -5,6 +5,9 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <cmath>
+
+#include "camera/camera.h"
 #include "film/exr_output.h"
 #include "film/merge.h"
 #include "test_util.h"
@@ -47,13 +50,7 @@ TEST(Output, MetadataHalfAndCompression) {
   EXPECT_EQ(s.get_string_attribute("glint:colorspace"), "lin_rec709");
   EXPECT_EQ(s.get_string_attribute("glint:settings_hash").size(), 16u);
   EXPECT_NE(s.get_string_attribute("glint:commandline").find("--quiet"), std::string::npos);
-  // Camera at (0,0,5) looking at the origin: world → camera is a translation by (0,0,−5).
-  // Imath's M44f is row-vector, so the translation sits in the last row (elements 12–14).
-  const OIIO::ParamValue* w2c = s.find_attribute("worldToCamera", OIIO::TypeMatrix44);
-  ASSERT_NE(w2c, nullptr);
-  const float* m = static_cast<const float*>(w2c->data());
-  EXPECT_FLOAT_EQ(m[0], 1);
-  EXPECT_FLOAT_EQ(m[14], -5);
+  EXPECT_NE(s.find_attribute("worldToCamera", OIIO::TypeMatrix44), nullptr);
   EXPECT_NE(s.find_attribute("worldToNDC", OIIO::TypeMatrix44), nullptr);
 
   ASSERT_EQ(runGlint("render " + scene + " --quiet --half --compression piz -o " + tmp("half.exr"))
@@ -64,6 +61,76 @@ TEST(Output, MetadataHalfAndCompression) {
   EXPECT_EQ(h.get_string_attribute("compression"), "piz");
   EXPECT_EQ(runGlint("render " + scene + " --quiet --compression lzma -o " + tmp("x.exr")).exitCode,
             2);
+}
+
+// A point through an EXR's standard matrix as OpenEXR's tools apply it: Imath's row vector
+// p' = p·M, then the divide by w (Imath's multVecMatrix).
+Vec3d throughExrMatrix(const OIIO::ImageSpec& spec, const char* name, Vec3d p) {
+  const OIIO::ParamValue* a = spec.find_attribute(name, OIIO::TypeMatrix44);
+  if (!a) {
+    ADD_FAILURE() << "no " << name;
+    return {};
+  }
+  const float* m = static_cast<const float*>(a->data());
+  double out[4];
+  for (int c = 0; c < 4; ++c) out[c] = p.x * m[c] + p.y * m[4 + c] + p.z * m[8 + c] + m[12 + c];
+  return {out[0] / out[3], out[1] / out[3], out[2] / out[3]};
+}
+
+TEST(Output, CameraMatricesFollowTheOpenExrStandard) {
+  // ImfStandardAttributes.h: worldToCamera maps into a left-handed space, the camera at the
+  // origin looking down +z, x right, y up; worldToNDC maps to (0, 0) at the top-left and
+  // (1, 1) at the bottom-right of the display window. Camera at (0,0,5) looking at the origin,
+  // vfov 40°, 48×32: half extents at distance 1 are hh = tan 20° = 0.363970, hw = 1.5·hh.
+  const std::string scene = test::writeTemp("matrices.json", kScene);
+  ASSERT_EQ(runGlint("render " + scene + " --quiet -o " + tmp("matrices.exr")).exitCode, 0);
+  const OIIO::ImageSpec s = specOf(tmp("matrices.exr"));
+  const double hh = std::tan(20.0 * M_PI / 180), hw = 1.5 * hh;
+  struct Case {
+    Vec3d world, camera, ndc;
+  };
+  const Case cases[] = {
+      {{0, 0, 0}, {0, 0, 5}, {0.5, 0.5, 0}},             // the look-at point, centred
+      {{1, 0, 0}, {1, 0, 5}, {0.5 + 0.1 / hw, 0.5, 0}},  // right of it: x grows
+      {{0, 1, 0}, {0, 1, 5}, {0.5, 0.5 - 0.1 / hh, 0}},  // above it: NDC y shrinks
+      {{-2, -1, -5}, {-2, -1, 10}, {0.5 - 0.1 / hw, 0.5 + 0.05 / hh, 0}},  // farther: ÷ depth
+  };
+  for (const Case& c : cases) {
+    const Vec3d cam = throughExrMatrix(s, "worldToCamera", c.world);
+    const Vec3d ndc = throughExrMatrix(s, "worldToNDC", c.world);
+    // float matrices: a few ulps of 5.
+    EXPECT_NEAR(cam.x, c.camera.x, 1e-5);
+    EXPECT_NEAR(cam.y, c.camera.y, 1e-5);
+    EXPECT_NEAR(cam.z, c.camera.z, 1e-5);
+    EXPECT_NEAR(ndc.x, c.ndc.x, 1e-6);
+    EXPECT_NEAR(ndc.y, c.ndc.y, 1e-6);
+  }
+  // The corners of the frame: a point on the ray through pixel corner (x, y) lands on
+  // (x/48, y/32); an off-axis orthographic camera as well.
+  for (const char* camera : {R"("eye": [1,2,5], "look_at": [0,0.5,0], "vfov": 30)",
+                             R"("type": "orthographic", "eye": [1,2,5], "look_at": [0,0.5,0],
+                                "height": 3)"}) {
+    const std::string original = R"("eye": [0,0,5], "look_at": [0,0,0], "vfov": 40)";
+    std::string text = kScene;
+    text.replace(text.find(original), original.size(), camera);
+    const std::string oblique = test::writeTemp("oblique.json", text);
+    ASSERT_EQ(runGlint("render " + oblique + " --quiet -o " + tmp("oblique.exr")).exitCode, 0);
+    const OIIO::ImageSpec o = specOf(tmp("oblique.exr"));
+    const Scene loaded = test::sceneFromText(text);
+    const Camera cam(loaded.cameraDesc, 48, 32);
+    for (const auto& [x, y] : {std::pair{0, 0}, {48, 0}, {0, 32}, {48, 32}, {12, 20}}) {
+      const Ray ray = cam.generateRay(float(x), float(y));
+      // The camera works in render space, world − worldOrigin (io/placement.h).
+      const Vec3f pRender = ray.o + 3.0f * ray.d;
+      const Vec3d p = Vec3d{pRender.x, pRender.y, pRender.z} + loaded.worldOrigin;
+      const Vec3d ndc = throughExrMatrix(o, "worldToNDC", p);
+      EXPECT_NEAR(ndc.x, x / 48.0, 1e-5) << camera << " pixel " << x << "," << y;
+      EXPECT_NEAR(ndc.y, y / 32.0, 1e-5) << camera << " pixel " << x << "," << y;
+      // In front of the camera, at the point's distance along the view axis.
+      const Vec3d inCamera = throughExrMatrix(o, "worldToCamera", p);
+      EXPECT_NEAR(inCamera.z, 3.0 * dot(ray.d, -cam.w()), 1e-5);
+    }
+  }
 }
 
 // Runs `glint ARGS` in the background, sends `signal` once `ready` (a shell condition over
