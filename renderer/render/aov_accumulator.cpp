@@ -10,12 +10,14 @@ AovLayout AovLayout::create(const AovSet& set, size_t lightCount, Film& film) {
   AovLayout l;
   l.set = set;
   l.lights = lightCount;
+  // Channel names as Blender, tev and pbrt-v4 write them where they have one (docs/output.md):
+  // Z, N, P, Albedo, Variance.
   const auto rgb = [](const std::string& layer) {
     return std::vector<std::string>{layer + ".R", layer + ".G", layer + ".B"};
   };
   if (set.has(Aov::Depth)) l.depth = film.addPlane("depth", {"Z"});
   if (set.has(Aov::Normal)) l.normal = film.addPlane("normal", {"N.X", "N.Y", "N.Z"});
-  if (set.has(Aov::Albedo)) l.albedo = film.addPlane("albedo", rgb("albedo"));
+  if (set.has(Aov::Albedo)) l.albedo = film.addPlane("albedo", rgb("Albedo"));
   if (set.has(Aov::Position)) l.position = film.addPlane("position", {"P.X", "P.Y", "P.Z"});
   if (set.has(Aov::ObjectId)) l.objectId = film.addPlane("objectid", {"id"}, true);
   if (set.has(Aov::Direct)) l.direct = film.addPlane("direct", rgb("direct"));
@@ -30,7 +32,7 @@ AovLayout AovLayout::create(const AovSet& set, size_t lightCount, Film& film) {
       if (i == 0) l.firstLight = p;
     }
   }
-  if (set.has(Aov::Variance)) l.variance = film.addPlane("variance", rgb("variance"));
+  if (set.has(Aov::Variance)) l.variance = film.addPlane("variance", rgb("Variance"));
   return l;
 }
 

@@ -80,13 +80,13 @@ TEST(Aov, EveryAovRoundTripsWithExactValues) {
       for (int c = 0; c < 3; ++c) {
         const std::string C = rgb[c];
         const float l0 = kd[c] * std::sqrt(0.5f), l1 = kd[c] * 2 * cos1;
-        EXPECT_FLOAT_EQ(ch.at("albedo." + C)[i], kd[c]);
+        EXPECT_FLOAT_EQ(ch.at("Albedo." + C)[i], kd[c]);
         EXPECT_NEAR(ch.at("light0." + C)[i], l0, 1e-6);
         EXPECT_NEAR(ch.at("light1." + C)[i], l1, 1e-6);
         EXPECT_NEAR(ch.at("direct." + C)[i], l0 + l1, 1e-6);
         EXPECT_NEAR(ch.at(C)[i], l0 + l1, 1e-6);  // the beauty is all direct here
         EXPECT_EQ(ch.at("indirect." + C)[i], 0.0f);
-        EXPECT_EQ(ch.at("variance." + C)[i], 0.0f);  // one sample: no variance estimate
+        EXPECT_EQ(ch.at("Variance." + C)[i], 0.0f);  // one sample: no variance estimate
       }
     }
 }
@@ -107,7 +107,7 @@ TEST(Aov, VarianceOfAHalfCoveredPixel) {
   const auto ch = readChannels(out);
   EXPECT_FLOAT_EQ(ch.at("R")[0], 0.5f);
   EXPECT_FLOAT_EQ(ch.at("A")[0], 0.5f);
-  EXPECT_NEAR(ch.at("variance.R")[0], 1.0 / 12, 1e-7);
+  EXPECT_NEAR(ch.at("Variance.R")[0], 1.0 / 12, 1e-7);
   EXPECT_EQ(ch.at("id")[0], 1.0f);
 }
 
