@@ -146,8 +146,8 @@ TEST(Aov, AskingForAovsChangesNoBeautyPixel) {
     RenderOptions opt;
     opt.progress = false;
     const std::vector<float> plain = renderScene(scene, *accel, opt).film.toFloatRgba();
-    opt.aovs =
-        AovSet::parse("depth,normal,albedo,position,objectid,direct,indirect,lights,variance");
+    opt.aovs = AovSet::parse(
+        "depth,normal,albedo,position,objectid,direct,indirect,lights,variance,cryptomatte");
     const RenderResult withAovs = renderScene(scene, *accel, opt);
     EXPECT_EQ(plain, withAovs.film.toFloatRgba()) << e.path();
     EXPECT_GE(withAovs.film.planes().size(), 8u) << e.path();
