@@ -263,7 +263,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_flag("--half", args->half, "Half-float beauty (default float)");
   cmd->add_option("--aov", args->aovs,
                   "AOVs, comma separated: depth,normal,albedo,position,objectid,direct,indirect,"
-                  "lights,variance");
+                  "lights,variance,cryptomatte");
   cmd->add_flag("--multipart", args->multipart, "One EXR part per AOV (default: layers in one)");
   cmd->add_option("--compression", args->compression, "EXR compression (default zip)")
       ->check(CLI::IsMember(exrCompressions()));

@@ -131,6 +131,8 @@ uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
     if (parts.size() > 1) spec.attribute("name", part.name);
     for (const auto& [k, v] : meta.strings) spec.attribute(k, v);
     for (const auto& [k, v] : meta.ints) spec.attribute(k, v);
+    for (const auto& [k, v] : film.stringAttributes()) spec.attribute(k, v);
+    for (const auto& [k, v] : film.intAttributes()) spec.attribute(k, v);
     for (const auto& [k, v] : meta.floats) spec.attribute(k, v);
     for (const auto& [k, m] : meta.matrices) {
       float rowVector[16];

@@ -1,7 +1,8 @@
 #pragma once
 // Writes the film as an OpenEXR file through OpenImageIO: RGBA (float or half; alpha =
 // coverage) and AOV planes, layered in one part or one part each, the chosen compression, the
-// data window = the crop inside the full display window, and Glint's metadata (docs/output.md).
+// data window = the crop inside the full display window, and Glint's metadata (docs/output.md)
+// with the film's own attributes (those its planes need, such as Cryptomatte's manifests).
 #include <cstdint>
 #include <string>
 #include <utility>

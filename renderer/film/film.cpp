@@ -1,5 +1,7 @@
 #include "film/film.h"
 
+#include <utility>
+
 #include "core/check.h"
 
 namespace glint {
@@ -47,6 +49,27 @@ void Film::setPlanePixel(size_t plane, int x, int y, const double* values) {
   const size_t n = p.channels.size();
   const size_t at = offset(x, y) / 4 * n;
   for (size_t c = 0; c < n; ++c) p.values[at + c] = values[c];
+}
+
+namespace {
+template <class T>
+void setAttribute(std::vector<std::pair<std::string, T>>& attributes, const std::string& key,
+                  T value) {
+  for (auto& [k, v] : attributes)
+    if (k == key) {
+      v = std::move(value);
+      return;
+    }
+  attributes.emplace_back(key, std::move(value));
+}
+}  // namespace
+
+void Film::addAttribute(const std::string& key, std::string value) {
+  setAttribute(stringAttributes_, key, std::move(value));
+}
+
+void Film::addAttribute(const std::string& key, int value) {
+  setAttribute(intAttributes_, key, value);
 }
 
 }  // namespace glint

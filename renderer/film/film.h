@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace glint {
@@ -44,12 +45,23 @@ class Film {
   void setPlanePixel(size_t plane, int x, int y, const double* values);
   const std::vector<FilmPlane>& planes() const { return planes_; }
 
+  // Metadata that belongs with the planes, for whoever reads them (Cryptomatte's names and
+  // manifests): written into the file's header. A key given again replaces its value.
+  void addAttribute(const std::string& key, std::string value);
+  void addAttribute(const std::string& key, int value);
+  const std::vector<std::pair<std::string, std::string>>& stringAttributes() const {
+    return stringAttributes_;
+  }
+  const std::vector<std::pair<std::string, int>>& intAttributes() const { return intAttributes_; }
+
  private:
   size_t offset(int x, int y) const;
   int fullWidth_, fullHeight_;
   PixelWindow window_;
   std::vector<double> rgba_;
   std::vector<FilmPlane> planes_;
+  std::vector<std::pair<std::string, std::string>> stringAttributes_;
+  std::vector<std::pair<std::string, int>> intAttributes_;
 };
 
 }  // namespace glint

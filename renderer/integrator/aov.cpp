@@ -8,12 +8,13 @@ namespace glint {
 
 namespace {
 const Aov kOrder[] = {Aov::Depth,  Aov::Normal,   Aov::Albedo, Aov::Position, Aov::ObjectId,
-                      Aov::Direct, Aov::Indirect, Aov::Lights, Aov::Variance};
+                      Aov::Direct, Aov::Indirect, Aov::Lights, Aov::Variance, Aov::Cryptomatte};
 }
 
 const std::vector<std::string>& AovSet::names() {
-  static const std::vector<std::string> n = {"depth",  "normal",   "albedo", "position", "objectid",
-                                             "direct", "indirect", "lights", "variance"};
+  static const std::vector<std::string> n = {"depth",    "normal",     "albedo",   "position",
+                                             "objectid", "direct",     "indirect", "lights",
+                                             "variance", "cryptomatte"};
   return n;
 }
 

@@ -21,6 +21,8 @@ enum class Aov : uint32_t {
   Indirect = 64,   // everything else: reflection and refraction
   Lights = 128,    // direct light per light source (light0, light1, ...)
   Variance = 256,  // variance of the beauty pixel estimate
+  // Cryptomatte object and material layers: ranked (ID, coverage) pairs of the first hits
+  Cryptomatte = 512,
 };
 
 class AovSet {
@@ -48,6 +50,7 @@ struct AovSample {
   Vec3f normal, position;
   Rgb albedo;
   uint32_t objectId = 0;
+  uint32_t materialId = 0;  // the hit's materials[] index (no + 1: read only for a hit)
   Rgb direct;
   Rgb perLight[AovSet::kMaxLights];
 };

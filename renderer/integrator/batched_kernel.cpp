@@ -254,6 +254,7 @@ void BatchedKernel::recordAov(const Ray& ray, const Hit& hit, const Material& m,
   const Geometry& top =
       scene_.groups[0].geometries[hit.instId != kInvalidId ? hit.instId : hit.geomId];
   aov.objectId = top.objectId + 1;
+  aov.materialId = scene_.geometry(hit).materialId;
   aov.albedo = albedo(m, at);
 }
 

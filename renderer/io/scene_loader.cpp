@@ -237,6 +237,12 @@ void parseScene(SceneBuilder& b, const JsonNode& root, std::optional<int> frame)
   const JsonNode objects = root.at("objects");
   for (size_t i = 0; i < objects.size(); ++i) addObject(b, objects[i], 0, static_cast<uint32_t>(i));
   addLightSurfaces(s, static_cast<uint32_t>(objects.size()));
+  // Named by their place in the file, as the objectid AOV numbers them (objects[i] is id i + 1):
+  // objects have no name key, and a generated name stays the same from frame to frame.
+  for (size_t i = 0; i < objects.size(); ++i)
+    s.objectNames.push_back("objects[" + std::to_string(i) + "]");
+  for (size_t li = 0; li < s.lights.size(); ++li)
+    s.objectNames.push_back("lights[" + std::to_string(li) + "]");
   // An animated scene's keys span its frames: keep just this frame's shutter of them.
   if (s.animation) resampleMotionToFrame(s, *s.animation);
   s.features = computeFeatures(s);

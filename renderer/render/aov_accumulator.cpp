@@ -3,19 +3,56 @@
 #include <algorithm>
 
 #include "core/error.h"
+#include "film/cryptomatte.h"
 
 namespace glint {
 
-AovLayout AovLayout::create(const AovSet& set, size_t lightCount, Film& film) {
+namespace {
+
+// The Cryptomatte names of the scene's object ids (Scene::objectNames), and whether each has
+// an entry in the world (the ids of lights without a surface have none).
+std::vector<std::string> objectNamesOf(const Scene& scene, std::vector<bool>& inWorld) {
+  const std::vector<Geometry> none;
+  const std::vector<Geometry>& world = scene.groups.empty() ? none : scene.groups[0].geometries;
+  uint32_t count = 0;
+  for (const Geometry& g : world) count = std::max(count, g.objectId + 1);
+  inWorld.assign(count, false);
+  for (const Geometry& g : world) inWorld[g.objectId] = true;
+  std::vector<std::string> names(count);
+  for (uint32_t i = 0; i < count; ++i)
+    names[i] =
+        i < scene.objectNames.size() ? scene.objectNames[i] : "objects[" + std::to_string(i) + "]";
+  return names;
+}
+
+// Adds one Cryptomatte type: its layers, and its manifest of the names in `listed`.
+size_t addCryptomatte(Film& film, const std::string& typeName,
+                      const std::vector<std::string>& names, const std::vector<bool>& listed,
+                      std::vector<float>& ids) {
+  std::vector<std::string> manifest;
+  ids.resize(names.size());
+  for (size_t i = 0; i < names.size(); ++i) {
+    ids[i] = cryptomatteId(names[i]);
+    if (listed[i]) manifest.push_back(names[i]);
+  }
+  return addCryptomatteLayers(film, typeName, manifest);
+}
+
+}  // namespace
+
+AovLayout AovLayout::create(const AovSet& set, const Scene& scene, Film& film) {
+  const size_t lightCount = scene.lights.size();
   AovLayout l;
   l.set = set;
   l.lights = lightCount;
+  // Channel names as Blender, tev and pbrt-v4 write them where they have one (docs/output.md):
+  // Z, N, P, Albedo, Variance.
   const auto rgb = [](const std::string& layer) {
     return std::vector<std::string>{layer + ".R", layer + ".G", layer + ".B"};
   };
   if (set.has(Aov::Depth)) l.depth = film.addPlane("depth", {"Z"});
   if (set.has(Aov::Normal)) l.normal = film.addPlane("normal", {"N.X", "N.Y", "N.Z"});
-  if (set.has(Aov::Albedo)) l.albedo = film.addPlane("albedo", rgb("albedo"));
+  if (set.has(Aov::Albedo)) l.albedo = film.addPlane("albedo", rgb("Albedo"));
   if (set.has(Aov::Position)) l.position = film.addPlane("position", {"P.X", "P.Y", "P.Z"});
   if (set.has(Aov::ObjectId)) l.objectId = film.addPlane("objectid", {"id"}, true);
   if (set.has(Aov::Direct)) l.direct = film.addPlane("direct", rgb("direct"));
@@ -30,7 +67,17 @@ AovLayout AovLayout::create(const AovSet& set, size_t lightCount, Film& film) {
       if (i == 0) l.firstLight = p;
     }
   }
-  if (set.has(Aov::Variance)) l.variance = film.addPlane("variance", rgb("variance"));
+  if (set.has(Aov::Variance)) l.variance = film.addPlane("variance", rgb("Variance"));
+  if (set.has(Aov::Cryptomatte)) {
+    std::vector<bool> inWorld;
+    const std::vector<std::string> objects = objectNamesOf(scene, inWorld);
+    l.cryptoObject = addCryptomatte(film, "CryptoObject", objects, inWorld, l.objectCryptoIds);
+    std::vector<std::string> materials;
+    for (const Material& m : scene.materials) materials.push_back(m.name);
+    l.cryptoMaterial =
+        addCryptomatte(film, "CryptoMaterial", materials, std::vector<bool>(materials.size(), true),
+                       l.materialCryptoIds);
+  }
   return l;
 }
 
@@ -47,6 +94,8 @@ void PixelAovs::begin() {
   std::fill(std::begin(mean_), std::end(mean_), 0.0);
   std::fill(std::begin(m2_), std::end(m2_), 0.0);
   ids_.clear();
+  cryptoObjects_.clear();
+  cryptoMaterials_.clear();
 }
 
 void PixelAovs::add(const Radiance& r, const AovSample& s) {
@@ -81,6 +130,10 @@ void PixelAovs::add(const Radiance& r, const AovSample& s) {
     ids_.push_back({s.objectId, 1});
   else
     ++it->second;
+  if (layout_.cryptoObject != SIZE_MAX) {
+    cryptoObjects_.add(s.objectId - 1);
+    cryptoMaterials_.add(s.materialId);
+  }
 }
 
 void PixelAovs::end(Film& film, int x, int y) const {
@@ -108,12 +161,35 @@ void PixelAovs::end(Film& film, int x, int y) const {
       }
     film.setPlanePixel(layout_.objectId, x, y, &id);
   }
+  if (layout_.cryptoObject != SIZE_MAX) {
+    putCryptomatte(film, x, y, layout_.cryptoObject, cryptoObjects_, layout_.objectCryptoIds);
+    putCryptomatte(film, x, y, layout_.cryptoMaterial, cryptoMaterials_, layout_.materialCryptoIds);
+  }
   if (layout_.variance != SIZE_MAX) {
     // Variance of the mean: the sample variance m2/(n − 1) divided by n.
     const double denom = n_ > 1 ? double(n_) * double(n_ - 1) : 0;
     const double v[3] = {denom > 0 ? m2_[0] / denom : 0, denom > 0 ? m2_[1] / denom : 0,
                          denom > 0 ? m2_[2] / denom : 0};
     film.setPlanePixel(layout_.variance, x, y, v);
+  }
+}
+
+void PixelAovs::putCryptomatte(Film& film, int x, int y, size_t firstPlane,
+                               const CoverageTable& table, const std::vector<float>& ids) const {
+  // Coverage is the share of all the pixel's samples (the beauty's box filter), so the
+  // background's share is what the ranks leave of 1. Ranks that nothing fills are ID 0,
+  // coverage 0, as the specification asks.
+  const CoverageTable ranked = table.ranked();
+  const double inv = n_ > 0 ? 1.0 / n_ : 0;
+  for (int layer = 0; layer < (kCryptomatteRanks + 1) / 2; ++layer) {
+    double v[4] = {0, 0, 0, 0};
+    for (int k = 0; k < 2; ++k) {
+      const int rank = 2 * layer + k;
+      if (rank >= ranked.size() || rank >= kCryptomatteRanks) continue;
+      v[2 * k] = ids[ranked[rank].id];
+      v[2 * k + 1] = ranked[rank].count * inv;
+    }
+    film.setPlanePixel(firstPlane + size_t(layer), x, y, v);
   }
 }
 

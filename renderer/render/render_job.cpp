@@ -274,7 +274,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   {
     // The AOV planes' channels, from the layout itself on a one-pixel film.
     Film probe(1, 1, PixelWindow{0, 1, 0, 1});
-    AovLayout::create(opt.aovs, scene.lights.size(), probe);
+    AovLayout::create(opt.aovs, scene, probe);
     size_t channels = 4;
     for (const FilmPlane& plane : probe.planes()) channels += plane.channels.size();
     checkFrameFits(window.area(), channels, availableMemoryBytes());
@@ -283,7 +283,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   const Camera camera(scene.cameraDesc, rs.width, rs.height);
   const Sampler sampler(rs.sampler, rs.spp, rs.seed);
   // AOV work happens only when AOVs are asked for (leave out what is not needed).
-  const AovLayout aovLayout = AovLayout::create(opt.aovs, scene.lights.size(), film);
+  const AovLayout aovLayout = AovLayout::create(opt.aovs, scene, film);
   if (opt.integrator == IntegratorKind::Reference && opt.aovs.any())
     throw UsageError("the reference integrator renders the beauty only: drop --aov");
 

@@ -90,6 +90,10 @@ class Scene {
   std::vector<Light> lights;
 
   std::vector<Group> groups;  // groups[0] is the world
+  // Per object id (Geometry::objectId of a world entry) the name compositors see in Cryptomatte:
+  // "objects[i]", then "lights[K]" for the surface of visible light K. Scenes built in code may
+  // leave it empty (render/aov_accumulator.cpp names such objects "objects[i]" too).
+  std::vector<std::string> objectNames;
   std::vector<TriangleMesh> meshes;
   std::vector<Sphere> spheres;
   // Per sphere: centre keys over [0, 1] when it moves (seed 000 §13.4.5), else empty.

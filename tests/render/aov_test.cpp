@@ -81,13 +81,13 @@ TEST(Aov, EveryAovRoundTripsWithExactValues) {
       for (int c = 0; c < 3; ++c) {
         const std::string C = rgb[c];
         const float l0 = kd[c] * std::sqrt(0.5f), l1 = kd[c] * 2 * cos1;
-        EXPECT_FLOAT_EQ(ch.at("albedo." + C)[i], kd[c]);
+        EXPECT_FLOAT_EQ(ch.at("Albedo." + C)[i], kd[c]);
         EXPECT_NEAR(ch.at("light0." + C)[i], l0, 1e-6);
         EXPECT_NEAR(ch.at("light1." + C)[i], l1, 1e-6);
         EXPECT_NEAR(ch.at("direct." + C)[i], l0 + l1, 1e-6);
         EXPECT_NEAR(ch.at(C)[i], l0 + l1, 1e-6);  // the beauty is all direct here
         EXPECT_EQ(ch.at("indirect." + C)[i], 0.0f);
-        EXPECT_EQ(ch.at("variance." + C)[i], 0.0f);  // one sample: no variance estimate
+        EXPECT_EQ(ch.at("Variance." + C)[i], 0.0f);  // one sample: no variance estimate
       }
     }
 }
@@ -108,7 +108,7 @@ TEST(Aov, VarianceOfAHalfCoveredPixel) {
   const auto ch = readChannels(out);
   EXPECT_FLOAT_EQ(ch.at("R")[0], 0.5f);
   EXPECT_FLOAT_EQ(ch.at("A")[0], 0.5f);
-  EXPECT_NEAR(ch.at("variance.R")[0], 1.0 / 12, 1e-7);
+  EXPECT_NEAR(ch.at("Variance.R")[0], 1.0 / 12, 1e-7);
   EXPECT_EQ(ch.at("id")[0], 1.0f);
 }
 
@@ -129,7 +129,7 @@ TEST(Aov, ValuesBeyondTheirChannelTypeAreClampedNeverInfinite) {
   const auto ch = readChannels(out);
   EXPECT_EQ(ch.at("R")[0], 65504.0f);  // half's largest finite value
   EXPECT_EQ(ch.at("A")[0], 0.5f);
-  EXPECT_EQ(ch.at("variance.G")[0], std::numeric_limits<float>::max());
+  EXPECT_EQ(ch.at("Variance.G")[0], std::numeric_limits<float>::max());
   // R, G, B (half) and the three variance channels (float).
   auto in = OIIO::ImageInput::open(out);
   ASSERT_TRUE(in);
@@ -173,8 +173,8 @@ TEST(Aov, AskingForAovsChangesNoBeautyPixel) {
     RenderOptions opt;
     opt.progress = false;
     const std::vector<float> plain = renderScene(scene, *accel, opt).film.toFloatRgba();
-    opt.aovs =
-        AovSet::parse("depth,normal,albedo,position,objectid,direct,indirect,lights,variance");
+    opt.aovs = AovSet::parse(
+        "depth,normal,albedo,position,objectid,direct,indirect,lights,variance,cryptomatte");
     const RenderResult withAovs = renderScene(scene, *accel, opt);
     EXPECT_EQ(plain, withAovs.film.toFloatRgba()) << e.path();
     EXPECT_GE(withAovs.film.planes().size(), 8u) << e.path();
