@@ -40,6 +40,7 @@ struct RenderArgs {
   std::string tileOrder = "morton";
   bool half = false;
   bool multipart = false;
+  bool transparentBackground = false;
   std::string aovs;
   std::string compression = "zip";
   bool stats = false;
@@ -60,6 +61,7 @@ void applyOverrides(const RenderArgs& a, Scene& scene) {
   if (a.maxDepth) r.maxDepth = *a.maxDepth;
   if (a.seed) r.seed = *a.seed;
   if (!a.sampler.empty()) parseSamplerKind(a.sampler, r.sampler);
+  if (a.transparentBackground) r.transparentBackground = true;
 }
 
 std::optional<PixelWindow> cropWindow(const RenderArgs& a, const RenderSettings& r) {
@@ -120,8 +122,8 @@ uint64_t settingsHash(const Scene& scene, const std::string& accel, const std::s
   const std::string frame =
       scene.animation ? " frame " + std::to_string(scene.animation->frame) : "";
   return hashKey(scene.sourceHash, uint64_t(r.width), uint64_t(r.height), uint64_t(r.spp), r.seed,
-                 uint64_t(r.sampler), uint64_t(r.maxDepth), hashBytes(accel),
-                 hashBytes(extras + frame));
+                 uint64_t(r.sampler), uint64_t(r.maxDepth), uint64_t(r.transparentBackground),
+                 hashBytes(accel), hashBytes(extras + frame));
 }
 
 ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderResult& result) {
@@ -261,6 +263,8 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--tile-order", args->tileOrder, "Tile order (the image is the same for any)")
       ->check(CLI::IsMember({"morton", "row"}));
   cmd->add_flag("--half", args->half, "Half-float beauty (default float)");
+  cmd->add_flag("--transparent-background", args->transparentBackground,
+                "Camera rays that miss leave RGB 0, alpha 0 (default: the background is opaque)");
   cmd->add_option("--aov", args->aovs,
                   "AOVs, comma separated: depth,normal,albedo,position,objectid,direct,indirect,"
                   "lights,variance,cryptomatte");

@@ -15,7 +15,7 @@ namespace {
 
 void parseRender(const JsonNode& n, RenderSettings& r) {
   n.checkKeys({"width", "height", "spp", "max_depth", "seed", "sampler", "background", "ambient",
-               "transparent_shadows"});
+               "transparent_shadows", "transparent_background"});
   if (auto v = n.get("width")) r.width = v->integer(1, 1 << 15);
   if (auto v = n.get("height")) r.height = v->integer(1, 1 << 15);
   if (auto v = n.get("spp")) r.spp = v->integer(1, static_cast<int>(kMaxSampleSet));
@@ -26,6 +26,7 @@ void parseRender(const JsonNode& n, RenderSettings& r) {
   r.background = n.color("background", r.background);
   r.ambient = n.color("ambient", r.ambient);
   if (auto v = n.get("transparent_shadows")) r.transparentShadows = v->boolean();
+  if (auto v = n.get("transparent_background")) r.transparentBackground = v->boolean();
 }
 
 void parseCamera(const JsonNode& n, const std::optional<Animation>& animation, CameraDesc& c,

@@ -99,6 +99,7 @@ bool renderTile(const FrameContext& f, Shading& shade, const PixelWindow& tile,
                 RayCounters& counters) {
   const RenderSettings& rs = f.scene.render;
   const bool aovs = f.opt.aovs.any();
+  const bool transparent = rs.transparentBackground;
   const bool aovSamples = f.opt.aovs.needsSamples();
   const Vec3f viewAxis = -f.camera.w();
   PixelAovs pixelAovs(f.aovLayout);
@@ -147,6 +148,12 @@ bool renderTile(const FrameContext& f, Shading& shade, const PixelWindow& tile,
             Radiance& r = radiance[i];
             if (f.opt.sampleHook) f.opt.sampleHook(x, y, r);
             if (!r.L.isFinite()) r.L = {}, r.valid = false;
+            // The beauty is premultiplied: the background is opaque, or, on a transparent
+            // film, a miss adds neither colour nor coverage (docs/output.md, Alpha).
+            if (!transparent)
+              r.alpha = 1;
+            else if (r.alpha == 0)
+              r.L = {};
             if (aovs) pixelAovs.add(r, aovSamples ? records[i] : kNoRecord);
             sum[3] += r.alpha;
             if (!r.valid) {

@@ -68,6 +68,9 @@ struct RenderSettings {
   Rgb background;
   Rgb ambient;
   bool transparentShadows = false;
+  // Camera rays that miss leave the pixel transparent (RGB 0, alpha 0) instead of showing the
+  // background opaque; reflected and refracted rays still see the background.
+  bool transparentBackground = false;
 };
 
 // An animated scene's frames, first … last, and the frame this Scene is (io/animation.h).

@@ -20,42 +20,56 @@ const float* px(const Image& img, int x, int y) {
   return &img.pixels[(size_t(y) * size_t(img.width) + size_t(x)) * size_t(img.channels)];
 }
 
-TEST(EndToEnd, EmptySceneIsBackgroundWithZeroAlpha) {
-  const Image img = renderToImage("empty", R"({
+TEST(EndToEnd, EmptySceneIsOpaqueBackgroundOrTransparentFilm) {
+  // The beauty is premultiplied (docs/output.md, Alpha): by default the background is opaque,
+  // RGB = background with alpha 1; on a transparent film a miss leaves RGB 0 with alpha 0
+  // (before, RGB = background with alpha 0, which composites as an additive glow).
+  const std::string text = R"({
     "render": {"width": 5, "height": 3, "spp": 2, "background": [0.1, 0.2, 0.3]},
-    "camera": {"eye": [0,0,5], "look_at": [0,0,0]}, "objects": []})");
-  ASSERT_EQ(img.width, 5);
-  ASSERT_EQ(img.height, 3);
-  ASSERT_EQ(img.channels, 4);  // RGBA float
+    "camera": {"eye": [0,0,5], "look_at": [0,0,0]}, "objects": []})";
+  const Image opaque = renderToImage("empty", text);
+  const Image transparent = renderToImage("empty_transparent", text, "--transparent-background");
+  for (const Image* img : {&opaque, &transparent}) {
+    ASSERT_EQ(img->width, 5);
+    ASSERT_EQ(img->height, 3);
+    ASSERT_EQ(img->channels, 4);  // RGBA float
+  }
   for (int y = 0; y < 3; ++y)
     for (int x = 0; x < 5; ++x) {
-      EXPECT_EQ(px(img, x, y)[0], 0.1f);
-      EXPECT_EQ(px(img, x, y)[1], 0.2f);
-      EXPECT_EQ(px(img, x, y)[2], 0.3f);
-      EXPECT_EQ(px(img, x, y)[3], 0.0f);
+      EXPECT_EQ(px(opaque, x, y)[0], 0.1f);
+      EXPECT_EQ(px(opaque, x, y)[1], 0.2f);
+      EXPECT_EQ(px(opaque, x, y)[2], 0.3f);
+      EXPECT_EQ(px(opaque, x, y)[3], 1.0f);
+      for (int c = 0; c < 4; ++c) EXPECT_EQ(px(transparent, x, y)[c], 0.0f);
     }
 }
 
 TEST(EndToEnd, SphereMaskUnderOrthographicCamera) {
   // 8×8 pixels over a 4×4 view: pixel centres at ±0.25, ±0.75, ±1.25, ±1.75. A centre lies on
   // the unit sphere's disk iff u² + v² < 1 (no centre is on the circle). The sphere shows only
-  // ambient: k_a·I_a = (0.25, 0.5, 0.75) exactly; misses show the background.
-  const Image img = renderToImage("mask", R"({
+  // ambient: k_a·I_a = (0.25, 0.5, 0.75) exactly; misses show the background (opaque). The
+  // transparent film's alpha is the mask.
+  const std::string text = R"({
     "render": {"width": 8, "height": 8, "spp": 1, "sampler": "regular",
                "background": [0.1, 0.2, 0.3], "ambient": [0.25, 0.5, 0.75]},
     "camera": {"type": "orthographic", "eye": [0,0,5], "look_at": [0,0,0], "height": 4},
     "materials": {"m": {"type": "phong", "ka": [1,1,1], "kd": [0,0,0]}},
-    "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})");
-  int covered = 0;  // pixels the image shows the sphere in
+    "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})";
+  const Image img = renderToImage("mask", text);
+  const Image film = renderToImage("mask_transparent", text, "--transparent-background");
+  int covered = 0;  // pixels the transparent film shows the sphere in
   for (int y = 0; y < 8; ++y)
     for (int x = 0; x < 8; ++x) {
       const float u = -1.75f + 0.5f * float(x), v = 1.75f - 0.5f * float(y);
       const bool in = u * u + v * v < 1;
       const float* p = px(img, x, y);
-      covered += p[3] == 1.0f;
-      EXPECT_EQ(p[3], in ? 1.0f : 0.0f) << x << "," << y;
+      EXPECT_EQ(p[3], 1.0f) << x << "," << y;
       EXPECT_EQ(p[0], in ? 0.25f : 0.1f) << x << "," << y;
       EXPECT_EQ(p[2], in ? 0.75f : 0.3f) << x << "," << y;
+      const float* t = px(film, x, y);
+      covered += t[3] == 1.0f;
+      EXPECT_EQ(t[3], in ? 1.0f : 0.0f) << x << "," << y;
+      EXPECT_EQ(t[0], in ? 0.25f : 0.0f) << x << "," << y;
     }
   EXPECT_EQ(covered, 12);  // centres (±0.25,±0.25), (±0.25,±0.75), (±0.75,±0.25)
 }

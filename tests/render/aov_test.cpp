@@ -97,7 +97,8 @@ TEST(Aov, VarianceOfAHalfCoveredPixel) {
   // covers x > 0, the background is 0: samples 1, 0, 1, 0. Mean 0.5, sample variance
   // 4·0.25/3 = 1/3, variance of the mean 1/12. Alpha 0.5; the id of the hits is 1.
   const std::string scene = test::writeTemp("var.json", R"({
-    "render": {"width": 1, "height": 1, "spp": 4, "sampler": "regular", "ambient": [1,1,1]},
+    "render": {"width": 1, "height": 1, "spp": 4, "sampler": "regular", "ambient": [1,1,1],
+               "transparent_background": true},
     "camera": {"type": "orthographic", "eye": [0,0,5], "look_at": [0,0,0], "height": 1},
     "materials": {"w": {"type": "phong", "ka": [1,1,1], "kd": [0,0,0]}},
     "objects": [{"type": "quad", "corner": [0,-1,0], "edge1": [1,0,0], "edge2": [0,2,0], "material": "w"}]})");
@@ -117,7 +118,8 @@ TEST(Aov, ValuesBeyondTheirChannelTypeAreClampedNeverInfinite) {
   // the mean (4·(5e19)²/3)/4 = 8.3e38 (beyond float's 3.4e38). Written as they are, they would
   // be +Inf; each is clamped to its type's largest finite value, and counted.
   const std::string scene = test::writeTemp("hot.json", R"({
-    "render": {"width": 1, "height": 1, "spp": 4, "sampler": "regular", "ambient": [1e20,1e20,1e20]},
+    "render": {"width": 1, "height": 1, "spp": 4, "sampler": "regular", "ambient": [1e20,1e20,1e20],
+               "transparent_background": true},
     "camera": {"type": "orthographic", "eye": [0,0,5], "look_at": [0,0,0], "height": 1},
     "materials": {"w": {"type": "phong", "ka": [1,1,1], "kd": [0,0,0]}},
     "objects": [{"type": "quad", "corner": [0,-1,0], "edge1": [1,0,0], "edge2": [0,2,0], "material": "w"}]})");

@@ -186,7 +186,8 @@ CryptoType findType(const CryptoFile& f, const std::string& typeName) {
 //            → objects[1] 8/16, objects[2] 4/16; red 8/16, blue 4/16
 //   pixel 3: background only
 const char* kScene = R"({
-  "render": {"width": 4, "height": 1, "spp": 16, "sampler": "regular", "ambient": [1,1,1]},
+  "render": {"width": 4, "height": 1, "spp": 16, "sampler": "regular", "ambient": [1,1,1],
+             "transparent_background": true},
   "camera": {"type": "orthographic", "eye": [0,0,5], "look_at": [0,0,0], "height": 1},
   "materials": {"red": {"type": "phong", "ka": [1,0,0], "kd": [0,0,0]},
                 "blue": {"type": "phong", "ka": [0,0,1], "kd": [0,0,0]},

@@ -60,7 +60,8 @@ TEST(Motion, ClosedShutterIsTheStaticImageAtThatTime) {
 
 // Coverage (alpha) of an orthographic 64 × 1 strip 4 units wide (16 px per unit), 1/16 tall.
 Film strip(const std::string& objects, int spp) {
-  return render(R"({"render": {"width": 64, "height": 1, "spp": )" + std::to_string(spp) + R"(},
+  return render(R"({"render": {"width": 64, "height": 1, "spp": )" + std::to_string(spp) +
+                R"(, "transparent_background": true},
     "camera": {"type": "orthographic", "eye": [0,0,5], "look_at": [0,0,0], "height": 0.0625,
                "shutter": [0, 1]},
     "materials": {"m": {"type": "phong"}}, "objects": [)" +
@@ -89,7 +90,8 @@ TEST(Motion, RotatingInstanceBlursAlongItsArc) {
   // the arc where |p − (cosθ, sinθ, 0)| < 0.1. Linear matrix interpolation would cut the chord
   // instead and leave the arc's middle (45°) uncovered.
   constexpr int kSpp = 4096;
-  const std::string text = R"({"render": {"width": 128, "height": 128, "spp": 4096},
+  const std::string text = R"({"render": {"width": 128, "height": 128, "spp": 4096,
+                                          "transparent_background": true},
     "camera": {"type": "orthographic", "eye": [0,0,5], "look_at": [0,0,0], "height": 2.4,
                "shutter": [0, 1]},
     "materials": {"m": {"type": "phong"}},

@@ -209,7 +209,8 @@ TEST(SpherePrecision, SilhouettesMatchDoublePrecision) {
   for (const Case c : {Case{1e-3, 1e5, 2.5e-6 * 57.29578}, Case{1e6, 1e6 + 10, 120}}) {
     constexpr int N = 64;
     const RenderResult r = stress::renderText(
-        R"({"render": {"width": 64, "height": 64, "spp": 1, "sampler": "regular"},
+        R"({"render": {"width": 64, "height": 64, "spp": 1, "sampler": "regular",
+                   "transparent_background": true},
       "camera": {"eye": )" +
         vec(0, 0, c.eyeDistance) + R"(, "look_at": )" + vec(0.3 * c.radius, 0.2 * c.radius, 0) +
         R"(, "vfov": )" + num(c.vfov) + R"(},

@@ -146,7 +146,8 @@ TEST(MotionLimits, IdenticalKeysAndLargeRotations) {
   EXPECT_EQ(stress::renderText(keyed).film.toFloatRgba(),
             stress::renderText(still).film.toFloatRgba());
 
-  const Film f = stress::renderText(R"({"render": {"width": 64, "height": 64, "spp": 64},
+  const Film f = stress::renderText(R"({"render": {"width": 64, "height": 64, "spp": 64,
+                                                  "transparent_background": true},
     "camera": {"type": "orthographic", "eye": [0,0,5], "look_at": [0,0,0], "height": 2.4, "shutter": [0,1]},
     "materials": {"m": {"type": "phong"}},
     "groups": {"ball": [{"type": "sphere", "center": [1,0,0], "radius": 0.15, "material": "m"}]},
