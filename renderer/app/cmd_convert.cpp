@@ -34,7 +34,13 @@ CommandRunner addConvertCommand(CLI::App& app) {
       for (int c = 0; c < 3; ++c) dst[c] = src[nc >= 3 ? c : 0];
       if (nc == 2 || nc >= 4) dst[3] = src[nc == 2 ? 1 : 3];
     }
-    writeDisplayImage(*out, std::move(rgba), img.width, img.height, *settings);
+    // The frame's own colour space, not the config's scene_linear role, which a studio config
+    // may set to another space (ACEScg).
+    DisplaySettings fromFrame = *settings;
+    fromFrame.source = img.colorspace;
+    if (img.colorspace.empty())
+      log::info(*in + " names no glint:colorspace: taken as the config's scene_linear");
+    writeDisplayImage(*out, std::move(rgba), img.width, img.height, fromFrame);
     log::info("wrote " + *out);
     return kExitOk;
   };

@@ -147,7 +147,7 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
                                   std::to_string(w.y0) + " " + std::to_string(w.y1)},
                {"glint:commandline", commandLine()},
                // The OCIO name of the rendering space in the bundled config.
-               {"glint:colorspace", "lin_rec709"}};
+               {"glint:colorspace", kRenderingColorspace}};
   m.ints = {{"glint:spp", scene.render.spp},
             {"glint:max_depth", scene.render.maxDepth},
             {"glint:partial", result.partial ? 1 : 0}};

@@ -21,15 +21,16 @@ namespace glint {
 
 namespace {
 
+// `path`: a config file; empty: $OCIO, else the bundled config; "-": the bundled config.
 OCIO::ConstConfigRcPtr loadConfig(const std::string& path, std::string& source) {
   try {
-    if (!path.empty()) {
+    if (!path.empty() && path != "-") {
       if (!std::filesystem::is_regular_file(path))
         throw UsageError("OCIO config not found: " + path);
       source = path;
       return OCIO::Config::CreateFromFile(path.c_str());
     }
-    if (const char* env = std::getenv("OCIO"); env && *env) {
+    if (const char* env = std::getenv("OCIO"); env && *env && path.empty()) {
       if (!std::filesystem::is_regular_file(env))
         throw UsageError("the OCIO config named by $OCIO was not found: " + std::string(env));
       source = std::string("$OCIO = ") + env;
@@ -41,6 +42,32 @@ OCIO::ConstConfigRcPtr loadConfig(const std::string& path, std::string& source) 
   } catch (const OCIO::Exception& e) {
     throw UsageError("cannot load the OCIO config " + source + ": " + e.what());
   }
+}
+
+// Appends to `group` what takes pixels from `source` into the config's scene_linear role and
+// returns that role's name, or returns `source` itself where the config knows it (by name or
+// alias). A studio config without Glint's rendering space is reached through both configs'
+// interchange roles (aces_interchange): taking Rec.709 pixels as the config's scene_linear,
+// say ACEScg, would show them oversaturated.
+std::string sourceInConfig(const OCIO::ConstConfigRcPtr& config, const std::string& source,
+                           OCIO::GroupTransformRcPtr& group) {
+  if (source.empty()) return OCIO::ROLE_SCENE_LINEAR;
+  if (config->getColorSpace(source.c_str())) return source;
+  std::string bundledSource;
+  const OCIO::ConstConfigRcPtr bundled = loadConfig("-", bundledSource);
+  if (!bundled->getColorSpace(source.c_str()))
+    throw UsageError("the image's colour space " + inQuotes(source) +
+                     " is in neither the OCIO config nor Glint's bundled one");
+  try {
+    const auto toSceneLinear = OCIO::Config::GetProcessorFromConfigs(
+        bundled, source.c_str(), config, OCIO::ROLE_SCENE_LINEAR);
+    group->appendTransform(toSceneLinear->createGroupTransform());
+  } catch (const OCIO::Exception& e) {
+    throw UsageError("the OCIO config has no colour space " + inQuotes(source) +
+                     " and Glint cannot convert to its scene_linear role (" + excerpt(e.what()) +
+                     "): add an aces_interchange role to the config");
+  }
+  return OCIO::ROLE_SCENE_LINEAR;
 }
 
 }  // namespace
@@ -72,16 +99,17 @@ DisplayTransform::DisplayTransform(const DisplaySettings& s) : impl_(new Impl) {
     if (!knownView)
       throw UsageError("OCIO (" + source_ + "): display " + inQuotes(display) + " has no view " +
                        inQuotes(view) + "; views: " + views);
-    const auto group = OCIO::GroupTransform::Create();
+    auto group = OCIO::GroupTransform::Create();
+    const std::string source = sourceInConfig(config, s.source, group);
     if (!s.look.empty()) {
       const auto look = OCIO::LookTransform::Create();
-      look->setSrc(OCIO::ROLE_SCENE_LINEAR);
-      look->setDst(OCIO::ROLE_SCENE_LINEAR);
+      look->setSrc(source.c_str());
+      look->setDst(source.c_str());
       look->setLooks(s.look.c_str());
       group->appendTransform(look);
     }
     const auto dv = OCIO::DisplayViewTransform::Create();
-    dv->setSrc(OCIO::ROLE_SCENE_LINEAR);
+    dv->setSrc(source.c_str());
     dv->setDisplay(display.c_str());
     dv->setView(view.c_str());
     group->appendTransform(dv);

@@ -10,11 +10,18 @@
 
 namespace glint {
 
+// The bundled config's name of the space Glint renders in (scene-linear Rec.709, D65), which
+// every EXR it writes names in glint:colorspace.
+inline constexpr const char* kRenderingColorspace = "lin_rec709";
+
 struct DisplaySettings {
   std::string configPath;  // empty: $OCIO, else the bundled config
   std::string display;     // empty: the config's default display
   std::string view;        // empty: the display's default view
   std::string look;        // optional, applied in scene-linear before the view
+  // The colour space the pixels are in: Glint renders in kRenderingColorspace; a foreign EXR
+  // without glint:colorspace is taken to be in the config's scene_linear role (empty).
+  std::string source = kRenderingColorspace;
 };
 
 // One OCIO CPU processor, built once, applied to RGB rows in parallel.

@@ -128,6 +128,11 @@ uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
     spec.full_width = film.fullWidth();
     spec.full_height = film.fullHeight();
     spec.attribute("compression", options.compression);
+    // OpenEXR's standard statement of the pixels' primaries and white: Rec.709, D65.
+    static const float kRec709Chromaticities[8] = {0.64f, 0.33f, 0.30f,   0.60f,
+                                                   0.15f, 0.06f, 0.3127f, 0.3290f};
+    spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8),
+                   kRec709Chromaticities);
     if (parts.size() > 1) spec.attribute("name", part.name);
     for (const auto& [k, v] : meta.strings) spec.attribute(k, v);
     for (const auto& [k, v] : meta.ints) spec.attribute(k, v);
@@ -172,6 +177,7 @@ Image readImage(const std::string& path) {
   img.y = spec.y;
   img.fullWidth = spec.full_width;
   img.fullHeight = spec.full_height;
+  img.colorspace = spec.get_string_attribute("glint:colorspace");
   img.pixels.resize(size_t(img.width) * size_t(img.height) * size_t(img.channels));
   if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
     throw GlintError("cannot read " + path + ": " + in->geterror());

@@ -41,6 +41,7 @@ struct Image {
   int width = 0, height = 0, channels = 0;
   int x = 0, y = 0, fullWidth = 0, fullHeight = 0;
   std::vector<float> pixels;
+  std::string colorspace;  // its glint:colorspace, empty when it has none (a foreign EXR)
 };
 Image readImage(const std::string& path);
 // The film's window as an RGBA image (float), as it would read back from its EXR.

@@ -3,7 +3,11 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 
 #include "film/display.h"
 #include "test_util.h"
@@ -25,7 +29,9 @@ TEST(Ocio, BundledConfigPassesOciocheck) {
 TEST(Ocio, StandardViewIsTheSrgbEncoding) {
   // sRGB OETF: 0.18 → 1.055·0.18^(1/2.4) − 0.055 = 0.4614 → code 117.7, so 118 ± 1 (the
   // Rec.709 → AP0 → XYZ → sRGB matrices round-trip to about 1e-6); 1.0 → 255; 0 → 0.
-  const std::vector<float> out = through({}, {0.18f, 0.18f, 0.18f, 1, 1, 1, 0, 0, 0});
+  DisplaySettings standard;
+  standard.view = "Standard";
+  const std::vector<float> out = through(standard, {0.18f, 0.18f, 0.18f, 1, 1, 1, 0, 0, 0});
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(255 * out[size_t(c)], 118, 1) << c;
   for (int c = 3; c < 6; ++c) EXPECT_NEAR(255 * out[size_t(c)], 255, 0.5) << c;
   for (int c = 6; c < 9; ++c) EXPECT_NEAR(out[size_t(c)], 0, 1e-6) << c;
@@ -48,8 +54,103 @@ TEST(Ocio, AcesViewTonemapsHighlights) {
   const std::vector<float> out = through(aces, {0.18f, 0.18f, 0.18f, 1, 1, 1, 4, 4, 4, 16, 16, 16});
   for (int i = 0; i < 3; ++i) EXPECT_LT(out[size_t(3 * i)], out[size_t(3 * i + 3)]) << i;
   EXPECT_LT(out[9], 1.0f);
-  const std::vector<float> standard = through(DisplaySettings{}, {16, 16, 16});
+  DisplaySettings standardView;
+  standardView.view = "Standard";
+  const std::vector<float> standard = through(standardView, {16, 16, 16});
   for (float v : standard) EXPECT_NEAR(v, 1.055 * std::pow(16.0, 1 / 2.4) - 0.055, 1e-3);
+}
+
+double srgbEncode(double v) {
+  return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+}
+
+TEST(Ocio, EveryDisplayDefaultsToTheToneMappedView) {
+  // sRGB, Rec.1886 and Display P3 all open on the ACES SDR rendering: a scene value of 16
+  // stays below display white instead of clipping.
+  for (const char* display : {"sRGB", "Rec.1886", "Display P3"}) {
+    DisplaySettings s;
+    s.display = display;
+    const std::vector<float> out = through(s, {16, 16, 16});
+    EXPECT_LT(out[0], 1.0f) << display;
+    EXPECT_GT(out[0], 0.8f) << display;
+  }
+}
+
+TEST(Ocio, Rec1886AndDisplayP3Encodings) {
+  // Standard view. Rec.1886 with a black level of 0 is the pure 2.4 power: 0.18 → 0.18^(1/2.4)
+  // = 0.48944. Display P3 is P3-D65 primaries with the sRGB curve: Rec.709 red (1, 0, 0) is
+  // (0.82246, 0.03319, 0.01708) in linear P3-D65 (the 709 → P3 matrix's first column), then
+  // encoded. Tolerance 2e-3: the config goes through ACES AP0 with Bradford adaptations to D60
+  // and back, exact to about 1e-4 in linear light, which the curve's slope near 0 magnifies.
+  DisplaySettings rec1886;
+  rec1886.display = "Rec.1886";
+  rec1886.view = "Standard";
+  for (float v : through(rec1886, {0.18f, 0.18f, 0.18f}))
+    EXPECT_NEAR(v, std::pow(0.18, 1 / 2.4), 2e-3);
+  DisplaySettings p3;
+  p3.display = "Display P3";
+  p3.view = "Standard";
+  const std::vector<float> red = through(p3, {1, 0, 0});
+  EXPECT_NEAR(red[0], srgbEncode(0.82246), 2e-3);
+  EXPECT_NEAR(red[1], srgbEncode(0.03319), 2e-3);
+  EXPECT_NEAR(red[2], srgbEncode(0.01708), 2e-3);
+}
+
+TEST(Ocio, AStudioConfigShowsARec709FrameAsTheBundledOneDoes) {
+  // A studio config whose scene_linear is ACEScg and which has no lin_rec709: Glint's frame
+  // (glint:colorspace lin_rec709) must reach its display through the interchange role, not be
+  // taken as ACEScg, which showed saturated colours up to 0.33 off.
+  std::string text = [] {
+    std::ifstream f(std::string(GLINT_SOURCE_DIR) + "/ocio/config.ocio");
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  }();
+  const size_t begin = text.find("  - !<ColorSpace>\n    name: lin_rec709");
+  const size_t end = text.find("  - !<ColorSpace>", begin + 1);
+  ASSERT_NE(begin, std::string::npos);
+  text.erase(begin, end - begin);
+  for (size_t at; (at = text.find(": lin_rec709")) != std::string::npos;)
+    text.replace(at, 12, ": ACEScg");
+  const std::string studio = test::writeTemp("studio.ocio", text);
+  const std::vector<float> saturated = {0.8f, 0.1f, 0.02f, 0.05f, 0.4f, 0.9f};
+  DisplaySettings bundled;
+  bundled.view = "Standard";
+  DisplaySettings viaStudio = bundled;
+  viaStudio.configPath = studio;
+  const std::vector<float> expected = through(bundled, saturated);
+  const std::vector<float> got = through(viaStudio, saturated);
+  // The same matrices composed in another order: float rounding only.
+  for (size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(got[i], expected[i], 1e-4) << i;
+  // The old way, the frame read as the config's scene_linear, is far off: the test can fail.
+  DisplaySettings asSceneLinear = viaStudio;
+  asSceneLinear.source = "";
+  const std::vector<float> wrong = through(asSceneLinear, saturated);
+  double worst = 0;
+  for (size_t i = 0; i < wrong.size(); ++i)
+    worst = std::max(worst, std::abs(double(wrong[i]) - expected[i]));
+  EXPECT_GT(worst, 0.1);
+
+  // glint convert takes the colour space from the frame's glint:colorspace.
+  const auto path = [](const char* n) { return (test::tempDir() / n).string(); };
+  const std::string scene = test::writeTemp("saturated.json", R"({
+    "render": {"width": 2, "height": 2, "spp": 1, "background": [0.8, 0.1, 0.02]},
+    "camera": {"eye": [0,0,5], "look_at": [0,0,0]}, "objects": []})");
+  ASSERT_EQ(test::runGlint("render --quiet " + scene + " -o " + path("saturated.exr")).exitCode, 0);
+  ASSERT_EQ(
+      test::runGlint("convert --view Standard " + path("saturated.exr") + " " + path("bundled.tif"))
+          .exitCode,
+      0);
+  ASSERT_EQ(test::runGlint("convert --view Standard --ocio-config " + studio + " " +
+                           path("saturated.exr") + " " + path("studio.tif"))
+                .exitCode,
+            0);
+  const auto firstPixel = [](const std::string& p) {
+    auto in = OIIO::ImageInput::open(p);
+    std::vector<float> v(size_t(in->spec().image_pixels()) * size_t(in->spec().nchannels));
+    in->read_image(0, 0, 0, -1, OIIO::TypeDesc::FLOAT, v.data());
+    return std::vector<float>(v.begin(), v.begin() + 3);
+  };
+  const std::vector<float> a = firstPixel(path("bundled.tif")), b = firstPixel(path("studio.tif"));
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[size_t(c)], b[size_t(c)], 2.0 / 65535) << c;  // 16-bit
 }
 
 TEST(Ocio, EnvironmentConfigIsUsedAndBadConfigsAreNamed) {
