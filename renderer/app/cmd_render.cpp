@@ -35,6 +35,7 @@ struct RenderArgs {
   std::optional<int> spp, width, height, maxDepth, threads;
   std::optional<uint64_t> seed;
   std::optional<int> frame;
+  std::string frames;
   std::vector<int> crop;
   int tileSize = 32;
   std::string tileOrder = "morton";
@@ -161,9 +162,10 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
   return m;
 }
 
-int runRender(const RenderArgs& a) {
-  if (a.quiet) log::setLevel(log::Level::Warning);
-  Scene scene = loadSceneOrDefault(a.scenePath, a.frame);
+// Renders one frame (of an animated scene: `frame`, default its first) and writes its outputs,
+// numbered when the scene is animated. Returns the exit code.
+int renderFrame(const RenderArgs& a, std::optional<int> frame) {
+  Scene scene = loadSceneOrDefault(a.scenePath, frame);
   applyOverrides(a, scene);
   RenderOptions opt;
   opt.threads = a.threads.value_or(0);
@@ -182,14 +184,19 @@ int runRender(const RenderArgs& a) {
     out = (a.scenePath.empty() ? std::string("default")
                                : std::filesystem::path(a.scenePath).stem().string()) +
           (scene.animation ? ".####.exr" : ".exr");
-  if (scene.animation) out = frameFileName(out, scene.animation->frame);
+  const auto numbered = [&](const std::string& path) {
+    return scene.animation ? frameFileName(path, scene.animation->frame) : path;
+  };
+  out = numbered(out);
+  const std::string display = numbered(a.display);
+  const std::string stats = a.statsJson == "-" ? a.statsJson : numbered(a.statsJson);
   // Every output, and the display image's format and the OCIO config, display, view and look,
   // are checked before the render is spent on them.
   checkOutputPath(out);
-  if (!a.statsJson.empty() && a.statsJson != "-") checkOutputPath(a.statsJson);
-  if (!a.display.empty()) {
-    checkOutputPath(a.display);
-    checkDisplayImagePath(a.display);
+  if (!stats.empty() && stats != "-") checkOutputPath(stats);
+  if (!display.empty()) {
+    checkOutputPath(display);
+    checkDisplayImagePath(display);
     DisplayTransform check(a.ocio);
   }
   const auto accel = makeAccelerator(kind, scene);
@@ -206,9 +213,9 @@ int runRender(const RenderArgs& a) {
     log::warning(std::to_string(clamped) + " values beyond " +
                  (a.half ? "half-float's ±65504" : "float's range") +
                  " were clamped to it (glint:clamped_values)");
-  if (!a.display.empty()) writeDisplayImage(a.display, result.film, a.ocio);
-  if (!a.statsJson.empty()) {
-    writeTextFileAtomically(a.statsJson, statsJson(scene, result.stats, clamped).dump(2) + "\n");
+  if (!display.empty()) writeDisplayImage(display, result.film, a.ocio);
+  if (!stats.empty()) {
+    writeTextFileAtomically(stats, statsJson(scene, result.stats, clamped).dump(2) + "\n");
   }
   if (a.stats) printStats(scene, result.stats);
   if (result.stats.rays.nonfiniteSamples > 0)
@@ -223,7 +230,28 @@ int runRender(const RenderArgs& a) {
     log::warning("interrupted while writing: " + out + " holds the complete frame");
     return kExitInterrupted;
   }
-  log::info("wrote " + out + (a.display.empty() ? "" : " and " + a.display));
+  log::info("wrote " + out + (display.empty() ? "" : " and " + display));
+  return kExitOk;
+}
+
+int runRender(const RenderArgs& a) {
+  if (a.quiet) log::setLevel(log::Level::Warning);
+  if (a.frames.empty()) return renderFrame(a, a.frame);
+  // Several frames in one process: each output must be numbered, or the frames would replace
+  // one another.
+  const FrameRange range = parseFrameRange(a.frames, "--frames");
+  for (const auto& [option, path] :
+       {std::pair{"-o", a.output}, {"--display", a.display}, {"--stats-json", a.statsJson}})
+    if (!path.empty() && path != "-" && !hasFrameDigits(path) && range.count() > 1)
+      throw UsageError(std::string(option) + " " + path +
+                       " would be overwritten by every frame of --frames: number it with #### "
+                       "or %04d");
+  if (a.statsJson == "-" && range.count() > 1)
+    throw UsageError("--stats-json - with several --frames: give a numbered file instead");
+  for (int frame = range.first; frame <= range.last; ++frame) {
+    const int code = renderFrame(a, frame);
+    if (code != kExitOk) return code;  // interrupted: the frames after it are not started
+  }
   return kExitOk;
 }
 
@@ -241,9 +269,13 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--spp", args->spp, "Samples per pixel")
       ->check(CLI::Range(1, static_cast<int>(kMaxSampleSet)));
   cmd->add_option("--seed", args->seed, "Scene seed")->check(wholeNumberUpTo(UINT64_MAX));
-  cmd->add_option("--frame", args->frame,
-                  "Frame of an animated scene (default: its first); -o NAME.####.exr numbers "
-                  "the file");
+  CLI::Option* frame =
+      cmd->add_option("--frame", args->frame,
+                      "Frame of an animated scene (default: its first); -o NAME.####.exr or "
+                      "NAME.%04d.exr numbers the file");
+  cmd->add_option("--frames", args->frames,
+                  "Frames A-B of an animated scene, one after another in this process")
+      ->excludes(frame);
   cmd->add_option("--threads", args->threads, "Render threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   cmd->add_option("--width", args->width, "Image width")->check(CLI::Range(1, 1 << 15));

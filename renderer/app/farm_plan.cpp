@@ -1,5 +1,7 @@
 #include "app/farm_plan.h"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 
@@ -66,19 +68,49 @@ FrameRange parseFrameRange(const std::string& text, const std::string& what) {
   return r;
 }
 
-bool hasFrameDigits(const std::string& pattern) {
+namespace {
+
+// Where the frame number goes in the file name (not the directories): the last run of '#', or
+// else the last printf-style "%d" / "%0Nd"; npos when there is neither.
+struct FrameField {
+  size_t begin = std::string::npos, end = 0, width = 0;
+};
+
+FrameField frameField(const std::string& pattern) {
   const size_t slash = pattern.find_last_of('/');
-  return pattern.find('#', slash == std::string::npos ? 0 : slash + 1) != std::string::npos;
+  const size_t nameBegin = slash == std::string::npos ? 0 : slash + 1;
+  FrameField f;
+  const size_t hash = pattern.find_last_of('#');
+  if (hash != std::string::npos && hash >= nameBegin) {
+    f.end = hash + 1;
+    f.begin = hash;
+    while (f.begin > nameBegin && pattern[f.begin - 1] == '#') --f.begin;
+    f.width = f.end - f.begin;
+    return f;
+  }
+  for (size_t at = pattern.rfind('%'); at != std::string::npos && at >= nameBegin;
+       at = at == 0 ? std::string::npos : pattern.rfind('%', at - 1)) {
+    size_t i = at + 1, width = 0;
+    if (i < pattern.size() && pattern[i] == '0') ++i;
+    for (; i < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[i])); ++i)
+      width = std::min<size_t>(width * 10 + size_t(pattern[i] - '0'), 32);
+    if (i < pattern.size() && pattern[i] == 'd') return {at, i + 1, width};
+  }
+  return f;
+}
+
+}  // namespace
+
+bool hasFrameDigits(const std::string& pattern) {
+  return frameField(pattern).begin != std::string::npos;
 }
 
 std::string frameFileName(const std::string& pattern, int frame) {
-  if (!hasFrameDigits(pattern)) return pattern;
-  const size_t end = pattern.find_last_of('#') + 1;
-  size_t begin = end - 1;
-  while (begin > 0 && pattern[begin - 1] == '#') --begin;
+  const FrameField f = frameField(pattern);
+  if (f.begin == std::string::npos) return pattern;
   std::string digits = std::to_string(frame);
-  if (digits.size() < end - begin) digits.insert(0, end - begin - digits.size(), '0');
-  return pattern.substr(0, begin) + digits + pattern.substr(end);
+  if (digits.size() < f.width) digits.insert(0, f.width - digits.size(), '0');
+  return pattern.substr(0, f.begin) + digits + pattern.substr(f.end);
 }
 
 }  // namespace glint

@@ -1,6 +1,7 @@
 // The command line contract of CLI.md: exit codes, messages, atomic output, determinism.
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imageio.h>
 #include <glint_version.h>
 #include <nlohmann/json.hpp>
 
@@ -148,6 +149,35 @@ TEST(Cli, NoInputReachesAnEmbreeAssertion) {
                    "material": "m"}]})");
   const auto v = runGlint("validate " + far + " --rays 2000");
   EXPECT_EQ(v.exitCode, 0) << v.output;
+}
+
+TEST(Cli, FramesRenderARangeInOneProcessNumberedEitherWay) {
+  // --frames 2-3 writes frames 2 and 3 (%04d numbering, Nuke's and ffmpeg's), each the same
+  // pixels as its own --frame run (#### numbering) and tagged with its frame.
+  const std::string scene = std::string(GLINT_SCENES_DIR) + "/animation.json";
+  const std::string dir = test::tempDir().string();
+  const std::string small = " --quiet --width 24 --height 16 --spp 2";
+  ASSERT_EQ(
+      runGlint("render " + scene + small + " --frames 2-3 -o " + dir + "/seq.%04d.exr").exitCode,
+      0);
+  for (int frame : {2, 3}) {
+    const std::string f = std::to_string(frame);
+    ASSERT_EQ(runGlint("render " + scene + small + " --frame " + f + " -o " + dir + "/one.####.exr")
+                  .exitCode,
+              0);
+    const Image together = readImage(dir + "/seq.000" + f + ".exr");
+    EXPECT_EQ(together.pixels, readImage(dir + "/one.000" + f + ".exr").pixels) << frame;
+    auto in = OIIO::ImageInput::open(dir + "/seq.000" + f + ".exr");
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_int_attribute("glint:frame", -1), frame);
+  }
+  EXPECT_NE(readImage(dir + "/seq.0002.exr").pixels, readImage(dir + "/seq.0003.exr").pixels);
+  // An output every frame would overwrite is refused before anything is rendered.
+  const auto clash = runGlint("render " + scene + small + " --frames 1-2 -o " + dir + "/flat.exr");
+  EXPECT_EQ(clash.exitCode, 2);
+  EXPECT_NE(clash.output.find("number it with #### or %04d"), std::string::npos) << clash.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/flat.exr"));
+  EXPECT_EQ(runGlint("render " + scene + small + " --frames 1-2 --frame 1").exitCode, 2);
 }
 
 TEST(Cli, SameImageForAnyThreadCountTileSizeAndCrop) {

@@ -96,6 +96,14 @@ TEST(FarmPlan, FrameNamesReplaceTheLastRunOfHashes) {
   EXPECT_EQ(frameFileName("shot.#.exr", 12), "shot.12.exr");
   EXPECT_EQ(frameFileName("a.##.b.###.exr", 5), "a.##.b.005.exr");
   EXPECT_EQ(frameFileName("shot.exr", 3), "shot.exr");
+  // printf-style, as Nuke and ffmpeg write sequences; '#' wins where both appear.
+  EXPECT_EQ(frameFileName("out/shot.%04d.exr", 7), "out/shot.0007.exr");
+  EXPECT_EQ(frameFileName("shot.%d.exr", 7), "shot.7.exr");
+  EXPECT_EQ(frameFileName("shot.%4d.exr", 7), "shot.0007.exr");  // zero-padded all the same
+  EXPECT_EQ(frameFileName("50%.%03d.exr", 12345), "50%.12345.exr");
+  EXPECT_EQ(frameFileName("a.%04d.####.exr", 3), "a.%04d.0003.exr");
+  EXPECT_EQ(frameFileName("dir%04d/shot.exr", 3), "dir%04d/shot.exr");  // not in the file name
+  EXPECT_FALSE(hasFrameDigits("100%.exr"));
   // Only the file name counts: a '#' in a directory is not a frame number.
   EXPECT_EQ(frameFileName("take#2/shot.exr", 3), "take#2/shot.exr");
   EXPECT_FALSE(hasFrameDigits("take#2/shot.exr"));
