@@ -240,15 +240,23 @@ int runRender(const RenderArgs& a) {
   // Several frames in one process: each output must be numbered, or the frames would replace
   // one another.
   const FrameRange range = parseFrameRange(a.frames, "--frames");
+  const bool several = range.last > range.first;
   for (const auto& [option, path] :
        {std::pair{"-o", a.output}, {"--display", a.display}, {"--stats-json", a.statsJson}})
-    if (!path.empty() && path != "-" && !hasFrameDigits(path) && range.count() > 1)
+    if (!path.empty() && path != "-" && !hasFrameDigits(path) && several)
       throw UsageError(std::string(option) + " " + path +
                        " would be overwritten by every frame of --frames: number it with #### "
                        "or %04d");
-  if (a.statsJson == "-" && range.count() > 1)
+  if (a.statsJson == "-" && several)
     throw UsageError("--stats-json - with several --frames: give a numbered file instead");
+  // The whole range must be the scene's, found before the first frame is spent.
+  const Scene first = loadSceneOrDefault(a.scenePath, range.first);
+  if (range.last > first.animation->last)
+    throw UsageError("--frames " + a.frames + " is outside the scene's frames " +
+                     std::to_string(first.animation->first) + "-" +
+                     std::to_string(first.animation->last));
   for (int frame = range.first; frame <= range.last; ++frame) {
+    if (interrupt::requested()) return kExitInterrupted;  // a signal between two frames
     const int code = renderFrame(a, frame);
     if (code != kExitOk) return code;  // interrupted: the frames after it are not started
   }

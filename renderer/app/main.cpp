@@ -8,5 +8,5 @@ int main(int argc, char** argv) {
   // kill the process half-way through it.
   std::signal(SIGXFSZ, SIG_IGN);
   glint::interrupt::install();  // before anything is loaded: every phase can be interrupted
-  return glint::runCli(argc, argv);
+  return glint::interrupt::finish(glint::runCli(argc, argv));
 }

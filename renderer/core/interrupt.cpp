@@ -4,7 +4,9 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <climits>
+#include <cstdio>
 #include <cstring>
 
 namespace glint::interrupt {
@@ -12,6 +14,7 @@ namespace glint::interrupt {
 namespace {
 
 std::atomic<bool> gRequested{false};
+std::atomic<int> gSignal{0};  // the signal that asked for the stop
 std::atomic<bool> gRendering{false};
 // The temporary file to remove when the process ends from the handler: a fixed buffer, since
 // the handler may only use async-signal-safe calls (unlink, write, _exit).
@@ -28,21 +31,32 @@ void handleWith(void (*handler)(int)) {
   struct sigaction action {};
   action.sa_handler = handler;
   sigemptyset(&action.sa_mask);
+  // A write or read the signal lands in goes on rather than failing with EINTR, which would
+  // turn a clean stop (130) into an I/O error (1).
+  action.sa_flags = SA_RESTART;
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
 }
 
 extern "C" void onSignal(int sig) {
+  const int savedErrno = errno;
   // The next signal ends the process at once (a write that hangs, a user who means it).
   handleWith(SIG_DFL);
+  gSignal.store(sig);
   if (gRendering.load()) {
     gRequested.store(true);
+    errno = savedErrno;
     return;
   }
   if (gHasTemporary.load()) ::unlink(gTemporary);
   say(sig == SIGTERM ? "glint: terminated (SIGTERM); stopped without writing further output\n"
                      : "glint: interrupted (SIGINT); stopped without writing further output\n");
-  ::_exit(kExitCode);
+  // SIGINT ends the process by the signal itself, so that a shell loop around glint stops too
+  // ($? is 130 either way); SIGTERM, which would read as 143, exits with 130 (CLI.md).
+  if (sig == SIGINT)
+    ::kill(::getpid(), SIGINT);  // pending until the handler returns
+  else
+    ::_exit(kExitCode);
 }
 
 }  // namespace
@@ -50,6 +64,16 @@ extern "C" void onSignal(int sig) {
 void install() { handleWith(onSignal); }
 
 const std::atomic<bool>& requested() { return gRequested; }
+
+int finish(int exitCode) {
+  if (!gRequested.load()) return exitCode;
+  if (gSignal.load() == SIGINT) {
+    std::fflush(nullptr);
+    ::signal(SIGINT, SIG_DFL);
+    ::raise(SIGINT);
+  }
+  return kExitCode;
+}
 
 RenderPhase::RenderPhase() { gRendering.store(true); }
 RenderPhase::~RenderPhase() { gRendering.store(false); }

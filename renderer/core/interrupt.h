@@ -18,6 +18,11 @@ void install();
 // Whether a signal asked the render to stop. The render loop polls it.
 const std::atomic<bool>& requested();
 
+// main()'s last word: after a stop that a signal asked for, the exit code is 130 (even when the
+// signal came too late to cut the frame short), and after SIGINT the process ends by SIGINT
+// itself, as shells expect of an interrupted command.
+int finish(int exitCode);
+
 // While one exists, a signal asks the render to stop instead of ending the process.
 class RenderPhase {
  public:

@@ -158,7 +158,8 @@ void writeDisplayImage(const std::string& path, std::vector<float> rgba, int wid
   const DisplayTransform transform(settings);
   transform.apply(rgba.data(), width, height, 4);
   // Display-referred code values: clamp to [0, 1] (NaN → 0), drop alpha (the display image
-  // shows the background the render already composited).
+  // is the premultiplied beauty over black: the opaque background, or black on a transparent
+  // film).
   const double scale = tiff ? 65535.0 : 255.0;
   std::vector<uint16_t> codes(size_t(width) * size_t(height) * 3);
   for (size_t i = 0, p = 0; p < rgba.size(); p += 4)

@@ -60,9 +60,32 @@ double largestFinite(OIIO::TypeDesc type) {
   return static_cast<double>(std::numeric_limits<float>::max());
 }
 
-// The pixels of a part in its native per-channel types, interleaved. Values beyond a type's
-// finite range are clamped to it and counted in `clamped`: an EXR never holds Inf or NaN.
-std::vector<unsigned char> packPart(const Part& part, size_t pixels, uint64_t& clamped) {
+// Clamps `v` to its channel type's finite range (NaN to 0); returns whether it had to.
+bool clampToType(double& v, OIIO::TypeDesc type) {
+  const double limit = largestFinite(type);
+  if (std::abs(v) <= limit) return false;
+  v = std::isnan(v) ? 0.0 : std::copysign(limit, v);
+  return true;
+}
+
+// How many values of the parts' channels clampToType changes (counted before the headers are
+// written, so that they can say it, without packing every part at once).
+uint64_t countClamped(const std::vector<Part>& parts, size_t pixels) {
+  uint64_t clamped = 0;
+  for (const Part& part : parts)
+    for (const Channel& c : part.channels) {
+      if (c.type == OIIO::TypeDesc::UINT) continue;
+      for (size_t p = 0; p < pixels; ++p) {
+        double v = (*c.source)[p * c.stride + c.offset];
+        clamped += clampToType(v, c.type);
+      }
+    }
+  return clamped;
+}
+
+// The pixels of a part in its native per-channel types, interleaved; values beyond a type's
+// finite range clamped to it: an EXR never holds Inf or NaN.
+std::vector<unsigned char> packPart(const Part& part, size_t pixels) {
   size_t bytesPerPixel = 0;
   for (const Channel& c : part.channels) bytesPerPixel += c.type.size();
   std::vector<unsigned char> out(pixels * bytesPerPixel);
@@ -73,20 +96,15 @@ std::vector<unsigned char> packPart(const Part& part, size_t pixels, uint64_t& c
       if (c.type == OIIO::TypeDesc::UINT) {
         const auto u = static_cast<uint32_t>(v);
         std::memcpy(dst, &u, 4);
-        dst += 4;
-        continue;
-      }
-      const double limit = largestFinite(c.type);
-      if (!(std::abs(v) <= limit)) {
-        v = std::isnan(v) ? 0.0 : std::copysign(limit, v);
-        ++clamped;
-      }
-      if (c.type == OIIO::TypeDesc::HALF) {
-        const Imath::half h(static_cast<float>(v));
-        std::memcpy(dst, &h, 2);
       } else {
-        const auto f = static_cast<float>(v);
-        std::memcpy(dst, &f, 4);
+        clampToType(v, c.type);
+        if (c.type == OIIO::TypeDesc::HALF) {
+          const Imath::half h(static_cast<float>(v));
+          std::memcpy(dst, &h, 2);
+        } else {
+          const auto f = static_cast<float>(v);
+          std::memcpy(dst, &f, 4);
+        }
       }
       dst += c.type.size();
     }
@@ -104,10 +122,7 @@ uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
       std::copy_n(film.pixel(x, y), 4,
                   &rgba[(size_t(y - w.y0) * size_t(w.width()) + size_t(x - w.x0)) * 4]);
   const std::vector<Part> parts = layoutParts(film, rgba, options.half, options.multipart);
-  // Packed before the headers are made, so that they can say how many values were clamped.
-  uint64_t clamped = 0;
-  std::vector<std::vector<unsigned char>> packed;
-  for (const Part& part : parts) packed.push_back(packPart(part, size_t(w.area()), clamped));
+  const uint64_t clamped = countClamped(parts, size_t(w.area()));
   meta.ints.push_back(
       {"glint:clamped_values", static_cast<int>(std::min<uint64_t>(clamped, INT32_MAX))});
 
@@ -156,7 +171,8 @@ uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
     for (size_t i = 0; i < parts.size(); ++i) {
       if (i > 0 && !out->open(tmp, specs[i], OIIO::ImageOutput::AppendSubimage))
         throw GlintError("cannot write " + path + ": " + out->geterror());
-      if (!out->write_image(OIIO::TypeDesc::UNKNOWN, packed[i].data()))
+      const std::vector<unsigned char> data = packPart(parts[i], size_t(w.area()));
+      if (!out->write_image(OIIO::TypeDesc::UNKNOWN, data.data()))
         throw GlintError("cannot write " + path + ": " + out->geterror());
     }
     if (!out->close()) throw GlintError("cannot write " + path + ": " + out->geterror());

@@ -2,6 +2,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #include "core/error.h"
@@ -127,16 +129,19 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
   }
 
   // The merged frame keeps the first crop's metadata (scene, settings, hashes) over the full
-  // data window; time and rays become the sums over the crops.
+  // data window; time, rays and clamped values become the sums over the crops.
   OIIO::ImageSpec spec = first.spec;
   spec.x = spec.y = 0;
   spec.width = W;
   spec.height = H;
   float seconds = 0, rays = 0;
+  int64_t clamped = 0;
   for (const Crop& c : crops) {
     seconds += c.spec.get_float_attribute("glint:render_seconds", 0);
     rays += c.spec.get_float_attribute("glint:rays", 0);
+    clamped += c.spec.get_int_attribute("glint:clamped_values", 0);
   }
+  spec.attribute("glint:clamped_values", int(std::min<int64_t>(clamped, INT32_MAX)));
   spec.attribute("glint:render_seconds", seconds);
   spec.attribute("glint:rays", rays);
   spec.attribute("glint:crop", "0 " + std::to_string(W) + " 0 " + std::to_string(H));

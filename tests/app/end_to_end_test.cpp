@@ -23,7 +23,7 @@ const float* px(const Image& img, int x, int y) {
 TEST(EndToEnd, EmptySceneIsOpaqueBackgroundOrTransparentFilm) {
   // The beauty is premultiplied (docs/output.md, Alpha): by default the background is opaque,
   // RGB = background with alpha 1; on a transparent film a miss leaves RGB 0 with alpha 0
-  // (before, RGB = background with alpha 0, which composites as an additive glow).
+  // (RGB = background with alpha 0 would composite as an additive glow).
   const std::string text = R"({
     "render": {"width": 5, "height": 3, "spp": 2, "background": [0.1, 0.2, 0.3]},
     "camera": {"eye": [0,0,5], "look_at": [0,0,0]}, "objects": []})";

@@ -159,12 +159,9 @@ const std::string kTenthDone = "grep -qs % $log";
 
 TEST(Output, InterruptedRenderLeavesAValidPartialExr) {
   // A render of several seconds interrupted once under way: exit 130 (CLI.md), an EXR that reads
-  // back, marked glint:partial = 1, with unrendered pixels at alpha 0 and rendered ones at 1.
-  // A backdrop behind everything: every camera ray hits, so rendered pixels have alpha 1.
-  std::string text = kScene;
-  text.insert(text.rfind(']'), R"(, {"type": "quad", "corner": [-50,-50,-3], "edge1": [100,0,0],
-      "edge2": [0,100,0], "material": "m"})");
-  const std::string scene = test::writeTemp("slow.json", text);
+  // back, marked glint:partial = 1, with unrendered pixels at alpha 0 and rendered ones at 1
+  // (the background is opaque).
+  const std::string scene = test::writeTemp("slow.json", kScene);
   const std::string out = tmp("partial.exr");
   const Interrupted run =
       interruptWhen("render " + scene + " --spp 4096 --width 96 --height 64 --threads 1 -o " + out,
@@ -184,9 +181,10 @@ TEST(Output, InterruptedRenderLeavesAValidPartialExr) {
 }
 
 TEST(Output, AnInterruptStopsAOnePixelFrameAtAnySampleCount) {
-  // One pixel of 2^28 samples is one tile: a cancel honoured only between tiles let it run to
-  // the end (rc 0, a complete frame). Polled between chunks of 64 samples, SIGTERM stops it
-  // mid-pixel: exit 130, a partial EXR whose unfinished pixel is unrendered (RGBA all 0).
+  // One pixel of 2^28 samples is one tile, so only a cancel polled within tiles stops it
+  // (between tiles it would run to the end: rc 0, a complete frame). Polled between chunks of
+  // 64 samples, SIGTERM stops it mid-pixel: exit 130, a partial EXR whose unfinished pixel is
+  // unrendered (RGBA all 0).
   const std::string out = tmp("one_pixel.exr");
   const Interrupted run =
       interruptWhen("render --width 1 --height 1 --spp 268435456 --threads 1 -o " + out, kRendering,

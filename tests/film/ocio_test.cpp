@@ -217,8 +217,7 @@ TEST(Ocio, ConvertDevelopsTheSameImageAsRender) {
 TEST(Ocio, OiiotoolDevelopsTheSameDisplayImageAsConvert) {
   // A real compositing tool on Glint's frame: oiiotool --ociodisplay with the bundled config
   // (which calls lin_rec709 "Linear" too, OIIO's name for an EXR's space) must give the same
-  // 8-bit pixels as glint convert, in both views. Colour in pixels of alpha 0 once made them
-  // disagree on 8.8 % of the pixels; the beauty is premultiplied now.
+  // 8-bit pixels as glint convert, in both views.
   const auto path = [](const char* n) { return (test::tempDir() / n).string(); };
   ASSERT_EQ(test::runGlint("render --quiet --width 80 --height 50 --spp 2 -o " + path("tool.exr"))
                 .exitCode,
