@@ -31,9 +31,12 @@ const std::vector<std::string>& exrCompressions();
 void writeExr(const std::string& path, const Film& film, const ExrMetadata& meta,
               const ExrOptions& options = {});
 
-// Reads an EXR's RGBA (full data window) as float; used by tests and `glint compare`.
+// Reads an EXR's channels (full data window) as float, RGBA first; used by tests, `glint
+// compare`, `convert` and `converge`. Throws UsageError naming the file when it cannot be read
+// or its data window would not fit in memory (film/image_limits.h).
 struct Image {
   int width = 0, height = 0, channels = 0;
+  std::vector<std::string> channelNames;  // as in the file; empty for images made in memory
   int x = 0, y = 0, fullWidth = 0, fullHeight = 0;
   std::vector<float> pixels;
 };
