@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <new>
 #include <vector>
 
 namespace glint {
@@ -18,7 +19,12 @@ template <typename T>
 bool readPixelsInBands(OIIO::ImageInput& in, const OIIO::ImageSpec& spec, OIIO::TypeDesc type,
                        size_t unitsPerPixel, std::vector<T>& out) {
   const size_t rowUnits = size_t(spec.width) * unitsPerPixel;
-  out.reserve(rowUnits * size_t(spec.height));
+  try {
+    out.reserve(rowUnits * size_t(spec.height));
+  } catch (const std::bad_alloc&) {
+    // No address space for it all at once (a small machine's overcommit limit): the bands
+    // below grow the buffer as they go.
+  }
   // About 16 MB a band, and whole rows of tiles for a tiled file.
   int rows = int(std::clamp<size_t>((size_t(16) << 20) / (rowUnits * sizeof(T) + 1), 1, 1 << 20));
   if (spec.tile_height > 0) rows = std::max(1, rows / spec.tile_height) * spec.tile_height;
