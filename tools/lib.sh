@@ -12,6 +12,7 @@ GLINT_PACKAGES=(
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev
   libopencolorio-dev opencolorio-tools nlohmann-json3-dev libcli11-dev libassimp-dev
   libgtest-dev libbenchmark-dev
+  assimp-testmodels # Assimp's real and deliberately broken models (tests/app/assimp_models_test.cpp)
   slurm-wlm munge # the farm tests run a one-node Slurm cluster (docs/farm.md)
 )
 

@@ -35,6 +35,11 @@ std::string rayProblem(const Ray& r) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
   };
   if (!finite(r.o)) return "the origin is not finite";
+  // Embree asserts (an abort) on origins past about 1.8e18; random rays keep within kMaxOrigin
+  // for the same reason (randomRayOrigins).
+  if (std::fabs(r.o.x) > kMaxRayOrigin || std::fabs(r.o.y) > kMaxRayOrigin ||
+      std::fabs(r.o.z) > kMaxRayOrigin)
+    return "the origin lies more than 1e18 from 0 along an axis (Embree's limit)";
   if (!finite(r.d)) return "the direction is not finite";
   if (r.d.x == 0 && r.d.y == 0 && r.d.z == 0) return "the direction is zero";
   if (!(r.tMin >= 0)) return "tmin must be ≥ 0";
@@ -116,8 +121,7 @@ Bounds3f randomRayOrigins(const Scene& scene) {
   Bounds3f b = scene.worldBounds();
   if (b.empty()) b = {{-1, -1, -1}, {1, 1, 1}};
   const Vec3f margin = 0.1f * b.diagonal() + Vec3f{1e-3f, 1e-3f, 1e-3f};
-  constexpr float kRange = 1e18f;
-  const Vec3f range{kRange, kRange, kRange};
+  const Vec3f range{kMaxRayOrigin, kMaxRayOrigin, kMaxRayOrigin};
   return {max(b.lo - margin, -range), min(b.hi + margin, range)};
 }
 

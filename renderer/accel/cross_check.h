@@ -60,6 +60,10 @@ std::string rayProblem(const Ray& ray);
 std::string formatHit(const Hit& hit);
 
 class Scene;
+// The farthest a ray's origin may lie from 0 along an axis: Embree 3.13 asserts (aborting the
+// process) past about 1.8e18.
+inline constexpr float kMaxRayOrigin = 1e18f;
+
 // Where random rays start: the scene's bounds grown by 10 %, kept within ±1e18, where Embree
 // takes ray origins (beyond 1.8e18 its checks abort; a scene may hold geometry farther out).
 Bounds3f randomRayOrigins(const Scene& scene);

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
+#include "core/error.h"
 #include "film/atomic_file.h"
 #include "film/compare.h"
 
@@ -18,6 +19,26 @@ nlohmann::json errorsJson(const ImageErrors& e) {
           {"pixels", e.pixels}};
 }
 
+namespace {
+
+// Compare measures R, G and B, which readImage puts first (with or without a layer prefix,
+// "beauty.R"); an image of other channels (depth, a luminance "Y") is refused by name rather
+// than measured as if it were colour.
+void requireRgb(const Image& img, const std::string& path) {
+  const auto is = [&](int c, char name) {
+    if (c >= int(img.channelNames.size())) return false;
+    const std::string& n = img.channelNames[size_t(c)];
+    return n.size() >= 1 && n.back() == name && (n.size() == 1 || n[n.size() - 2] == '.');
+  };
+  if (is(0, 'R') && is(1, 'G') && is(2, 'B')) return;
+  std::string names;
+  for (const std::string& n : img.channelNames) names += (names.empty() ? "" : ", ") + n;
+  throw UsageError(path + ": compare needs R, G and B channels; it has " +
+                   excerpt(names.empty() ? "none" : names));
+}
+
+}  // namespace
+
 CommandRunner addCompareCommand(CLI::App& app) {
   struct Args {
     std::string test, reference, diff, json;
@@ -31,11 +52,13 @@ CommandRunner addCompareCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--threshold", a->threshold,
                   "Per-pixel error counted in share_above_threshold (default 0.01)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber & notNaN());
   cmd->add_option("--diff", a->diff, "Write a false-colour difference image (PNG)");
   cmd->add_option("--json", a->json, "Write the figures as JSON");
   return [a] {
     const Image test = readImage(a->test), ref = readImage(a->reference);
+    requireRgb(test, a->test);
+    requireRgb(ref, a->reference);
     const ImageErrors e = compareImages(test, ref, a->threshold);
     std::printf(
         "rmse      %.6g\nrelmse    %.6g\nmae       %.6g\nmax_abs   %.6g\npsnr      %.3f dB\n"

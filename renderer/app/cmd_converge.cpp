@@ -1,5 +1,6 @@
 // `glint converge SCENE`: error against run time over a series of sample counts, per sampler and
 // backend, against a reference rendered with an independent seed (or given as an EXR).
+#include <charconv>
 #include <cstdio>
 #include <ctime>
 #include <nlohmann/json.hpp>
@@ -57,12 +58,13 @@ int runConverge(const ConvergeArgs& a) {
   if (a.height) scene.render.height = *a.height;
   std::vector<int> spps;
   for (const auto& s : split(a.spp)) {
-    try {
-      spps.push_back(std::stoi(s));
-    } catch (const std::exception&) {
+    // The whole text must be the number: std::stoi read "1e999" and "1.5" as 1.
+    int v = 0;
+    const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (error != std::errc() || end != s.data() + s.size() || s.empty())
       throw UsageError("--spp: " + inQuotes(s) + " is not a sample count");
-    }
-    if (spps.back() < 1) throw UsageError("--spp: sample counts must be ≥ 1");
+    if (v < 1) throw UsageError("--spp: sample counts must be ≥ 1");
+    spps.push_back(v);
   }
   std::vector<SamplerKind> samplers;
   for (const auto& s : split(a.samplers)) {

@@ -64,11 +64,15 @@ int runValidate(const ValidateArgs& a) {
   }
 
   const CrossCheck check(embree, others);
-  scene.render.spp = a.spp;
-  RenderOptions opt;
-  opt.threads = 1;  // reproducible statistics and first disagreements
-  opt.progress = false;
-  renderScene(scene, check, opt);
+  // --spp 0: random rays only. The renderer needs at least one sample (a sampler of 0 samples
+  // divided by zero: SIGFPE, found by the CLI number table, tests/app/cli_numbers_test.cpp).
+  if (a.spp > 0) {
+    scene.render.spp = a.spp;
+    RenderOptions opt;
+    opt.threads = 1;  // reproducible statistics and first disagreements
+    opt.progress = false;
+    renderScene(scene, check, opt);
+  }
   castRandomRays(scene, check, a.rays, a.seed);
 
   const CrossCheckStats& st = check.stats();
@@ -130,11 +134,12 @@ CommandRunner addValidateCommand(CLI::App& app) {
       ->check(CLI::Range(0, 1 << 30));
   cmd->add_option("--seed", args->seed, "Seed of the random rays")
       ->check(wholeNumberUpTo(UINT64_MAX));
-  cmd->add_option("--spp", args->spp, "Camera samples per pixel for the scene's rays")
+  cmd->add_option("--spp", args->spp,
+                  "Camera samples per pixel for the scene's rays (0: random rays only)")
       ->check(CLI::Range(0, 1 << 16));
   cmd->add_option("--min-agreement", args->minAgreement,
                   "Fail (exit 1) when hit/miss or occlusion agreement is below this")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(CLI::Range(0.0, 1.0) & notNaN());
   cmd->add_option("--json", args->json, "Write the figures as JSON");
   cmd->add_option("--ray", args->ray, "Trace one ray \"ox oy oz dx dy dz tmin tmax time\"");
   cmd->add_flag("--occluded", args->occludedRay, "With --ray: an occlusion query");

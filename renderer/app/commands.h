@@ -4,6 +4,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <functional>
@@ -36,6 +37,17 @@ CommandRunner addConvergeCommand(CLI::App& app);
 void addDisplayOptions(CLI::App& cmd, DisplaySettings& settings);
 
 CommandRunner addConvertCommand(CLI::App& app);
+
+// Refuses NaN, which passes CLI11's range and positivity checks (every comparison is false).
+inline CLI::Validator notNaN() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        return std::isnan(std::strtod(text.c_str(), nullptr))
+                   ? "must be a number, got " + excerpt(text)
+                   : std::string();
+      },
+      "NUMBER");
+}
 
 // Accepts a whole number that fits `max` and is not negative. CLI11 reads "-1" into an unsigned
 // option as 2^64 − 1 and an overflowing one as the largest value: both are refused instead.

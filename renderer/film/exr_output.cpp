@@ -11,6 +11,9 @@
 #include "core/error.h"
 #include "core/input_files.h"
 #include "film/atomic_file.h"
+#include "film/banded_read.h"
+#include "film/exr_input.h"
+#include "film/image_limits.h"
 
 namespace glint {
 
@@ -182,21 +185,24 @@ uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
 
 Image readImage(const std::string& path) {
   noteInputFile(path);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw GlintError("cannot read " + path + ": " + OIIO::geterror());
+  // Every failure here is the file's: unreadable, truncated, not an image, or too large. It is
+  // reported as a usage error (exit 2) naming the file, like a scene's mistakes.
+  const auto in = openExr(path);
   const OIIO::ImageSpec& spec = in->spec();
+  if (spec.nchannels <= 0) throw UsageError(path + ": the image has no channels");
+  checkImageFits(path, "data window", spec.width, spec.height, 4.0 * spec.nchannels);
   Image img;
   img.width = spec.width;
   img.height = spec.height;
   img.channels = spec.nchannels;
+  img.channelNames = spec.channelnames;
   img.x = spec.x;
   img.y = spec.y;
   img.fullWidth = spec.full_width;
   img.fullHeight = spec.full_height;
   img.colorspace = spec.get_string_attribute("glint:colorspace");
-  img.pixels.resize(size_t(img.width) * size_t(img.height) * size_t(img.channels));
-  if (!in->read_image(0, 0, 0, img.channels, OIIO::TypeDesc::FLOAT, img.pixels.data()))
-    throw GlintError("cannot read " + path + ": " + in->geterror());
+  if (!readPixelsInBands(*in, spec, OIIO::TypeDesc::FLOAT, size_t(img.channels), img.pixels))
+    throw UsageError("cannot read " + path + ": " + excerpt(in->geterror()));
   return img;
 }
 

@@ -36,9 +36,12 @@ const std::vector<std::string>& exrCompressions();
 uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
                   const ExrOptions& options = {});
 
-// Reads an EXR's RGBA (full data window) as float; used by tests and `glint compare`.
+// Reads an EXR's channels (full data window) as float, RGBA first; used by tests, `glint
+// compare`, `convert` and `converge`. Throws UsageError naming the file when it cannot be read
+// or its data window would not fit in memory (film/image_limits.h).
 struct Image {
   int width = 0, height = 0, channels = 0;
+  std::vector<std::string> channelNames;  // as in the file; empty for images made in memory
   int x = 0, y = 0, fullWidth = 0, fullHeight = 0;
   std::vector<float> pixels;
   std::string colorspace;  // its glint:colorspace, empty when it has none (a foreign EXR)

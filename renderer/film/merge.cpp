@@ -5,10 +5,15 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <optional>
+#include <utility>
 
 #include "core/error.h"
 #include "core/input_files.h"
 #include "film/atomic_file.h"
+#include "film/banded_read.h"
+#include "film/exr_input.h"
+#include "film/image_limits.h"
 
 namespace glint {
 
@@ -20,19 +25,22 @@ struct Crop {
   std::vector<unsigned char> pixels;  // every channel, in its native type
 };
 
+// Like readImage, every failure is the file's (exit 2, naming it), and the declared data window
+// is checked against memory before its pixels are allocated.
 Crop readCrop(const std::string& path) {
   noteInputFile(path);
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw GlintError("cannot read " + path + ": " + OIIO::geterror());
+  const auto in = openExr(path);
   Crop c{path, in->spec(), {}};
   if (in->seek_subimage(1, 0))
     throw UsageError(path +
                      " has several parts: merge takes single-part crops (render them "
                      "without --multipart)");
   in->seek_subimage(0, 0);
-  c.pixels.resize(c.spec.image_bytes(/*native=*/true));
-  if (!in->read_image(0, 0, 0, c.spec.nchannels, OIIO::TypeDesc::UNKNOWN, c.pixels.data()))
-    throw GlintError("cannot read " + path + ": " + in->geterror());
+  if (c.spec.nchannels <= 0) throw UsageError(path + ": the image has no channels");
+  checkImageFits(path, "data window", c.spec.width, c.spec.height,
+                 double(c.spec.pixel_bytes(/*native=*/true)));
+  if (!readPixelsInBands(*in, c.spec, OIIO::TypeDesc::UNKNOWN, c.spec.pixel_bytes(true), c.pixels))
+    throw UsageError("cannot read " + path + ": " + excerpt(in->geterror()));
   return c;
 }
 
@@ -63,6 +71,35 @@ std::vector<PixelWindow> missingRegions(const std::vector<bool>& coveredIn, int 
         for (int i = x; i < x1; ++i) covered[size_t(j) * size_t(width) + size_t(i)] = true;
       out.push_back({x, x1, y, y1});
     }
+  return out;
+}
+
+std::vector<PixelWindow> missingRegions(const std::vector<PixelWindow>& crops, int width,
+                                        int height) {
+  // Coverage changes only at the crops' edges, so the greedy search runs on the grid of cells
+  // those edges cut (at most (2n + 1)² cells, whatever the frame's size) and gives the same
+  // rectangles as on pixels: each starts at a cell's corner and stops at cell edges.
+  std::vector<int> xs{0, width}, ys{0, height};
+  for (const PixelWindow& c : crops) {
+    xs.insert(xs.end(), {c.x0, c.x1});
+    ys.insert(ys.end(), {c.y0, c.y1});
+  }
+  for (std::vector<int>* v : {&xs, &ys}) {
+    std::sort(v->begin(), v->end());
+    v->erase(std::unique(v->begin(), v->end()), v->end());
+  }
+  const int cols = int(xs.size()) - 1, rows = int(ys.size()) - 1;
+  const auto index = [](const std::vector<int>& v, int at) {
+    return int(std::lower_bound(v.begin(), v.end(), at) - v.begin());
+  };
+  std::vector<bool> cells(size_t(cols) * size_t(rows), false);
+  for (const PixelWindow& c : crops)
+    for (int j = index(ys, c.y0); j < index(ys, c.y1); ++j)
+      for (int i = index(xs, c.x0); i < index(xs, c.x1); ++i)
+        cells[size_t(j) * size_t(cols) + size_t(i)] = true;
+  std::vector<PixelWindow> out;
+  for (const PixelWindow& r : missingRegions(cells, cols, rows))
+    out.push_back({xs[size_t(r.x0)], xs[size_t(r.x1)], ys[size_t(r.y0)], ys[size_t(r.y1)]});
   return out;
 }
 
@@ -97,35 +134,55 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
       throw UsageError(c.path + " is a partial (interrupted) render: render its crop again");
   }
 
-  std::vector<int> owner(size_t(W) * size_t(H), -1);
-  const size_t pixelBytes = first.spec.pixel_bytes(/*native=*/true);
-  std::vector<unsigned char> frame(size_t(W) * size_t(H) * pixelBytes, 0);
-  for (size_t k = 0; k < crops.size(); ++k) {
-    const OIIO::ImageSpec& s = crops[k].spec;
-    if (s.x < 0 || s.y < 0 || s.x + s.width > W || s.y + s.height > H)
-      throw UsageError(crops[k].path + ": data window lies outside the frame");
-    for (int y = 0; y < s.height; ++y)
-      for (int x = 0; x < s.width; ++x) {
-        const int fx = s.x + x, fy = s.y + y;
-        const size_t at = size_t(fy) * size_t(W) + size_t(fx);
-        if (owner[at] >= 0)
-          throw UsageError(crops[k].path + " and " + crops[size_t(owner[at])].path +
-                           " overlap at pixel (" + std::to_string(fx) + ", " + std::to_string(fy) +
-                           ")");
-        owner[at] = int(k);
-        std::memcpy(&frame[at * pixelBytes],
-                    &crops[k].pixels[(size_t(y) * size_t(s.width) + size_t(x)) * pixelBytes],
-                    pixelBytes);
-      }
+  // Placement is decided on the crops' rectangles: the display window is allocated only once the
+  // crops are known to tile it, so it is never larger than the pixels already read. A 375-byte
+  // crop declaring a 60000 x 60000 frame once made merge allocate 57 GB (an owner index, the
+  // pixel and a coverage bit for each pixel of the frame) before finding the holes.
+  for (const Crop& c : crops) {
+    const OIIO::ImageSpec& s = c.spec;
+    // In 64 bits: a data window near INT_MAX overflowed int here.
+    if (s.x < 0 || s.y < 0 || int64_t{s.x} + s.width > W || int64_t{s.y} + s.height > H)
+      throw UsageError(c.path + ": data window lies outside the frame");
   }
-  std::vector<bool> covered(owner.size());
-  for (size_t i = 0; i < owner.size(); ++i) covered[i] = owner[i] >= 0;
-  const std::vector<PixelWindow> holes = missingRegions(covered, W, H);
-  if (!holes.empty()) {
-    std::string msg = "the crops leave " + std::to_string(holes.size()) +
-                      " region(s) of the frame unrendered; render them with:";
+  const auto windowOf = [](const OIIO::ImageSpec& s) {
+    return PixelWindow{s.x, s.x + s.width, s.y, s.y + s.height};
+  };
+  int64_t covered = 0;
+  for (size_t k = 0; k < crops.size(); ++k) {
+    const PixelWindow a = windowOf(crops[k].spec);
+    covered += int64_t{a.width()} * a.height();
+    // The first pixel of crop k, in row order, that an earlier crop holds.
+    std::optional<std::pair<std::pair<int, int>, size_t>> clash;  // ((y, x), earlier crop)
+    for (size_t j = 0; j < k; ++j) {
+      const PixelWindow b = windowOf(crops[j].spec);
+      const int x0 = std::max(a.x0, b.x0), y0 = std::max(a.y0, b.y0);
+      if (x0 >= std::min(a.x1, b.x1) || y0 >= std::min(a.y1, b.y1)) continue;
+      if (!clash || std::pair{y0, x0} < clash->first) clash = {{y0, x0}, j};
+    }
+    if (clash)
+      throw UsageError(crops[k].path + " and " + crops[clash->second].path + " overlap at pixel (" +
+                       std::to_string(clash->first.second) + ", " +
+                       std::to_string(clash->first.first) + ")");
+  }
+  if (covered != int64_t{W} * H) {
+    std::vector<PixelWindow> windows;
+    for (const Crop& c : crops) windows.push_back(windowOf(c.spec));
+    const std::vector<PixelWindow> holes = missingRegions(windows, W, H);
+    std::string msg = "the crops leave " + std::to_string(holes.size()) + " region(s) of the " +
+                      std::to_string(W) + "x" + std::to_string(H) + " frame of " + first.path +
+                      " unrendered; render them with:";
     for (const PixelWindow& h : holes) msg += "\n  " + window(h);
     throw UsageError(msg);
+  }
+  const size_t pixelBytes = first.spec.pixel_bytes(/*native=*/true);
+  checkImageFits(first.path, "display window", W, H, double(pixelBytes));
+  std::vector<unsigned char> frame(size_t(W) * size_t(H) * pixelBytes, 0);
+  for (const Crop& c : crops) {
+    const OIIO::ImageSpec& s = c.spec;
+    const size_t rowBytes = size_t(s.width) * pixelBytes;
+    for (int y = 0; y < s.height; ++y)
+      std::memcpy(&frame[(size_t(s.y + y) * size_t(W) + size_t(s.x)) * pixelBytes],
+                  &c.pixels[size_t(y) * rowBytes], rowBytes);
   }
 
   // The merged frame keeps the first crop's metadata (scene, settings, hashes) over the full

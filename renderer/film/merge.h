@@ -27,5 +27,9 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
 // rectangles, greedily: each starts at the first missing pixel in row order, runs right while
 // pixels are missing and grows down while the whole run is missing.
 std::vector<PixelWindow> missingRegions(const std::vector<bool>& covered, int width, int height);
+// The same rectangles for a frame covered by `crops` (inside the frame, not overlapping),
+// found on the grid their edges cut, so the cost follows the number of crops, not of pixels.
+std::vector<PixelWindow> missingRegions(const std::vector<PixelWindow>& crops, int width,
+                                        int height);
 
 }  // namespace glint

@@ -1,21 +1,110 @@
 #include "io/mesh_io.h"
 
+#include <assimp/BaseImporter.h>
+#include <assimp/DefaultIOSystem.h>
+#include <assimp/MemoryIOWrapper.h>
+#include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <assimp/Importer.hpp>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
 
 #include "core/error.h"
 #include "core/input_files.h"
+#include "io/gltf_subset.h"
+#include "io/mesh_limits.h"
 
 namespace glint {
+
+namespace {
+
+// Assimp's file access for one mesh: the files a mesh names (a glTF's buffers, an OBJ's
+// materials) must be regular files, since a device or FIFO (/dev/zero) would never end, and
+// together hold at most kMaxMeshFileBytes. Opens of the mesh file itself (Assimp opens it
+// several times) are not counted; it was measured before the import. A glTF mesh file is served
+// as Glint's subset of it (io/gltf_subset.h).
+class BoundedFiles : public Assimp::DefaultIOSystem {
+ public:
+  explicit BoundedFiles(std::string meshPath) : meshPath_(std::move(meshPath)) {}
+
+  // Serves `bytes` whenever Assimp opens the mesh file itself (a glTF reduced to Glint's subset).
+  void replaceMeshBytes(std::string bytes) { meshBytes_ = std::move(bytes); }
+
+  bool Exists(const char* file) const override {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(file, ec);
+  }
+
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(file, ec)) return nullptr;
+    const bool isMesh = ComparePaths(file, meshPath_.c_str());
+    if (isMesh && meshBytes_)
+      return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(meshBytes_->data()),
+                                        meshBytes_->size());
+    if (!isMesh) {
+      const uint64_t size = std::filesystem::file_size(file, ec);
+      if (ec || size > kMaxMeshFileBytes - std::min(referencedBytes_, kMaxMeshFileBytes))
+        return nullptr;  // Assimp reports the file it could not open
+      referencedBytes_ += size;
+    }
+    return DefaultIOSystem::Open(file, mode);
+  }
+
+ private:
+  std::string meshPath_;
+  std::optional<std::string> meshBytes_;
+  uint64_t referencedBytes_ = 0;
+};
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+// Where several of Assimp's importers claim an extension (.gltf and .glb: glTF 1 and glTF 2),
+// it asks each whether the file is its own, and when none says so it offers the file to every
+// importer it has, by content: a .gltf holding an OFF file reached the OFF reader. Glint asks
+// the claimants first and refuses the file when none of them recognises it.
+void checkAnImporterOfTheExtensionReadsIt(Assimp::Importer& importer, const std::string& path) {
+  std::string ext = lowerExtension(path);
+  if (ext.empty()) return;
+  ext = ext.substr(1);
+  std::vector<Assimp::BaseImporter*> claimants;
+  for (size_t i = 0; i < importer.GetImporterCount(); ++i) {
+    std::istringstream extensions(importer.GetImporterInfo(i)->mFileExtensions);
+    for (std::string e; extensions >> e;)
+      if (e == ext) claimants.push_back(importer.GetImporter(i));
+  }
+  if (claimants.size() == 1) return;  // Assimp takes it without looking at the content
+  for (Assimp::BaseImporter* claimant : claimants)
+    if (claimant->CanRead(path, importer.GetIOHandler(), true)) return;
+  throw GlintError("cannot read mesh " + path + ": its content is not ." + ext +
+                   " (Assimp's readers of ." + ext + " do not recognise it)");
+}
+
+}  // namespace
 
 TriangleMesh loadMeshFile(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw GlintError("mesh file not found: " + path);
   noteInputFile(path);
+  checkMeshFileBeforeImport(path);
   Assimp::Importer importer;
+  auto* files = new BoundedFiles(path);
+  importer.SetIOHandler(files);  // the importer owns it
+  const std::string ext = lowerExtension(path);
+  if (ext == ".gltf" || ext == ".glb") {
+    std::ifstream in(path, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+    files->replaceMeshBytes(ext == ".gltf" ? gltfSubset(path, bytes) : glbSubset(path, bytes));
+  }
+  checkAnImporterOfTheExtensionReadsIt(importer, path);
   // Meshes are shaded flat from their triangles for now, so normals and UVs are not imported.
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_COLORS |
                                                           aiComponent_TEXCOORDS |
@@ -27,7 +116,22 @@ TriangleMesh loadMeshFile(const std::string& path) {
   if (!s || !s->mRootNode)
     throw GlintError("cannot read mesh " + path + ": " + excerpt(importer.GetErrorString()));
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
-    const aiMesh* m = s->mMeshes[mi];
+    // The importer's own scene, not const: the primitive types its readers declare are replaced
+    // by those of the faces. Assimp's triangulation asserts (an abort, in Debian's build) when a
+    // mesh declares polygons but has none; a PLY face of zero vertices did that (and is refused).
+    aiMesh* m = const_cast<aiScene*>(s)->mMeshes[mi];
+    unsigned types = 0;
+    for (unsigned f = 0; f < m->mNumFaces; ++f) {
+      const unsigned n = m->mFaces[f].mNumIndices;
+      if (n == 0)
+        throw GlintError("mesh " + path + ": face " + std::to_string(f) + " of mesh " +
+                         std::to_string(mi) + " has no vertices");
+      types |= n == 1   ? aiPrimitiveType_POINT
+               : n == 2 ? aiPrimitiveType_LINE
+               : n == 3 ? aiPrimitiveType_TRIANGLE
+                        : aiPrimitiveType_POLYGON;
+    }
+    m->mPrimitiveTypes = types;
     for (unsigned f = 0; f < m->mNumFaces; ++f)
       for (unsigned c = 0; c < m->mFaces[f].mNumIndices; ++c)
         if (m->mFaces[f].mIndices[c] >= m->mNumVertices)

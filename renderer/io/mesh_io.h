@@ -1,13 +1,14 @@
 #pragma once
-// Triangle meshes from files through Assimp: OBJ, PLY, glTF 2.0 and the other formats Assimp
-// reads. All meshes of the file are merged, with their node transforms applied.
+// Triangle meshes from files through Assimp: OBJ, PLY and glTF 2.0 (.gltf, .glb) only, each
+// checked before Assimp reads it (io/mesh_limits.h). All meshes of the file are merged, with
+// their node transforms applied.
 #include <string>
 
 #include "geometry/triangle_mesh.h"
 
 namespace glint {
 
-// Throws GlintError naming the path tried and Assimp's reason.
+// Throws GlintError naming the path tried and the reason (Glint's or Assimp's).
 TriangleMesh loadMeshFile(const std::string& path);
 
 }  // namespace glint

@@ -17,6 +17,7 @@
 #include "camera/camera.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/memory.h"
 #include "core/sampler.h"
 #include "core/uninitialized_array.h"
 #include "integrator/batched_kernel.h"
@@ -28,18 +29,6 @@
 namespace glint {
 
 namespace {
-
-// MemAvailable of /proc/meminfo (Linux: what can be allocated without swapping), 0 if unknown.
-uint64_t availableMemoryBytes() {
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  uint64_t kb = 0;
-  while (meminfo >> key >> kb) {
-    if (key == "MemAvailable:") return kb * 1024;
-    meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
-  }
-  return 0;
-}
 
 constexpr int kMaxLoggedNonfinite = 5;
 
@@ -261,15 +250,10 @@ void checkSampleSets(const Scene& scene) {
 void checkFrameFits(int64_t pixels, size_t channels, uint64_t availableBytes) {
   const double needed = double(pixels) * (12.0 * double(channels) + 16.0);
   if (availableBytes == 0 || needed <= double(availableBytes)) return;
-  const auto gb = [](double bytes) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.1f GB", bytes * 1e-9);
-    return std::string(buf);
-  };
   throw UsageError("a frame of " + std::to_string(pixels) + " pixels with " +
-                   std::to_string(channels) + " channels needs about " + gb(needed) +
+                   std::to_string(channels) + " channels needs about " + gigabytes(needed) +
                    " of memory (film in double, float copies to write it); " +
-                   gb(double(availableBytes)) +
+                   gigabytes(double(availableBytes)) +
                    " is available: render it in pieces with --crop, or on a farm");
 }
 

@@ -6,11 +6,6 @@
 // sanitizer reports, other exceptions and hangs are bugs.
 #include <nlohmann/json.hpp>
 
-#include <signal.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <charconv>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -22,6 +17,7 @@
 #include "camera/camera.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "fuzz_temp_dir.h"
 #include "io/scene_loader.h"
 
 namespace {
@@ -31,28 +27,7 @@ namespace fs = std::filesystem;
 // Mesh paths resolve against a private directory, glint-fuzz-PID in the temporary directory,
 // holding copies of the small test meshes, so the fuzzer reaches the mesh-file code without
 // reading anything else on the machine.
-constexpr std::string_view kBaseDirPrefix = "glint-fuzz-";
 fs::path gBaseDir;
-
-void removeBaseDir() {
-  std::error_code ec;
-  fs::remove_all(gBaseDir, ec);
-}
-
-// A crash ends the process with _Exit, past atexit, so each start also removes the directories
-// of fuzzer processes that no longer exist.
-void removeStaleBaseDirs() {
-  std::error_code ec;
-  for (const auto& entry : fs::directory_iterator(fs::temp_directory_path(), ec)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind(kBaseDirPrefix, 0) != 0) continue;
-    const char* digits = name.data() + kBaseDirPrefix.size();
-    pid_t pid = 0;
-    const auto [end, error] = std::from_chars(digits, name.data() + name.size(), pid);
-    if (error != std::errc() || end != name.data() + name.size() || pid <= 0) continue;
-    if (::kill(pid, 0) != 0 && errno == ESRCH) fs::remove_all(entry.path(), ec);
-  }
-}
 
 bool escapesBaseDir(const std::string& file) {
   const fs::path p(file);
@@ -103,13 +78,9 @@ void checkUsable(const glint::Scene& scene) {
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   glint::log::setLevel(glint::log::Level::Error);  // motion-without-shutter warnings are noise
-  removeStaleBaseDirs();
-  gBaseDir = fs::temp_directory_path() / (std::string(kBaseDirPrefix) + std::to_string(getpid()));
-  fs::remove_all(gBaseDir);  // left by an earlier process with this pid
-  fs::create_directory(gBaseDir);
+  gBaseDir = glint::fuzz::makePrivateTempDir("glint-fuzz-");
   for (const char* mesh : {"square.ply", "triangle.gltf"})
     fs::copy_file(fs::path(GLINT_TEST_DATA) / mesh, gBaseDir / mesh);
-  std::atexit(removeBaseDir);
   return 0;
 }
 

@@ -1,13 +1,19 @@
-// Mesh files that lie: faces naming vertices that do not exist give a clean error naming the
-// file, never a crash or a read of memory that is not the mesh's.
+// Mesh files that lie: faces naming vertices that do not exist, headers declaring more than the
+// file holds, content that is not the format its name says, files too large or not regular give
+// a clean error naming the file, never a crash, a hang or a read of memory that is not the mesh's.
 #include "io/mesh_io.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "io/gltf_subset.h"
+#include "io/mesh_limits.h"
 #include "test_util.h"
 
 namespace glint {
@@ -59,6 +65,168 @@ TEST(MeshFile, FacesNamingMissingVerticesAreRefused) {
     EXPECT_NE(loadError(name, bytes), "(loaded)") << name;
   // The same file with a valid face loads: one triangle.
   EXPECT_EQ(loadError("good.ply", asciiPly("3 0 1 2")), "(loaded)");
+}
+
+// A binary PLY header of `vertices` float3 vertices and `faces` triangle faces (uchar count,
+// int indices), followed by `bodyBytes` zero bytes.
+std::string binaryPlyDeclaring(const std::string& vertices, const std::string& faces,
+                               size_t bodyBytes) {
+  return "ply\nformat binary_little_endian 1.0\nelement vertex " + vertices +
+         "\nproperty float x\nproperty float y\nproperty float z\nelement face " + faces +
+         "\nproperty list uchar int vertex_indices\nend_header\n" + std::string(bodyBytes, '\0');
+}
+
+// Assimp's invalid/OutOfMemory.off: a face count of 353535235358 that its OFF reader reserved
+// and looped over until the machine's memory ran out (a hang of minutes, then the OOM killer).
+const char* kOutOfMemoryOff =
+    "OFF\n353535235358 6 0\n-0.5 -0.5 0.5\n0.5 -0.5 0.5\n-0.5 0.5 0.5\n0.5 0.5 0.5\n";
+
+TEST(MeshFile, OnlyTheDocumentedFormatsAreRead) {
+  // The OFF reader is never reached, whatever the file holds; nor are Assimp's other 40.
+  for (const char* name : {"hang.off", "model.stl", "scene.dae", "noextension"}) {
+    const std::string message = loadError(name, kOutOfMemoryOff);
+    EXPECT_NE(message.find("Glint reads OBJ (.obj), PLY (.ply) and glTF 2.0 (.gltf, .glb)"),
+              std::string::npos)
+        << message;
+  }
+  // Extensions compare without case: the triangle of asciiPly loads from a .PLY too.
+  EXPECT_EQ(loadError("upper.PLY", asciiPly("3 0 1 2")), "(loaded)");
+}
+
+TEST(MeshFile, ForeignContentBehindAGltfNameIsRefused) {
+  // .gltf and .glb are claimed by Assimp's glTF 1 and glTF 2 readers; when neither recognised
+  // the file, Assimp offered it to every reader by content, and the OFF reader took this one.
+  // Glint parses glTF itself first (io/gltf_subset.h), so OFF bytes stop there.
+  EXPECT_NE(loadError("off.gltf", kOutOfMemoryOff).find("not glTF JSON"), std::string::npos);
+  EXPECT_NE(loadError("off.glb", kOutOfMemoryOff).find("not a GLB 2 file"), std::string::npos);
+  // JSON that neither glTF reader recognises (no "asset") is refused before Assimp's search by
+  // content: its readers of the extension are asked first.
+  const std::string message = loadError("empty.gltf", "{}");
+  EXPECT_NE(message.find("its content is not .gltf"), std::string::npos) << message;
+}
+
+TEST(MeshFile, PlyElementCountsMustFitInTheFile) {
+  // 10^9 faces of at least 1 byte (an empty list's uchar count) in a 100-byte body: Assimp's
+  // binary PLY reader took 3.5 GB in 20 s and went on.
+  EXPECT_NE(loadError("faces.ply", binaryPlyDeclaring("3", "1000000000", 100))
+                .find("declares 1000000000 \"face\" elements, each at least 1 byte, but the file "
+                      "has 100 bytes after its header"),
+            std::string::npos);
+  // 5·10^8 ASCII vertices of 3 values (at least 2 bytes each: a digit and a separator).
+  std::string ascii = asciiPly("3 0 1 2");
+  ascii.replace(ascii.find("vertex 3"), 8, "vertex 500000000");
+  EXPECT_NE(loadError("ascii.ply", ascii).find("each at least 6 bytes"), std::string::npos);
+  // Past 2^32 - 1 Assimp's count would wrap: refused as such.
+  EXPECT_NE(loadError("wrap.ply", binaryPlyDeclaring("4294967299", "1", 49))
+                .find("more than the 4294967295"),
+            std::string::npos);
+  // The bound is exact: 3 vertices of 12 bytes and a face of at least 1 byte (an empty list's
+  // count) need 37 bytes after the header; 36 is refused, 37 passes (Assimp then reads it).
+  const std::string short36 = binaryPlyDeclaring("3", "1", 36);
+  const std::string exact37 = binaryPlyDeclaring("3", "1", 37);
+  EXPECT_THROW(checkPlyCounts("p.ply", short36, short36.size()), GlintError);
+  EXPECT_NO_THROW(checkPlyCounts("p.ply", exact37, exact37.size()));
+  // A lone CR ends a header line for Assimp: a count hidden after one in a comment is seen.
+  const std::string hidden =
+      "ply\nformat binary_little_endian 1.0\ncomment x\relement face "
+      "1000000000\nproperty uchar c\nend_header\n";
+  EXPECT_THROW(checkPlyCounts("h.ply", hidden, hidden.size()), GlintError);
+}
+
+TEST(MeshFile, APlyHeaderThatNeverEndsIsRefused) {
+  // Assimp 5.2.5's PLY reader never returns on a header without end_header, even this one
+  // (found by glint_fuzz_mesh; tests/fuzz/regressions-mesh/ply-*-no-end-header.bin).
+  EXPECT_NE(loadError("noend.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n")
+                .find("its PLY header has no end_header line"),
+            std::string::npos);
+}
+
+TEST(MeshFile, AFaceWithoutVerticesIsRefused) {
+  // A face list of length 0 made Assimp's triangulation assert and abort the process (SIGABRT,
+  // exit 134 from glint render), beside a valid triangle too (found by glint_fuzz_mesh).
+  std::string ply = asciiPly("3 0 1 2") + "0\n";
+  ply.replace(ply.find("element face 1"), 14, "element face 2");
+  EXPECT_NE(loadError("empty-face.ply", ply).find("face 1 of mesh 0 has no vertices"),
+            std::string::npos);
+}
+
+TEST(MeshFile, GltfIsReducedToItsGeometryBeforeAssimpReadsIt) {
+  // Skins, animations, materials, cameras, morph targets and other vertex attributes never
+  // reach Assimp: its glTF 2 reader dereferenced a null pointer for a skin without
+  // inverseBindMatrices (SEGV; tests/fuzz/regressions-mesh/gltf-skin-*.bin).
+  const std::string in = R"({"asset": {"version": "2.0"}, "scene": 0,
+    "scenes": [{"nodes": [0]}], "skins": [{"joints": [0]}], "animations": [], "cameras": [{}],
+    "materials": [{}], "textures": [], "images": [], "samplers": [], "extras": {"x": 1},
+    "nodes": [{"mesh": 0, "skin": 0, "camera": 0, "weights": [1], "translation": [1, 2, 3]}],
+    "meshes": [{"weights": [1], "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1,
+      "JOINTS_0": 2}, "indices": 3, "material": 0, "targets": [{"POSITION": 4}]}]}],
+    "accessors": [], "bufferViews": [], "buffers": []})";
+  EXPECT_EQ(nlohmann::json::parse(gltfSubset("m.gltf", in)), nlohmann::json::parse(R"({
+    "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0, "translation": [1, 2, 3]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 3}]}],
+    "accessors": [], "bufferViews": [], "buffers": []})"));
+}
+
+TEST(MeshFile, GltfThatIsNotStrictJsonOrNotVersion2IsRefused) {
+  const auto error = [](const std::string& name, const std::string& text) {
+    try {
+      gltfSubset(name, text);
+      return std::string("(accepted)");
+    } catch (const GlintError& e) {
+      return std::string(e.what());
+    }
+  };
+  EXPECT_EQ(error("one.gltf", R"({"asset": {"version": "1.0"}})"),
+            "mesh one.gltf is glTF 1.0; Glint reads glTF 2.0");
+  // Invalid UTF-8 in a key: Assimp's reader took the file (and its skin) whole.
+  EXPECT_NE(error("utf8.gltf", "{\"asset\": {\"version\": \"2.0\"}, \"a\xff\": 1}")
+                .find("mesh utf8.gltf: not glTF JSON: "),
+            std::string::npos);
+  EXPECT_EQ(error("array.gltf", "[1, 2]"), "mesh array.gltf: not glTF: not a JSON object");
+  // 64 levels are read, 65 refused (Assimp's JSON reader recurses once per level).
+  const auto nested = [](int depth) {
+    return "{\"extras\": " + std::string(size_t(depth - 1), '[') +
+           std::string(size_t(depth - 1), ']') + "}";
+  };
+  EXPECT_EQ(error("64.gltf", nested(64)), "(accepted)");
+  EXPECT_EQ(error("65.gltf", nested(65)),
+            "mesh 65.gltf: its JSON nests more than 64 levels deep (a glTF file needs about 6)");
+  // A GLB of version 1 (Assimp's glTF 1 reader would take it) is not read.
+  EXPECT_THROW(glbSubset("one.glb", std::string("glTF\x01\x00\x00\x00", 8)), GlintError);
+}
+
+TEST(MeshFile, FilesOverOneGibibyteAreRefusedUnread) {
+  // A sparse file: 1 GiB + 1 byte on paper, no disk blocks, never read.
+  const std::filesystem::path path = test::tempDir() / "big.obj";
+  std::ofstream(path) << "v 0 0 0\n";
+  std::filesystem::resize_file(path, kMaxMeshFileBytes + 1);
+  try {
+    loadMeshFile(path.string());
+    ADD_FAILURE() << "a 1 GiB + 1 byte mesh loaded";
+  } catch (const GlintError& e) {
+    EXPECT_NE(std::string(e.what()).find("mesh " + path.string() + " is 1073741825 bytes"),
+              std::string::npos)
+        << e.what();
+  }
+  std::filesystem::remove(path);
+}
+
+TEST(MeshFile, FilesAMeshNamesMustBeRegularFiles) {
+  // A glTF whose buffer is a FIFO: opening it blocked forever. It is refused as a file Assimp
+  // could not open (the message names the buffer's file).
+  const std::filesystem::path dir = test::tempDir() / "fifo";
+  std::filesystem::create_directories(dir);
+  ASSERT_EQ(::mkfifo((dir / "buffer.bin").c_str(), 0600), 0);
+  const std::string gltf = R"({"asset": {"version": "2.0"}, "scene": 0,
+    "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+    "buffers": [{"uri": "buffer.bin", "byteLength": 36}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                   "min": [0, 0, 0], "max": [1, 1, 0]}]})";
+  const std::string message = loadError("fifo/mesh.gltf", gltf);
+  EXPECT_NE(message.find("buffer.bin"), std::string::npos) << message;
 }
 
 }  // namespace

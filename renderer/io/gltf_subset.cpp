@@ -1,0 +1,124 @@
+#include "io/gltf_subset.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <cstring>
+
+#include "core/error.h"
+
+namespace glint {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr int kMaxDepth = 64;
+
+// The deepest nesting of arrays and objects, counted without parsing (strings skipped).
+int nestingDepth(const std::string& text) {
+  int depth = 0, deepest = 0;
+  bool inString = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+// Keeps only `keys` of the object `j` (anything else is left as it is).
+void keepOnly(json& j, std::initializer_list<const char*> keys) {
+  if (!j.is_object()) return;
+  json kept = json::object();
+  for (const char* k : keys)
+    if (const auto it = j.find(k); it != j.end()) kept[k] = std::move(*it);
+  j = std::move(kept);
+}
+
+template <typename F>
+void forEachIn(json& j, const char* key, F&& f) {
+  if (const auto it = j.find(key); it != j.end() && it->is_array())
+    for (json& element : *it) f(element);
+}
+
+}  // namespace
+
+std::string gltfSubset(const std::string& path, const std::string& text) {
+  if (nestingDepth(text) > kMaxDepth)
+    throw GlintError("mesh " + path + ": its JSON nests more than " + std::to_string(kMaxDepth) +
+                     " levels deep (a glTF file needs about 6)");
+  // Only what Glint has parsed reaches Assimp: a file nlohmann's strict reader refuses (invalid
+  // UTF-8, say) is refused here, since Assimp's lenient one would read all of it, skins too.
+  json doc;
+  try {
+    doc = json::parse(text);
+  } catch (const json::exception& e) {
+    throw GlintError("mesh " + path + ": not glTF JSON: " + excerpt(e.what()));
+  }
+  if (!doc.is_object()) throw GlintError("mesh " + path + ": not glTF: not a JSON object");
+  if (const auto asset = doc.find("asset"); asset != doc.end() && asset->is_object()) {
+    const auto version = asset->find("version");
+    if (version != asset->end() && version->is_string() &&
+        version->get<std::string>().rfind("2", 0) != 0)
+      throw GlintError("mesh " + path + " is glTF " + excerpt(version->get<std::string>()) +
+                       "; Glint reads glTF 2.0");
+  }
+  keepOnly(doc, {"asset", "scene", "scenes", "nodes", "meshes", "accessors", "bufferViews",
+                 "buffers", "extensionsUsed", "extensionsRequired"});
+  forEachIn(doc, "nodes", [](json& node) {
+    keepOnly(node, {"name", "children", "matrix", "translation", "rotation", "scale", "mesh"});
+  });
+  forEachIn(doc, "meshes", [](json& mesh) {
+    keepOnly(mesh, {"name", "primitives"});
+    if (!mesh.is_object()) return;
+    forEachIn(mesh, "primitives", [](json& primitive) {
+      keepOnly(primitive, {"attributes", "indices", "mode", "extensions"});
+      if (const auto a = primitive.find("attributes"); a != primitive.end())
+        keepOnly(*a, {"POSITION"});
+    });
+  });
+  try {
+    return doc.dump();
+  } catch (const json::exception& e) {
+    throw GlintError("mesh " + path + ": not glTF JSON: " + excerpt(e.what()));
+  }
+}
+
+std::string glbSubset(const std::string& path, const std::string& bytes) {
+  // 12-byte header (magic, version 2, total length), then chunks of (length, type, data); the
+  // first is JSON.
+  const auto u32 = [&](size_t at) {
+    uint32_t v = 0;
+    std::memcpy(&v, bytes.data() + at, 4);
+    return v;
+  };
+  if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0 || u32(4) != 2 ||
+      u32(16) != 0x4E4F534Au || 20 + uint64_t{u32(12)} > bytes.size())
+    throw GlintError("mesh " + path +
+                     ": not a GLB 2 file (magic \"glTF\", version 2, a JSON chunk first)");
+  const uint64_t jsonLength = u32(12);
+  std::string text = gltfSubset(path, bytes.substr(20, jsonLength));
+  text.append((4 - text.size() % 4) % 4, ' ');  // chunks are 4-byte aligned, padded with spaces
+  const std::string rest = bytes.substr(20 + jsonLength);
+  std::string out = bytes.substr(0, 12);
+  const auto put = [&](size_t at, uint32_t v) { std::memcpy(out.data() + at, &v, 4); };
+  const uint32_t chunk[2] = {uint32_t(text.size()), 0x4E4F534Au};
+  out.append(reinterpret_cast<const char*>(chunk), 8);
+  out += text;
+  out += rest;
+  put(8, uint32_t(out.size()));
+  return out;
+}
+
+}  // namespace glint

@@ -1,0 +1,35 @@
+#pragma once
+// What a mesh file must pass before Assimp reads it. Assimp trusts what a file declares: a PLY
+// or OFF header promising 10^12 elements made it reserve or loop until memory ran out (Assimp's
+// own test file invalid/OutOfMemory.off hangs it), and a file of any other format, or with a
+// documented extension but foreign content, reached one of its 40 importers. So Glint reads only
+// the formats it documents, files of bounded size, and PLY files whose element counts fit in
+// the file (docs/scene-format.md, docs/hardening.md).
+#include <cstdint>
+#include <string>
+
+namespace glint {
+
+// Assimp holds a whole mesh file in memory and builds several times its size of structures
+// from it; it also counts file sizes in 32 bits (Importer::ReadFile). 1 GiB is about 40 million
+// triangles of binary PLY, far more than a scene here needs, and keeps a file's import within
+// a few GB.
+inline constexpr uint64_t kMaxMeshFileBytes = uint64_t{1} << 30;
+
+// The extensions Glint reads, lower case with the dot: .obj, .ply, .gltf, .glb.
+bool isMeshExtension(const std::string& extension);
+// "OBJ (.obj), PLY (.ply), glTF 2.0 (.gltf, .glb)", for messages.
+const char* meshFormatList();
+
+// Throws GlintError naming `path` when its extension is not one of the above, it is larger
+// than kMaxMeshFileBytes, or a PLY header does not end or declares more elements than the
+// bytes after it can hold.
+void checkMeshFileBeforeImport(const std::string& path);
+
+// The PLY check alone, on a file's bytes (`fileSize` is the whole file's size, `head` its first
+// bytes, at least the header): throws GlintError naming `path` when the header has no
+// end_header line (Assimp's reader never returns), or an element's count times the least bytes
+// one element can take exceeds what follows the header.
+void checkPlyCounts(const std::string& path, const std::string& head, uint64_t fileSize);
+
+}  // namespace glint

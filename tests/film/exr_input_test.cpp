@@ -1,0 +1,235 @@
+// EXR inputs of glint compare, convert and merge that lie or break: a header declaring a window
+// its file cannot hold, a truncated file, inverted and negative windows, channels that are not
+// RGB, NaN and infinite pixels. Each gives a result or a clean error naming the file (exit 2:
+// the file the user named is unusable, as with a scene error), never a crash or an allocation
+// the file's data does not back. The hostile headers are tests/fuzz/regressions-exr/ (written by
+// tests/fuzz/make-hostile-exrs.py, 0.3–10 kB each).
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <random>
+
+#include "film/exr_output.h"
+#include "film/image_limits.h"
+#include "film/merge.h"
+#include "test_util.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+using test::runGlint;
+
+const fs::path kHostile = fs::path(GLINT_SOURCE_DIR) / "tests/fuzz/regressions-exr";
+
+std::string tmp(const std::string& name) { return (test::tempDir() / name).string(); }
+
+// The message of the UsageError readImage throws for `path`, or "(read)".
+std::string readError(const std::string& path) {
+  try {
+    readImage(path);
+    return "(read)";
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+}
+
+// An RGB(A) float EXR of w × h pixels of one value, through OpenImageIO.
+void writeFlat(const std::string& path, int w, int h, const std::vector<std::string>& channels,
+               float value) {
+  OIIO::ImageSpec spec(w, h, int(channels.size()), OIIO::TypeDesc::FLOAT);
+  spec.channelnames = channels;
+  std::vector<float> pixels(size_t(w) * size_t(h) * channels.size(), value);
+  auto out = OIIO::ImageOutput::create(path);
+  ASSERT_TRUE(out && out->open(path, spec));
+  ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+  ASSERT_TRUE(out->close());
+}
+
+long peakRssKb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss;
+}
+
+TEST(ExrInput, ADataWindowThatDoesNotFitIsRefusedBeforeAllocating) {
+  // 20000 × 20000 RGBA float in a 10 kB header: 6.4 GB. With a 1 GB budget it is refused by
+  // its declared size, naming the file.
+  const std::string huge = (kHostile / "huge-data-window.exr").string();
+  setImageMemoryBudget(uint64_t{1} << 30);
+  const std::string message = readError(huge);
+  setImageMemoryBudget(0);
+  EXPECT_NE(message.find(huge + ": its data window 20000x20000 needs 6.4 GB to read, more than "
+                                "the 1.1 GB of memory available"),
+            std::string::npos)
+      << message;
+}
+
+TEST(ExrInput, PixelsAreAllocatedOnlyAsTheFileDeliversThem) {
+  // Where the 6.4 GB would fit (this machine's memory), reading stops at the first band the file
+  // does not hold: the error names the file, and the process never held more than the bands
+  // read (16 MB each), far below the 6.4 GB the header claims. It once took 6.4 GB and minutes.
+  const std::string huge = (kHostile / "huge-data-window.exr").string();
+  setImageMemoryBudget(uint64_t{1} << 40);  // as if 1 TB were free: only the reading bounds it
+  const std::string message = readError(huge);
+  setImageMemoryBudget(0);
+  EXPECT_NE(message.find("cannot read " + huge), std::string::npos) << message;
+  EXPECT_LT(peakRssKb(), 1024 * 1024) << "peak RSS in kB; the header asks for 6.4 GB";
+}
+
+TEST(ExrInput, AHeaderAttributeLargerThanTheFileIsRefused) {
+  // A 400-byte file whose "comments" string declares 900 MB: OpenEXR allocated the declared
+  // size before reading (glint_fuzz_exr: 1.8 GB from 1.7 kB). Glint walks the header first.
+  const std::string lie = (kHostile / "string-attribute-declaring-900-MB.exr").string();
+  EXPECT_NE(readError(lie).find("cannot read " + lie +
+                                ": its header attribute \"comments\" declares 900000000 bytes, "
+                                "but the file has "),
+            std::string::npos)
+      << readError(lie);
+  // Only OpenEXR reads: another format OpenImageIO knows (a PNG) is not an EXR here.
+  const std::string png = tmp("image.png");
+  OIIO::ImageSpec spec(2, 2, 3, OIIO::TypeDesc::UINT8);
+  std::vector<unsigned char> pixels(12, 128);
+  auto out = OIIO::ImageOutput::create(png);
+  ASSERT_TRUE(out && out->open(png, spec) &&
+              out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) && out->close());
+  EXPECT_EQ(readError(png), "cannot read " + png + ": not an OpenEXR file");
+}
+
+TEST(ExrInput, CommandsNameTheFileOfABadHeader) {
+  // compare, convert and merge each refuse a lying or broken header with exit 2, naming it.
+  for (const char* name : {"huge-data-window.exr", "inverted-data-window.exr"}) {
+    const std::string bad = (kHostile / name).string();
+    for (const std::string& args :
+         {"compare " + bad + " " + bad, "convert " + bad + " " + tmp("bad.png"),
+          "merge " + tmp("bad-merged.exr") + " " + bad}) {
+      const auto r = runGlint(args);
+      EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
+      EXPECT_NE(r.output.find(bad), std::string::npos) << args << "\n" << r.output;
+    }
+  }
+}
+
+TEST(ExrInput, ATruncatedFileIsAnErrorNamingIt) {
+  const std::string scene =
+      test::writeTemp("exr-input.json", R"({"render": {"width": 32, "height": 16, "spp": 1},
+        "camera": {"eye": [0,0,4], "look_at": [0,0,0]}, "materials": {"m": {"type": "phong"}},
+        "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})");
+  const std::string whole = tmp("whole.exr"), cut = tmp("truncated.exr");
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --compression none -o " + whole).exitCode, 0);
+  fs::copy_file(whole, cut, fs::copy_options::overwrite_existing);
+  fs::resize_file(cut, fs::file_size(whole) / 2);  // half of the pixel rows are gone
+  for (const std::string& args :
+       {"compare " + cut + " " + whole, "convert " + cut + " " + tmp("cut.png")}) {
+    const auto r = runGlint(args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("cannot read " + cut), std::string::npos) << r.output;
+  }
+}
+
+TEST(ExrInput, NegativeAndOutsideDataWindowsAreReadOrRefusedByMerge) {
+  // A 2 × 1 data window at (-7, -5), outside its 2 × 2 display window: a valid EXR. compare and
+  // convert read its pixels (0.5 everywhere, so against itself rmse = 0); merge, which places
+  // crops in the frame, refuses it by name.
+  const std::string outside = (kHostile / "data-window-outside-display-window.exr").string();
+  const Image img = readImage(outside);
+  EXPECT_EQ(img.x, -7);
+  EXPECT_EQ(img.y, -5);
+  EXPECT_EQ(img.width, 2);
+  EXPECT_EQ(img.pixels, std::vector<float>(6, 0.5f));
+  const auto c = runGlint("compare " + outside + " " + outside);
+  EXPECT_EQ(c.exitCode, 0) << c.output;
+  EXPECT_NE(c.output.find("rmse      0\n"), std::string::npos) << c.output;
+  const auto m = runGlint("merge " + tmp("outside-merged.exr") + " " + outside);
+  EXPECT_EQ(m.exitCode, 2) << m.output;
+  EXPECT_NE(m.output.find(outside + ": data window lies outside the frame"), std::string::npos)
+      << m.output;
+}
+
+TEST(ExrInput, AHugeFrameAroundOneCropIsReportedWithoutAllocatingIt) {
+  // One 1 × 1 crop of a 60000 × 60000 frame: merge once allocated 57 GB for the frame before
+  // finding it incomplete. The holes are found on the crops' rectangles: two regions, greedily
+  // (film/merge.h): from (1, 0) right to the edge and down to the bottom, then column 0 below
+  // the crop.
+  const std::string crop = (kHostile / "huge-display-window-merge.exr").string();
+  const auto r = runGlint("merge " + tmp("huge-merged.exr") + " " + crop);
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("the crops leave 2 region(s) of the 60000x60000 frame of " + crop +
+                          " unrendered; render them with:\n  --crop 1 60000 0 60000\n  --crop 0 1 "
+                          "1 60000"),
+            std::string::npos)
+      << r.output;
+}
+
+TEST(ExrInput, MissingRegionsOfRectanglesMatchThoseOfPixels) {
+  // The rectangle search must give exactly the pixel search's regions: 200 random sets of
+  // non-overlapping crops of a 13 × 11 frame, each compared with the mask version.
+  std::mt19937 rng(7);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<PixelWindow> crops;
+    std::vector<bool> mask(13 * 11, false);
+    for (int k = 0; k < 6; ++k) {
+      const int x0 = int(rng() % 13), y0 = int(rng() % 11);
+      const PixelWindow c{x0, x0 + 1 + int(rng() % size_t(13 - x0)), y0,
+                          y0 + 1 + int(rng() % size_t(11 - y0))};
+      bool overlaps = false;
+      for (int y = c.y0; y < c.y1; ++y)
+        for (int x = c.x0; x < c.x1; ++x) overlaps = overlaps || mask[size_t(y) * 13 + size_t(x)];
+      if (overlaps) continue;
+      for (int y = c.y0; y < c.y1; ++y)
+        for (int x = c.x0; x < c.x1; ++x) mask[size_t(y) * 13 + size_t(x)] = true;
+      crops.push_back(c);
+    }
+    const auto byPixels = missingRegions(mask, 13, 11);
+    const auto byRects = missingRegions(crops, 13, 11);
+    ASSERT_EQ(byRects.size(), byPixels.size()) << "trial " << trial;
+    for (size_t i = 0; i < byPixels.size(); ++i) {
+      EXPECT_EQ(byRects[i].x0, byPixels[i].x0);
+      EXPECT_EQ(byRects[i].x1, byPixels[i].x1);
+      EXPECT_EQ(byRects[i].y0, byPixels[i].y0);
+      EXPECT_EQ(byRects[i].y1, byPixels[i].y1);
+    }
+  }
+}
+
+TEST(ExrInput, CompareNamesAFileWithoutRgbChannels) {
+  // A depth-only and a luminance image are refused by name, listing their channels, instead of
+  // being measured as if their first channels were R, G and B.
+  const std::string depth = tmp("depth.exr"), rgb = tmp("rgb.exr");
+  writeFlat(depth, 4, 4, {"Z", "N.x", "N.y"}, 1.0f);
+  writeFlat(rgb, 4, 4, {"R", "G", "B", "A"}, 1.0f);
+  const auto r = runGlint("compare " + depth + " " + rgb);
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find(depth + ": compare needs R, G and B channels; it has"), std::string::npos)
+      << r.output;
+  // Layered RGB ("beauty.R", ...) is colour: compared (identical, so rmse 0).
+  const std::string layered = tmp("layered.exr");
+  writeFlat(layered, 4, 4, {"beauty.R", "beauty.G", "beauty.B"}, 1.0f);
+  const auto l = runGlint("compare " + layered + " " + rgb);
+  EXPECT_EQ(l.exitCode, 0) << l.output;
+}
+
+TEST(ExrInput, NanAndInfinitePixelsAreReportedNotFatal) {
+  // A NaN and an infinite image against a finite one: compare reports infinite errors (JSON
+  // null), exit 0; a finite image against itself gives 0.
+  const std::string nan = tmp("nan.exr"), inf = tmp("inf.exr"), one = tmp("one.exr");
+  writeFlat(nan, 4, 4, {"R", "G", "B"}, std::numeric_limits<float>::quiet_NaN());
+  writeFlat(inf, 4, 4, {"R", "G", "B"}, std::numeric_limits<float>::infinity());
+  writeFlat(one, 4, 4, {"R", "G", "B"}, 1.0f);
+  for (const std::string& bad : {nan, inf}) {
+    const auto r = runGlint("compare " + bad + " " + one + " --json -");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("\"rmse\": null"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("max_abs   inf"), std::string::npos) << r.output;
+  }
+  const auto reverse = runGlint("compare " + one + " " + nan);
+  EXPECT_EQ(reverse.exitCode, 0) << reverse.output;
+}
+
+}  // namespace
+}  // namespace glint
