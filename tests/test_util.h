@@ -1,11 +1,13 @@
 #pragma once
 // Helpers shared by the test suites: scenes from strings, temporary files, running the binary.
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "io/scene_loader.h"
@@ -30,6 +32,15 @@ inline std::string writeTemp(const std::string& name, const std::string& text) {
 inline std::string readFile(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+// The names of the regular files in `dir`, sorted (for parameterised tests over a folder).
+inline std::vector<std::string> fileNamesIn(const std::filesystem::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    if (entry.is_regular_file()) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 inline Scene sceneFromText(const std::string& text) {

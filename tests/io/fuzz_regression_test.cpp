@@ -4,10 +4,7 @@
 // oracle of tests/fuzz/scene_fuzzer.cpp, for the first frame of an animation.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "accel/reference_bvh.h"
 #include "test_util.h"
@@ -19,26 +16,11 @@ namespace fs = std::filesystem;
 
 const fs::path kRegressions = fs::path(GLINT_SOURCE_DIR) / "tests/fuzz/regressions";
 
-std::vector<std::string> regressionFiles() {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(kRegressions))
-    if (entry.is_regular_file()) names.push_back(entry.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 class FuzzRegression : public testing::TestWithParam<std::string> {};
 
 TEST_P(FuzzRegression, LoadsOrNamesFileAndLine) {
   const std::string name = GetParam();
-  const std::string text = readFile(kRegressions / name);
+  const std::string text = test::readFile(kRegressions / name);
   ASSERT_FALSE(text.empty()) << name;
   try {
     // Mesh paths resolve against tests/data, as they do against the fuzzer's copy of it.
@@ -52,7 +34,7 @@ TEST_P(FuzzRegression, LoadsOrNamesFileAndLine) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Inputs, FuzzRegression, testing::ValuesIn(regressionFiles()),
+INSTANTIATE_TEST_SUITE_P(Inputs, FuzzRegression, testing::ValuesIn(test::fileNamesIn(kRegressions)),
                          // Not named `info`: the macro's own parameter has that name.
                          [](const testing::TestParamInfo<std::string>& input) {
                            std::string id = fs::path(input.param).stem().string();

@@ -4,10 +4,7 @@
 // image that is whole, or an error naming the file. One ctest entry per file.
 #include <gtest/gtest.h>
 
-#include <algorithm>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "fuzz/exr_fuzz_input.h"
 #include "fuzz/mesh_fuzz_input.h"
@@ -21,18 +18,7 @@ namespace fs = std::filesystem;
 const fs::path kFuzzDir = fs::path(GLINT_SOURCE_DIR) / "tests/fuzz";
 
 std::vector<std::string> filesIn(const std::string& dir) {
-  std::vector<std::string> names;
-  for (const auto& entry : fs::directory_iterator(kFuzzDir / dir))
-    if (entry.is_regular_file()) names.push_back(entry.path().filename().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
-
-std::string readFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return test::fileNamesIn(kFuzzDir / dir);
 }
 
 std::string testName(const testing::TestParamInfo<std::string>& input) {
@@ -47,7 +33,7 @@ class MeshFuzzRegression : public testing::TestWithParam<std::string> {};
 TEST_P(MeshFuzzRegression, LoadsOrNamesTheFile) {
   const fs::path dir = test::tempDir() / "mesh-regression";
   fs::create_directories(dir);
-  const std::string input = readFile(kFuzzDir / "regressions-mesh" / GetParam());
+  const std::string input = test::readFile(kFuzzDir / "regressions-mesh" / GetParam());
   ASSERT_FALSE(input.empty());
   EXPECT_EQ(fuzz::meshLoadProblem(fuzz::writeMeshInput(dir, input).string()), "");
 }
