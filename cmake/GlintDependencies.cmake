@@ -2,6 +2,9 @@
 # (../shared/PLATFORM.md) in one place, so the rest of the build sees clean imported targets.
 find_package(embree 3 REQUIRED)
 find_package(TBB REQUIRED)
+find_package(OpenEXR 3 REQUIRED)  # EXR frames, read and written directly
+find_package(PNG REQUIRED)        # PNG display images
+# OpenImageIO: only in the run-time module libglint_oiio.so (film/oiio_module.h) and the tests.
 find_package(OpenImageIO REQUIRED)
 # Debian installs OpenColorIOConfig.cmake directly in /usr/share/cmake, outside the search path.
 find_package(OpenColorIO REQUIRED HINTS /usr/share/cmake)

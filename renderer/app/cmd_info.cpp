@@ -1,7 +1,9 @@
 #include <OpenColorIO/OpenColorIO.h>
+#include <OpenEXR/OpenEXRConfig.h>
 #include <OpenImageIO/oiioversion.h>
 #include <embree3/rtcore.h>
 #include <glint_version.h>
+#include <png.h>
 #include <tbb/version.h>
 
 #include <cstdio>
@@ -72,7 +74,10 @@ CommandRunner addInfoCommand(CLI::App& app) {
     std::printf("Embree       %s (native packets: %s)\n", embreeVersionString().c_str(),
                 embreeWidths().c_str());
     std::printf("CPU ISA      %s\n", cpuIsa().c_str());
-    std::printf("OpenImageIO  %s\n", OIIO_VERSION_STRING);
+    std::printf("OpenEXR      %s\n", OPENEXR_VERSION_STRING);
+    std::printf("libpng       %s\n", PNG_LIBPNG_VER_STRING);
+    std::printf("OpenImageIO  %s (module, loaded only for .jpg and .tif images)\n",
+                OIIO_VERSION_STRING);
     std::printf("OpenColorIO  %s\n", OCIO_NAMESPACE::GetVersion());
     std::printf("oneTBB       %s\n", TBB_runtime_version());
     std::printf("threads      %d\n", defaultThreadCount());

@@ -1,13 +1,12 @@
 #include "film/compare.h"
 
-#include <OpenImageIO/imageio.h>
-
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "core/error.h"
-#include "film/atomic_file.h"
+#include "film/image_file.h"
 
 namespace glint {
 
@@ -69,23 +68,17 @@ void writeDifferenceImage(const std::string& path, const Image& a, const Image& 
   // Stops of the ramp at log10(error) = −4, −3, −2, −1, 0.
   static const float kRamp[5][3] = {
       {0, 0, 0}, {0.1f, 0.2f, 0.9f}, {0.1f, 0.8f, 0.3f}, {1, 0.85f, 0.1f}, {1, 1, 1}};
-  std::vector<unsigned char> rgb(size_t(a.width) * size_t(a.height) * 3);
+  std::vector<uint16_t> rgb(size_t(a.width) * size_t(a.height) * 3);
   for (size_t p = 0; p < size_t(a.width) * size_t(a.height); ++p) {
     const double err = pixelError(a, b, p);
     const double s = std::clamp(std::log10(std::max(err, 1e-4)) + 4, 0.0, 4.0);
     const int i = std::min(3, static_cast<int>(s));
     const double f = s - i;
     for (int c = 0; c < 3; ++c)
-      rgb[p * 3 + size_t(c)] = static_cast<unsigned char>(
-          std::lround(255 * ((1 - f) * kRamp[i][c] + f * kRamp[i + 1][c])));
+      rgb[p * 3 + size_t(c)] =
+          static_cast<uint16_t>(std::lround(255 * ((1 - f) * kRamp[i][c] + f * kRamp[i + 1][c])));
   }
-  OIIO::ImageSpec spec(a.width, a.height, 3, OIIO::TypeDesc::UINT8);
-  writeFileAtomically(path, [&](const std::string& tmp) {
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out || !out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) ||
-        !out->close())
-      throw GlintError("cannot write " + path + ": " + (out ? out->geterror() : OIIO::geterror()));
-  });
+  writeRgbImage(path, a.width, a.height, 8, rgb);
 }
 
 }  // namespace glint

@@ -1,7 +1,6 @@
 #include "film/display.h"
 
 #include <OpenColorIO/OpenColorIO.h>
-#include <OpenImageIO/imageio.h>
 #include <glint_ocio_config.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -13,7 +12,7 @@
 #include <sstream>
 
 #include "core/error.h"
-#include "film/atomic_file.h"
+#include "film/image_file.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -167,18 +166,7 @@ void writeDisplayImage(const std::string& path, std::vector<float> rgba, int wid
       const float v = rgba[p + size_t(c)];
       codes[i++] = static_cast<uint16_t>(std::lround(scale * (v > 0 ? std::min(v, 1.0f) : 0.0f)));
     }
-  OIIO::ImageSpec spec(width, height, 3, tiff ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8);
-  std::vector<uint8_t> bytes;
-  if (!tiff) bytes.assign(codes.begin(), codes.end());
-  writeFileAtomically(path, [&](const std::string& tmp) {
-    auto out = OIIO::ImageOutput::create(path);
-    if (!out) throw GlintError("cannot write " + path + ": " + OIIO::geterror());
-    const bool ok = out->open(tmp, spec) &&
-                    (tiff ? out->write_image(OIIO::TypeDesc::UINT16, codes.data())
-                          : out->write_image(OIIO::TypeDesc::UINT8, bytes.data())) &&
-                    out->close();
-    if (!ok) throw GlintError("cannot write " + path + ": " + out->geterror());
-  });
+  writeRgbImage(path, width, height, tiff ? 16 : 8, codes);
 }
 
 void writeDisplayImage(const std::string& path, const Film& film, const DisplaySettings& settings) {

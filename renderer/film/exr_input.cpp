@@ -1,5 +1,12 @@
 #include "film/exr_input.h"
 
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfInputPart.h>
+#include <OpenEXR/ImfPartType.h>
+#include <OpenEXR/ImfTileDescription.h>
+
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -57,14 +64,100 @@ void checkExrHeaders(const std::string& path) {
   }
 }
 
-std::unique_ptr<OIIO::ImageInput> openExr(const std::string& path) {
+std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path) {
   checkExrHeaders(path);
-  auto in = OIIO::ImageInput::create("openexr");
-  if (!in) throw GlintError("OpenImageIO has no OpenEXR reader: " + OIIO::geterror());
-  OIIO::ImageSpec spec;
-  if (!in->open(path, spec))
-    throw UsageError("cannot read " + path + ": " + excerpt(in->geterror()));
-  return in;
+  try {
+    auto file = std::make_unique<Imf::MultiPartInputFile>(path.c_str());
+    for (int part = 0; part < file->parts(); ++part) {
+      const Imf::Header& h = file->header(part);
+      if (h.hasType() && Imf::isDeepData(h.type()))
+        throw UsageError(path + ": part " + std::to_string(part) +
+                         " holds deep data, which Glint does not read");
+    }
+    return file;
+  } catch (const UsageError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw UsageError("cannot read " + path + ": " + excerpt(e.what()));
+  }
+}
+
+ExrWindow exrWindow(const std::string& path, const Imf::Header& header) {
+  const Imath::Box2i dw = header.dataWindow(), disp = header.displayWindow();
+  const auto extent = [&](int lo, int hi, const char* what) {
+    const int64_t n = int64_t{hi} - lo + 1;
+    if (n <= 0 || n > INT32_MAX)
+      throw UsageError(path + ": its " + what + " has " + std::to_string(n) + " pixels across");
+    return int(n);
+  };
+  return {dw.min.x,
+          dw.min.y,
+          extent(dw.min.x, dw.max.x, "data window"),
+          extent(dw.min.y, dw.max.y, "data window"),
+          extent(disp.min.x, disp.max.x, "display window"),
+          extent(disp.min.y, disp.max.y, "display window")};
+}
+
+std::vector<std::string> channelsInReadingOrder(const Imf::ChannelList& channels) {
+  std::vector<std::string> all;
+  for (auto c = channels.begin(); c != channels.end(); ++c) all.emplace_back(c.name());
+  const auto layerOf = [](const std::string& name) {
+    const size_t dot = name.rfind('.');
+    return dot == std::string::npos ? std::string() : name.substr(0, dot);
+  };
+  // The primary layer: the channels without one when there are any, else the first layer.
+  std::string primary = all.empty() ? std::string() : layerOf(all.front());
+  for (const std::string& name : all)
+    if (layerOf(name).empty()) primary.clear();
+  std::vector<std::string> ordered;
+  for (const char* component : {"R", "G", "B", "A"}) {
+    const std::string name = primary.empty() ? component : primary + "." + component;
+    if (channels.findChannel(name)) ordered.push_back(name);
+  }
+  for (const std::string& name : all)
+    if (std::find(ordered.begin(), ordered.end(), name) == ordered.end()) ordered.push_back(name);
+  return ordered;
+}
+
+size_t pixelTypeSize(Imf::PixelType type) { return type == Imf::HALF ? 2 : 4; }
+
+void readPixelsInBands(const std::string& path, Imf::MultiPartInputFile& file, int part,
+                       const std::vector<ExrSlice>& slices, size_t pixelBytes,
+                       const std::function<char*(size_t bytes)>& append) {
+  try {
+    Imf::InputPart in(file, part);
+    const Imf::Header& header = in.header();
+    const ExrWindow w = exrWindow(path, header);
+    for (const ExrSlice& s : slices) {
+      const Imf::Channel* c = header.channels().findChannel(s.name);
+      if (c && (c->xSampling != 1 || c->ySampling != 1))
+        throw UsageError(path + ": channel " + excerpt(s.name) +
+                         " is subsampled, which Glint does not read");
+    }
+    const size_t rowBytes = size_t(w.width) * pixelBytes;
+    // About 16 MB a band, and whole rows of tiles for a tiled file.
+    int rows = int(std::clamp<size_t>((size_t(16) << 20) / (rowBytes + 1), 1, 1 << 20));
+    if (header.hasTileDescription()) {
+      const int tileRows = int(std::max(1u, header.tileDescription().ySize));
+      rows = std::max(1, rows / tileRows) * tileRows;
+    }
+    for (int64_t y = w.y; y < int64_t{w.y} + w.height;) {
+      const int64_t end = std::min<int64_t>(y + rows, int64_t{w.y} + w.height);
+      char* band = append(rowBytes * size_t(end - y));
+      Imf::FrameBuffer frameBuffer;
+      for (const ExrSlice& s : slices)
+        frameBuffer.insert(
+            s.name, Imf::Slice::Make(s.type, band + s.offset, Imath::V2i(w.x, int(y)), w.width,
+                                     end - y, pixelBytes, rowBytes));
+      in.setFrameBuffer(frameBuffer);
+      in.readPixels(int(y), int(end - 1));
+      y = end;
+    }
+  } catch (const UsageError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw UsageError("cannot read " + path + ": " + excerpt(e.what()));
+  }
 }
 
 }  // namespace glint

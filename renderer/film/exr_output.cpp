@@ -1,25 +1,62 @@
 #include "film/exr_output.h"
 
 #include <Imath/half.h>
-#include <OpenImageIO/imageio.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfChromaticitiesAttribute.h>
+#include <OpenEXR/ImfCompressionAttribute.h>
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfMatrixAttribute.h>
+#include <OpenEXR/ImfMultiPartOutputFile.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfOutputPart.h>
+#include <OpenEXR/ImfPartType.h>
+#include <OpenEXR/ImfStandardAttributes.h>
+#include <OpenEXR/ImfStringAttribute.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <ctime>
 #include <limits>
 
 #include "core/error.h"
 #include "core/input_files.h"
 #include "film/atomic_file.h"
-#include "film/banded_read.h"
 #include "film/exr_input.h"
 #include "film/image_limits.h"
 
 namespace glint {
 
+namespace {
+
+struct CompressionName {
+  const char* name;
+  Imf::Compression compression;
+};
+constexpr CompressionName kCompressions[] = {
+    {"none", Imf::NO_COMPRESSION},   {"rle", Imf::RLE_COMPRESSION},
+    {"zips", Imf::ZIPS_COMPRESSION}, {"zip", Imf::ZIP_COMPRESSION},
+    {"piz", Imf::PIZ_COMPRESSION},   {"pxr24", Imf::PXR24_COMPRESSION},
+    {"b44", Imf::B44_COMPRESSION},   {"b44a", Imf::B44A_COMPRESSION},
+    {"dwaa", Imf::DWAA_COMPRESSION}, {"dwab", Imf::DWAB_COMPRESSION}};
+
+Imf::Compression compressionNamed(const std::string& name) {
+  for (const CompressionName& c : kCompressions)
+    if (name == c.name) return c.compression;
+  throw UsageError("unknown EXR compression " + excerpt(name));
+}
+
+}  // namespace
+
 const std::vector<std::string>& exrCompressions() {
-  static const std::vector<std::string> names = {"none",  "rle", "zips", "zip",  "piz",
-                                                 "pxr24", "b44", "b44a", "dwaa", "dwab"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> v;
+    for (const CompressionName& c : kCompressions) v.emplace_back(c.name);
+    return v;
+  }();
   return names;
 }
 
@@ -28,7 +65,7 @@ namespace {
 // One part of the file: its channels, each from the beauty or an AOV plane, in its own type.
 struct Channel {
   std::string name;
-  OIIO::TypeDesc type;
+  Imf::PixelType type;
   const std::vector<double>* source;  // interleaved values
   size_t stride, offset;              // channels per pixel in `source`, and this one's index
 };
@@ -40,7 +77,7 @@ struct Part {
 
 std::vector<Part> layoutParts(const Film& film, const std::vector<double>& rgba, bool half,
                               bool multipart) {
-  const OIIO::TypeDesc beautyType = half ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
+  const Imf::PixelType beautyType = half ? Imf::HALF : Imf::FLOAT;
   std::vector<Part> parts(1);
   parts[0].name = "rgba";
   const char* rgbaNames[] = {"R", "G", "B", "A"};
@@ -49,22 +86,31 @@ std::vector<Part> layoutParts(const Film& film, const std::vector<double>& rgba,
   for (const FilmPlane& plane : film.planes()) {
     if (multipart) parts.push_back({plane.name, {}});
     for (size_t c = 0; c < plane.channels.size(); ++c)
-      parts.back().channels.push_back({plane.channels[c],
-                                       plane.isUint ? OIIO::TypeDesc::UINT : OIIO::TypeDesc::FLOAT,
+      parts.back().channels.push_back({plane.channels[c], plane.isUint ? Imf::UINT : Imf::FLOAT,
                                        &plane.values, plane.channels.size(), c});
   }
   return parts;
 }
 
+// OpenEXR's capDate ("YYYY:MM:DD hh:mm:ss", local time) and utcOffset (UTC = local + offset).
+std::pair<std::string, float> captureDate() {
+  const std::time_t now = std::time(nullptr);
+  std::tm local{};
+  localtime_r(&now, &local);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y:%m:%d %H:%M:%S", &local);
+  return {text, float(-local.tm_gmtoff)};
+}
+
 // The largest finite value of a channel type: half's is 65504, far below what a hot spot or a
 // variance reaches, and a value past it would be written as +Inf.
-double largestFinite(OIIO::TypeDesc type) {
-  if (type == OIIO::TypeDesc::HALF) return 65504.0;
+double largestFinite(Imf::PixelType type) {
+  if (type == Imf::HALF) return 65504.0;
   return static_cast<double>(std::numeric_limits<float>::max());
 }
 
 // Clamps `v` to its channel type's finite range (NaN to 0); returns whether it had to.
-bool clampToType(double& v, OIIO::TypeDesc type) {
+bool clampToType(double& v, Imf::PixelType type) {
   const double limit = largestFinite(type);
   if (std::abs(v) <= limit) return false;
   v = std::isnan(v) ? 0.0 : std::copysign(limit, v);
@@ -77,7 +123,7 @@ uint64_t countClamped(const std::vector<Part>& parts, size_t pixels) {
   uint64_t clamped = 0;
   for (const Part& part : parts)
     for (const Channel& c : part.channels) {
-      if (c.type == OIIO::TypeDesc::UINT) continue;
+      if (c.type == Imf::UINT) continue;
       for (size_t p = 0; p < pixels; ++p) {
         double v = (*c.source)[p * c.stride + c.offset];
         clamped += clampToType(v, c.type);
@@ -90,18 +136,18 @@ uint64_t countClamped(const std::vector<Part>& parts, size_t pixels) {
 // finite range clamped to it: an EXR never holds Inf or NaN.
 std::vector<unsigned char> packPart(const Part& part, size_t pixels) {
   size_t bytesPerPixel = 0;
-  for (const Channel& c : part.channels) bytesPerPixel += c.type.size();
+  for (const Channel& c : part.channels) bytesPerPixel += pixelTypeSize(c.type);
   std::vector<unsigned char> out(pixels * bytesPerPixel);
   unsigned char* dst = out.data();
   for (size_t p = 0; p < pixels; ++p)
     for (const Channel& c : part.channels) {
       double v = (*c.source)[p * c.stride + c.offset];
-      if (c.type == OIIO::TypeDesc::UINT) {
+      if (c.type == Imf::UINT) {
         const auto u = static_cast<uint32_t>(v);
         std::memcpy(dst, &u, 4);
       } else {
         clampToType(v, c.type);
-        if (c.type == OIIO::TypeDesc::HALF) {
+        if (c.type == Imf::HALF) {
           const Imath::half h(static_cast<float>(v));
           std::memcpy(dst, &h, 2);
         } else {
@@ -109,7 +155,7 @@ std::vector<unsigned char> packPart(const Part& part, size_t pixels) {
           std::memcpy(dst, &f, 4);
         }
       }
-      dst += c.type.size();
+      dst += pixelTypeSize(c.type);
     }
   return out;
 }
@@ -129,56 +175,70 @@ uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
   meta.ints.push_back(
       {"glint:clamped_values", static_cast<int>(std::min<uint64_t>(clamped, INT32_MAX))});
 
-  std::vector<OIIO::ImageSpec> specs;
+  std::vector<Imf::Header> headers;
   for (const Part& part : parts) {
-    OIIO::ImageSpec spec(w.width(), w.height(), int(part.channels.size()), part.channels[0].type);
-    spec.channelnames.clear();
-    spec.channelformats.clear();
-    for (const Channel& c : part.channels) {
-      spec.channelnames.push_back(c.name);
-      spec.channelformats.push_back(c.type);
+    Imf::Header h(Imath::Box2i({0, 0}, {film.fullWidth() - 1, film.fullHeight() - 1}),
+                  Imath::Box2i({w.x0, w.y0}, {w.x1 - 1, w.y1 - 1}));
+    h.compression() = compressionNamed(options.compression);
+    for (const Channel& c : part.channels) h.channels().insert(c.name, Imf::Channel(c.type));
+    // OpenEXR's standard statement of the pixels' primaries and white (its default: Rec.709,
+    // D65), and when the frame was made.
+    Imf::addChromaticities(h, Imf::Chromaticities());
+    const auto [date, utcOffset] = captureDate();
+    Imf::addCapDate(h, date);
+    Imf::addUtcOffset(h, utcOffset);
+    if (parts.size() > 1) {
+      h.setName(part.name);
+      h.setType(Imf::SCANLINEIMAGE);
     }
-    spec.alpha_channel = part.name == "rgba" ? 3 : -1;
-    spec.x = w.x0;
-    spec.y = w.y0;
-    spec.full_x = 0;
-    spec.full_y = 0;
-    spec.full_width = film.fullWidth();
-    spec.full_height = film.fullHeight();
-    spec.attribute("compression", options.compression);
-    // OpenEXR's standard statement of the pixels' primaries and white: Rec.709, D65.
-    static const float kRec709Chromaticities[8] = {0.64f, 0.33f, 0.30f,   0.60f,
-                                                   0.15f, 0.06f, 0.3127f, 0.3290f};
-    spec.attribute("chromaticities", OIIO::TypeDesc(OIIO::TypeDesc::FLOAT, 8),
-                   kRec709Chromaticities);
-    if (parts.size() > 1) spec.attribute("name", part.name);
-    for (const auto& [k, v] : meta.strings) spec.attribute(k, v);
-    for (const auto& [k, v] : meta.ints) spec.attribute(k, v);
-    for (const auto& [k, v] : film.stringAttributes()) spec.attribute(k, v);
-    for (const auto& [k, v] : film.intAttributes()) spec.attribute(k, v);
-    for (const auto& [k, v] : meta.floats) spec.attribute(k, v);
+    for (const auto& [k, v] : meta.strings) h.insert(k, Imf::StringAttribute(v));
+    for (const auto& [k, v] : meta.ints) h.insert(k, Imf::IntAttribute(v));
+    for (const auto& [k, v] : film.stringAttributes()) h.insert(k, Imf::StringAttribute(v));
+    for (const auto& [k, v] : film.intAttributes()) h.insert(k, Imf::IntAttribute(v));
+    for (const auto& [k, v] : meta.floats) h.insert(k, Imf::FloatAttribute(v));
     for (const auto& [k, m] : meta.matrices) {
-      float rowVector[16];
+      // Imath multiplies row vectors (p' = p·M): the transpose of Glint's column-vector matrix.
+      Imath::M44f rowVector;
       for (int r = 0; r < 4; ++r)
-        for (int c = 0; c < 4; ++c) rowVector[4 * c + r] = m(r, c);
-      spec.attribute(k, OIIO::TypeMatrix44, rowVector);
+        for (int c = 0; c < 4; ++c) rowVector[c][r] = m(r, c);
+      h.insert(k, Imf::M44fAttribute(rowVector));
     }
-    specs.push_back(std::move(spec));
+    headers.push_back(std::move(h));
   }
 
-  writeFileAtomically(path, [&](const std::string& tmp) {
-    auto out = OIIO::ImageOutput::create("openexr");
-    if (!out) throw GlintError("OpenImageIO has no OpenEXR writer: " + OIIO::geterror());
-    if (!out->open(tmp, int(specs.size()), specs.data()))
-      throw GlintError("cannot write " + path + ": " + out->geterror());
-    for (size_t i = 0; i < parts.size(); ++i) {
-      if (i > 0 && !out->open(tmp, specs[i], OIIO::ImageOutput::AppendSubimage))
-        throw GlintError("cannot write " + path + ": " + out->geterror());
-      const std::vector<unsigned char> data = packPart(parts[i], size_t(w.area()));
-      if (!out->write_image(OIIO::TypeDesc::UNKNOWN, data.data()))
-        throw GlintError("cannot write " + path + ": " + out->geterror());
+  // The pixels of part i as OpenEXR slices of its packed buffer.
+  const auto frameBufferOf = [&](size_t i, const std::vector<unsigned char>& data) {
+    size_t pixelBytes = 0;
+    for (const Channel& c : parts[i].channels) pixelBytes += pixelTypeSize(c.type);
+    Imf::FrameBuffer frameBuffer;
+    size_t offset = 0;
+    for (const Channel& c : parts[i].channels) {
+      frameBuffer.insert(
+          c.name, Imf::Slice::Make(c.type, data.data() + offset, Imath::V2i(w.x0, w.y0), w.width(),
+                                   w.height(), pixelBytes, pixelBytes * size_t(w.width())));
+      offset += pixelTypeSize(c.type);
     }
-    if (!out->close()) throw GlintError("cannot write " + path + ": " + out->geterror());
+    return frameBuffer;
+  };
+  writeFileAtomically(path, [&](const std::string& tmp) {
+    try {
+      if (parts.size() == 1) {
+        Imf::OutputFile file(tmp.c_str(), headers[0]);
+        const std::vector<unsigned char> data = packPart(parts[0], size_t(w.area()));
+        file.setFrameBuffer(frameBufferOf(0, data));
+        file.writePixels(w.height());
+        return;
+      }
+      Imf::MultiPartOutputFile file(tmp.c_str(), headers.data(), int(headers.size()));
+      for (size_t i = 0; i < parts.size(); ++i) {
+        const std::vector<unsigned char> data = packPart(parts[i], size_t(w.area()));
+        Imf::OutputPart out(file, int(i));
+        out.setFrameBuffer(frameBufferOf(i, data));
+        out.writePixels(w.height());
+      }
+    } catch (const std::exception& e) {
+      throw GlintError("cannot write " + path + ": " + e.what());
+    }
   });
   return clamped;
 }
@@ -187,22 +247,26 @@ Image readImage(const std::string& path) {
   noteInputFile(path);
   // Every failure here is the file's: unreadable, truncated, not an image, or too large. It is
   // reported as a usage error (exit 2) naming the file, like a scene's mistakes.
-  const auto in = openExr(path);
-  const OIIO::ImageSpec& spec = in->spec();
-  if (spec.nchannels <= 0) throw UsageError(path + ": the image has no channels");
-  checkImageFits(path, "data window", spec.width, spec.height, 4.0 * spec.nchannels);
+  const auto file = openExr(path);
+  const Imf::Header& header = file->header(0);
+  const ExrWindow window = exrWindow(path, header);
   Image img;
-  img.width = spec.width;
-  img.height = spec.height;
-  img.channels = spec.nchannels;
-  img.channelNames = spec.channelnames;
-  img.x = spec.x;
-  img.y = spec.y;
-  img.fullWidth = spec.full_width;
-  img.fullHeight = spec.full_height;
-  img.colorspace = spec.get_string_attribute("glint:colorspace");
-  if (!readPixelsInBands(*in, spec, OIIO::TypeDesc::FLOAT, size_t(img.channels), img.pixels))
-    throw UsageError("cannot read " + path + ": " + excerpt(in->geterror()));
+  img.channelNames = channelsInReadingOrder(header.channels());
+  if (img.channelNames.empty()) throw UsageError(path + ": the image has no channels");
+  img.channels = int(img.channelNames.size());
+  checkImageFits(path, "data window", window.width, window.height, 4.0 * img.channels);
+  img.width = window.width;
+  img.height = window.height;
+  img.x = window.x;
+  img.y = window.y;
+  img.fullWidth = window.fullWidth;
+  img.fullHeight = window.fullHeight;
+  if (const auto* cs = header.findTypedAttribute<Imf::StringAttribute>("glint:colorspace"))
+    img.colorspace = cs->value();
+  std::vector<ExrSlice> slices;
+  for (size_t c = 0; c < img.channelNames.size(); ++c)
+    slices.push_back({img.channelNames[c], Imf::FLOAT, c * sizeof(float)});
+  readPixelsInBands(path, *file, 0, slices, sizeof(float) * size_t(img.channels), img.pixels);
   return img;
 }
 

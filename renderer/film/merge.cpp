@@ -1,6 +1,11 @@
 #include "film/merge.h"
 
-#include <OpenImageIO/imageio.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFloatAttribute.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfIntAttribute.h>
+#include <OpenEXR/ImfOutputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -11,7 +16,6 @@
 #include "core/error.h"
 #include "core/input_files.h"
 #include "film/atomic_file.h"
-#include "film/banded_read.h"
 #include "film/exr_input.h"
 #include "film/image_limits.h"
 
@@ -21,27 +25,44 @@ namespace {
 
 struct Crop {
   std::string path;
-  OIIO::ImageSpec spec;
-  std::vector<unsigned char> pixels;  // every channel, in its native type
+  Imf::Header header;
+  ExrWindow window;
+  std::vector<ExrSlice> slices;  // every channel in its native type, in the file's order
+  size_t pixelBytes = 0;
+  std::vector<unsigned char> pixels;
 };
 
 // Like readImage, every failure is the file's (exit 2, naming it), and the declared data window
 // is checked against memory before its pixels are allocated.
 Crop readCrop(const std::string& path) {
   noteInputFile(path);
-  const auto in = openExr(path);
-  Crop c{path, in->spec(), {}};
-  if (in->seek_subimage(1, 0))
+  const auto file = openExr(path);
+  if (file->parts() > 1)
     throw UsageError(path +
                      " has several parts: merge takes single-part crops (render them "
                      "without --multipart)");
-  in->seek_subimage(0, 0);
-  if (c.spec.nchannels <= 0) throw UsageError(path + ": the image has no channels");
-  checkImageFits(path, "data window", c.spec.width, c.spec.height,
-                 double(c.spec.pixel_bytes(/*native=*/true)));
-  if (!readPixelsInBands(*in, c.spec, OIIO::TypeDesc::UNKNOWN, c.spec.pixel_bytes(true), c.pixels))
-    throw UsageError("cannot read " + path + ": " + excerpt(in->geterror()));
+  Crop c{path, file->header(0), exrWindow(path, file->header(0)), {}, 0, {}};
+  const Imf::ChannelList& channels = c.header.channels();
+  for (auto ch = channels.begin(); ch != channels.end(); ++ch) {
+    c.slices.push_back({ch.name(), ch.channel().type, c.pixelBytes});
+    c.pixelBytes += pixelTypeSize(ch.channel().type);
+  }
+  if (c.slices.empty()) throw UsageError(path + ": the image has no channels");
+  checkImageFits(path, "data window", c.window.width, c.window.height, double(c.pixelBytes));
+  readPixelsInBands(path, *file, 0, c.slices, c.pixelBytes, c.pixels);
   return c;
+}
+
+template <typename Attribute, typename Value>
+Value attributeOr(const Imf::Header& h, const char* name, Value otherwise) {
+  const auto* a = h.findTypedAttribute<Attribute>(name);
+  return a ? Value(a->value()) : otherwise;
+}
+
+// Sets attribute `name`, whatever type a crop gave it (OpenEXR refuses to change a type).
+void setAttribute(Imf::Header& h, const char* name, const Imf::Attribute& value) {
+  h.erase(name);
+  h.insert(name, value);
 }
 
 std::string window(const PixelWindow& w) {
@@ -110,27 +131,27 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
   for (const auto& p : cropPaths) crops.push_back(readCrop(p));
   const Crop& first = crops[0];
   const auto settingsHash = [](const Crop& c) {
-    return std::string(c.spec.get_string_attribute("glint:settings_hash"));
+    return attributeOr<Imf::StringAttribute>(c.header, "glint:settings_hash", std::string());
   };
   const std::string hash = settingsHash(first);
   if (hash.empty()) throw UsageError(first.path + ": not a Glint render (no glint:settings_hash)");
-  const int W = first.spec.full_width, H = first.spec.full_height;
+  const int W = first.window.fullWidth, H = first.window.fullHeight;
   for (const Crop& c : crops) {
     if (settingsHash(c) != hash)
       throw UsageError(c.path + " comes from a different scene or settings than " + first.path +
                        " (glint:settings_hash " + settingsHash(c) + " vs " + hash + ")");
-    if (c.spec.full_width != W || c.spec.full_height != H)
-      throw UsageError(c.path + ": frame " + std::to_string(c.spec.full_width) + "x" +
-                       std::to_string(c.spec.full_height) + " differs from " + first.path);
-    if (c.spec.channelnames != first.spec.channelnames ||
-        c.spec.channelformats != first.spec.channelformats || c.spec.format != first.spec.format)
+    if (c.window.fullWidth != W || c.window.fullHeight != H)
+      throw UsageError(c.path + ": frame " + std::to_string(c.window.fullWidth) + "x" +
+                       std::to_string(c.window.fullHeight) + " differs from " + first.path);
+    if (!(c.header.channels() == first.header.channels()))
       throw UsageError(c.path + " has other channels or pixel types than " + first.path);
-    const std::string sceneHash = c.spec.get_string_attribute("glint:scene_hash");
+    const std::string sceneHash =
+        attributeOr<Imf::StringAttribute>(c.header, "glint:scene_hash", std::string());
     if (!expectedSceneHash.empty() && sceneHash != expectedSceneHash)
       throw UsageError(c.path + " was rendered from another scene file (glint:scene_hash " +
                        sceneHash + ", expected " + expectedSceneHash +
                        "): the scene changed after the job was planned");
-    if (c.spec.get_int_attribute("glint:partial", 0) != 0)
+    if (attributeOr<Imf::IntAttribute>(c.header, "glint:partial", 0) != 0)
       throw UsageError(c.path + " is a partial (interrupted) render: render its crop again");
   }
 
@@ -139,22 +160,22 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
   // crop declaring a 60000 x 60000 frame once made merge allocate 57 GB (an owner index, the
   // pixel and a coverage bit for each pixel of the frame) before finding the holes.
   for (const Crop& c : crops) {
-    const OIIO::ImageSpec& s = c.spec;
+    const ExrWindow& s = c.window;
     // In 64 bits: a data window near INT_MAX overflowed int here.
     if (s.x < 0 || s.y < 0 || int64_t{s.x} + s.width > W || int64_t{s.y} + s.height > H)
       throw UsageError(c.path + ": data window lies outside the frame");
   }
-  const auto windowOf = [](const OIIO::ImageSpec& s) {
+  const auto windowOf = [](const ExrWindow& s) {
     return PixelWindow{s.x, s.x + s.width, s.y, s.y + s.height};
   };
   int64_t covered = 0;
   for (size_t k = 0; k < crops.size(); ++k) {
-    const PixelWindow a = windowOf(crops[k].spec);
+    const PixelWindow a = windowOf(crops[k].window);
     covered += int64_t{a.width()} * a.height();
     // The first pixel of crop k, in row order, that an earlier crop holds.
     std::optional<std::pair<std::pair<int, int>, size_t>> clash;  // ((y, x), earlier crop)
     for (size_t j = 0; j < k; ++j) {
-      const PixelWindow b = windowOf(crops[j].spec);
+      const PixelWindow b = windowOf(crops[j].window);
       const int x0 = std::max(a.x0, b.x0), y0 = std::max(a.y0, b.y0);
       if (x0 >= std::min(a.x1, b.x1) || y0 >= std::min(a.y1, b.y1)) continue;
       if (!clash || std::pair{y0, x0} < clash->first) clash = {{y0, x0}, j};
@@ -166,7 +187,7 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
   }
   if (covered != int64_t{W} * H) {
     std::vector<PixelWindow> windows;
-    for (const Crop& c : crops) windows.push_back(windowOf(c.spec));
+    for (const Crop& c : crops) windows.push_back(windowOf(c.window));
     const std::vector<PixelWindow> holes = missingRegions(windows, W, H);
     std::string msg = "the crops leave " + std::to_string(holes.size()) + " region(s) of the " +
                       std::to_string(W) + "x" + std::to_string(H) + " frame of " + first.path +
@@ -174,11 +195,11 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
     for (const PixelWindow& h : holes) msg += "\n  " + window(h);
     throw UsageError(msg);
   }
-  const size_t pixelBytes = first.spec.pixel_bytes(/*native=*/true);
+  const size_t pixelBytes = first.pixelBytes;
   checkImageFits(first.path, "display window", W, H, double(pixelBytes));
   std::vector<unsigned char> frame(size_t(W) * size_t(H) * pixelBytes, 0);
   for (const Crop& c : crops) {
-    const OIIO::ImageSpec& s = c.spec;
+    const ExrWindow& s = c.window;
     const size_t rowBytes = size_t(s.width) * pixelBytes;
     for (int y = 0; y < s.height; ++y)
       std::memcpy(&frame[(size_t(s.y + y) * size_t(W) + size_t(s.x)) * pixelBytes],
@@ -187,29 +208,38 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
 
   // The merged frame keeps the first crop's metadata (scene, settings, hashes) over the full
   // data window; time, rays and clamped values become the sums over the crops.
-  OIIO::ImageSpec spec = first.spec;
-  spec.x = spec.y = 0;
-  spec.width = W;
-  spec.height = H;
+  Imf::Header header = first.header;
+  header.dataWindow() = Imath::Box2i({0, 0}, {W - 1, H - 1});
+  // A scanline frame: a tiled crop's layout and a part's chunk count do not carry over.
+  for (const char* layout : {"tiles", "chunkCount", "type", "name"}) header.erase(layout);
   float seconds = 0, rays = 0;
   int64_t clamped = 0;
   for (const Crop& c : crops) {
-    seconds += c.spec.get_float_attribute("glint:render_seconds", 0);
-    rays += c.spec.get_float_attribute("glint:rays", 0);
-    clamped += c.spec.get_int_attribute("glint:clamped_values", 0);
+    seconds += attributeOr<Imf::FloatAttribute>(c.header, "glint:render_seconds", 0.0f);
+    rays += attributeOr<Imf::FloatAttribute>(c.header, "glint:rays", 0.0f);
+    clamped += attributeOr<Imf::IntAttribute>(c.header, "glint:clamped_values", 0);
   }
-  spec.attribute("glint:clamped_values", int(std::min<int64_t>(clamped, INT32_MAX)));
-  spec.attribute("glint:render_seconds", seconds);
-  spec.attribute("glint:rays", rays);
-  spec.attribute("glint:crop", "0 " + std::to_string(W) + " 0 " + std::to_string(H));
-  spec.attribute("glint:merged_crops", int(crops.size()));
-  spec.attribute("glint:commandline", commandLine);
+  setAttribute(header, "glint:clamped_values",
+               Imf::IntAttribute(int(std::min<int64_t>(clamped, INT32_MAX))));
+  setAttribute(header, "glint:render_seconds", Imf::FloatAttribute(seconds));
+  setAttribute(header, "glint:rays", Imf::FloatAttribute(rays));
+  setAttribute(header, "glint:crop",
+               Imf::StringAttribute("0 " + std::to_string(W) + " 0 " + std::to_string(H)));
+  setAttribute(header, "glint:merged_crops", Imf::IntAttribute(int(crops.size())));
+  setAttribute(header, "glint:commandline", Imf::StringAttribute(commandLine));
   writeFileAtomically(outPath, [&](const std::string& tmp) {
-    auto out = OIIO::ImageOutput::create("openexr");
-    if (!out || !out->open(tmp, spec) || !out->write_image(OIIO::TypeDesc::UNKNOWN, frame.data()) ||
-        !out->close())
-      throw GlintError("cannot write " + outPath + ": " +
-                       (out ? out->geterror() : OIIO::geterror()));
+    try {
+      Imf::OutputFile out(tmp.c_str(), header);
+      Imf::FrameBuffer frameBuffer;
+      for (const ExrSlice& s : first.slices)
+        frameBuffer.insert(s.name,
+                           Imf::Slice::Make(s.type, frame.data() + s.offset, Imath::V2i(0, 0), W, H,
+                                            pixelBytes, pixelBytes * size_t(W)));
+      out.setFrameBuffer(frameBuffer);
+      out.writePixels(H);
+    } catch (const std::exception& e) {
+      throw GlintError("cannot write " + outPath + ": " + e.what());
+    }
   });
   return {W, H, crops.size()};
 }

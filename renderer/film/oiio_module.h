@@ -1,0 +1,21 @@
+#pragma once
+// OpenImageIO behind a module loaded at run time. Debian's libOpenImageIO pulls in about 260
+// shared libraries (ffmpeg, GDAL, OpenCV, ...): linked into glint, they cost every run 0.3 s and
+// 130 MB before main(). Only the runs that need what only OpenImageIO does (image formats other
+// than EXR and PNG) load libglint_oiio.so, and with it OpenImageIO.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace glint::oiio_module {
+
+// Writes width × height pixels of `channels` code values of `bits` (8 or 16) to `tmpPath` in
+// the format of `path`'s extension. Throws GlintError naming `path` when the module cannot be
+// loaded or OpenImageIO cannot write it.
+void writeImage(const std::string& path, const std::string& tmpPath, int width, int height,
+                int channels, int bits, const std::vector<uint16_t>& codes);
+
+// Where the module is looked for: beside the executable (../lib/glint/), then in the build tree.
+std::vector<std::string> searchPath();
+
+}  // namespace glint::oiio_module
