@@ -62,9 +62,11 @@ struct RunResult {
   std::string output;  // stdout and stderr together
 };
 
-inline RunResult runGlint(const std::string& args) {
+// Runs the glint binary through the shell; `environment` (e.g. "LD_DEBUG=files") is set for
+// glint alone.
+inline RunResult runGlint(const std::string& args, const std::string& environment = "") {
   RunResult r;
-  const std::string cmd = std::string(GLINT_BINARY) + " " + args + " 2>&1";
+  const std::string cmd = environment + " " + std::string(GLINT_BINARY) + " " + args + " 2>&1";
   FILE* pipe = ::popen(cmd.c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf;

@@ -1,13 +1,14 @@
 // `glint plan SCENE --tiles N [--frames A-B]`: what a render farm should run for a scene
-// (docs/farm.md). It prints, one fact per line, the frame size after overrides, the frames, the
-// scene hash a finished frame must carry, and the crop of every tile; tools/glint-farm reads it,
-// and any other farm manager can.
+// (docs/farm.md). It prints, one fact per line, the frame size and spp after overrides, the frames,
+// the scene hash a finished frame must carry, and the crop of every tile; tools/glint-farm reads
+// it, and any other farm manager can.
 #include <cstdio>
 
 #include "app/commands.h"
 #include "app/farm_plan.h"
 #include "app/scene_source.h"
 #include "core/error.h"
+#include "core/sampler.h"
 
 namespace glint {
 
@@ -18,13 +19,14 @@ struct PlanArgs {
   int tiles = 1;
   std::string frames;
   std::string output;
-  std::optional<int> width, height;
+  std::optional<int> width, height, spp;
 };
 
 int runPlan(const PlanArgs& a) {
   Scene scene = loadSceneOrDefault(a.scenePath);
   if (a.width) scene.render.width = *a.width;
   if (a.height) scene.render.height = *a.height;
+  if (a.spp) scene.render.spp = *a.spp;
   std::optional<FrameRange> frames;
   if (scene.animation) frames = FrameRange{scene.animation->first, scene.animation->last};
   if (!a.frames.empty()) {
@@ -47,6 +49,7 @@ int runPlan(const PlanArgs& a) {
   std::printf("scene %s\n", scene.sourcePath.c_str());
   std::printf("scene_hash %016llx\n", static_cast<unsigned long long>(scene.sourceHash));
   std::printf("size %d %d\n", scene.render.width, scene.render.height);
+  std::printf("spp %d\n", scene.render.spp);
   if (frames)
     std::printf("frames %d %d\n", frames->first, frames->last);
   else
@@ -80,6 +83,8 @@ CommandRunner addPlanCommand(CLI::App& app) {
                   "Output EXR; with frames, name.####.exr: prints each frame's file name");
   cmd->add_option("--width", args->width, "Image width")->check(CLI::Range(1, 1 << 15));
   cmd->add_option("--height", args->height, "Image height")->check(CLI::Range(1, 1 << 15));
+  cmd->add_option("--spp", args->spp, "Samples per pixel")
+      ->check(CLI::Range(1, static_cast<int>(kMaxSampleSet)));
   return [args] { return runPlan(*args); };
 }
 

@@ -25,7 +25,7 @@ namespace {
 
 struct RenderArgs {
   std::string scenePath;
-  std::string output;
+  std::vector<std::string> outputs;  // one, or one per --crop when several are given
   std::string display;
   DisplaySettings ocio;
   std::string accel = "embree";
@@ -36,7 +36,7 @@ struct RenderArgs {
   std::optional<uint64_t> seed;
   std::optional<int> frame;
   std::string frames;
-  std::vector<int> crop;
+  std::vector<int> crop;  // 4 numbers per --crop
   int tileSize = 32;
   std::string tileOrder = "morton";
   bool half = false;
@@ -65,9 +65,10 @@ void applyOverrides(const RenderArgs& a, Scene& scene) {
   if (a.transparentBackground) r.transparentBackground = true;
 }
 
-std::optional<PixelWindow> cropWindow(const RenderArgs& a, const RenderSettings& r) {
+// The K-th --crop, checked against the frame; none when no --crop was given.
+std::optional<PixelWindow> cropWindow(const RenderArgs& a, const RenderSettings& r, size_t k) {
   if (a.crop.empty()) return std::nullopt;
-  const PixelWindow w{a.crop[0], a.crop[1], a.crop[2], a.crop[3]};
+  const PixelWindow w{a.crop[4 * k], a.crop[4 * k + 1], a.crop[4 * k + 2], a.crop[4 * k + 3]};
   if (w.x0 < 0 || w.x1 > r.width || w.x0 >= w.x1 || w.y0 < 0 || w.y1 > r.height || w.y0 >= w.y1)
     throw SceneError({"--crop", 0}, "",
                      "crop [" + std::to_string(w.x0) + "," + std::to_string(w.x1) + ") x [" +
@@ -163,7 +164,8 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
 }
 
 // Renders one frame (of an animated scene: `frame`, default its first) and writes its outputs,
-// numbered when the scene is animated. Returns the exit code.
+// numbered when the scene is animated; with several --crop, each crop to its own -o, from one
+// scene load and one acceleration structure. Returns the exit code.
 int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   Scene scene = loadSceneOrDefault(a.scenePath, frame);
   applyOverrides(a, scene);
@@ -171,7 +173,6 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   opt.threads = a.threads.value_or(0);
   opt.tileSize = a.tileSize;
   parseIntegratorKind(a.integrator, opt.integrator);
-  opt.crop = cropWindow(a, scene.render);
   opt.progress = !a.quiet;
   opt.tileOrder = a.tileOrder == "row" ? TileOrder::RowMajor : TileOrder::Morton;
   opt.cancel = &interrupt::requested();
@@ -179,20 +180,27 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   AccelKind kind = AccelKind::Embree;
   parseAccelKind(a.accel, kind);
 
-  std::string out = a.output;
-  if (out.empty())
-    out = (a.scenePath.empty() ? std::string("default")
-                               : std::filesystem::path(a.scenePath).stem().string()) +
-          (scene.animation ? ".####.exr" : ".exr");
   const auto numbered = [&](const std::string& path) {
     return scene.animation ? frameFileName(path, scene.animation->frame) : path;
   };
-  out = numbered(out);
+  struct Job {
+    std::optional<PixelWindow> crop;
+    std::string out;
+  };
+  std::vector<Job> jobs;
+  for (size_t k = 0; k < std::max<size_t>(1, a.crop.size() / 4); ++k) {
+    std::string out = a.outputs.empty() ? std::string() : a.outputs[k];
+    if (out.empty())
+      out = (a.scenePath.empty() ? std::string("default")
+                                 : std::filesystem::path(a.scenePath).stem().string()) +
+            (scene.animation ? ".####.exr" : ".exr");
+    jobs.push_back({cropWindow(a, scene.render, k), numbered(out)});
+  }
   const std::string display = numbered(a.display);
   const std::string stats = a.statsJson == "-" ? a.statsJson : numbered(a.statsJson);
   // Every output, and the display image's format and the OCIO config, display, view and look,
   // are checked before the render is spent on them.
-  checkOutputPath(out);
+  for (const Job& job : jobs) checkOutputPath(job.out);
   if (!stats.empty() && stats != "-") checkOutputPath(stats);
   if (!display.empty()) {
     checkOutputPath(display);
@@ -202,49 +210,75 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   const auto accel = makeAccelerator(kind, scene);
   // From here a signal stops the render and the frame so far is written (CLI.md).
   const interrupt::RenderPhase stopCleanlyOnSignal;
-  log::info("rendering " + std::to_string(scene.render.width) + "x" +
-            std::to_string(scene.render.height) + " at " + std::to_string(scene.render.spp) +
-            " spp to " + out);
-  const RenderResult result = renderScene(scene, *accel, opt);
+  for (const Job& job : jobs) {
+    if (interrupt::requested()) return kExitInterrupted;  // between two crops: none started
+    log::info("rendering " + std::to_string(scene.render.width) + "x" +
+              std::to_string(scene.render.height) + " at " + std::to_string(scene.render.spp) +
+              " spp to " + job.out);
+    opt.crop = job.crop;
+    const RenderResult result = renderScene(scene, *accel, opt);
 
-  const uint64_t clamped = writeExr(out, result.film, exrMetadata(a, scene, result),
-                                    {a.half, a.compression, a.multipart});
-  if (clamped > 0)
-    log::warning(std::to_string(clamped) + " values beyond " +
-                 (a.half ? "half-float's ±65504" : "float's range") +
-                 " were clamped to it (glint:clamped_values)");
-  if (!display.empty()) writeDisplayImage(display, result.film, a.ocio);
-  if (!stats.empty()) {
-    writeTextFileAtomically(stats, statsJson(scene, result.stats, clamped).dump(2) + "\n");
+    const uint64_t clamped = writeExr(job.out, result.film, exrMetadata(a, scene, result),
+                                      {a.half, a.compression, a.multipart});
+    if (clamped > 0)
+      log::warning(std::to_string(clamped) + " values beyond " +
+                   (a.half ? "half-float's ±65504" : "float's range") +
+                   " were clamped to it (glint:clamped_values)");
+    if (!display.empty()) writeDisplayImage(display, result.film, a.ocio);
+    if (!stats.empty())
+      writeTextFileAtomically(stats, statsJson(scene, result.stats, clamped).dump(2) + "\n");
+    if (a.stats) printStats(scene, result.stats);
+    if (result.stats.rays.nonfiniteSamples > 0)
+      log::warning(std::to_string(result.stats.rays.nonfiniteSamples) +
+                   " non-finite samples were dropped (written as black)");
+    if (result.partial) {
+      // CLI.md: interrupted → a valid partial EXR (unrendered pixels have alpha 0), exit 130.
+      log::warning("interrupted: wrote the partial frame " + job.out + " (glint:partial = 1)");
+      return kExitInterrupted;
+    }
+    if (interrupt::requested()) {
+      log::warning("interrupted while writing: " + job.out + " holds the complete frame");
+      return kExitInterrupted;
+    }
+    log::info("wrote " + job.out + (display.empty() ? "" : " and " + display));
   }
-  if (a.stats) printStats(scene, result.stats);
-  if (result.stats.rays.nonfiniteSamples > 0)
-    log::warning(std::to_string(result.stats.rays.nonfiniteSamples) +
-                 " non-finite samples were dropped (written as black)");
-  if (result.partial) {
-    // CLI.md: interrupted → a valid partial EXR (unrendered pixels have alpha 0), exit 130.
-    log::warning("interrupted: wrote the partial frame " + out + " (glint:partial = 1)");
-    return kExitInterrupted;
-  }
-  if (interrupt::requested()) {
-    log::warning("interrupted while writing: " + out + " holds the complete frame");
-    return kExitInterrupted;
-  }
-  log::info("wrote " + out + (display.empty() ? "" : " and " + display));
   return kExitOk;
+}
+
+// Several --crop need one -o each, and leave out the outputs that describe a whole run.
+void checkCropsAndOutputs(const RenderArgs& a) {
+  const size_t crops = a.crop.size() / 4;
+  if (crops <= 1) {
+    if (a.outputs.size() > 1)
+      throw UsageError("-o is given " + std::to_string(a.outputs.size()) +
+                       " times: give one, or one per --crop");
+    return;
+  }
+  if (a.outputs.size() != crops)
+    throw UsageError(std::to_string(crops) + " --crop need one -o each, in the same order (got " +
+                     std::to_string(a.outputs.size()) + ")");
+  if (!a.display.empty() || !a.statsJson.empty())
+    throw UsageError("--display and --stats-json take one crop: give them with a single --crop");
+  for (size_t k = 0; k < crops; ++k)
+    for (size_t j = 0; j < k; ++j)
+      if (a.outputs[j] == a.outputs[k])
+        throw UsageError("-o " + a.outputs[k] + " is given for two crops");
 }
 
 int runRender(const RenderArgs& a) {
   if (a.quiet) log::setLevel(log::Level::Warning);
+  checkCropsAndOutputs(a);
   if (a.frames.empty()) return renderFrame(a, a.frame);
   // Several frames in one process: each output must be numbered, or the frames would replace
   // one another.
   const FrameRange range = parseFrameRange(a.frames, "--frames");
   const bool several = range.last > range.first;
-  for (const auto& [option, path] :
-       {std::pair{"-o", a.output}, {"--display", a.display}, {"--stats-json", a.statsJson}})
+  std::vector<std::pair<std::string, std::string>> outputs = {{"--display", a.display},
+                                                              {"--stats-json", a.statsJson}};
+  for (const std::string& out : a.outputs) outputs.emplace_back("-o", out);
+  for (const auto& [option, path] : outputs)
     if (!path.empty() && path != "-" && !hasFrameDigits(path) && several)
-      throw UsageError(std::string(option) + " " + path +
+      throw UsageError(option + " " + path +
                        " would be overwritten by every frame of --frames: number it with #### "
                        "or %04d");
   if (a.statsJson == "-" && several)
@@ -270,7 +304,9 @@ CommandRunner addRenderCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("render", "Render a scene to an HDR EXR frame");
   cmd->add_option("scene", args->scenePath, "Scene file (.json); omitted: the default scene")
       ->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", args->output, "Output EXR (default: SCENE_NAME.exr)");
+  cmd->add_option("-o,--output", args->outputs,
+                  "Output EXR (default: SCENE_NAME.exr); with several --crop, one each")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_option("--display", args->display,
                   "Also write a display image (.png, .jpg, .tif) through OCIO");
   addDisplayOptions(*cmd, args->ocio);
@@ -297,8 +333,11 @@ CommandRunner addRenderCommand(CLI::App& app) {
       ->check(CLI::IsMember({"production", "reference"}));
   cmd->add_option("--sampler", args->sampler, "Pixel sampler (overrides the scene)")
       ->check(CLI::IsMember({"regular", "random", "stratified", "sobol"}));
-  cmd->add_option("--crop", args->crop, "Pixel bounds X0 X1 Y0 Y1 ([X0,X1) x [Y0,Y1))")
-      ->expected(4);
+  cmd->add_option("--crop", args->crop,
+                  "Pixel bounds X0 X1 Y0 Y1 ([X0,X1) x [Y0,Y1)); repeat it, each with its own -o, "
+                  "to render several crops from one scene load")
+      ->type_size(4)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_option("--tile-size", args->tileSize, "Tile edge in pixels")->check(CLI::Range(1, 4096));
   cmd->add_option("--tile-order", args->tileOrder, "Tile order (the image is the same for any)")
       ->check(CLI::IsMember({"morton", "row"}));

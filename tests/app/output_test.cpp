@@ -252,6 +252,42 @@ TEST(Output, CropsMergeIntoTheFullFrameByteForByte) {
   EXPECT_NE(other.output.find("different scene or settings"), std::string::npos) << other.output;
 }
 
+TEST(Output, SeveralCropsOfOneRunEqualTheirSeparateRenders) {
+  // One process, one scene load, three --crop with an -o each (what a farm task of several
+  // tiles runs): each crop holds the same bytes as its own run, so they merge into the frame.
+  const std::string scene = test::writeTemp("crops.json", kScene);
+  ASSERT_EQ(runGlint("render " + scene + " --quiet -o " + tmp("crops-full.exr")).exitCode, 0);
+  const auto run = runGlint("render " + scene + " --quiet --crop 0 20 0 32 -o " + tmp("k1.exr") +
+                            " --crop 20 48 0 13 -o " + tmp("k2.exr") + " --crop 20 48 13 32 -o " +
+                            tmp("k3.exr"));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  ASSERT_EQ(
+      runGlint("render " + scene + " --quiet --crop 20 48 0 13 -o " + tmp("k2-alone.exr")).exitCode,
+      0);
+  EXPECT_EQ(readImage(tmp("k2.exr")).pixels, readImage(tmp("k2-alone.exr")).pixels);
+  EXPECT_EQ(specOf(tmp("k2.exr")).get_string_attribute("glint:crop"), "20 48 0 13");
+  ASSERT_EQ(runGlint("merge " + tmp("k.exr") + " " + tmp("k1.exr") + " " + tmp("k2.exr") + " " +
+                     tmp("k3.exr"))
+                .exitCode,
+            0);
+  EXPECT_EQ(readImage(tmp("k.exr")).pixels, readImage(tmp("crops-full.exr")).pixels);
+
+  // Each crop needs its own output, and the outputs that describe one frame take one crop.
+  const auto fewer =
+      runGlint("render " + scene + " --crop 0 8 0 8 --crop 8 16 0 8 -o " + tmp("only-one.exr"));
+  EXPECT_EQ(fewer.exitCode, 2);
+  EXPECT_NE(fewer.output.find("2 --crop need one -o each"), std::string::npos) << fewer.output;
+  const auto same = runGlint("render " + scene + " --crop 0 8 0 8 -o " + tmp("s.exr") +
+                             " --crop 8 16 0 8 -o " + tmp("s.exr"));
+  EXPECT_EQ(same.exitCode, 2);
+  EXPECT_NE(same.output.find("is given for two crops"), std::string::npos) << same.output;
+  const auto display =
+      runGlint("render " + scene + " --crop 0 8 0 8 -o " + tmp("d1.exr") + " --crop 8 16 0 8 -o " +
+               tmp("d2.exr") + " --display " + tmp("d.png"));
+  EXPECT_EQ(display.exitCode, 2);
+  EXPECT_FALSE(fs::exists(tmp("d1.exr")));
+}
+
 TEST(Output, MissingRegionsAreDisjointRectangles) {
   // 4 × 3 frame, covered except an L: column 3 (all rows) and row 2 (columns 0–2).
   std::vector<bool> covered(12, true);

@@ -4,8 +4,9 @@
 # when the test ends, whether it passes or fails.
 #
 #   slurm_test.sh tiles_and_animation GLINT   a 4-tile still and a 3-frame animation (2 tiles
-#                                             each) through tools/glint-farm; every merged frame
-#                                             equals the single-machine render byte for byte
+#                                             each, then 1) through tools/glint-farm; every merged
+#                                             frame equals the single-machine render byte for
+#                                             byte; small tiles (frames) share a task's process
 #   slurm_test.sh missing_task GLINT          one task is cancelled while it renders; the merge
 #                                             names exactly that tile, and re-running that task
 #                                             alone completes the frame
@@ -88,6 +89,11 @@ tiles_and_animation() {
   done
   check "no task left a partial tile behind" \
     [ -z "$(find "$WORK/still.farm/tiles" -name '*.rendering.exr')" ]
+  # 48 x 32 pixels x 4 spp a tile is far below a task's 2^22 samples: the four tiles are one
+  # task, rendered by one glint process (four --crop in each tile's command line).
+  check "the four small tiles are one task" [ "$(cut -f 1 "$WORK/still.farm/tasks.tsv" | sort -u)" = 0 ]
+  check "one glint process rendered the four tiles" \
+    [ "$(attribute "$WORK/still.farm/tiles/t002.exr" glint:commandline | grep -o -- '--crop' | wc -l)" = 4 ]
 
   t0=$SECONDS
   "$kFarm" submit "$kAnim" -o "$WORK/anim.####.exr" --frames 1-3 --tiles 2 --cpus-per-task 1 \
@@ -102,14 +108,28 @@ tiles_and_animation() {
   done
   # The frames differ: the animation moves (a frozen scene would pass the checks above too).
   check "frames 1 and 3 differ" bash -c "[ '$(pixels "$WORK/anim.0001.exr")' != '$(pixels "$WORK/anim.0003.exr")' ]"
+  # Six tiles in three tasks (task:frame pairs), a task never spanning two frames.
+  check "the two tiles of each frame are that frame's task" \
+    [ "$(cut -f 1,2 "$WORK/anim.farm/tasks.tsv" | tr '\t\n' ':,')" = "0:1,0:1,1:2,1:2,2:3,2:3," ]
+
+  # One tile a frame: the three frames are one task, one glint process with --frames 1-3.
+  "$kFarm" submit "$kAnim" -o "$WORK/whole.####.exr" --frames 1-3 --tiles 1 --cpus-per-task 1 \
+    --spp 4 "${kSize[@]}" --glint "$GLINT" --wait
+  check "three small frames are one task" [ "$(cut -f 1 "$WORK/whole.farm/tasks.tsv" | sort -u)" = 0 ]
+  check "one glint process rendered them (--frames 1-3)" \
+    grep -q -- "--frames 1-3" <(attribute "$WORK/whole.farm/tiles/f0002.t000.exr" glint:commandline)
+  for f in 1 2 3; do
+    check "frame $f of the grouped task equals the single-machine render byte for byte" \
+      same_pixels "$WORK/whole.000$f.exr" "$WORK/ref.000$f.exr"
+  done
 }
 
 missing_task() {
   # 4 tasks of 1 CPU each; at this spp a tile takes seconds, so the cancel below lands
   # while task 0 renders.
   local out
-  out=$("$kFarm" submit "$kStill" -o "$WORK/frame.exr" --tiles 4 --cpus-per-task 1 --spp 4096 \
-    "${kSize[@]}" --glint "$GLINT")
+  out=$("$kFarm" submit "$kStill" -o "$WORK/frame.exr" --tiles 4 --tiles-per-task 1 \
+    --cpus-per-task 1 --spp 4096 "${kSize[@]}" --glint "$GLINT")
   echo "$out"
   local job
   job=$(echo "$out" | sed -n 's/.*submitted render job \([0-9]*\).*/\1/p')

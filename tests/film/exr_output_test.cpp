@@ -1,0 +1,91 @@
+// EXR frames written with OpenEXR (film/exr_output.h) read back by OpenImageIO's own tools, as
+// a compositor's pipeline would: float, half, multi-part, crops and Glint's metadata.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <regex>
+
+#include "test_util.h"
+
+namespace glint {
+namespace {
+
+using test::runGlint;
+
+std::string tmp(const std::string& name) { return (test::tempDir() / name).string(); }
+
+std::string commandOutput(const std::string& cmd) {
+  std::string out;
+  FILE* pipe = ::popen((cmd + " 2>&1").c_str(), "r");
+  if (!pipe) return out;
+  std::array<char, 4096> buf;
+  size_t n;
+  while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) out.append(buf.data(), n);
+  EXPECT_EQ(::pclose(pipe), 0) << cmd << "\n" << out;
+  return out;
+}
+
+const char* kScene = R"({
+  "render": {"width": 24, "height": 16, "spp": 2, "seed": 3},
+  "camera": {"eye": [0,0,5], "look_at": [0,0,0], "vfov": 40},
+  "materials": {"m": {"type": "phong", "kd": [0.6,0.4,0.3]}},
+  "lights": [{"type": "point", "position": [2,3,4], "intensity": [40,40,40],
+              "falloff": "inverse_square"}],
+  "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})";
+
+TEST(ExrOutput, IinfoReadsFloatHalfCropsAndMetadata) {
+  const std::string scene = test::writeTemp("roundtrip.json", kScene);
+  ASSERT_EQ(runGlint("render " + scene + " --quiet -o " + tmp("f.exr")).exitCode, 0);
+  ASSERT_EQ(
+      runGlint("render " + scene + " --quiet --half --crop 4 20 2 10 -o " + tmp("h.exr")).exitCode,
+      0);
+  const std::string f = commandOutput("iinfo -v " + tmp("f.exr"));
+  EXPECT_NE(f.find("24 x   16, 4 channel, float openexr"), std::string::npos) << f;
+  EXPECT_NE(f.find("channel list: R, G, B, A"), std::string::npos) << f;
+  EXPECT_NE(f.find("compression: \"zip\""), std::string::npos) << f;
+  EXPECT_NE(f.find("glint:spp: 2"), std::string::npos) << f;
+  EXPECT_NE(f.find("glint:colorspace: \"lin_rec709\""), std::string::npos) << f;
+  // Rec.709 primaries and D65 white, OpenEXR's chromaticities attribute.
+  EXPECT_NE(f.find("chromaticities: 0.64, 0.33, 0.3, 0.6, 0.15, 0.06, 0.3127, 0.329"),
+            std::string::npos)
+      << f;
+  EXPECT_TRUE(std::regex_search(f, std::regex("worldToCamera: [-0-9., ]+"))) << f;
+  const std::string h = commandOutput("iinfo -v " + tmp("h.exr"));
+  EXPECT_NE(h.find("16 x    8, 4 channel, half openexr"), std::string::npos) << h;
+  // The crop's data window inside the full 24 × 16 display window.
+  EXPECT_NE(h.find("pixel data origin: x=4, y=2"), std::string::npos) << h;
+  EXPECT_NE(h.find("full/display size: 24 x 16"), std::string::npos) << h;
+}
+
+TEST(ExrOutput, OiiotoolStatsSeeEveryPartOfAMultiPartFrame) {
+  const std::string scene = test::writeTemp("multipart.json", kScene);
+  ASSERT_EQ(
+      runGlint("render " + scene + " --quiet --multipart --aov depth,normal -o " + tmp("mp.exr"))
+          .exitCode,
+      0);
+  const std::string stats = commandOutput("oiiotool --stats -a " + tmp("mp.exr"));
+  // Three parts (beauty, depth, normal), each with its statistics.
+  size_t parts = 0;
+  for (size_t at = stats.find("Stats Min"); at != std::string::npos;
+       at = stats.find("Stats Min", at + 1))
+    ++parts;
+  EXPECT_EQ(parts, 3u) << stats;
+  // Depth along camera rays that hit the unit sphere 5 units away: 4 at the centre, at most
+  // 5 at the silhouette; misses are 0 (no hit). So its maximum lies in (4, 5].
+  const std::string info = commandOutput("iinfo -v -a " + tmp("mp.exr"));
+  EXPECT_NE(info.find("subimage  1"), std::string::npos) << info;
+  EXPECT_NE(info.find("name: \"depth\""), std::string::npos) << info;
+  const std::smatch m = [&] {
+    std::smatch r;
+    std::regex_search(stats, r, std::regex("subimage +1:[\\s\\S]*?Stats Max: ([0-9.e+-]+)"));
+    return r;
+  }();
+  ASSERT_EQ(m.size(), 2u) << stats;
+  const double maxDepth = std::stod(m[1].str());
+  EXPECT_GT(maxDepth, 4.0);
+  EXPECT_LE(maxDepth, 5.0 + 1e-5);
+}
+
+}  // namespace
+}  // namespace glint
