@@ -26,6 +26,7 @@
 #include "core/error.h"
 #include "core/fp_env.h"
 #include "core/hash.h"
+#include "core/memory.h"
 #include "film/atomic_file.h"
 #include "render/tile_scheduler.h"
 

@@ -12,6 +12,7 @@
 #include "core/hash.h"
 #include "core/interrupt.h"
 #include "core/log.h"
+#include "core/memory.h"
 #include "core/sampler.h"
 #include "film/atomic_file.h"
 #include "film/display.h"
@@ -91,6 +92,8 @@ nlohmann::json statsJson(const Scene& scene, const RenderStats& st, uint64_t cla
   j["features_used"] = scene.features.used();
   j["features_left_out"] = scene.features.leftOut();
   j["integrator"] = st.integrator == IntegratorKind::Reference ? "reference" : "production";
+  // Of the whole process up to now: scene, acceleration structure, film and the EXR written.
+  j["peak_rss_bytes"] = peakResidentBytes();
   return j;
 }
 
@@ -109,6 +112,7 @@ void printStats(const Scene& scene, const RenderStats& st) {
   std::printf("Mrays/s          %.2f\n",
               st.seconds > 0 ? double(st.rays.total()) / st.seconds * 1e-6 : 0.0);
   std::printf("non-finite       %llu samples\n", (unsigned long long)st.rays.nonfiniteSamples);
+  std::printf("peak memory      %.1f MB (resident)\n", double(peakResidentBytes()) * 1e-6);
   std::printf("features used    %s\n", join(scene.features.used()).c_str());
   std::printf("left out         %s\n", join(scene.features.leftOut()).c_str());
   std::printf("integrator       %s\n", st.integrator == IntegratorKind::Reference

@@ -1,7 +1,6 @@
 #include "app/render_bench.h"
 
 #include <benchmark/benchmark.h>
-#include <sys/resource.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
@@ -151,12 +150,6 @@ int64_t sceneGeometryBytes(const Scene& scene, const EmbreeAccel& embree) {
     for (const auto& key : m.positionKeys) bytes += int64_t(key.capacity() * sizeof(Vec3f));
   }
   return bytes;
-}
-
-int64_t peakResidentBytes() {
-  rusage u{};
-  getrusage(RUSAGE_SELF, &u);
-  return int64_t(u.ru_maxrss) * 1024;  // Linux reports kilobytes
 }
 
 nlohmann::json benchWholeRender(const Scene& scene, const EmbreeAccel& embree,

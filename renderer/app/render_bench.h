@@ -25,7 +25,5 @@ double bestRenderSeconds(const Scene& scene, const Accelerator& accel, int threa
 
 // Bytes the scene's triangle meshes hold (positions, keys, indices) plus Embree's BVHs.
 int64_t sceneGeometryBytes(const Scene& scene, const EmbreeAccel& embree);
-// Peak resident memory of this process so far (getrusage), in bytes.
-int64_t peakResidentBytes();
 
 }  // namespace glint

@@ -1,5 +1,7 @@
 #include "core/memory.h"
 
+#include <sys/resource.h>
+
 #include <cstdio>
 #include <fstream>
 #include <limits>
@@ -21,6 +23,12 @@ std::string gigabytes(double bytes) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.1f GB", bytes * 1e-9);
   return buf;
+}
+
+uint64_t peakResidentBytes() {
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) != 0) return 0;
+  return uint64_t(usage.ru_maxrss) * 1024;  // Linux reports kilobytes
 }
 
 }  // namespace glint

@@ -236,6 +236,11 @@ TEST(Cli, DefaultSceneRendersWithStats) {
   for (const char* key : {"\"seconds\"", "\"rays_total\"", "\"nonfinite_samples\": 0",
                           "\"features_used\"", "\"features_left_out\""})
     EXPECT_NE(stats.find(key), std::string::npos) << key;
+  // The process's peak resident set: at least what its libraries take mapped (glint --version
+  // alone peaks at 14.5 MB), and far below a gigabyte for a 64 x 40 frame.
+  const double peak = nlohmann::json::parse(stats).at("peak_rss_bytes").get<double>();
+  EXPECT_GT(peak, 8e6);
+  EXPECT_LT(peak, 1e9);
 }
 
 TEST(Cli, ConvergeReportsErrorAgainstSppWithItsReference) {
