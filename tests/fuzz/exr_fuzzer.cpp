@@ -3,7 +3,7 @@
 // acceptable outcomes are an image whose pixel array matches its size, a merged frame, or a
 // GlintError naming the file. Crashes, sanitizer reports, other exceptions, hangs and
 // allocations over the fuzzer's limit (as the 6.4 GB of a 50 MB EXR declaring a huge data
-// window) are bugs. OpenEXR and OpenImageIO are not instrumented: coverage guides the fuzzer
+// window) are bugs. OpenEXR is not instrumented: coverage guides the fuzzer
 // through Glint's code only.
 #include <cstdint>
 #include <cstdio>
