@@ -204,7 +204,15 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   const std::string stats = a.statsJson == "-" ? a.statsJson : numbered(a.statsJson);
   // Every output, and the display image's format and the OCIO config, display, view and look,
   // are checked before the render is spent on them.
-  for (const Job& job : jobs) checkOutputPath(job.out);
+  for (size_t k = 0; k < jobs.size(); ++k) {
+    checkOutputPath(jobs[k].out);
+    const auto where = [](const std::string& p) {
+      return std::filesystem::weakly_canonical(std::filesystem::absolute(p));
+    };
+    for (size_t j = 0; j < k; ++j)
+      if (where(jobs[j].out) == where(jobs[k].out))
+        throw UsageError("-o " + jobs[k].out + " is given for two crops");
+  }
   if (!stats.empty() && stats != "-") checkOutputPath(stats);
   if (!display.empty()) {
     checkOutputPath(display);
@@ -263,10 +271,6 @@ void checkCropsAndOutputs(const RenderArgs& a) {
                      std::to_string(a.outputs.size()) + ")");
   if (!a.display.empty() || !a.statsJson.empty())
     throw UsageError("--display and --stats-json take one crop: give them with a single --crop");
-  for (size_t k = 0; k < crops; ++k)
-    for (size_t j = 0; j < k; ++j)
-      if (a.outputs[j] == a.outputs[k])
-        throw UsageError("-o " + a.outputs[k] + " is given for two crops");
 }
 
 int runRender(const RenderArgs& a) {

@@ -66,6 +66,14 @@ void checkExrHeaders(const std::string& path) {
 
 std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path) {
   checkExrHeaders(path);
+  // A tiled file decodes a whole row of tiles at a time, into a cache OpenEXR allocates from the
+  // declared tile size: a 10 kB file declaring one tile of 20000 rows would take gigabytes at
+  // once. Real files use tiles of 32-256 pixels.
+  static const bool tileLimit = [] {
+    Imf::Header::setMaxTileSize(kMaxTileEdge, kMaxTileEdge);
+    return true;
+  }();
+  (void)tileLimit;
   try {
     auto file = std::make_unique<Imf::MultiPartInputFile>(path.c_str());
     for (int part = 0; part < file->parts(); ++part) {
@@ -76,6 +84,8 @@ std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path) {
     }
     return file;
   } catch (const UsageError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {
     throw UsageError("cannot read " + path + ": " + excerpt(e.what()));
@@ -99,23 +109,28 @@ ExrWindow exrWindow(const std::string& path, const Imf::Header& header) {
 }
 
 std::vector<std::string> channelsInReadingOrder(const Imf::ChannelList& channels) {
-  std::vector<std::string> all;
-  for (auto c = channels.begin(); c != channels.end(); ++c) all.emplace_back(c.name());
   const auto layerOf = [](const std::string& name) {
     const size_t dot = name.rfind('.');
     return dot == std::string::npos ? std::string() : name.substr(0, dot);
   };
-  // The primary layer: the channels without one when there are any, else the first layer.
-  std::string primary = all.empty() ? std::string() : layerOf(all.front());
-  for (const std::string& name : all)
-    if (layerOf(name).empty()) primary.clear();
-  std::vector<std::string> ordered;
-  for (const char* component : {"R", "G", "B", "A"}) {
-    const std::string name = primary.empty() ? component : primary + "." + component;
-    if (channels.findChannel(name)) ordered.push_back(name);
+  // Layers in the file's order, the unlayered channels first; in each, R, G, B, A first.
+  std::vector<std::string> layers;
+  for (auto c = channels.begin(); c != channels.end(); ++c) {
+    const std::string layer = layerOf(c.name());
+    if (std::find(layers.begin(), layers.end(), layer) == layers.end()) layers.push_back(layer);
   }
-  for (const std::string& name : all)
-    if (std::find(ordered.begin(), ordered.end(), name) == ordered.end()) ordered.push_back(name);
+  std::stable_partition(layers.begin(), layers.end(),
+                        [](const std::string& l) { return l.empty(); });
+  std::vector<std::string> ordered;
+  for (const std::string& layer : layers) {
+    const std::string prefix = layer.empty() ? layer : layer + ".";
+    for (const char* component : {"R", "G", "B", "A"})
+      if (channels.findChannel(prefix + component)) ordered.push_back(prefix + component);
+    for (auto c = channels.begin(); c != channels.end(); ++c)
+      if (layerOf(c.name()) == layer &&
+          std::find(ordered.begin(), ordered.end(), c.name()) == ordered.end())
+        ordered.emplace_back(c.name());
+  }
   return ordered;
 }
 
@@ -154,6 +169,8 @@ void readPixelsInBands(const std::string& path, Imf::MultiPartInputFile& file, i
       y = end;
     }
   } catch (const UsageError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
     throw;
   } catch (const std::exception& e) {
     throw UsageError("cannot read " + path + ": " + excerpt(e.what()));

@@ -18,6 +18,9 @@
 
 namespace glint {
 
+// The largest tile edge read; OpenEXR refuses files with larger tiles.
+inline constexpr int kMaxTileEdge = 4096;
+
 // Throws UsageError naming `path` when the checks below fail or OpenEXR cannot open it.
 std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path);
 
@@ -34,9 +37,9 @@ struct ExrWindow {
 // Throws UsageError naming `path` when a window is empty or its size overflows int.
 ExrWindow exrWindow(const std::string& path, const Imf::Header& header);
 
-// The part's channels in the order Glint's readers see them: the primary layer's (the channels
-// without a layer, else the first layer's) R, G, B and A first, then every other channel in
-// the file's (alphabetical) order.
+// The part's channels in the order Glint's readers see them: layer by layer, the channels
+// without a layer first, then the others in the file's (alphabetical) order; in each layer its
+// R, G, B and A first, then its other channels.
 std::vector<std::string> channelsInReadingOrder(const Imf::ChannelList& channels);
 
 // One channel of an interleaved pixel buffer: read as `type` at `offset` bytes into a pixel.

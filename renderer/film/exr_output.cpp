@@ -14,12 +14,14 @@
 #include <OpenEXR/ImfOutputPart.h>
 #include <OpenEXR/ImfPartType.h>
 #include <OpenEXR/ImfStandardAttributes.h>
+#include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <ctime>
+#include <fstream>
 #include <limits>
 
 #include "core/error.h"
@@ -221,26 +223,38 @@ uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
     return frameBuffer;
   };
   writeFileAtomically(path, [&](const std::string& tmp) {
-    try {
+    writeExrStream(path, tmp, [&](Imf::OStream& stream) {
       if (parts.size() == 1) {
-        Imf::OutputFile file(tmp.c_str(), headers[0]);
+        Imf::OutputFile file(stream, headers[0]);
         const std::vector<unsigned char> data = packPart(parts[0], size_t(w.area()));
         file.setFrameBuffer(frameBufferOf(0, data));
         file.writePixels(w.height());
         return;
       }
-      Imf::MultiPartOutputFile file(tmp.c_str(), headers.data(), int(headers.size()));
+      Imf::MultiPartOutputFile file(stream, headers.data(), int(headers.size()));
       for (size_t i = 0; i < parts.size(); ++i) {
         const std::vector<unsigned char> data = packPart(parts[i], size_t(w.area()));
         Imf::OutputPart out(file, int(i));
         out.setFrameBuffer(frameBufferOf(i, data));
         out.writePixels(w.height());
       }
-    } catch (const std::exception& e) {
-      throw GlintError("cannot write " + path + ": " + e.what());
-    }
+    });
   });
   return clamped;
+}
+
+void writeExrStream(const std::string& path, const std::string& tmpPath,
+                    const std::function<void(Imf::OStream&)>& write) {
+  std::ofstream out(tmpPath, std::ios::binary | std::ios::trunc);
+  if (!out) throw GlintError("cannot write " + path + ": cannot create the file");
+  try {
+    Imf::StdOFStream stream(out, tmpPath.c_str());
+    write(stream);  // OpenEXR's file object is gone when this returns: every byte is handed over
+  } catch (const std::exception& e) {
+    throw GlintError("cannot write " + path + ": " + e.what());
+  }
+  out.close();
+  if (!out) throw GlintError("cannot write " + path + ": the disk refused the data");
 }
 
 Image readImage(const std::string& path) {

@@ -3,7 +3,10 @@
 // coverage) and AOV planes, layered in one part or one part each, the chosen compression, the
 // data window = the crop inside the full display window, and Glint's metadata (docs/output.md)
 // with the film's own attributes (those its planes need, such as Cryptomatte's manifests).
+#include <OpenEXR/ImfIO.h>
+
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,6 +38,13 @@ const std::vector<std::string>& exrCompressions();
 // glint:clamped_values (saturating at 2^31 − 1). Nothing written is Inf or NaN.
 uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
                   const ExrOptions& options = {});
+
+// Writes an EXR to `tmpPath` through `write`, which makes an OpenEXR output file on the stream
+// it is given. The stream is Glint's own, closed and checked after OpenEXR is done with it:
+// OpenEXR writes the line-offset table in its destructor and swallows a failure there (a full
+// disk), which would publish a truncated frame. Throws GlintError naming `path`.
+void writeExrStream(const std::string& path, const std::string& tmpPath,
+                    const std::function<void(Imf::OStream&)>& write);
 
 // Reads an EXR's channels (full data window) as float, RGBA first; used by tests, `glint
 // compare`, `convert` and `converge`. Throws UsageError naming the file when it cannot be read

@@ -40,7 +40,11 @@ bool writePngRows(std::FILE* file, int width, int height, unsigned char** rows, 
       png_create_write_struct(PNG_LIBPNG_VER_STRING, error, storePngError, ignorePngWarning);
   if (!png) return false;
   png_infop info = png_create_info_struct(png);
-  if (!info || setjmp(png_jmpbuf(png))) {
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    return false;
+  }
+  if (setjmp(png_jmpbuf(png))) {
     png_destroy_write_struct(&png, &info);
     return false;
   }

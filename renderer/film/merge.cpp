@@ -17,6 +17,7 @@
 #include "core/input_files.h"
 #include "film/atomic_file.h"
 #include "film/exr_input.h"
+#include "film/exr_output.h"
 #include "film/image_limits.h"
 
 namespace glint {
@@ -212,6 +213,7 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
   header.dataWindow() = Imath::Box2i({0, 0}, {W - 1, H - 1});
   // A scanline frame: a tiled crop's layout and a part's chunk count do not carry over.
   for (const char* layout : {"tiles", "chunkCount", "type", "name"}) header.erase(layout);
+  header.lineOrder() = Imf::INCREASING_Y;
   float seconds = 0, rays = 0;
   int64_t clamped = 0;
   for (const Crop& c : crops) {
@@ -228,8 +230,8 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
   setAttribute(header, "glint:merged_crops", Imf::IntAttribute(int(crops.size())));
   setAttribute(header, "glint:commandline", Imf::StringAttribute(commandLine));
   writeFileAtomically(outPath, [&](const std::string& tmp) {
-    try {
-      Imf::OutputFile out(tmp.c_str(), header);
+    writeExrStream(outPath, tmp, [&](Imf::OStream& stream) {
+      Imf::OutputFile out(stream, header);
       Imf::FrameBuffer frameBuffer;
       for (const ExrSlice& s : first.slices)
         frameBuffer.insert(s.name,
@@ -237,9 +239,7 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
                                             pixelBytes, pixelBytes * size_t(W)));
       out.setFrameBuffer(frameBuffer);
       out.writePixels(H);
-    } catch (const std::exception& e) {
-      throw GlintError("cannot write " + outPath + ": " + e.what());
-    }
+    });
   });
   return {W, H, crops.size()};
 }

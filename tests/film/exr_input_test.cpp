@@ -9,6 +9,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -80,6 +81,66 @@ TEST(ExrInput, PixelsAreAllocatedOnlyAsTheFileDeliversThem) {
   setImageMemoryBudget(0);
   EXPECT_NE(message.find("cannot read " + huge), std::string::npos) << message;
   EXPECT_LT(peakRssKb(), 1024 * 1024) << "peak RSS in kB; the header asks for 6.4 GB";
+}
+
+TEST(ExrInput, ATiledLayeredFileOfManyBandsReadsAsOpenImageIOReadsIt) {
+  // 2048 x 1100 pixels of 5 float channels (45 MB: three 16 MB bands), tiled 64 x 64 with a
+  // data window starting at (-7, 13) and an AOV layer: every value must land where OpenImageIO,
+  // an independent reader, puts it, and the channels come layer by layer, R, G, B, A first.
+  const int w = 2048, h = 1100;
+  OIIO::ImageSpec spec(w, h, 5, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"A", "B", "G", "R", "depth.Z"};
+  spec.alpha_channel = 0;
+  spec.x = -7;
+  spec.y = 13;
+  spec.tile_width = spec.tile_height = 64;
+  std::vector<float> pixels(size_t(w) * h * 5);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> value(-2.0f, 8.0f);
+  for (float& v : pixels) v = value(rng);
+  const std::string path = tmp("tiled-bands.exr");
+  auto out = OIIO::ImageOutput::create(path);
+  ASSERT_TRUE(out && out->open(path, spec) &&
+              out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()) && out->close());
+
+  const Image img = readImage(path);
+  ASSERT_EQ(img.width, w);
+  ASSERT_EQ(img.height, h);
+  EXPECT_EQ(img.x, -7);
+  EXPECT_EQ(img.y, 13);
+  EXPECT_EQ(img.channelNames, (std::vector<std::string>{"R", "G", "B", "A", "depth.Z"}));
+  auto in = OIIO::ImageInput::open(path);
+  ASSERT_TRUE(in);
+  // OpenImageIO's own order of the file's channels, to map each of Glint's onto it.
+  const std::vector<std::string>& theirs = in->spec().channelnames;
+  std::vector<float> expected(pixels.size());
+  ASSERT_TRUE(in->read_image(0, 0, 0, 5, OIIO::TypeDesc::FLOAT, expected.data()));
+  size_t mismatches = 0;
+  for (int c = 0; c < 5; ++c) {
+    const size_t k = size_t(std::find(theirs.begin(), theirs.end(), img.channelNames[size_t(c)]) -
+                            theirs.begin());
+    ASSERT_LT(k, 5u) << img.channelNames[size_t(c)];
+    for (size_t p = 0; p < size_t(w) * h; ++p)
+      mismatches += img.pixels[p * 5 + size_t(c)] != expected[p * 5 + k];
+  }
+  EXPECT_EQ(mismatches, 0u);
+}
+
+TEST(ExrInput, TilesLargerThan4096PixelsAreRefusedNamingTheFile) {
+  // OpenEXR caches a whole row of tiles as it reads: a file that declares one tile of 20000
+  // rows (a 10 kB file can) would allocate it at once. A 1 x 5000 image in one 1 x 5000 tile
+  // is past the limit (kMaxTileEdge, 4096).
+  OIIO::ImageSpec spec(1, 5000, 3, OIIO::TypeDesc::HALF);
+  spec.tile_width = 1;
+  spec.tile_height = 5000;
+  const std::vector<uint16_t> zeros(size_t(5000) * 3, 0);
+  const std::string path = tmp("tall-tile.exr");
+  auto out = OIIO::ImageOutput::create(path);
+  ASSERT_TRUE(out && out->open(path, spec) &&
+              out->write_image(OIIO::TypeDesc::HALF, zeros.data()) && out->close());
+  const std::string error = readError(path);
+  EXPECT_EQ(error.rfind("cannot read " + path + ": ", 0), 0u) << error;
+  EXPECT_NE(error.find("tile"), std::string::npos) << error;
 }
 
 TEST(ExrInput, AHeaderAttributeLargerThanTheFileIsRefused) {

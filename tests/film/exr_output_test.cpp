@@ -36,11 +36,12 @@ const char* kScene = R"({
 
 TEST(ExrOutput, IinfoReadsFloatHalfCropsAndMetadata) {
   const std::string scene = test::writeTemp("roundtrip.json", kScene);
-  ASSERT_EQ(runGlint("render " + scene + " --quiet -o " + tmp("f.exr")).exitCode, 0);
-  ASSERT_EQ(
-      runGlint("render " + scene + " --quiet --half --crop 4 20 2 10 -o " + tmp("h.exr")).exitCode,
-      0);
-  const std::string f = commandOutput("iinfo -v " + tmp("f.exr"));
+  ASSERT_EQ(runGlint("render " + scene + " --quiet -o " + tmp("roundtrip-float.exr")).exitCode, 0);
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --half --crop 4 20 2 10 -o " +
+                     tmp("roundtrip-half-crop.exr"))
+                .exitCode,
+            0);
+  const std::string f = commandOutput("iinfo -v " + tmp("roundtrip-float.exr"));
   EXPECT_NE(f.find("24 x   16, 4 channel, float openexr"), std::string::npos) << f;
   EXPECT_NE(f.find("channel list: R, G, B, A"), std::string::npos) << f;
   EXPECT_NE(f.find("compression: \"zip\""), std::string::npos) << f;
@@ -51,7 +52,7 @@ TEST(ExrOutput, IinfoReadsFloatHalfCropsAndMetadata) {
             std::string::npos)
       << f;
   EXPECT_TRUE(std::regex_search(f, std::regex("worldToCamera: [-0-9., ]+"))) << f;
-  const std::string h = commandOutput("iinfo -v " + tmp("h.exr"));
+  const std::string h = commandOutput("iinfo -v " + tmp("roundtrip-half-crop.exr"));
   EXPECT_NE(h.find("16 x    8, 4 channel, half openexr"), std::string::npos) << h;
   // The crop's data window inside the full 24 × 16 display window.
   EXPECT_NE(h.find("pixel data origin: x=4, y=2"), std::string::npos) << h;
@@ -60,11 +61,11 @@ TEST(ExrOutput, IinfoReadsFloatHalfCropsAndMetadata) {
 
 TEST(ExrOutput, OiiotoolStatsSeeEveryPartOfAMultiPartFrame) {
   const std::string scene = test::writeTemp("multipart.json", kScene);
-  ASSERT_EQ(
-      runGlint("render " + scene + " --quiet --multipart --aov depth,normal -o " + tmp("mp.exr"))
-          .exitCode,
-      0);
-  const std::string stats = commandOutput("oiiotool --stats -a " + tmp("mp.exr"));
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --multipart --aov depth,normal -o " +
+                     tmp("roundtrip-multipart.exr"))
+                .exitCode,
+            0);
+  const std::string stats = commandOutput("oiiotool --stats -a " + tmp("roundtrip-multipart.exr"));
   // Three parts (beauty, depth, normal), each with its statistics.
   size_t parts = 0;
   for (size_t at = stats.find("Stats Min"); at != std::string::npos;
@@ -73,7 +74,7 @@ TEST(ExrOutput, OiiotoolStatsSeeEveryPartOfAMultiPartFrame) {
   EXPECT_EQ(parts, 3u) << stats;
   // Depth along camera rays that hit the unit sphere 5 units away: 4 at the centre, at most
   // 5 at the silhouette; misses are 0 (no hit). So its maximum lies in (4, 5].
-  const std::string info = commandOutput("iinfo -v -a " + tmp("mp.exr"));
+  const std::string info = commandOutput("iinfo -v -a " + tmp("roundtrip-multipart.exr"));
   EXPECT_NE(info.find("subimage  1"), std::string::npos) << info;
   EXPECT_NE(info.find("name: \"depth\""), std::string::npos) << info;
   const std::smatch m = [&] {

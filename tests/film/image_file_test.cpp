@@ -65,14 +65,17 @@ TEST(ImageFile, SixteenBitTiffThroughTheModuleKeepsEveryCode) {
   EXPECT_EQ(back, codes);
 }
 
-TEST(ImageFile, AnUnwritablePngIsAnErrorNamingIt) {
-  const std::string path = tmp("no-such-dir/x.png");
+TEST(ImageFile, LibpngsErrorsAreGlintErrorsNamingTheFileAndLeaveNothing) {
+  // An image of no pixels: libpng refuses the header (png_error, its longjmp path).
+  const std::string path = tmp("empty.png");
   try {
-    writeRgbImage(path, 1, 1, 8, {0, 0, 0});
+    writeRgbImage(path, 0, 0, 8, {});
     FAIL() << "wrote " << path;
   } catch (const GlintError& e) {
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("IHDR"), std::string::npos) << e.what();  // libpng's words
   }
+  EXPECT_FALSE(std::filesystem::exists(path));
 }
 
 }  // namespace
