@@ -66,14 +66,6 @@ void checkExrHeaders(const std::string& path) {
 
 std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path) {
   checkExrHeaders(path);
-  // A tiled file decodes a whole row of tiles at a time, into a cache OpenEXR allocates from the
-  // declared tile size: a 10 kB file declaring one tile of 20000 rows would take gigabytes at
-  // once. Real files use tiles of 32-256 pixels.
-  static const bool tileLimit = [] {
-    Imf::Header::setMaxTileSize(kMaxTileEdge, kMaxTileEdge);
-    return true;
-  }();
-  (void)tileLimit;
   try {
     auto file = std::make_unique<Imf::MultiPartInputFile>(path.c_str());
     for (int part = 0; part < file->parts(); ++part) {
@@ -81,6 +73,15 @@ std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path) {
       if (h.hasType() && Imf::isDeepData(h.type()))
         throw UsageError(path + ": part " + std::to_string(part) +
                          " holds deep data, which Glint does not read");
+      // A tiled file is decoded a whole row of tiles at a time, into a cache OpenEXR sizes from
+      // the declared tiles: a 10 kB file declaring one tile of 20000 rows would take gigabytes
+      // at once. Real files use tiles of 32-256 pixels.
+      if (h.hasTileDescription() && (h.tileDescription().xSize > unsigned(kMaxTileEdge) ||
+                                     h.tileDescription().ySize > unsigned(kMaxTileEdge)))
+        throw UsageError("cannot read " + path + ": its tiles are " +
+                         std::to_string(h.tileDescription().xSize) + " x " +
+                         std::to_string(h.tileDescription().ySize) + " pixels; at most " +
+                         std::to_string(kMaxTileEdge) + " a side are read");
     }
     return file;
   } catch (const UsageError&) {

@@ -18,7 +18,7 @@
 
 namespace glint {
 
-// The largest tile edge read; OpenEXR refuses files with larger tiles.
+// The largest tile edge read; openExr refuses files with larger tiles.
 inline constexpr int kMaxTileEdge = 4096;
 
 // Throws UsageError naming `path` when the checks below fail or OpenEXR cannot open it.
