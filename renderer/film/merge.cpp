@@ -60,10 +60,15 @@ Value attributeOr(const Imf::Header& h, const char* name, Value otherwise) {
   return a ? Value(a->value()) : otherwise;
 }
 
-// Sets attribute `name`, whatever type a crop gave it (OpenEXR refuses to change a type).
-void setAttribute(Imf::Header& h, const char* name, const Imf::Attribute& value) {
-  h.erase(name);
-  h.insert(name, value);
+// A copy of `h` without the attributes named in `leftOut`. (Header::erase of OpenEXR 3.1 leaks
+// the attribute it removes, and a crop may give an attribute Glint sets another type, which
+// insert refuses to change: so the merged header is built without them instead.)
+Imf::Header headerWithout(const Imf::Header& h, const std::vector<std::string>& leftOut) {
+  Imf::Header copy;
+  for (auto a = h.begin(); a != h.end(); ++a)
+    if (std::find(leftOut.begin(), leftOut.end(), a.name()) == leftOut.end())
+      copy.insert(a.name(), a.attribute());
+  return copy;
 }
 
 std::string window(const PixelWindow& w) {
@@ -209,10 +214,12 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
 
   // The merged frame keeps the first crop's metadata (scene, settings, hashes) over the full
   // data window; time, rays and clamped values become the sums over the crops.
-  Imf::Header header = first.header;
-  header.dataWindow() = Imath::Box2i({0, 0}, {W - 1, H - 1});
   // A scanline frame: a tiled crop's layout and a part's chunk count do not carry over.
-  for (const char* layout : {"tiles", "chunkCount", "type", "name"}) header.erase(layout);
+  Imf::Header header =
+      headerWithout(first.header, {"tiles", "chunkCount", "type", "name", "glint:clamped_values",
+                                   "glint:render_seconds", "glint:rays", "glint:crop",
+                                   "glint:merged_crops", "glint:commandline"});
+  header.dataWindow() = Imath::Box2i({0, 0}, {W - 1, H - 1});
   header.lineOrder() = Imf::INCREASING_Y;
   float seconds = 0, rays = 0;
   int64_t clamped = 0;
@@ -221,14 +228,14 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
     rays += attributeOr<Imf::FloatAttribute>(c.header, "glint:rays", 0.0f);
     clamped += attributeOr<Imf::IntAttribute>(c.header, "glint:clamped_values", 0);
   }
-  setAttribute(header, "glint:clamped_values",
-               Imf::IntAttribute(int(std::min<int64_t>(clamped, INT32_MAX))));
-  setAttribute(header, "glint:render_seconds", Imf::FloatAttribute(seconds));
-  setAttribute(header, "glint:rays", Imf::FloatAttribute(rays));
-  setAttribute(header, "glint:crop",
-               Imf::StringAttribute("0 " + std::to_string(W) + " 0 " + std::to_string(H)));
-  setAttribute(header, "glint:merged_crops", Imf::IntAttribute(int(crops.size())));
-  setAttribute(header, "glint:commandline", Imf::StringAttribute(commandLine));
+  header.insert("glint:clamped_values",
+                Imf::IntAttribute(int(std::min<int64_t>(clamped, INT32_MAX))));
+  header.insert("glint:render_seconds", Imf::FloatAttribute(seconds));
+  header.insert("glint:rays", Imf::FloatAttribute(rays));
+  header.insert("glint:crop",
+                Imf::StringAttribute("0 " + std::to_string(W) + " 0 " + std::to_string(H)));
+  header.insert("glint:merged_crops", Imf::IntAttribute(int(crops.size())));
+  header.insert("glint:commandline", Imf::StringAttribute(commandLine));
   writeFileAtomically(outPath, [&](const std::string& tmp) {
     writeExrStream(outPath, tmp, [&](Imf::OStream& stream) {
       Imf::OutputFile out(stream, header);
