@@ -16,6 +16,11 @@ struct ShadingPoint {
   float t = 0;
   uint32_t materialId = 0;
   uint32_t objectId = 0;
+
+  // The shading normal on the side of the surface that `w` points to. The side is the
+  // geometric normal's to decide: a smooth normal can lean past a direction that ng puts in
+  // front (at a silhouette), and must not turn the surface around there.
+  Vec3f shadingNormalFacing(const Vec3f& w) const { return dot(ng, w) < 0 ? -ns : ns; }
 };
 
 // The one way to make a secondary or shadow ray, written field by field into `r`: leaves the

@@ -1,6 +1,7 @@
 #pragma once
 // Triangle mesh in the layout Embree shares without copying: packed float3 positions (with one
-// float of tail padding, which Embree's 16-byte loads need) and uint32 index triples.
+// float of tail padding, which Embree's 16-byte loads need) and uint32 index triples, with the
+// per-vertex normals of a smooth-shaded mesh beside them.
 #include <cstdint>
 #include <vector>
 
@@ -16,8 +17,12 @@ struct TriangleMesh {
   // A deforming mesh: positions at K ≥ 2 keys spread evenly over [0, 1] (key 0 equals
   // `positions`). Empty for a static mesh.
   std::vector<std::vector<Vec3f>> positionKeys;
+  // Per-vertex shading normals (unit, in the mesh's space), interpolated across each triangle;
+  // empty for a mesh shaded flat from its triangles. A deforming mesh has none.
+  std::vector<Vec3f> normals;
 
   bool deforming() const { return !positionKeys.empty(); }
+  bool smooth() const { return !normals.empty(); }
   size_t triangleCount() const { return indices.size() / 3; }
   Vec3f vertex(uint32_t tri, int corner) const {
     return positions[indices[3 * tri + static_cast<uint32_t>(corner)]];

@@ -248,7 +248,7 @@ void BatchedKernel::recordAov(const Ray& ray, const Hit& hit, const Material& m,
                               AovSample& aov) const {
   aov.hit = true;
   aov.depth = dot(sp.p - ray.o, aov.viewAxis);
-  aov.normal = faceForward(sp.ns, -ray.d);
+  aov.normal = sp.shadingNormalFacing(-ray.d);
   aov.position = toFloat(toDouble(sp.p) + scene_.worldOrigin);  // world, not render space
   // The top-level object: for a hit inside an instance, the instance's entry in `objects`.
   const Geometry& top =

@@ -85,7 +85,7 @@ std::string gltfSubset(const std::string& path, const std::string& text) {
     forEachIn(mesh, "primitives", [](json& primitive) {
       keepOnly(primitive, {"attributes", "indices", "mode", "extensions"});
       if (const auto a = primitive.find("attributes"); a != primitive.end())
-        keepOnly(*a, {"POSITION"});
+        keepOnly(*a, {"POSITION", "NORMAL"});
     });
   });
   try {

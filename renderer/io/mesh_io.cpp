@@ -105,10 +105,10 @@ TriangleMesh loadMeshFile(const std::string& path) {
     files->replaceMeshBytes(ext == ".gltf" ? gltfSubset(path, bytes) : glbSubset(path, bytes));
   }
   checkAnImporterOfTheExtensionReadsIt(importer, path);
-  // Meshes are shaded flat from their triangles for now, so normals and UVs are not imported.
-  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_NORMALS | aiComponent_COLORS |
-                                                          aiComponent_TEXCOORDS |
-                                                          aiComponent_MATERIALS);
+  // Positions and the file's vertex normals (smooth shading) are kept; colours, UVs and
+  // materials are not imported yet.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
+                              aiComponent_COLORS | aiComponent_TEXCOORDS | aiComponent_MATERIALS);
   // Read with no processing but Assimp's own validation: its post-processing steps index
   // vertices through the faces before any check of ours, and a face naming a vertex that does
   // not exist made them read and write out of bounds.
@@ -141,14 +141,19 @@ TriangleMesh loadMeshFile(const std::string& path) {
                            std::to_string(m->mNumVertices));
   }
   // Check for NaN and Inf before Assimp joins vertices: its vertex welding compares positions
-  // and would silently merge or drop non-finite ones.
+  // (and normals) and would silently merge or drop non-finite ones.
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi)
     for (unsigned v = 0; v < s->mMeshes[mi]->mNumVertices; ++v) {
-      const aiVector3D& p = s->mMeshes[mi]->mVertices[v];
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-        throw GlintError("mesh " + path + ": vertex " + std::to_string(v) + " of mesh " +
-                         std::to_string(mi) + " is not finite (" + std::to_string(p.x) + ", " +
-                         std::to_string(p.y) + ", " + std::to_string(p.z) + ")");
+      const aiMesh* m = s->mMeshes[mi];
+      for (const aiVector3D* values : {m->mVertices, m->mNormals}) {
+        if (!values) continue;
+        const aiVector3D& p = values[v];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+          throw GlintError("mesh " + path + ": " + (values == m->mNormals ? "the normal of " : "") +
+                           "vertex " + std::to_string(v) + " of mesh " + std::to_string(mi) +
+                           " is not finite (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
+                           ", " + std::to_string(p.z) + ")");
+      }
     }
   s = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_RemoveComponent |
                                    aiProcess_SortByPType);
@@ -157,6 +162,12 @@ TriangleMesh loadMeshFile(const std::string& path) {
                                    aiProcess_PreTransformVertices);
   if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
   TriangleMesh mesh;
+  // Shaded smooth when every mesh of the file gives vertex normals (one mesh without them would
+  // leave its vertices none to interpolate), else flat.
+  bool smooth = true;
+  for (unsigned mi = 0; mi < s->mNumMeshes; ++mi)
+    if (s->mMeshes[mi]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)
+      smooth = smooth && s->mMeshes[mi]->mNormals != nullptr;
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
     const aiMesh* m = s->mMeshes[mi];
     if (!(m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;  // points and lines
@@ -164,6 +175,7 @@ TriangleMesh loadMeshFile(const std::string& path) {
     for (unsigned v = 0; v < m->mNumVertices; ++v) {
       const aiVector3D& p = m->mVertices[v];
       mesh.positions.push_back({p.x, p.y, p.z});
+      if (smooth) mesh.normals.push_back({m->mNormals[v].x, m->mNormals[v].y, m->mNormals[v].z});
     }
     for (unsigned f = 0; f < m->mNumFaces; ++f) {
       const aiFace& face = m->mFaces[f];

@@ -1,7 +1,7 @@
 #pragma once
 // Triangle meshes from files through Assimp: OBJ, PLY and glTF 2.0 (.gltf, .glb) only, each
 // checked before Assimp reads it (io/mesh_limits.h). All meshes of the file are merged, with
-// their node transforms applied.
+// their node transforms applied; the file's vertex normals are kept when every mesh has them.
 #include <string>
 
 #include "geometry/triangle_mesh.h"

@@ -39,6 +39,7 @@ uint32_t push(Scene& s, uint32_t groupId, GeomKind kind, uint32_t index, uint32_
 // A mesh in the object's local coordinates, kept in double until it is placed.
 struct LocalMesh {
   std::vector<Vec3d> positions;
+  std::vector<Vec3d> normals;                    // per vertex, for smooth shading; empty: flat
   std::vector<std::vector<Vec3d>> positionKeys;  // a deforming mesh's vertices per motion key
   std::vector<uint32_t> indices;
 };
@@ -59,6 +60,16 @@ void addMesh(SceneBuilder& b, const LocalMesh& local, const Placement& place, co
   mesh.indices = local.indices;
   mesh.positions = placed(local.positions);
   for (const auto& key : local.positionKeys) mesh.positionKeys.push_back(placed(key));
+  // Normals go through the inverse transpose, which keeps them outward under a mirroring
+  // transform too. A deforming mesh is shaded flat: its normals would have to move with it.
+  if (local.positionKeys.empty())
+    for (const Vec3d& n : local.normals) {
+      const Vec3f placedNormal = place.transform().normal(toFloat(n));
+      const float len = length(placedNormal);
+      // A zero normal cannot be interpolated; Scene::smoothNormal falls back to the triangle's
+      // where the interpolated normal vanishes, so a zero stays zero.
+      mesh.normals.push_back(len > 0 && std::isfinite(len) ? placedNormal / len : Vec3f{});
+    }
   // A mirroring transform (negative determinant) reverses the winding, which would turn the
   // geometric normals inward; swap two corners to keep them outward.
   if (place.transform().determinant() < 0)
@@ -95,6 +106,13 @@ LocalMesh boxMesh(const Vec3d& lo, const Vec3d& hi) {
 LocalMesh inlineMesh(const JsonNode& obj) {
   LocalMesh m;
   m.positions = parsePoints(obj.at("positions"), 3);
+  if (obj.has("normals")) {
+    const JsonNode normals = obj.at("normals");
+    m.normals = parsePoints(normals, 1);
+    if (m.normals.size() != m.positions.size())
+      normals.fail("has " + std::to_string(m.normals.size()) + " normals; the mesh has " +
+                   std::to_string(m.positions.size()) + " positions (one normal per position)");
+  }
   const JsonNode idx = obj.at("indices");
   for (const JsonNode& tri : idx.elements()) {
     if (tri.size() != 3) tri.fail("must be a triple of vertex indices");
@@ -128,6 +146,7 @@ LocalMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
     const TriangleMesh loaded = loadMeshFile(full.lexically_normal().string());
     LocalMesh m;
     for (const Vec3f& p : loaded.positions) m.positions.push_back(toDouble(p));
+    for (const Vec3f& n : loaded.normals) m.normals.push_back(toDouble(n));
     m.indices = loaded.indices;
     return m;
   } catch (const GlintError& e) {
@@ -340,7 +359,11 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
       v.fail("cannot triangulate: the polygon is degenerate or self-intersecting");
     addMesh(b, m, place, obj, groupId, material, objectId);
   } else {  // mesh
-    obj.checkKeys({"type", "file", "positions", "indices", "material", "transform", "motion"});
+    obj.checkKeys(
+        {"type", "file", "positions", "normals", "indices", "material", "transform", "motion"});
+    if (obj.has("file") && obj.has("normals"))
+      obj.at("normals").fail(
+          "a mesh from a file takes its normals from the file; remove \"normals\"");
     if (obj.has("file") == obj.has("positions"))
       obj.fail("a mesh needs either \"file\" or \"positions\" with \"indices\"");
     if (obj.has("file") && obj.has("indices"))

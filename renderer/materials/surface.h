@@ -54,7 +54,7 @@ struct SurfacePoint {
 [[gnu::always_inline]] inline SurfacePoint lookUp(const Surface& s, const ShadingPoint& sp,
                                                   const Vec3f& wo, const Vec3d& worldOrigin) {
   SurfacePoint at;
-  at.n = faceForward(sp.ns, wo);
+  at.n = sp.shadingNormalFacing(wo);
   at.wo = wo;
   at.kd = s.kd.eval(sp.p, worldOrigin);
   at.ks = s.ks.eval(sp.p, worldOrigin);

@@ -80,6 +80,7 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
   const Vec3f dObj = worldFromObject ? worldFromObject->inverse().vector(ray.d) : ray.d;
 
   Vec3f p, n, pError;
+  const TriangleMesh* smoothMesh = nullptr;  // a mesh with vertex normals: ns is interpolated
   switch (g.kind) {
     case GeomKind::Mesh: {
       const TriangleMesh& m = meshes[g.index];
@@ -93,6 +94,7 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
       // difference to our vertexAt.
       if (m.deforming()) pError += gamma(4) * (abs(p0) + abs(p1) + abs(p2));
       n = cross(p1 - p0, p2 - p0);
+      if (m.smooth()) smoothMesh = &m;
       break;
     }
     case GeomKind::Sphere: {
@@ -148,7 +150,21 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
   storeWhole(sp.pError, pError);
   const Vec3f ng = normalize(n);
   storeWhole(sp.ng, ng);
-  storeWhole(sp.ns, ng);
+  storeWhole(sp.ns, smoothMesh ? smoothNormal(*smoothMesh, hit, worldFromObject, ng) : ng);
+}
+
+Vec3f Scene::smoothNormal(const TriangleMesh& m, const Hit& hit, const Transform* worldFromObject,
+                          const Vec3f& ng) {
+  const uint32_t* tri = &m.indices[3 * size_t(hit.primId)];
+  Vec3f ns = (1 - hit.u - hit.v) * m.normals[tri[0]] + hit.u * m.normals[tri[1]] +
+             hit.v * m.normals[tri[2]];
+  if (worldFromObject) ns = worldFromObject->normal(ns);
+  const float len = length(ns);
+  // Opposite vertex normals can cancel (a degenerate file): the triangle's own normal then.
+  if (!(len > 1e-6f)) return ng;
+  ns = ns / len;
+  // On the side of ng, as ShadingPoint promises: the shading frame must not flip the surface.
+  return dot(ns, ng) < 0 ? -ns : ns;
 }
 
 Bounds3f Scene::groupBounds(uint32_t groupId) const {

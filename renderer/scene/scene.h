@@ -135,6 +135,10 @@ class Scene {
   // outside instances).
   void shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldFromObject,
                     ShadingPoint& sp) const;
+  // The interpolated vertex normal at a hit on a smooth mesh, in world space, unit, on the side
+  // of the geometric normal `ng` (which secondary rays leave from: no shadow terminator).
+  static Vec3f smoothNormal(const TriangleMesh& m, const Hit& hit, const Transform* worldFromObject,
+                            const Vec3f& ng);
 };
 
 }  // namespace glint

@@ -164,8 +164,50 @@ TEST(MeshFile, GltfIsReducedToItsGeometryBeforeAssimpReadsIt) {
   EXPECT_EQ(nlohmann::json::parse(gltfSubset("m.gltf", in)), nlohmann::json::parse(R"({
     "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
     "nodes": [{"mesh": 0, "translation": [1, 2, 3]}],
-    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 3}]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 3}]}],
     "accessors": [], "bufferViews": [], "buffers": []})"));
+}
+
+TEST(MeshFile, VertexNormalsOfObjPlyAndRealFilesAreKept) {
+  // OBJ vn and PLY nx ny nz, one normal per vertex, and a real third-party model's.
+  const std::string obj = test::writeTemp(
+      "normals.obj",
+      "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0.6 0 0.8\nvn 0 0.6 0.8\nf 1//1 2//2 3//3\n");
+  const TriangleMesh fromObj = loadMeshFile(obj);
+  ASSERT_EQ(fromObj.normals.size(), fromObj.positions.size());
+  // Vertex (1, 0, 0) carries vn 2: (0.6, 0, 0.8).
+  for (size_t v = 0; v < fromObj.positions.size(); ++v)
+    if (fromObj.positions[v].x == 1) {
+      EXPECT_FLOAT_EQ(fromObj.normals[v].x, 0.6f);
+      EXPECT_FLOAT_EQ(fromObj.normals[v].z, 0.8f);
+    }
+  const std::string ply = test::writeTemp(
+      "normals.ply",
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+      "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n");
+  const TriangleMesh fromPly = loadMeshFile(ply);
+  ASSERT_EQ(fromPly.normals.size(), 3u);
+  EXPECT_FLOAT_EQ(fromPly.normals[1].z, 1.0f);
+  // Without normals the mesh is shaded flat.
+  EXPECT_TRUE(loadMeshFile(test::writeTemp("flat.ply", asciiPly("3 0 1 2"))).normals.empty());
+  const std::string wuson = "/usr/share/assimp/models/OBJ/WusonOBJ.obj";
+  if (!std::filesystem::exists(wuson)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  const TriangleMesh real = loadMeshFile(wuson);
+  EXPECT_EQ(real.normals.size(), real.positions.size());
+  EXPECT_GT(real.triangleCount(), 1000u);
+}
+
+TEST(MeshFile, NonFiniteNormalsAreRefusedNamingTheVertex) {
+  const std::string obj = test::writeTemp(
+      "nan-normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn nan 0 1\nf 1//1 2//2 3//1\n");
+  try {
+    loadMeshFile(obj);
+    FAIL() << "loaded";
+  } catch (const GlintError& e) {
+    EXPECT_NE(std::string(e.what()).find("the normal of vertex"), std::string::npos) << e.what();
+  }
 }
 
 TEST(MeshFile, GltfThatIsNotStrictJsonOrNotVersion2IsRefused) {
