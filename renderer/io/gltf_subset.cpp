@@ -74,16 +74,49 @@ std::string gltfSubset(const std::string& path, const std::string& text) {
       throw GlintError("mesh " + path + " is glTF " + excerpt(version->get<std::string>()) +
                        "; Glint reads glTF 2.0");
   }
-  keepOnly(doc, {"asset", "scene", "scenes", "nodes", "meshes", "accessors", "bufferViews",
-                 "buffers", "extensionsUsed", "extensionsRequired"});
+  keepOnly(doc, {"asset", "scene", "scenes", "nodes", "meshes", "materials", "accessors",
+                 "bufferViews", "buffers", "extensionsUsed", "extensionsRequired"});
+  // Materials as factors only (io/mesh_materials.h): texture references would name the
+  // textures, images and samplers removed above.
+  forEachIn(doc, "materials", [](json& material) {
+    keepOnly(material, {"name", "pbrMetallicRoughness", "emissiveFactor", "extensions"});
+    if (!material.is_object()) return;
+    if (const auto pbr = material.find("pbrMetallicRoughness"); pbr != material.end())
+      keepOnly(*pbr, {"baseColorFactor", "metallicFactor", "roughnessFactor"});
+    if (const auto ext = material.find("extensions"); ext != material.end()) {
+      keepOnly(*ext, {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
+                      "KHR_materials_emissive_strength"});
+      if (!ext->is_object()) return;
+      const auto keep = [&](const char* name, std::initializer_list<const char*> keys) {
+        if (const auto e = ext->find(name); e != ext->end()) keepOnly(*e, keys);
+      };
+      keep("KHR_materials_transmission", {"transmissionFactor"});
+      keep("KHR_materials_ior", {"ior"});
+      keep("KHR_materials_volume", {"thicknessFactor", "attenuationDistance", "attenuationColor"});
+      keep("KHR_materials_emissive_strength", {"emissiveStrength"});
+    }
+  });
   forEachIn(doc, "nodes", [](json& node) {
     keepOnly(node, {"name", "children", "matrix", "translation", "rotation", "scale", "mesh"});
   });
   forEachIn(doc, "meshes", [](json& mesh) {
     keepOnly(mesh, {"name", "primitives"});
     if (!mesh.is_object()) return;
+    // Only triangles (mode 4, the default, strips 5 and fans 6): Glint skips points and lines,
+    // and Assimp's line-loop reader dereferenced null for an index past the vertices (SEGV,
+    // found by glint_fuzz_mesh), so those primitives never reach it.
+    if (const auto p = mesh.find("primitives"); p != mesh.end() && p->is_array()) {
+      json triangles = json::array();
+      for (json& primitive : *p) {
+        const auto mode = primitive.is_object() ? primitive.find("mode") : primitive.end();
+        if (!primitive.is_object() || mode == primitive.end() ||
+            (mode->is_number_integer() && *mode >= 4 && *mode <= 6))
+          triangles.push_back(std::move(primitive));
+      }
+      *p = std::move(triangles);
+    }
     forEachIn(mesh, "primitives", [](json& primitive) {
-      keepOnly(primitive, {"attributes", "indices", "mode", "extensions"});
+      keepOnly(primitive, {"attributes", "indices", "mode", "material", "extensions"});
       if (const auto a = primitive.find("attributes"); a != primitive.end())
         keepOnly(*a, {"POSITION", "NORMAL"});
     });

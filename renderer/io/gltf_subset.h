@@ -1,10 +1,12 @@
 #pragma once
-// The part of a glTF 2.0 file Glint reads, and nothing else, for Assimp to import. Glint takes
-// only geometry: the scene's nodes with their transforms, each primitive's POSITION and indices,
-// and the accessors, buffer views and buffers behind them. Skins, animations, morph targets,
-// materials, textures, images, samplers, cameras and lights are removed before Assimp sees the
-// file, so its readers for them never run: Assimp 5.2.5 dereferenced a null pointer on a skin
-// without inverseBindMatrices (found by glint_fuzz_mesh). Geometry-compression extensions stay.
+// The part of a glTF 2.0 file Glint reads, and nothing else, for Assimp to import: the scene's
+// nodes with their transforms, each primitive's POSITION, NORMAL, indices and material, the
+// accessors, buffer views and buffers behind them, and the materials' factors (base colour,
+// metallic, roughness, emission; transmission, ior, volume and emissive strength extensions).
+// Skins, animations, morph targets, textures, images, samplers, cameras and lights are removed
+// before Assimp sees the file, so its readers for them never run: Assimp 5.2.5 dereferenced a null
+// pointer on a skin without inverseBindMatrices (found by glint_fuzz_mesh). Geometry-compression
+// extensions stay.
 #include <string>
 
 namespace glint {

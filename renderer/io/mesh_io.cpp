@@ -18,6 +18,7 @@
 #include "core/input_files.h"
 #include "io/gltf_subset.h"
 #include "io/mesh_limits.h"
+#include "io/mesh_materials.h"
 
 namespace glint {
 
@@ -91,7 +92,7 @@ void checkAnImporterOfTheExtensionReadsIt(Assimp::Importer& importer, const std:
 
 }  // namespace
 
-TriangleMesh loadMeshFile(const std::string& path) {
+MeshFile loadMeshFile(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw GlintError("mesh file not found: " + path);
   noteInputFile(path);
   checkMeshFileBeforeImport(path);
@@ -105,10 +106,9 @@ TriangleMesh loadMeshFile(const std::string& path) {
     files->replaceMeshBytes(ext == ".gltf" ? gltfSubset(path, bytes) : glbSubset(path, bytes));
   }
   checkAnImporterOfTheExtensionReadsIt(importer, path);
-  // Positions and the file's vertex normals (smooth shading) are kept; colours, UVs and
-  // materials are not imported yet.
-  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS,
-                              aiComponent_COLORS | aiComponent_TEXCOORDS | aiComponent_MATERIALS);
+  // Positions, the file's vertex normals (smooth shading) and its materials are kept; colours
+  // and UVs are not imported yet.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_COLORS | aiComponent_TEXCOORDS);
   // Read with no processing but Assimp's own validation: its post-processing steps index
   // vertices through the faces before any check of ours, and a face naming a vertex that does
   // not exist made them read and write out of bounds.
@@ -161,16 +161,33 @@ TriangleMesh loadMeshFile(const std::string& path) {
   s = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices |
                                    aiProcess_PreTransformVertices);
   if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
-  TriangleMesh mesh;
   // Shaded smooth when every mesh of the file gives vertex normals (one mesh without them would
   // leave its vertices none to interpolate), else flat.
   bool smooth = true;
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi)
     if (s->mMeshes[mi]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)
       smooth = smooth && s->mMeshes[mi]->mNormals != nullptr;
+  const MeshFileFormat format = ext == ".ply"   ? MeshFileFormat::Ply
+                                : ext == ".obj" ? MeshFileFormat::Obj
+                                                : MeshFileFormat::Gltf;
+  const std::string fileName = std::filesystem::path(path).filename().string();
+  MeshFile file;
+  std::vector<int> partOfMaterial(s->mNumMaterials, -1);
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
     const aiMesh* m = s->mMeshes[mi];
     if (!(m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;  // points and lines
+    if (m->mMaterialIndex >= s->mNumMaterials)
+      throw GlintError("mesh " + path + ": mesh " + std::to_string(mi) + " names material " +
+                       std::to_string(m->mMaterialIndex) + ", but there are only " +
+                       std::to_string(s->mNumMaterials));
+    int& part = partOfMaterial[m->mMaterialIndex];
+    if (part < 0) {
+      part = int(file.parts.size());
+      file.parts.emplace_back();
+      file.materials.push_back(
+          materialFromMeshFile(*s->mMaterials[m->mMaterialIndex], format, fileName));
+    }
+    TriangleMesh& mesh = file.parts[size_t(part)];
     const auto base = static_cast<uint32_t>(mesh.positions.size());
     for (unsigned v = 0; v < m->mNumVertices; ++v) {
       const aiVector3D& p = m->mVertices[v];
@@ -183,8 +200,14 @@ TriangleMesh loadMeshFile(const std::string& path) {
       for (int c = 0; c < 3; ++c) mesh.indices.push_back(base + face.mIndices[c]);
     }
   }
-  if (mesh.indices.empty()) throw GlintError("mesh " + path + " has no triangles");
-  return mesh;
+  // A material whose meshes held only points and lines leaves an empty part.
+  for (size_t i = file.parts.size(); i-- > 0;)
+    if (file.parts[i].indices.empty()) {
+      file.parts.erase(file.parts.begin() + ptrdiff_t(i));
+      file.materials.erase(file.materials.begin() + ptrdiff_t(i));
+    }
+  if (file.parts.empty()) throw GlintError("mesh " + path + " has no triangles");
+  return file;
 }
 
 }  // namespace glint

@@ -1,14 +1,23 @@
 #pragma once
 // Triangle meshes from files through Assimp: OBJ, PLY and glTF 2.0 (.gltf, .glb) only, each
-// checked before Assimp reads it (io/mesh_limits.h). All meshes of the file are merged, with
-// their node transforms applied; the file's vertex normals are kept when every mesh has them.
+// checked before Assimp reads it (io/mesh_limits.h). The file's meshes are placed by their node
+// transforms and merged per material: one triangle mesh for each material its triangles use,
+// with that material mapped onto Glint's (io/mesh_materials.h); vertex normals are kept when
+// every mesh has them.
 #include <string>
+#include <vector>
 
 #include "geometry/triangle_mesh.h"
+#include "materials/material.h"
 
 namespace glint {
 
+struct MeshFile {
+  std::vector<TriangleMesh> parts;  // at least one, each with triangles
+  std::vector<Material> materials;  // materials[i] is parts[i]'s, named "FILE:NAME"
+};
+
 // Throws GlintError naming the path tried and the reason (Glint's or Assimp's).
-TriangleMesh loadMeshFile(const std::string& path);
+MeshFile loadMeshFile(const std::string& path);
 
 }  // namespace glint

@@ -128,7 +128,13 @@ LocalMesh inlineMesh(const JsonNode& obj) {
   return m;
 }
 
-LocalMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
+// A mesh file's parts (one per material its triangles use) and their materials.
+struct FileMesh {
+  std::vector<LocalMesh> parts;
+  std::vector<Material> materials;
+};
+
+FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
   const std::filesystem::path rel(fileNode.string());
   const std::filesystem::path full =
       rel.is_absolute() ? rel : std::filesystem::path(b.baseDir) / rel;
@@ -143,12 +149,17 @@ LocalMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
     std::ifstream in(full, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), {});
     b.scene.sourceHash = hashCombine(b.scene.sourceHash, hashBytes(bytes));
-    const TriangleMesh loaded = loadMeshFile(full.lexically_normal().string());
-    LocalMesh m;
-    for (const Vec3f& p : loaded.positions) m.positions.push_back(toDouble(p));
-    for (const Vec3f& n : loaded.normals) m.normals.push_back(toDouble(n));
-    m.indices = loaded.indices;
-    return m;
+    MeshFile loaded = loadMeshFile(full.lexically_normal().string());
+    FileMesh out;
+    for (const TriangleMesh& part : loaded.parts) {
+      LocalMesh m;
+      for (const Vec3f& p : part.positions) m.positions.push_back(toDouble(p));
+      for (const Vec3f& n : part.normals) m.normals.push_back(toDouble(n));
+      m.indices = part.indices;
+      out.parts.push_back(std::move(m));
+    }
+    out.materials = std::move(loaded.materials);
+    return out;
   } catch (const GlintError& e) {
     fileNode.fail(e.what());
   }
@@ -281,7 +292,9 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     motion->at("center").fail("only spheres have centre keys; use \"transform\" keys");
   if (motion && motion->has("positions") && type != "mesh")
     motion->at("positions").fail("only meshes have position keys; use \"transform\" keys");
-  const uint32_t material = materialOf(b, obj);
+  // A mesh file without a "material" keeps the file's own materials.
+  const bool fileMaterials = type == "mesh" && obj.has("file") && !obj.has("material");
+  const uint32_t material = fileMaterials ? 0 : materialOf(b, obj);
   if (type == "sphere") {
     obj.checkKeys({"type", "center", "radius", "material", "transform", "motion"});
     const float radius = obj.at("radius").number(0, 3.4e38f, true);
@@ -369,10 +382,18 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     if (obj.has("file") && obj.has("indices"))
       obj.at("indices").fail(
           "a mesh from a file takes its triangles from the file; remove \"indices\"");
-    LocalMesh m = obj.has("file") ? fileMesh(b, obj.at("file")) : inlineMesh(obj);
+    FileMesh file;
+    if (obj.has("file"))
+      file = fileMesh(b, obj.at("file"));
+    else
+      file.parts.push_back(inlineMesh(obj));
     if (motion && motion->has("positions")) {
       // A deforming mesh (seed 000 §13.4.5): the same vertices at each key.
       const JsonNode keys = motion->at("positions");
+      if (file.parts.size() > 1)
+        keys.fail("the file's triangles use " + std::to_string(file.parts.size()) +
+                  " materials; position keys need a mesh of one");
+      LocalMesh& m = file.parts[0];
       m.positionKeys = parseKeys<std::vector<Vec3d>>(keys, [&](const JsonNode& k) {
         std::vector<Vec3d> key = parsePoints(k, 3);
         if (key.size() != m.positions.size())
@@ -383,7 +404,14 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
       m.positions = m.positionKeys[0];
       if (m.positionKeys.size() == 1) m.positionKeys.clear();  // equal keys: no deformation
     }
-    addMesh(b, m, place, obj, groupId, material, objectId);
+    for (size_t i = 0; i < file.parts.size(); ++i) {
+      uint32_t partMaterial = material;
+      if (fileMaterials) {
+        s.materials.push_back(file.materials[i]);
+        partMaterial = static_cast<uint32_t>(s.materials.size() - 1);
+      }
+      addMesh(b, file.parts[i], place, obj, groupId, partMaterial, objectId);
+    }
   }
 }
 

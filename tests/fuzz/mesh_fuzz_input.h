@@ -42,20 +42,29 @@ inline std::filesystem::path writeMeshInput(const std::filesystem::path& dir,
   return dir / format.mesh;
 }
 
-// Loads the mesh at `path`: "" when the outcome is acceptable (a mesh whose indices name its
-// vertices, in whole triangles, with finite positions; or a GlintError naming the file), else
-// what is wrong. Any other exception propagates: that is a bug too.
+// Loads the mesh at `path`: "" when the outcome is acceptable (one material per part, and
+// parts whose indices name their vertices, in whole triangles, with finite positions and a
+// normal per vertex or none; or a GlintError naming the file), else what is wrong. Any other
+// exception propagates: that is a bug too.
 inline std::string meshLoadProblem(const std::string& path) {
   try {
-    const TriangleMesh m = loadMeshFile(path);
-    if (m.indices.empty() || m.indices.size() % 3 != 0)
-      return "a loaded mesh has " + std::to_string(m.indices.size()) + " indices";
-    for (const uint32_t i : m.indices)
-      if (i >= m.positions.size())
-        return "index " + std::to_string(i) + " of " + std::to_string(m.positions.size());
-    for (const auto& p : m.positions)
-      if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
-        return "a loaded mesh has a non-finite vertex";
+    const MeshFile file = loadMeshFile(path);
+    if (file.parts.empty() || file.parts.size() != file.materials.size())
+      return std::to_string(file.parts.size()) + " parts and " +
+             std::to_string(file.materials.size()) + " materials";
+    for (const TriangleMesh& m : file.parts) {
+      if (m.indices.empty() || m.indices.size() % 3 != 0)
+        return "a loaded mesh has " + std::to_string(m.indices.size()) + " indices";
+      for (const uint32_t i : m.indices)
+        if (i >= m.positions.size())
+          return "index " + std::to_string(i) + " of " + std::to_string(m.positions.size());
+      for (const auto& p : m.positions)
+        if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
+          return "a loaded mesh has a non-finite vertex";
+      if (!m.normals.empty() && m.normals.size() != m.positions.size())
+        return std::to_string(m.normals.size()) + " normals for " +
+               std::to_string(m.positions.size()) + " vertices";
+    }
   } catch (const GlintError& e) {
     if (std::string(e.what()).find(path) == std::string::npos)
       return std::string("an error that does not name the file: ") + e.what();

@@ -19,6 +19,8 @@
 namespace glint {
 namespace {
 
+using json = nlohmann::json;
+
 const char* kVertices = "0 0 0\n1 0 0\n0 1 0\n";
 
 std::string asciiPly(const std::string& face) {
@@ -151,12 +153,17 @@ TEST(MeshFile, AFaceWithoutVerticesIsRefused) {
 }
 
 TEST(MeshFile, GltfIsReducedToItsGeometryBeforeAssimpReadsIt) {
-  // Skins, animations, materials, cameras, morph targets and other vertex attributes never
-  // reach Assimp: its glTF 2 reader dereferenced a null pointer for a skin without
-  // inverseBindMatrices (SEGV; tests/fuzz/regressions-mesh/gltf-skin-*.bin).
+  // Skins, animations, cameras, morph targets, textures and vertex attributes other than
+  // positions and normals never reach Assimp: its glTF 2 reader dereferenced a null pointer for
+  // a skin without inverseBindMatrices (SEGV; tests/fuzz/regressions-mesh/gltf-skin-*.bin).
+  // Materials reach it as factors only, without their texture references.
   const std::string in = R"({"asset": {"version": "2.0"}, "scene": 0,
     "scenes": [{"nodes": [0]}], "skins": [{"joints": [0]}], "animations": [], "cameras": [{}],
-    "materials": [{}], "textures": [], "images": [], "samplers": [], "extras": {"x": 1},
+    "materials": [{"name": "m", "doubleSided": true, "normalTexture": {"index": 0},
+      "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1], "baseColorTexture": {"index": 0}},
+      "extensions": {"KHR_materials_volume": {"attenuationDistance": 2, "thicknessTexture": {}},
+                     "KHR_materials_sheen": {}}}],
+    "textures": [], "images": [], "samplers": [], "extras": {"x": 1},
     "nodes": [{"mesh": 0, "skin": 0, "camera": 0, "weights": [1], "translation": [1, 2, 3]}],
     "meshes": [{"weights": [1], "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1,
       "JOINTS_0": 2}, "indices": 3, "material": 0, "targets": [{"POSITION": 4}]}]}],
@@ -164,8 +171,27 @@ TEST(MeshFile, GltfIsReducedToItsGeometryBeforeAssimpReadsIt) {
   EXPECT_EQ(nlohmann::json::parse(gltfSubset("m.gltf", in)), nlohmann::json::parse(R"({
     "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
     "nodes": [{"mesh": 0, "translation": [1, 2, 3]}],
-    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 3}]}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 3,
+                                "material": 0}]}],
+    "materials": [{"name": "m", "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1]},
+                   "extensions": {"KHR_materials_volume": {"attenuationDistance": 2}}}],
     "accessors": [], "bufferViews": [], "buffers": []})"));
+}
+
+TEST(MeshFile, OnlyTrianglePrimitivesOfAGltfReachAssimp) {
+  // Points (0), lines (1), line loops (2) and strips (3) are dropped; triangles (no mode, 4),
+  // strips (5) and fans (6) stay. A line loop whose index passed the vertices crashed
+  // Assimp's reader (regressions-mesh/gltf-line-loop-index-past-vertices-segv.bin).
+  const json subset = json::parse(gltfSubset("m.gltf", R"({"asset": {"version": "2.0"},
+    "meshes": [{"primitives": [{"mode": 0}, {"mode": 1}, {"mode": 2}, {"mode": 3}, {},
+                               {"mode": 4}, {"mode": 5}, {"mode": 6}, {"mode": "4"}]}]})"));
+  EXPECT_EQ(subset["meshes"][0]["primitives"],
+            json::parse(R"([{}, {"mode": 4}, {"mode": 5}, {"mode": 6}])"));
+  const std::string error = loadError("line-loop.gltf", R"({"asset": {"version": "2.0"}, "scene": 0,
+    "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": 2}]}],
+    "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3"}]})");
+  EXPECT_NE(error, "(loaded)");
 }
 
 TEST(MeshFile, VertexNormalsOfObjPlyAndRealFilesAreKept) {
@@ -173,7 +199,7 @@ TEST(MeshFile, VertexNormalsOfObjPlyAndRealFilesAreKept) {
   const std::string obj = test::writeTemp(
       "normals.obj",
       "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0.6 0 0.8\nvn 0 0.6 0.8\nf 1//1 2//2 3//3\n");
-  const TriangleMesh fromObj = loadMeshFile(obj);
+  const TriangleMesh fromObj = loadMeshFile(obj).parts.at(0);
   ASSERT_EQ(fromObj.normals.size(), fromObj.positions.size());
   // Vertex (1, 0, 0) carries vn 2: (0.6, 0, 0.8).
   for (size_t v = 0; v < fromObj.positions.size(); ++v)
@@ -187,16 +213,18 @@ TEST(MeshFile, VertexNormalsOfObjPlyAndRealFilesAreKept) {
       "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
       "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
       "0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n");
-  const TriangleMesh fromPly = loadMeshFile(ply);
+  const TriangleMesh fromPly = loadMeshFile(ply).parts.at(0);
   ASSERT_EQ(fromPly.normals.size(), 3u);
   EXPECT_FLOAT_EQ(fromPly.normals[1].z, 1.0f);
   // Without normals the mesh is shaded flat.
-  EXPECT_TRUE(loadMeshFile(test::writeTemp("flat.ply", asciiPly("3 0 1 2"))).normals.empty());
+  EXPECT_TRUE(
+      loadMeshFile(test::writeTemp("flat.ply", asciiPly("3 0 1 2"))).parts.at(0).normals.empty());
   const std::string wuson = "/usr/share/assimp/models/OBJ/WusonOBJ.obj";
   if (!std::filesystem::exists(wuson)) GTEST_SKIP() << "assimp-testmodels is not installed";
-  const TriangleMesh real = loadMeshFile(wuson);
-  EXPECT_EQ(real.normals.size(), real.positions.size());
-  EXPECT_GT(real.triangleCount(), 1000u);
+  for (const TriangleMesh& real : loadMeshFile(wuson).parts) {
+    EXPECT_EQ(real.normals.size(), real.positions.size());
+    EXPECT_GT(real.triangleCount(), 1000u);
+  }
 }
 
 TEST(MeshFile, NonFiniteNormalsAreRefusedNamingTheVertex) {

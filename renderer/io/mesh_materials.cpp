@@ -1,0 +1,111 @@
+#include "io/mesh_materials.h"
+
+#include <assimp/ObjMaterial.h>
+#include <assimp/material.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace glint {
+
+namespace {
+
+// A colour property, or `otherwise` when the file has none (or a non-finite one).
+Rgb colour(const aiMaterial& m, const char* key, unsigned type, unsigned index, Rgb otherwise) {
+  aiColor4D c;
+  if (m.Get(key, type, index, c) != AI_SUCCESS) return otherwise;
+  if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b)) return otherwise;
+  return {std::max(c.r, 0.0f), std::max(c.g, 0.0f), std::max(c.b, 0.0f)};
+}
+
+float number(const aiMaterial& m, const char* key, unsigned type, unsigned index, float otherwise) {
+  float v = 0;
+  if (m.Get(key, type, index, v) != AI_SUCCESS || !std::isfinite(v)) return otherwise;
+  return v;
+}
+
+// MTL's illumination models (the OBJ specification's `illum`): 3, 5 and 8 trace reflections,
+// whose colour is Ks; 4, 6, 7 and 9 are glass, refracting with index Ni.
+bool illumReflects(int illum) { return illum == 3 || illum == 5 || illum == 8; }
+bool illumRefracts(int illum) { return illum == 4 || illum == 6 || illum == 7 || illum == 9; }
+
+Material fromMtl(const aiMaterial& src) {
+  int illum = 2;
+  src.Get(AI_MATKEY_OBJ_ILLUM, illum);
+  Material m =
+      defaultMaterial(illumRefracts(illum) ? MaterialKind::Dielectric : MaterialKind::Phong);
+  Surface& s = m.surface;
+  const Rgb ks = colour(src, AI_MATKEY_COLOR_SPECULAR, {0, 0, 0});
+  // Glass takes its colour from the light it refracts, not from a diffuse Kd.
+  if (!m.refracts())
+    s.kd = ColorTexture::uniform(colour(src, AI_MATKEY_COLOR_DIFFUSE, {0.5f, 0.5f, 0.5f}));
+  s.ka = ColorTexture::uniform(colour(src, AI_MATKEY_COLOR_AMBIENT, {0, 0, 0}));
+  s.ambientFollowsDiffuse = false;
+  s.ks = ColorTexture::uniform(ks);
+  // Ns is the Phong exponent (0 … 1000 in the specification); Glint's must be positive.
+  s.exponent = std::clamp(number(src, AI_MATKEY_SHININESS, 32), 1.0f, 1e4f);
+  s.ke = ColorTexture::uniform(colour(src, AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0}));
+  if (illumReflects(illum)) s.km = ColorTexture::uniform(ks);
+  if (m.refracts()) {
+    const float ni = number(src, AI_MATKEY_REFRACTI, 1.5f);
+    m.dielectric.ior = ni >= 1.0f && ni <= 10.0f ? ni : 1.5f;  // Ni 1 or absent: plain glass
+  }
+  return m;
+}
+
+// glTF's metallic-roughness model on the general surface: the dielectric base reflects diffusely
+// (k_d = base × (1 − metallic)) with a 4 % highlight; the metal part mirrors its base colour
+// (k_m = base × metallic), blurred by its roughness (gloss); the highlight's exponent is
+// Blinn-Phong's match to the GGX width α = roughness², 2/α² − 2.
+Material fromGltf(const aiMaterial& src) {
+  const float transmission =
+      std::clamp(number(src, AI_MATKEY_TRANSMISSION_FACTOR, 0.0f), 0.0f, 1.0f);
+  Material m = defaultMaterial(transmission > 0 ? MaterialKind::Dielectric : MaterialKind::Phong);
+  Surface& s = m.surface;
+  const Rgb base = colour(src, AI_MATKEY_BASE_COLOR, {1, 1, 1});
+  const float metallic = std::clamp(number(src, AI_MATKEY_METALLIC_FACTOR, 1.0f), 0.0f, 1.0f);
+  const float roughness = std::clamp(number(src, AI_MATKEY_ROUGHNESS_FACTOR, 1.0f), 0.0f, 1.0f);
+  const float alpha = std::max(roughness * roughness, 1e-2f);
+  if (!m.refracts()) s.kd = ColorTexture::uniform(base * (1 - metallic));
+  s.ka = ColorTexture::uniform({0, 0, 0});
+  s.ambientFollowsDiffuse = false;
+  s.ks = ColorTexture::uniform(Rgb{0.04f, 0.04f, 0.04f} * (1 - metallic) + base * metallic);
+  s.exponent = std::clamp(2 / (alpha * alpha) - 2, 1.0f, 1e4f);
+  s.km = ColorTexture::uniform(base * metallic);
+  s.gloss = metallic > 0 ? roughness : 0;
+  s.ke = ColorTexture::uniform(colour(src, AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0}) *
+                               std::max(number(src, AI_MATKEY_EMISSIVE_INTENSITY, 1.0f), 0.0f));
+  if (m.refracts()) {
+    const float ior = number(src, AI_MATKEY_REFRACTI, 1.5f);
+    m.dielectric.ior = ior >= 1.0f && ior <= 10.0f ? ior : 1.5f;
+    // KHR_materials_volume: light keeps attenuationColor after attenuationDistance, so a
+    // fraction c^(1/D) per unit distance: Beer's law (seed 000 §13.1).
+    const float distance = number(src, AI_MATKEY_VOLUME_ATTENUATION_DISTANCE, INFINITY);
+    const Rgb c = colour(src, AI_MATKEY_VOLUME_ATTENUATION_COLOR, {1, 1, 1});
+    if (distance > 0 && std::isfinite(distance)) {
+      const auto perUnit = [&](float channel) {
+        return std::pow(std::clamp(channel, 0.0f, 1.0f), 1 / distance);
+      };
+      m.dielectric.absorption = BeerMedium(Rgb{perUnit(c.r), perUnit(c.g), perUnit(c.b)});
+    }
+  }
+  return m;
+}
+
+}  // namespace
+
+Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
+                              const std::string& fileName) {
+  aiString name;
+  const std::string own = source.Get(AI_MATKEY_NAME, name) == AI_SUCCESS ? name.C_Str() : "";
+  // A file without materials of its own (a PLY, an OBJ without MTL) gets Assimp's default,
+  // which Glint replaces by its own default surface.
+  Material m = own == AI_DEFAULT_MATERIAL_NAME || format == MeshFileFormat::Ply
+                   ? defaultMaterial(MaterialKind::Phong)
+               : format == MeshFileFormat::Gltf ? fromGltf(source)
+                                                : fromMtl(source);
+  m.name = fileName + ":" + own;
+  return m;
+}
+
+}  // namespace glint
