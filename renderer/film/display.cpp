@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_names.h"
 #include "film/image_file.h"
 
 namespace OCIO = OCIO_NAMESPACE;
@@ -133,15 +134,6 @@ void DisplayTransform::apply(float* pixels, int width, int height, int channels)
     }
   });
 }
-
-namespace {
-std::string lowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-}  // namespace
 
 void checkDisplayImagePath(const std::string& path) {
   const std::string ext = lowerExtension(path);

@@ -64,9 +64,28 @@ void checkExrHeaders(const std::string& path) {
   }
 }
 
+namespace {
+
+// Runs `read`, turning OpenEXR's exceptions into a UsageError naming `path` (the file the user
+// named is unusable, as a scene with a mistake is); running out of memory stays what it is.
+template <typename Read>
+auto readingFile(const std::string& path, Read&& read) {
+  try {
+    return read();
+  } catch (const UsageError&) {
+    throw;
+  } catch (const std::bad_alloc&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw UsageError("cannot read " + path + ": " + excerpt(e.what()));
+  }
+}
+
+}  // namespace
+
 std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path) {
   checkExrHeaders(path);
-  try {
+  return readingFile(path, [&] {
     auto file = std::make_unique<Imf::MultiPartInputFile>(path.c_str());
     for (int part = 0; part < file->parts(); ++part) {
       const Imf::Header& h = file->header(part);
@@ -84,13 +103,7 @@ std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path) {
                          std::to_string(kMaxTileEdge) + " a side are read");
     }
     return file;
-  } catch (const UsageError&) {
-    throw;
-  } catch (const std::bad_alloc&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw UsageError("cannot read " + path + ": " + excerpt(e.what()));
-  }
+  });
 }
 
 ExrWindow exrWindow(const std::string& path, const Imf::Header& header) {
@@ -140,7 +153,7 @@ size_t pixelTypeSize(Imf::PixelType type) { return type == Imf::HALF ? 2 : 4; }
 void readPixelsInBands(const std::string& path, Imf::MultiPartInputFile& file, int part,
                        const std::vector<ExrSlice>& slices, size_t pixelBytes,
                        const std::function<char*(size_t bytes)>& append) {
-  try {
+  readingFile(path, [&] {
     Imf::InputPart in(file, part);
     const Imf::Header& header = in.header();
     const ExrWindow w = exrWindow(path, header);
@@ -169,13 +182,7 @@ void readPixelsInBands(const std::string& path, Imf::MultiPartInputFile& file, i
       in.readPixels(int(y), int(end - 1));
       y = end;
     }
-  } catch (const UsageError&) {
-    throw;
-  } catch (const std::bad_alloc&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw UsageError("cannot read " + path + ": " + excerpt(e.what()));
-  }
+  });
 }
 
 }  // namespace glint

@@ -10,19 +10,13 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/file_names.h"
 #include "film/atomic_file.h"
 #include "film/oiio_module.h"
 
 namespace glint {
 
 namespace {
-
-std::string lowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
 
 void storePngError(png_structp png, png_const_charp message) {
   auto* error = static_cast<char*>(png_get_error_ptr(png));

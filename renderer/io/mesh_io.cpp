@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_names.h"
 #include "core/input_files.h"
 #include "io/gltf_subset.h"
 #include "io/mesh_limits.h"
@@ -62,12 +63,6 @@ class BoundedFiles : public Assimp::DefaultIOSystem {
   std::optional<std::string> meshBytes_;
   uint64_t referencedBytes_ = 0;
 };
-
-std::string lowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
-}
 
 // Where several of Assimp's importers claim an extension (.gltf and .glb: glTF 1 and glTF 2),
 // it asks each whether the file is its own, and when none says so it offers the file to every
