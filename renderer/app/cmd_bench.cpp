@@ -298,7 +298,9 @@ int runBench(const BenchArgs& a) {
 CommandRunner addBenchCommand(CLI::App& app) {
   auto args = std::make_shared<BenchArgs>();
   CLI::App* cmd = app.add_subcommand("bench", "Ray rates of the intersection backends");
-  cmd->add_option("scene", args->scenePath, "Scene file (.json); omitted: the default scene")
+  cmd->add_option("scene", args->scenePath,
+                  "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
+                  "camera and light; omitted: the default scene")
       ->check(CLI::ExistingFile);
   cmd->add_option("--accel", args->accels, "Comma-separated backends (embree, bvh, brute)");
   // A heightfield beyond 2^28 triangles would not fit this machine's memory (80 B each).

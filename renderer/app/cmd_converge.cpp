@@ -175,7 +175,9 @@ int runConverge(const ConvergeArgs& a) {
 CommandRunner addConvergeCommand(CLI::App& app) {
   auto a = std::make_shared<ConvergeArgs>();
   CLI::App* cmd = app.add_subcommand("converge", "Error against run time over sample counts");
-  cmd->add_option("scene", a->scenePath, "Scene file (.json); omitted: the default scene")
+  cmd->add_option("scene", a->scenePath,
+                  "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
+                  "camera and light; omitted: the default scene")
       ->check(CLI::ExistingFile);
   cmd->add_option("--spp", a->spp, "Sample counts, comma separated (default 1,2,4,...,64)");
   cmd->add_option("--sampler", a->samplers, "Samplers to compare, comma separated");

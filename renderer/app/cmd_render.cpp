@@ -310,7 +310,9 @@ int runRender(const RenderArgs& a) {
 CommandRunner addRenderCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene to an HDR EXR frame");
-  cmd->add_option("scene", args->scenePath, "Scene file (.json); omitted: the default scene")
+  cmd->add_option("scene", args->scenePath,
+                  "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
+                  "camera and light; omitted: the default scene")
       ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->outputs,
                   "Output EXR (default: SCENE_NAME.exr); with several --crop, one each")

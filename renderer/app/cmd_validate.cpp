@@ -128,7 +128,9 @@ CommandRunner addValidateCommand(CLI::App& app) {
   auto args = std::make_shared<ValidateArgs>();
   CLI::App* cmd = app.add_subcommand(
       "validate", "Cross-check Embree against the reference BVH (and brute force), hit by hit");
-  cmd->add_option("scene", args->scenePath, "Scene file (.json); omitted: the default scene")
+  cmd->add_option("scene", args->scenePath,
+                  "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
+                  "camera and light; omitted: the default scene")
       ->check(CLI::ExistingFile);
   cmd->add_option("--rays", args->rays, "Random rays besides the scene's own")
       ->check(CLI::Range(0, 1 << 30));

@@ -1,5 +1,6 @@
 #pragma once
-// The scene a command works on: a file, or the bundled default scene when none is named.
+// The scene a command works on: a scene file, a mesh file (.obj, .ply, .gltf, .glb: framed by a
+// default camera and lit by a default light), or the bundled default scene when none is named.
 #include <optional>
 #include <string>
 

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "film/exr_output.h"
 #include "test_util.h"
 
 namespace glint {
@@ -95,6 +96,60 @@ TEST(AssimpModels, OutOfMemoryOffIsRefusedByItsFormat) {
   EXPECT_NE(o.output.find("Glint reads OBJ (.obj), PLY (.ply) and glTF 2.0 (.gltf, .glb)"),
             std::string::npos)
       << o.output;
+}
+
+// The share of a frame's pixels the asset covers (alpha > 0 under --transparent-background)
+// and the mean brightness of those pixels.
+struct Coverage {
+  double share = 0, meanLuminance = 0;
+};
+Coverage coverageOf(const std::string& exr) {
+  const Image img = readImage(exr);
+  Coverage c;
+  size_t covered = 0;
+  for (size_t p = 0; p < size_t(img.width) * size_t(img.height); ++p) {
+    const float* px = &img.pixels[p * size_t(img.channels)];
+    if (px[3] <= 0) continue;
+    ++covered;
+    c.meanLuminance += (px[0] + px[1] + px[2]) / 3;
+  }
+  c.share = double(covered) / double(img.width * img.height);
+  c.meanLuminance /= double(std::max<size_t>(covered, 1));
+  return c;
+}
+
+TEST(AssimpModels, AMeshFileRendersAsASceneFramedAndLit) {
+  // `glint render asset.obj`: the default camera frames the bounding sphere (it fills the
+  // frame's height with a tenth to spare), so the asset is seen whole and not lost in a corner,
+  // and the default light and ambient light show it. A written quad first (always here): the
+  // unit square seen from the front, right and above covers a good part of the frame.
+  const std::string quad =
+      test::writeTemp("framed.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
+  const auto render = [](const std::string& mesh, const std::string& out) {
+    return test::runGlint("render " + mesh + " --quiet --spp 1 --width 64 --height 48 " +
+                          "--transparent-background -o " + out);
+  };
+  const std::string quadOut = (test::tempDir() / "framed.exr").string();
+  ASSERT_EQ(render(quad, quadOut).exitCode, 0);
+  const Coverage q = coverageOf(quadOut);
+  // The square's circumscribed sphere (radius √2) spans 1/1.1 of the frame's height: the camera
+  // stands d = 1.1·√2/sin 20° = 4.55 away, where the 4:3 frame is 4.41 × 3.31 = 14.6 units²,
+  // along (0.5, 0.4, 1), at cos 0.84 to the square's normal. Its 4 units² seen foreshortened,
+  // 3.37, cover about 0.23 of the frame; ±0.03 for perspective and 64 × 48 pixels' edges
+  // (measured 0.237).
+  EXPECT_NEAR(q.share, 0.23, 0.03);
+  EXPECT_GT(q.meanLuminance, 0.1);
+
+  const fs::path spider = kModels / "OBJ/spider.obj";
+  if (!fs::exists(spider)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  const std::string spiderOut = (test::tempDir() / "spider.exr").string();
+  const auto r = render(spider.string(), spiderOut);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const Coverage c = coverageOf(spiderOut);
+  // A thin-legged spider covers less of its bounding sphere than a square: seen, not filling.
+  EXPECT_GT(c.share, 0.03);
+  EXPECT_LT(c.share, 0.6);
+  EXPECT_GT(c.meanLuminance, 0.1);
 }
 
 }  // namespace
