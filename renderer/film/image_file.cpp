@@ -3,11 +3,8 @@
 #include <png.h>
 #include <zlib.h>
 
-#include <algorithm>
-#include <cctype>
 #include <csetjmp>
 #include <cstdio>
-#include <filesystem>
 
 #include "core/error.h"
 #include "core/file_names.h"
@@ -18,9 +15,11 @@ namespace glint {
 
 namespace {
 
+constexpr size_t kPngErrorSize = 256;  // the message buffer libpng's errors are copied into
+
 void storePngError(png_structp png, png_const_charp message) {
   auto* error = static_cast<char*>(png_get_error_ptr(png));
-  std::snprintf(error, 256, "%s", message);
+  std::snprintf(error, kPngErrorSize, "%s", message);
   png_longjmp(png, 1);
 }
 
@@ -62,7 +61,7 @@ void writePng(const std::string& path, const std::string& tmp, int width, int he
   for (size_t y = 0; y < rows.size(); ++y) rows[y] = &bytes[y * size_t(width) * 3];
   std::FILE* file = std::fopen(tmp.c_str(), "wb");
   if (!file) throw GlintError("cannot write " + path + ": cannot create the file");
-  char error[256] = "an I/O error";
+  char error[kPngErrorSize] = "an I/O error";
   const bool written = writePngRows(file, width, height, rows.data(), error);
   const bool closed = std::fclose(file) == 0;
   if (!written || !closed) throw GlintError("cannot write " + path + ": " + error);
