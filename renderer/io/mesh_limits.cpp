@@ -90,17 +90,60 @@ void checkPlyCounts(const std::string& path, const std::string& head, uint64_t f
                           : std::string()));
   enum class Format { Ascii, Binary, Unknown } format = Format::Unknown;
   std::vector<PlyElement> elements;
+  // The header's lines must be PLY 1.0's as its specification writes them (one "ply", one
+  // format line, elements with a count, properties of known types): Assimp 5.2's reader never
+  // returned from a binary file whose header repeated and garbled them (a 190-byte file, found
+  // by glint_fuzz_mesh), so anything else is refused before Assimp sees it.
+  const auto refuse = [&](const std::string& line, const char* why) {
+    throw GlintError("mesh " + path + ": its PLY header line \"" + excerpt(line) + "\" " + why);
+  };
+  const auto isCount = [](const std::string& t) {
+    return !t.empty() && t.size() <= 20 &&
+           std::all_of(t.begin(), t.end(), [](unsigned char c) { return std::isdigit(c); });
+  };
+  const auto isType = [](const std::string& t) {
+    return binarySize(t) > 1 || t == "char" || t == "int8" || t == "uchar" || t == "uint8";
+  };
+  int formats = 0;
+  bool sawElement = false;
+  for (size_t i = 0; i < lines.size(); ++i) {
+    const std::string& line = lines[i];
+    std::istringstream tokens(line);
+    std::vector<std::string> words;
+    for (std::string w; tokens >> w;) words.push_back(w);
+    const std::string keyword = words.empty() ? std::string() : words[0];
+    if (i == 0) {
+      if (words.size() != 1 || keyword != "ply") refuse(line, "should be \"ply\" alone");
+      continue;
+    }
+    if (keyword.empty() || keyword == "comment" || keyword == "obj_info" || keyword == "end_header")
+      continue;
+    if (keyword == "format") {
+      if (++formats > 1) refuse(line, "is a second format line");
+      if (words.size() != 3 || words[2] != "1.0" ||
+          (words[1] != "ascii" && words[1] != "binary_little_endian" &&
+           words[1] != "binary_big_endian"))
+        refuse(line, "is not \"format ascii|binary_little_endian|binary_big_endian 1.0\"");
+      format = words[1] == "ascii" ? Format::Ascii : Format::Binary;
+    } else if (keyword == "element") {
+      if (words.size() != 3 || !isCount(words[2])) refuse(line, "is not \"element NAME COUNT\"");
+      sawElement = true;
+    } else if (keyword == "property") {
+      const bool list =
+          words.size() == 5 && words[1] == "list" && isType(words[2]) && isType(words[3]);
+      if (!list && !(words.size() == 3 && isType(words[1])))
+        refuse(line, "is not \"property TYPE NAME\" or \"property list TYPE TYPE NAME\"");
+      if (!sawElement) refuse(line, "names a property before any element");
+    }
+    // Other lines are let through as Assimp reads them, as comments: real exporters write
+    // them (Blender 2.47's "Created by Blender3D ..." in assimp-testmodels' Wuson.ply).
+  }
+  if (formats == 0) throw GlintError("mesh " + path + ": its PLY header has no format line");
   for (const std::string& line : lines) {
     std::istringstream tokens(line);
     std::string keyword;
     tokens >> keyword;
-    if (keyword == "format") {
-      std::string name;
-      tokens >> name;
-      format = name == "ascii"                 ? Format::Ascii
-               : name.rfind("binary_", 0) == 0 ? Format::Binary
-                                               : Format::Unknown;
-    } else if (keyword == "element") {
+    if (keyword == "element") {
       PlyElement e;
       std::string count;
       tokens >> e.name >> count;

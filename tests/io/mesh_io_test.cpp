@@ -143,6 +143,35 @@ TEST(MeshFile, APlyHeaderThatNeverEndsIsRefused) {
             std::string::npos);
 }
 
+TEST(MeshFile, APlyHeaderMustBeMadeOfPly10Lines) {
+  // Assimp's reader never returned from a binary file whose header repeated and garbled its
+  // lines (regressions-mesh/ply-garbled-header-lines-hang.bin): each malformed line is refused,
+  // while a stray line of text (as Blender 2.47 wrote) is read past, as Assimp does.
+  const auto header = [](const std::string& lines) {
+    return "ply\n" + lines +
+           "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+           "element face 1\nproperty list uchar int vertex_indices\nend_header\n" +
+           kVertices + "3 0 1 2\n";
+  };
+  const auto error = [&](const std::string& lines) {
+    return loadError("header.ply", header(lines));
+  };
+  EXPECT_EQ(error("format ascii 1.0\nCreated by Blender3D 247\n"), "(loaded)");
+  EXPECT_NE(error("format ascii 1.0\nformat ascii 1.0\n").find("is a second format line"),
+            std::string::npos);
+  EXPECT_NE(error("format binary_little_endian 2.0\n").find("is not \"format ascii|"),
+            std::string::npos);
+  EXPECT_NE(error("format ascii 1.0\nelement facy uchar c\n").find("is not \"element NAME COUNT\""),
+            std::string::npos);
+  EXPECT_NE(
+      error("format ascii 1.0\nelement e 1\nproperty quad x\n").find("is not \"property TYPE"),
+      std::string::npos);
+  EXPECT_NE(error("").find("has no format line"), std::string::npos);
+  EXPECT_NE(loadError("first.ply", "ply\x82\n" + header("format ascii 1.0\n").substr(4))
+                .find("should be \"ply\" alone"),
+            std::string::npos);
+}
+
 TEST(MeshFile, AFaceWithoutVerticesIsRefused) {
   // A face list of length 0 made Assimp's triangulation assert and abort the process (SIGABRT,
   // exit 134 from glint render), beside a valid triangle too (found by glint_fuzz_mesh).
