@@ -43,7 +43,9 @@ uint64_t binarySize(const std::string& type) {
 struct PlyElement {
   std::string name;
   uint64_t count = 0;
-  uint64_t minBytes = 0;  // the least bytes one element takes
+  // Per property, the type its binary size counts: a scalar's own, or a list's count type (an
+  // empty list is its count alone).
+  std::vector<std::string> sizeTypes;
 };
 
 // Assimp ends a header line at '\r', '\n' or NUL, so a line hidden after a lone '\r' in a
@@ -88,7 +90,7 @@ void checkPlyCounts(const std::string& path, const std::string& head, uint64_t f
                      (head.size() < fileSize
                           ? " in its first " + std::to_string(kMaxPlyHeaderBytes) + " bytes"
                           : std::string()));
-  enum class Format { Ascii, Binary, Unknown } format = Format::Unknown;
+  enum class Format { Ascii, Binary } format = Format::Binary;
   std::vector<PlyElement> elements;
   // The header's lines must be PLY 1.0's as its specification writes them (one "ply", one
   // format line, elements with a count, properties of known types): Assimp 5.2's reader never
@@ -105,7 +107,6 @@ void checkPlyCounts(const std::string& path, const std::string& head, uint64_t f
     return binarySize(t) > 1 || t == "char" || t == "int8" || t == "uchar" || t == "uint8";
   };
   int formats = 0;
-  bool sawElement = false;
   for (size_t i = 0; i < lines.size(); ++i) {
     const std::string& line = lines[i];
     std::istringstream tokens(line);
@@ -127,50 +128,25 @@ void checkPlyCounts(const std::string& path, const std::string& head, uint64_t f
       format = words[1] == "ascii" ? Format::Ascii : Format::Binary;
     } else if (keyword == "element") {
       if (words.size() != 3 || !isCount(words[2])) refuse(line, "is not \"element NAME COUNT\"");
-      sawElement = true;
+      // Assimp reads the count into 32 bits, wrapping past 2^32 - 1: a count that large is
+      // refused rather than wrapped.
+      if (words[2].size() > 10 || std::stoull(words[2]) > 0xffffffffull)
+        throw GlintError("mesh " + path + ": PLY element \"" + excerpt(words[1]) + "\" declares " +
+                         excerpt(words[2]) +
+                         " elements, more than the 4294967295 PLY readers count");
+      elements.push_back({words[1], std::stoull(words[2]), {}});
     } else if (keyword == "property") {
       const bool list =
           words.size() == 5 && words[1] == "list" && isType(words[2]) && isType(words[3]);
       if (!list && !(words.size() == 3 && isType(words[1])))
         refuse(line, "is not \"property TYPE NAME\" or \"property list TYPE TYPE NAME\"");
-      if (!sawElement) refuse(line, "names a property before any element");
+      if (elements.empty()) refuse(line, "names a property before any element");
+      elements.back().sizeTypes.push_back(list ? words[2] : words[1]);
     }
     // Other lines are let through as Assimp reads them, as comments: real exporters write
     // them (Blender 2.47's "Created by Blender3D ..." in assimp-testmodels' Wuson.ply).
   }
   if (formats == 0) throw GlintError("mesh " + path + ": its PLY header has no format line");
-  for (const std::string& line : lines) {
-    std::istringstream tokens(line);
-    std::string keyword;
-    tokens >> keyword;
-    if (keyword == "element") {
-      PlyElement e;
-      std::string count;
-      tokens >> e.name >> count;
-      // Assimp reads the leading digits (strtoul10) into 32 bits, wrapping past 2^32 - 1: a
-      // count that long is refused rather than wrapped.
-      size_t digits = 0;
-      while (digits < count.size() && std::isdigit(static_cast<unsigned char>(count[digits])))
-        ++digits;
-      if (digits > 10 || (digits > 0 && std::stoull(count.substr(0, digits)) > 0xffffffffull))
-        throw GlintError("mesh " + path + ": PLY element \"" + excerpt(e.name) + "\" declares " +
-                         excerpt(count) + " elements, more than the 4294967295 PLY readers count");
-      e.count = digits > 0 ? std::stoull(count.substr(0, digits)) : 0;
-      elements.push_back(e);
-    } else if (keyword == "property" && !elements.empty()) {
-      std::string type, countType;
-      tokens >> type;
-      PlyElement& e = elements.back();
-      if (format == Format::Ascii) {
-        e.minBytes += 2;  // a value of at least one character and a separator
-      } else if (type == "list") {
-        tokens >> countType;
-        e.minBytes += binarySize(countType);  // an empty list is its count alone
-      } else {
-        e.minBytes += binarySize(type);
-      }
-    }
-  }
   // Every element takes at least one byte (a line of its own in ASCII; an element without
   // properties is refused rather than allowed to be counted in billions from nothing).
   const uint64_t body = fileSize - std::min<uint64_t>(fileSize, bodyStart);
@@ -178,7 +154,12 @@ void checkPlyCounts(const std::string& path, const std::string& head, uint64_t f
   const uint64_t limit = body + (format == Format::Ascii ? 1 : 0);
   uint64_t needed = 0;
   for (const PlyElement& e : elements) {
-    const uint64_t each = std::max<uint64_t>(1, e.minBytes);
+    // The least bytes one element takes: in ASCII a value of at least one character and a
+    // separator per property, in binary each property's size.
+    uint64_t minBytes = 0;
+    for (const std::string& type : e.sizeTypes)
+      minBytes += format == Format::Ascii ? 2 : binarySize(type);
+    const uint64_t each = std::max<uint64_t>(1, minBytes);
     const uint64_t room = limit - needed;  // needed <= limit by the checks before
     if (e.count > room / each)
       throw GlintError("mesh " + path + ": its PLY header declares " + std::to_string(e.count) +
