@@ -26,6 +26,7 @@ namespace {
 
 struct RenderArgs {
   std::string scenePath;
+  std::string camera;                // a glTF file's camera, by name
   std::vector<std::string> outputs;  // one, or one per --crop when several are given
   std::string display;
   DisplaySettings ocio;
@@ -171,7 +172,7 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
 // numbered when the scene is animated; with several --crop, each crop to its own -o, from one
 // scene load and one acceleration structure. Returns the exit code.
 int renderFrame(const RenderArgs& a, std::optional<int> frame) {
-  Scene scene = loadSceneOrDefault(a.scenePath, frame);
+  Scene scene = loadSceneOrDefault(a.scenePath, frame, a.camera);
   applyOverrides(a, scene);
   RenderOptions opt;
   opt.threads = a.threads.value_or(0);
@@ -292,7 +293,7 @@ int runRender(const RenderArgs& a) {
   if (a.statsJson == "-" && several)
     throw UsageError("--stats-json - with several --frames: give a numbered file instead");
   // The whole range must be the scene's, found before the first frame is spent.
-  const Scene first = loadSceneOrDefault(a.scenePath, range.first);
+  const Scene first = loadSceneOrDefault(a.scenePath, range.first, a.camera);
   if (range.last > first.animation->last)
     throw UsageError("--frames " + a.frames + " is outside the scene's frames " +
                      std::to_string(first.animation->first) + "-" +
@@ -327,6 +328,8 @@ CommandRunner addRenderCommand(CLI::App& app) {
       cmd->add_option("--frame", args->frame,
                       "Frame of an animated scene (default: its first); -o NAME.####.exr or "
                       "NAME.%04d.exr numbers the file");
+  cmd->add_option("--camera", args->camera,
+                  "A camera of a glTF scene, by name (default: its first)");
   cmd->add_option("--frames", args->frames,
                   "Frames A-B of an animated scene, one after another in this process")
       ->excludes(frame);

@@ -6,7 +6,10 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
+#include "core/error.h"
 #include "core/file_names.h"
+#include "core/log.h"
+#include "io/gltf_scene.h"
 #include "io/scene_loader.h"
 
 namespace glint {
@@ -18,20 +21,80 @@ bool isMeshFile(const std::string& path) {
   return ext == ".obj" || ext == ".ply" || ext == ".gltf" || ext == ".glb";
 }
 
-// A mesh file given in place of a scene: the file with its own materials, lit by a directional
-// light from above, front and left with a little ambient light, seen by a camera that frames its
-// bounds from the front, right and above (+y up, +z towards the viewer, as glTF and most OBJ
-// files have it). docs/scene-format.md, "A mesh file as the scene".
-Scene meshFileAsScene(const std::string& path, std::optional<int> frame) {
+// glTF's photometric intensities (candela for point and spot lights, lux for directional
+// ones) as Glint's: the seeds' surfaces reflect k_d · I · cos θ with no 1/π (docs/shading.md),
+// so a physically lit Lambert surface of albedo k_d is matched by I / π.
+constexpr double kGltfIntensityToGlint = 1 / M_PI;
+
+nlohmann::json gltfLight(const GltfLight& l) {
+  const double s = l.intensity * kGltfIntensityToGlint;
+  const nlohmann::json intensity = {l.color.r * s, l.color.g * s, l.color.b * s};
+  if (l.type == GltfLight::Type::Directional)
+    return {{"type", "directional"},
+            {"direction", {l.direction.x, l.direction.y, l.direction.z}},
+            {"intensity", intensity}};
+  // A spot light shines as a point light over its whole sphere: Glint has no cone.
+  if (l.type == GltfLight::Type::Spot)
+    log::warning("glTF light " + inQuotes(l.name) +
+                 " is a spot light; Glint renders it as a point light (no cone)");
+  return {{"type", "point"},
+          {"position", {l.position.x, l.position.y, l.position.z}},
+          {"intensity", intensity},
+          {"falloff", "inverse_square"}};
+}
+
+// A mesh file given in place of a scene: the file with its own materials. A glTF file's own
+// lights (KHR_lights_punctual) light it and its own camera (`cameraName`, else its first) sees
+// it; otherwise a directional light from above, front and left with a little ambient light,
+// and a camera that frames its bounds from the front, right and above (+y up, +z towards the
+// viewer, as glTF and most OBJ files have it). docs/scene-format.md, "A mesh file as the scene".
+Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
+                      const std::string& cameraName) {
   const std::filesystem::path file = std::filesystem::absolute(path);
+  const std::string ext = lowerExtension(path);
+  const GltfSceneInfo gltf =
+      ext == ".gltf" || ext == ".glb" ? readGltfSceneInfo(file.string()) : GltfSceneInfo{};
+  nlohmann::json lights = nlohmann::json::array();
+  for (const GltfLight& l : gltf.lights) lights.push_back(gltfLight(l));
+  if (lights.empty())
+    lights.push_back(
+        {{"type", "directional"}, {"direction", {-0.4, -1, -0.6}}, {"intensity", {1, 1, 1}}});
   const nlohmann::json scene = {
       {"render", {{"ambient", {0.1, 0.1, 0.1}}, {"background", {0.18, 0.18, 0.2}}}},
       // Placed at the origin for loading (render space is then world space); aimed below.
       {"camera", {{"eye", {0, 0, 0}}, {"look_at", {0, 0, -1}}, {"vfov", 40}}},
-      {"lights",
-       {{{"type", "directional"}, {"direction", {-0.4, -1, -0.6}}, {"intensity", {1, 1, 1}}}}},
+      {"lights", lights},
       {"objects", {{{"type", "mesh"}, {"file", file.filename().string()}}}}};
   Scene s = loadSceneText(scene.dump(), path, file.parent_path().string(), frame);
+  if (!cameraName.empty() || !gltf.cameras.empty()) {
+    const GltfCamera* chosen = gltf.cameras.empty() ? nullptr : &gltf.cameras[0];
+    if (!cameraName.empty()) {
+      chosen = nullptr;
+      std::string names;
+      for (const GltfCamera& c : gltf.cameras) {
+        if (c.name == cameraName && !chosen) chosen = &c;
+        names += (names.empty() ? "" : ", ") + inQuotes(c.name);
+      }
+      if (!chosen)
+        throw UsageError("--camera " + inQuotes(cameraName) + ": " + path +
+                         (names.empty() ? " has no cameras" : " has the cameras " + names));
+    }
+    CameraDesc& c = s.cameraDesc;
+    c.eye = toFloat(chosen->eye);
+    c.lookAt = toFloat(chosen->lookAt);
+    c.up = toFloat(chosen->up);
+    c.focusDistance = 1;
+    if (chosen->orthographic) {
+      c.projection = Projection::Orthographic;
+      c.orthoHeight = float(2 * chosen->ymag);
+    } else {
+      c.vfovDegrees = float(chosen->yfovDegrees);
+    }
+    // The camera's own aspect ratio, at the default height.
+    if (chosen->aspectRatio > 0)
+      s.render.width = std::max(1, int(std::lround(s.render.height * chosen->aspectRatio)));
+    return s;
+  }
   const Bounds3f b = s.worldBounds();
   const Vec3f centre = 0.5f * (b.lo + b.hi);
   const float radius = std::max(0.5f * length(b.hi - b.lo), 1e-6f);
@@ -47,10 +110,15 @@ Scene meshFileAsScene(const std::string& path, std::optional<int> frame) {
 
 }  // namespace
 
-Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame) {
+Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame,
+                         const std::string& cameraName) {
+  if (!cameraName.empty() && !isMeshFile(path))
+    throw UsageError("--camera names a camera of a glTF file; " +
+                     (path.empty() ? std::string("the default scene") : path) +
+                     " has the one camera its \"camera\" gives");
   if (path.empty())
     return loadSceneText(kDefaultSceneJson, "<default scene>", kDefaultSceneDir, frame);
-  return isMeshFile(path) ? meshFileAsScene(path, frame) : loadSceneFile(path, frame);
+  return isMeshFile(path) ? meshFileAsScene(path, frame, cameraName) : loadSceneFile(path, frame);
 }
 
 }  // namespace glint

@@ -1,6 +1,7 @@
 #pragma once
 // The scene a command works on: a scene file, a mesh file (.obj, .ply, .gltf, .glb: framed by a
-// default camera and lit by a default light), or the bundled default scene when none is named.
+// default camera and lit by a default light, or a glTF file's own cameras and lights), or the
+// bundled default scene when none is named.
 #include <optional>
 #include <string>
 
@@ -9,6 +10,9 @@
 namespace glint {
 
 // `frame`: the frame of an animated scene (default: its first); see io/animation.h.
-Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame = std::nullopt);
+// `cameraName`: a camera of a glTF file (`--camera`); empty: the file's first camera, or the
+// framing default.
+Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame = std::nullopt,
+                         const std::string& cameraName = "");
 
 }  // namespace glint

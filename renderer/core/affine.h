@@ -20,6 +20,7 @@ struct Vec3d {
   friend constexpr Vec3d operator-(const Vec3d& a, const Vec3d& b) {
     return {a.x - b.x, a.y - b.y, a.z - b.z};
   }
+  friend constexpr Vec3d operator*(const Vec3d& a, double s) { return {a.x * s, a.y * s, a.z * s}; }
   friend constexpr bool operator==(const Vec3d&, const Vec3d&) = default;
 };
 

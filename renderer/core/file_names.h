@@ -7,12 +7,16 @@
 
 namespace glint {
 
+// `name` in lower case (ASCII letters only: file names are compared, not translated).
+inline std::string lowerCase(std::string name) {
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return name;
+}
+
 // The extension of `path` with its dot, in lower case (".png"); empty when it has none.
 inline std::string lowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
+  return lowerCase(std::filesystem::path(path).extension().string());
 }
 
 }  // namespace glint

@@ -72,6 +72,36 @@ std::string sourceInConfig(const OCIO::ConstConfigRcPtr& config, const std::stri
 
 }  // namespace
 
+struct ToRenderingSpace::Impl {
+  OCIO::ConstCPUProcessorRcPtr cpu;
+};
+
+ToRenderingSpace::ToRenderingSpace(const std::string& colorspace) : impl_(new Impl) {
+  try {
+    std::string source;
+    OCIO::ConstConfigRcPtr config = loadConfig("", source);
+    if (!config->getColorSpace(colorspace.c_str()) || !config->getColorSpace(kRenderingColorspace))
+      config = loadConfig("-", source);
+    if (!config->getColorSpace(colorspace.c_str()))
+      throw UsageError("the colour space " + inQuotes(colorspace) +
+                       " is in neither the OCIO config nor Glint's bundled one");
+    const auto processor = config->getProcessor(colorspace.c_str(), kRenderingColorspace);
+    identity_ = processor->isNoOp();
+    impl_->cpu = processor->getDefaultCPUProcessor();
+  } catch (const OCIO::Exception& e) {
+    delete impl_;
+    throw UsageError("OCIO cannot convert " + inQuotes(colorspace) + " to " + kRenderingColorspace +
+                     ": " + excerpt(e.what()));
+  } catch (...) {
+    delete impl_;
+    throw;
+  }
+}
+
+ToRenderingSpace::~ToRenderingSpace() { delete impl_; }
+
+void ToRenderingSpace::apply(float* rgb) const { impl_->cpu->applyRGB(rgb); }
+
 struct DisplayTransform::Impl {
   OCIO::ConstCPUProcessorRcPtr cpu;
 };

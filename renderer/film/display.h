@@ -43,6 +43,26 @@ class DisplayTransform {
   std::string source_;
 };
 
+// Colours from a texture's colour space into Glint's rendering space (kRenderingColorspace),
+// through the OCIO config ($OCIO, else the bundled one) where it knows the space, else through
+// the bundled config. Thread-safe.
+class ToRenderingSpace {
+ public:
+  // Throws UsageError naming `colorspace` when neither config knows it.
+  explicit ToRenderingSpace(const std::string& colorspace);
+  ~ToRenderingSpace();
+  ToRenderingSpace(const ToRenderingSpace&) = delete;
+  ToRenderingSpace& operator=(const ToRenderingSpace&) = delete;
+
+  bool isIdentity() const { return identity_; }
+  void apply(float* rgb) const;  // one pixel, in place
+
+ private:
+  struct Impl;
+  Impl* impl_;
+  bool identity_ = false;
+};
+
 // Throws UsageError unless `path` ends in .png, .jpg/.jpeg or .tif/.tiff.
 void checkDisplayImagePath(const std::string& path);
 

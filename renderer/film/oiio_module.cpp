@@ -13,6 +13,7 @@ namespace {
 
 struct Module {
   GlintOiioWriteImage writeImage = nullptr;
+  TextureFunctions texture;
   std::string error;  // why it could not be loaded
 };
 
@@ -26,9 +27,14 @@ const Module& module() {
         m.error = dlerror();
         return m;
       }
-      m.writeImage =
-          reinterpret_cast<GlintOiioWriteImage>(dlsym(handle, kGlintOiioWriteImageSymbol));
-      if (!m.writeImage) m.error = path + " has no " + kGlintOiioWriteImageSymbol;
+      const auto symbol = [&]<class F>(F& f, const char* name) {
+        f = reinterpret_cast<F>(dlsym(handle, name));
+        if (!f && m.error.empty()) m.error = path + " has no " + name;
+      };
+      symbol(m.writeImage, kGlintOiioWriteImageSymbol);
+      symbol(m.texture.open, kGlintOiioTextureOpenSymbol);
+      symbol(m.texture.lookup, kGlintOiioTextureLookupSymbol);
+      if (!m.error.empty()) m.writeImage = nullptr, m.texture = {};
       return m;  // loaded for the rest of the process
     }
     m.error = std::string(kGlintOiioModuleName) + " is not installed (looked in";
@@ -63,6 +69,17 @@ void writeImage(const std::string& path, const std::string& tmpPath, int width, 
   if (m.writeImage(path.c_str(), tmpPath.c_str(), width, height, channels, bits, pixels, error,
                    sizeof error) != 0)
     throw GlintError("cannot write " + path + ": " + error);
+}
+
+}  // namespace glint::oiio_module
+
+namespace glint::oiio_module {
+
+const TextureFunctions& textureFunctions(const std::string& path) {
+  const Module& m = module();
+  if (!m.texture.lookup)
+    throw GlintError("cannot read texture " + path + ": OpenImageIO's module: " + m.error);
+  return m.texture;
 }
 
 }  // namespace glint::oiio_module

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "film/oiio_module_abi.h"
+
 namespace glint::oiio_module {
 
 // Writes width × height pixels of `channels` code values of `bits` (8 or 16) to `tmpPath` in
@@ -14,6 +16,14 @@ namespace glint::oiio_module {
 // loaded or OpenImageIO cannot write it.
 void writeImage(const std::string& path, const std::string& tmpPath, int width, int height,
                 int channels, int bits, const std::vector<uint16_t>& codes);
+
+// OpenImageIO's TextureSystem (film/texture_file.h). Throws GlintError naming the texture
+// `path` when the module cannot be loaded.
+struct TextureFunctions {
+  GlintOiioTextureOpen open = nullptr;
+  GlintOiioTextureLookup lookup = nullptr;
+};
+const TextureFunctions& textureFunctions(const std::string& path);
 
 // Where the module is looked for: beside the executable (../lib/glint/), then in the build tree.
 std::vector<std::string> searchPath();

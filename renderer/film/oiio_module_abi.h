@@ -9,7 +9,23 @@ extern "C" {
 using GlintOiioWriteImage = int (*)(const char* formatPath, const char* path, int width, int height,
                                     int channels, int bits, const void* pixels, char* error,
                                     size_t errorSize);
+
+// Image textures through OpenImageIO's TextureSystem (one per process, in the module).
+struct GlintOiioTextureInfo {
+  int width, height, channels;
+  int isFloat;          // half or float texels (scene-linear by convention)
+  char colorspace[64];  // the file's oiio:ColorSpace, or empty
+};
+// Opens `path` as a texture and fills `info`; returns its handle, or null with a message.
+using GlintOiioTextureOpen = void* (*)(const char* path, GlintOiioTextureInfo* info, char* error,
+                                       size_t errorSize);
+// Filtered lookup of `channels` channels from `firstChannel` at st[0], st[1] over the footprint
+// axes (dsdx, dtdx, dsdy, dtdy), repeating outside [0, 1]; returns 0 on success.
+using GlintOiioTextureLookup = int (*)(void* handle, const float* st, const float* axes,
+                                       int firstChannel, int channels, float* out);
 }
 
 inline constexpr const char* kGlintOiioModuleName = "libglint_oiio.so";
 inline constexpr const char* kGlintOiioWriteImageSymbol = "glint_oiio_write_image";
+inline constexpr const char* kGlintOiioTextureOpenSymbol = "glint_oiio_texture_open";
+inline constexpr const char* kGlintOiioTextureLookupSymbol = "glint_oiio_texture_lookup";

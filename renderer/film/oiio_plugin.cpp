@@ -1,7 +1,9 @@
 // libglint_oiio.so: the only code linked against OpenImageIO (film/oiio_module.h).
 #include <OpenImageIO/imageio.h>
+#include <OpenImageIO/texture.h>
 
 #include <cstdio>
+#include <cstring>
 #include <memory>
 #include <type_traits>
 
@@ -23,3 +25,60 @@ extern "C" __attribute__((visibility("default"))) int glint_oiio_write_image(
   return 1;
 }
 static_assert(std::is_same_v<decltype(&glint_oiio_write_image), GlintOiioWriteImage>);
+
+namespace {
+
+// One TextureSystem for the process: it owns the cache of mip-mapped tiles every lookup shares.
+OIIO::TextureSystem& textureSystem() {
+  static OIIO::TextureSystem* const ts = [] {
+    OIIO::TextureSystem* t = OIIO::TextureSystem::create(/*shared=*/false);
+    // Untiled, un-mip-mapped files (every PNG and JPEG) are read whole once and mip-mapped in
+    // memory; colours stay as the file stores them, not premultiplied by alpha (a cut-out's
+    // edge keeps its colour).
+    t->attribute("automip", 1);
+    t->attribute("unassociatedalpha", 1);
+    t->attribute("max_memory_MB", 1024.0f);
+    return t;
+  }();
+  return *ts;
+}
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) void* glint_oiio_texture_open(
+    const char* path, GlintOiioTextureInfo* info, char* error, size_t errorSize) {
+  try {
+    OIIO::TextureSystem& ts = textureSystem();
+    OIIO::TextureSystem::TextureHandle* handle = ts.get_texture_handle(OIIO::ustring(path));
+    const OIIO::ImageSpec* spec = handle ? ts.imagespec(handle, nullptr) : nullptr;
+    if (!spec) {
+      std::snprintf(error, errorSize, "%s", ts.geterror().c_str());
+      return nullptr;
+    }
+    info->width = spec->width;
+    info->height = spec->height;
+    info->channels = spec->nchannels;
+    info->isFloat = spec->format.is_floating_point();
+    std::snprintf(info->colorspace, sizeof info->colorspace, "%s",
+                  spec->get_string_attribute("oiio:ColorSpace").c_str());
+    return handle;
+  } catch (const std::exception& e) {
+    std::snprintf(error, errorSize, "%s", e.what());
+  }
+  return nullptr;
+}
+static_assert(std::is_same_v<decltype(&glint_oiio_texture_open), GlintOiioTextureOpen>);
+
+extern "C" __attribute__((visibility("default"))) int glint_oiio_texture_lookup(
+    void* handle, const float* st, const float* axes, int firstChannel, int channels, float* out) {
+  OIIO::TextureSystem& ts = textureSystem();
+  thread_local OIIO::TextureSystem::Perthread* const perThread = ts.get_perthread_info();
+  OIIO::TextureOpt options;
+  options.swrap = options.twrap = OIIO::TextureOpt::WrapPeriodic;
+  options.firstchannel = firstChannel;
+  return ts.texture(static_cast<OIIO::TextureSystem::TextureHandle*>(handle), perThread, options,
+                    st[0], st[1], axes[0], axes[1], axes[2], axes[3], channels, out)
+             ? 0
+             : 1;
+}
+static_assert(std::is_same_v<decltype(&glint_oiio_texture_lookup), GlintOiioTextureLookup>);

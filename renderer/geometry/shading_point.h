@@ -16,6 +16,11 @@ struct ShadingPoint {
   float t = 0;
   uint32_t materialId = 0;
   uint32_t objectId = 0;
+  // The surface's texture coordinates and their tangents dp/du, dp/dv (world space), filled
+  // only in scenes with image textures (Features::surfaceCoordinates): every other hit leaves
+  // them out.
+  Vec2f uv;
+  Vec3f dpdu, dpdv;
 
   // The shading normal on the side of the surface that `w` points to. The side is the
   // geometric normal's to decide: a smooth normal can lean past a direction that ng puts in

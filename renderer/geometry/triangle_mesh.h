@@ -20,9 +20,13 @@ struct TriangleMesh {
   // Per-vertex shading normals (unit, in the mesh's space), interpolated across each triangle;
   // empty for a mesh shaded flat from its triangles. A deforming mesh has none.
   std::vector<Vec3f> normals;
+  // Per-vertex texture coordinates (u, v), origin at the image's bottom left; empty when the
+  // mesh has none (its triangles then map (0,0), (1,0), (0,1) to their corners).
+  std::vector<Vec2f> uvs;
 
   bool deforming() const { return !positionKeys.empty(); }
   bool smooth() const { return !normals.empty(); }
+  bool hasUvs() const { return !uvs.empty(); }
   size_t triangleCount() const { return indices.size() / 3; }
   Vec3f vertex(uint32_t tri, int corner) const {
     return positions[indices[3 * tri + static_cast<uint32_t>(corner)]];

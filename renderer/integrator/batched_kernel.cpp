@@ -16,7 +16,10 @@ constexpr size_t kMinShadowStream = 8;
 }  // namespace
 
 BatchedKernel::BatchedKernel(const Scene& scene, const Accelerator& accel, float minThroughput)
-    : scene_(scene), accel_(accel), minThroughput_(minThroughput) {
+    : scene_(scene),
+      accel_(accel),
+      minThroughput_(minThroughput),
+      cone_(pixelCone(scene.cameraDesc, scene.render.height, scene.render.spp)) {
   for (const Light& light : scene.lights) {
     const bool delta = isDeltaLight(light);
     lights_.push_back({lightSampleCount(light), delta});
@@ -96,17 +99,19 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
     const Material& m = scene_.materials[scene_.geometry(hit).materialId];
     AovSample* aov = aovs ? aovs[i] : nullptr;
     const Vec3f wo = normalize(-ray.d);
+    const float distance = distanceAt(ray, hit, branch);
     // AccLightSource: what the surface emits and reflects of the ambient light now; the light
     // sources' share, for a surface that reflects them, when the pending points are lit (or at
     // once for a point traced alone).
     if (!m.surface.reflectsLights()) {
       ShadingPoint sp;
       scene_.shadingPoint(ray, hit, sp);
-      const SurfacePoint at = lookUp(m.surface, sp, wo, scene_.worldOrigin);
+      const SurfacePoint at =
+          lookUp(m.surface, sp, wo, cone_.widthAt(distance), scene_.worldOrigin);
       if (aov) recordAov(ray, hit, m, sp, at, *aov);
       local = ambientAndEmission(m.surface, at, sp, scene_.render.ambient, scene_.worldOrigin);
       if (aov) aov->direct = local;
-      spawnCoherent(hit, m, sp, at, ray, -wo, branch, gen, counters);
+      spawnCoherent(hit, m, sp, at, ray, -wo, branch, distance, gen, counters);
       sum.childEnd = gen.children;
       continue;
     }
@@ -120,7 +125,7 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
     LitPoint& pt = p.pt;
     scene_.shadingPoint(ray, hit, pt.sp);
     pt.material = &m;
-    pt.at = lookUp(m.surface, pt.sp, wo, scene_.worldOrigin);
+    pt.at = lookUp(m.surface, pt.sp, wo, cone_.widthAt(distance), scene_.worldOrigin);
     pt.time = ray.time;
     pt.branch = &branch;
     if (aov) recordAov(ray, hit, m, pt.sp, pt.at, *aov);
@@ -136,7 +141,7 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
       p.ray = i;
       ++scratch.pendingCount;
     }
-    spawnCoherent(hit, m, pt.sp, pt.at, ray, -wo, branch, gen, counters);
+    spawnCoherent(hit, m, pt.sp, pt.at, ray, -wo, branch, distance, gen, counters);
     sum.childEnd = gen.children;
   }
   lightPendingPoints(scratch, gen.sums, aovs, cameraKeys != nullptr, counters);
@@ -169,7 +174,7 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
 
 void BatchedKernel::spawnCoherent(const Hit& hit, const Material& m, const ShadingPoint& sp,
                                   const SurfacePoint& at, const Ray& ray, const Vec3f& d,
-                                  const Branch& branch, Generation& gen,
+                                  const Branch& branch, float distance, Generation& gen,
                                   RayCounters& counters) const {
   if (!m.refracts() && !m.surface.reflectsCoherently()) return;
   const bool traced = branch.depth + 1 <= scene_.render.maxDepth;
@@ -179,8 +184,8 @@ void BatchedKernel::spawnCoherent(const Hit& hit, const Material& m, const Shadi
       const Rgb throughput = branch.throughput * weight;
       if (throughput.maxChannel() < minThroughput_) return;
       if (traced) ++(crosses ? counters.refraction : counters.reflection);
-      spawnRayInto(gen.add(branch, weight, throughput, crosses ? across : branch.media), sp, false,
-                   direction, ray.time);
+      spawnRayInto(gen.add(branch, weight, throughput, crosses ? across : branch.media, distance),
+                   sp, false, direction, ray.time);
     };
   };
   if (m.refracts()) {

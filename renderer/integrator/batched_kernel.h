@@ -18,6 +18,7 @@
 #include "core/sampler.h"
 #include "core/uninitialized_array.h"
 #include "integrator/aov.h"
+#include "integrator/footprint.h"
 #include "integrator/medium_stack.h"
 #include "integrator/radiance.h"
 #include "integrator/ray_counters.h"
@@ -54,6 +55,7 @@ class BatchedKernel {
     int depth = 0;
     Rgb throughput{1, 1, 1};
     const SampleKey* key = nullptr;
+    float distance = 0;  // travelled from the eye to the ray's origin (the pixel's cone)
     // Last: a ray outside every dielectric writes and reads only the stack's size, in the
     // same cache line as the fields above.
     MediumStack media;
@@ -84,9 +86,11 @@ class BatchedKernel {
     // A child of `parent` with weight w (its throughput parent.throughput · w) in `media`;
     // returns its ray's slot for the caller to write. Written in place: a Branch built in a
     // temporary and copied in was reloaded before its stores had landed (store forwarding).
-    Ray& add(const Branch& parent, const Rgb& w, const Rgb& throughput, const MediumStack& media) {
+    Ray& add(const Branch& parent, const Rgb& w, const Rgb& throughput, const MediumStack& media,
+             float distance) {
       Branch& b = branches[children];
       b.depth = parent.depth + 1;
+      b.distance = distance;
       b.throughput = throughput;
       b.media.assign(media);
       b.key = parent.key;
@@ -108,7 +112,11 @@ class BatchedKernel {
   // with a refracted ray across the surface.
   void spawnCoherent(const Hit& hit, const Material& m, const ShadingPoint& sp,
                      const SurfacePoint& at, const Ray& ray, const Vec3f& d, const Branch& branch,
-                     Generation& gen, RayCounters& counters) const;
+                     float distance, Generation& gen, RayCounters& counters) const;
+  // How far a ray's pixel cone has come at its hit (image textures only; else 0).
+  float distanceAt(const Ray& ray, const Hit& hit, const Branch& branch) const {
+    return scene_.features.surfaceCoordinates ? branch.distance + hit.t * length(ray.d) : 0;
+  }
 
   // A hit whose surface reflects the lights (materials' reflectsLights), waiting for its
   // direct light: AccLightSource's loop, run for many points at once.
@@ -208,6 +216,7 @@ class BatchedKernel {
   const Scene& scene_;
   const Accelerator& accel_;
   float minThroughput_;
+  PixelCone cone_;
   std::vector<LightInfo> lights_;
   bool areaLights_ = false;     // some light is not a delta light
   int shadowRaysPerPoint_ = 0;  // at most, over all lights: what a lit point may queue

@@ -27,7 +27,10 @@ Rgb ReferenceIntegrator::trace(const Ray& r, const Hit& q, const Branch& branch,
     const ShadingPoint sp = scene_.shadingPoint(r, q);
     const Material& m = scene_.materials[sp.materialId];
     const Vec3f d = normalize(r.d);
-    const SurfacePoint at = lookUp(m.surface, sp, -d, scene_.worldOrigin);
+    // How far the pixel's cone has come, for image textures only.
+    const float distance =
+        scene_.features.surfaceCoordinates ? branch.distance + q.t * length(r.d) : 0;
+    const SurfacePoint at = lookUp(m.surface, sp, -d, cone_.widthAt(distance), scene_.worldOrigin);
     c = accLightSource(m, sp, at, r.time, branch, counters);
     // The reflected and refracted rays, each traced as Trace(r', d + 1).
     const Crossing crossing =
@@ -41,6 +44,7 @@ Rgb ReferenceIntegrator::trace(const Ray& r, const Hit& q, const Branch& branch,
                          if (child.throughput.maxChannel() < minThroughput_) return;  // too faint
                          child.media = crosses ? crossing.across : branch.media;
                          child.key = branch.key;
+                         child.distance = distance;
                          const Ray childRay = spawnRay(sp, direction, r.time);
                          Hit childHit;  // past the depth limit it is not looked for
                          if (child.depth <= settings.maxDepth) {

@@ -9,6 +9,7 @@
 // reference` renders with it.
 #include "accel/accelerator.h"
 #include "core/sampler.h"
+#include "integrator/footprint.h"
 #include "integrator/medium_stack.h"
 #include "integrator/radiance.h"
 #include "integrator/ray_counters.h"
@@ -20,7 +21,10 @@ class ReferenceIntegrator {
  public:
   ReferenceIntegrator(const Scene& scene, const Accelerator& accel,
                       float minThroughput = kDefaultMinThroughput)
-      : scene_(scene), accel_(accel), minThroughput_(minThroughput) {}
+      : scene_(scene),
+        accel_(accel),
+        minThroughput_(minThroughput),
+        cone_(pixelCone(scene.cameraDesc, scene.render.height, scene.render.spp)) {}
 
   // The radiance along a camera ray, sample `key`.
   Radiance radiance(const Ray& cameraRay, const SampleKey& key, RayCounters& counters) const;
@@ -32,6 +36,7 @@ class ReferenceIntegrator {
     Rgb throughput{1, 1, 1};  // the product of the weights above it
     MediumStack media;        // the dielectric objects the ray is inside
     const SampleKey* key = nullptr;
+    float distance = 0;  // travelled from the eye to the ray's origin (the pixel's cone)
   };
 
   // Trace(r, d).
@@ -47,6 +52,7 @@ class ReferenceIntegrator {
   const Scene& scene_;
   const Accelerator& accel_;
   float minThroughput_;
+  PixelCone cone_;
 };
 
 }  // namespace glint

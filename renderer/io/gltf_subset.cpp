@@ -74,15 +74,23 @@ std::string gltfSubset(const std::string& path, const std::string& text) {
       throw GlintError("mesh " + path + " is glTF " + excerpt(version->get<std::string>()) +
                        "; Glint reads glTF 2.0");
   }
-  keepOnly(doc, {"asset", "scene", "scenes", "nodes", "meshes", "materials", "accessors",
-                 "bufferViews", "buffers", "extensionsUsed", "extensionsRequired"});
-  // Materials as factors only (io/mesh_materials.h): texture references would name the
-  // textures, images and samplers removed above.
-  forEachIn(doc, "materials", [](json& material) {
-    keepOnly(material, {"name", "pbrMetallicRoughness", "emissiveFactor", "extensions"});
+  keepOnly(doc,
+           {"asset", "scene", "scenes", "nodes", "meshes", "materials", "accessors", "bufferViews",
+            "buffers", "textures", "images", "samplers", "extensionsUsed", "extensionsRequired"});
+  // Materials as their factors and the base colour and emission textures (io/mesh_materials.h),
+  // read from the first texture coordinates.
+  const auto keepTextureInfo = [](json& object, const char* key) {
+    if (const auto info = object.find(key); info != object.end()) keepOnly(*info, {"index"});
+  };
+  forEachIn(doc, "materials", [&](json& material) {
+    keepOnly(material,
+             {"name", "pbrMetallicRoughness", "emissiveFactor", "emissiveTexture", "extensions"});
     if (!material.is_object()) return;
-    if (const auto pbr = material.find("pbrMetallicRoughness"); pbr != material.end())
-      keepOnly(*pbr, {"baseColorFactor", "metallicFactor", "roughnessFactor"});
+    keepTextureInfo(material, "emissiveTexture");
+    if (const auto pbr = material.find("pbrMetallicRoughness"); pbr != material.end()) {
+      keepOnly(*pbr, {"baseColorFactor", "baseColorTexture", "metallicFactor", "roughnessFactor"});
+      if (pbr->is_object()) keepTextureInfo(*pbr, "baseColorTexture");
+    }
     if (const auto ext = material.find("extensions"); ext != material.end()) {
       keepOnly(*ext, {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
                       "KHR_materials_emissive_strength"});
@@ -118,9 +126,14 @@ std::string gltfSubset(const std::string& path, const std::string& text) {
     forEachIn(mesh, "primitives", [](json& primitive) {
       keepOnly(primitive, {"attributes", "indices", "mode", "material", "extensions"});
       if (const auto a = primitive.find("attributes"); a != primitive.end())
-        keepOnly(*a, {"POSITION", "NORMAL"});
+        keepOnly(*a, {"POSITION", "NORMAL", "TEXCOORD_0"});
     });
   });
+  forEachIn(doc, "textures", [](json& texture) { keepOnly(texture, {"source", "sampler"}); });
+  forEachIn(doc, "images", [](json& image) {
+    keepOnly(image, {"name", "uri", "mimeType", "bufferView"});
+  });
+  forEachIn(doc, "samplers", [](json& sampler) { keepOnly(sampler, {"wrapS", "wrapT"}); });
   try {
     return doc.dump();
   } catch (const json::exception& e) {
@@ -128,7 +141,7 @@ std::string gltfSubset(const std::string& path, const std::string& text) {
   }
 }
 
-std::string glbSubset(const std::string& path, const std::string& bytes) {
+std::string glbJsonChunk(const std::string& path, const std::string& bytes) {
   // 12-byte header (magic, version 2, total length), then chunks of (length, type, data); the
   // first is JSON.
   const auto u32 = [&](size_t at) {
@@ -140,8 +153,13 @@ std::string glbSubset(const std::string& path, const std::string& bytes) {
       u32(16) != 0x4E4F534Au || 20 + uint64_t{u32(12)} > bytes.size())
     throw GlintError("mesh " + path +
                      ": not a GLB 2 file (magic \"glTF\", version 2, a JSON chunk first)");
-  const uint64_t jsonLength = u32(12);
-  std::string text = gltfSubset(path, bytes.substr(20, jsonLength));
+  return bytes.substr(20, u32(12));
+}
+
+std::string glbSubset(const std::string& path, const std::string& bytes) {
+  const std::string json = glbJsonChunk(path, bytes);
+  const uint64_t jsonLength = json.size();
+  std::string text = gltfSubset(path, json);
   text.append((4 - text.size() % 4) % 4, ' ');  // chunks are 4-byte aligned, padded with spaces
   const std::string rest = bytes.substr(20 + jsonLength);
   std::string out = bytes.substr(0, 12);

@@ -1,12 +1,13 @@
 #pragma once
 // The part of a glTF 2.0 file Glint reads, and nothing else, for Assimp to import: the scene's
-// nodes with their transforms, each primitive's POSITION, NORMAL, indices and material, the
-// accessors, buffer views and buffers behind them, and the materials' factors (base colour,
-// metallic, roughness, emission; transmission, ior, volume and emissive strength extensions).
-// Skins, animations, morph targets, textures, images, samplers, cameras and lights are removed
-// before Assimp sees the file, so its readers for them never run: Assimp 5.2.5 dereferenced a null
-// pointer on a skin without inverseBindMatrices (found by glint_fuzz_mesh). Geometry-compression
-// extensions stay.
+// nodes with their transforms, each primitive's POSITION, NORMAL, TEXCOORD_0, indices and
+// material, the accessors, buffer views and buffers behind them, the materials' factors (base
+// colour, metallic, roughness, emission; transmission, ior, volume and emissive strength
+// extensions) and their base colour and emissive textures with the textures, images and
+// samplers behind them. Skins, animations, morph targets, cameras and lights (which Glint reads
+// itself, io/gltf_scene.h) are removed before Assimp sees the file, so its readers for them never
+// run: Assimp 5.2.5 dereferenced a null pointer on a skin without inverseBindMatrices (found by
+// glint_fuzz_mesh). Geometry-compression extensions stay.
 #include <string>
 
 namespace glint {
@@ -21,5 +22,9 @@ std::string gltfSubset(const std::string& path, const std::string& text);
 // rewritten; the binary chunk is kept as it is. Throws as above, and when the bytes are not a
 // GLB 2 container.
 std::string glbSubset(const std::string& path, const std::string& bytes);
+
+// A GLB file's JSON chunk; throws GlintError naming `path` when the bytes are not a GLB 2
+// container.
+std::string glbJsonChunk(const std::string& path, const std::string& bytes);
 
 }  // namespace glint

@@ -7,16 +7,21 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 
 #include "core/error.h"
 #include "core/file_names.h"
 #include "core/input_files.h"
+#include "core/log.h"
+#include "film/texture_file.h"
 #include "io/gltf_subset.h"
 #include "io/mesh_limits.h"
 #include "io/mesh_materials.h"
@@ -85,6 +90,41 @@ void checkAnImporterOfTheExtensionReadsIt(Assimp::Importer& importer, const std:
                    " (Assimp's readers of ." + ext + " do not recognise it)");
 }
 
+// Opens the textures a mesh file's materials name: relative to the mesh file, with Windows
+// separators turned around (OBJ files from Windows tools write .\\wood.jpg) and, where the
+// name's case does not match, the one file in the folder whose name matches regardless of case.
+// A texture that cannot be read is warned about and left out (the slot keeps its colour): real
+// assets often name textures they were not shipped with.
+TextureOpener textureOpener(const std::string& meshPath) {
+  const std::filesystem::path dir = std::filesystem::path(meshPath).parent_path();
+  auto opened = std::make_shared<std::map<std::string, std::shared_ptr<const ImageTexture>>>();
+  return [dir, meshPath, opened](const std::string& named) -> std::shared_ptr<const ImageTexture> {
+    if (const auto it = opened->find(named); it != opened->end()) return it->second;
+    std::shared_ptr<const ImageTexture>& slot = (*opened)[named];
+    std::string name = named;
+    std::replace(name.begin(), name.end(), '\\', '/');
+    if (name.empty() || name[0] == '*') {
+      log::warning("mesh " + meshPath + ": texture " + inQuotes(excerpt(named)) +
+                   " is embedded in the file, which Glint does not read; left out");
+      return slot;
+    }
+    std::filesystem::path file(name);
+    if (file.is_relative()) file = dir / file;
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec)) {
+      const std::string lower = lowerCase(file.filename().string());
+      for (const auto& entry : std::filesystem::directory_iterator(file.parent_path(), ec))
+        if (lowerCase(entry.path().filename().string()) == lower) file = entry.path();
+    }
+    try {
+      slot = openImageTexture(file.lexically_normal().string());
+    } catch (const GlintError& e) {
+      log::warning("mesh " + meshPath + ": texture left out: " + e.what());
+    }
+    return slot;
+  };
+}
+
 }  // namespace
 
 MeshFile loadMeshFile(const std::string& path) {
@@ -101,9 +141,9 @@ MeshFile loadMeshFile(const std::string& path) {
     files->replaceMeshBytes(ext == ".gltf" ? gltfSubset(path, bytes) : glbSubset(path, bytes));
   }
   checkAnImporterOfTheExtensionReadsIt(importer, path);
-  // Positions, the file's vertex normals (smooth shading) and its materials are kept; colours
-  // and UVs are not imported yet.
-  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_COLORS | aiComponent_TEXCOORDS);
+  // Positions, the file's vertex normals (smooth shading), its first texture coordinates and
+  // its materials are kept; vertex colours are not imported.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_COLORS);
   // Read with no processing but Assimp's own validation: its post-processing steps index
   // vertices through the faces before any check of ours, and a face naming a vertex that does
   // not exist made them read and write out of bounds.
@@ -167,6 +207,7 @@ MeshFile loadMeshFile(const std::string& path) {
                                                 : MeshFileFormat::Gltf;
   const std::string fileName = std::filesystem::path(path).filename().string();
   MeshFile file;
+  const TextureOpener openTexture = textureOpener(path);
   std::vector<int> partOfMaterial(s->mNumMaterials, -1);
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
     const aiMesh* m = s->mMeshes[mi];
@@ -180,7 +221,7 @@ MeshFile loadMeshFile(const std::string& path) {
       part = int(file.parts.size());
       file.parts.emplace_back();
       file.materials.push_back(
-          materialFromMeshFile(*s->mMaterials[m->mMaterialIndex], format, fileName));
+          materialFromMeshFile(*s->mMaterials[m->mMaterialIndex], format, fileName, openTexture));
     }
     TriangleMesh& mesh = file.parts[size_t(part)];
     const auto base = static_cast<uint32_t>(mesh.positions.size());
@@ -188,6 +229,15 @@ MeshFile loadMeshFile(const std::string& path) {
       const aiVector3D& p = m->mVertices[v];
       mesh.positions.push_back({p.x, p.y, p.z});
       if (smooth) mesh.normals.push_back({m->mNormals[v].x, m->mNormals[v].y, m->mNormals[v].z});
+    }
+    // Texture coordinates: where one mesh of a part has them and another not, the other's
+    // vertices take (0, 0).
+    if (const aiVector3D* uv = m->mTextureCoords[0]) {
+      mesh.uvs.resize(base, Vec2f{0, 0});
+      for (unsigned v = 0; v < m->mNumVertices; ++v) {
+        const bool finite = std::isfinite(uv[v].x) && std::isfinite(uv[v].y);
+        mesh.uvs.push_back(finite ? Vec2f{uv[v].x, uv[v].y} : Vec2f{0, 0});
+      }
     }
     for (unsigned f = 0; f < m->mNumFaces; ++f) {
       const aiFace& face = m->mFaces[f];
@@ -202,6 +252,8 @@ MeshFile loadMeshFile(const std::string& path) {
       file.materials.erase(file.materials.begin() + ptrdiff_t(i));
     }
   if (file.parts.empty()) throw GlintError("mesh " + path + " has no triangles");
+  for (TriangleMesh& part : file.parts)
+    if (part.hasUvs()) part.uvs.resize(part.positions.size(), Vec2f{0, 0});
   return file;
 }
 

@@ -24,12 +24,27 @@ float number(const aiMaterial& m, const char* key, unsigned type, unsigned index
   return v;
 }
 
+// The slot's colour `factor` times the material's first texture of `type`, where it has one
+// that opens; else the factor alone.
+ColorTexture textured(const aiMaterial& m, aiTextureType type, const Rgb& factor,
+                      const TextureOpener& open) {
+  aiString path;
+  if (m.GetTextureCount(type) == 0 || m.GetTexture(type, 0, &path) != AI_SUCCESS)
+    return ColorTexture::uniform(factor);
+  ColorTexture t = ColorTexture::uniform(factor);
+  if (auto image = open(path.C_Str())) {
+    t.pattern = TexturePattern::Image;
+    t.image = std::move(image);
+  }
+  return t;
+}
+
 // MTL's illumination models (the OBJ specification's `illum`): 3, 5 and 8 trace reflections,
 // whose colour is Ks; 4, 6, 7 and 9 are glass, refracting with index Ni.
 bool illumReflects(int illum) { return illum == 3 || illum == 5 || illum == 8; }
 bool illumRefracts(int illum) { return illum == 4 || illum == 6 || illum == 7 || illum == 9; }
 
-Material fromMtl(const aiMaterial& src) {
+Material fromMtl(const aiMaterial& src, const TextureOpener& open) {
   int illum = 2;
   src.Get(AI_MATKEY_OBJ_ILLUM, illum);
   Material m =
@@ -38,13 +53,17 @@ Material fromMtl(const aiMaterial& src) {
   const Rgb ks = colour(src, AI_MATKEY_COLOR_SPECULAR, {0, 0, 0});
   // Glass takes its colour from the light it refracts, not from a diffuse Kd.
   if (!m.refracts())
-    s.kd = ColorTexture::uniform(colour(src, AI_MATKEY_COLOR_DIFFUSE, {0.5f, 0.5f, 0.5f}));
+    s.kd = textured(src, aiTextureType_DIFFUSE,
+                    colour(src, AI_MATKEY_COLOR_DIFFUSE, {0.5f, 0.5f, 0.5f}), open);
   s.ka = ColorTexture::uniform(colour(src, AI_MATKEY_COLOR_AMBIENT, {0, 0, 0}));
   s.ambientFollowsDiffuse = false;
-  s.ks = ColorTexture::uniform(ks);
+  s.ks = textured(src, aiTextureType_SPECULAR, ks, open);
   // Ns is the Phong exponent (0 … 1000 in the specification); Glint's must be positive.
   s.exponent = std::clamp(number(src, AI_MATKEY_SHININESS, 32), 1.0f, 1e4f);
-  s.ke = ColorTexture::uniform(colour(src, AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0}));
+  // map_Ke scales Ke; exporters write Ke 0 beside an emission map, which then means 1.
+  const Rgb ke = colour(src, AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0});
+  const bool keMap = src.GetTextureCount(aiTextureType_EMISSIVE) > 0;
+  s.ke = textured(src, aiTextureType_EMISSIVE, keMap && ke.isBlack() ? Rgb{1, 1, 1} : ke, open);
   if (illumReflects(illum)) s.km = ColorTexture::uniform(ks);
   if (m.refracts()) {
     const float ni = number(src, AI_MATKEY_REFRACTI, 1.5f);
@@ -57,7 +76,7 @@ Material fromMtl(const aiMaterial& src) {
 // (k_d = base × (1 − metallic)) with a 4 % highlight; the metal part mirrors its base colour
 // (k_m = base × metallic), blurred by its roughness (gloss); the highlight's exponent is
 // Blinn-Phong's match to the GGX width α = roughness², 2/α² − 2.
-Material fromGltf(const aiMaterial& src) {
+Material fromGltf(const aiMaterial& src, const TextureOpener& open) {
   const float transmission =
       std::clamp(number(src, AI_MATKEY_TRANSMISSION_FACTOR, 0.0f), 0.0f, 1.0f);
   Material m = defaultMaterial(transmission > 0 ? MaterialKind::Dielectric : MaterialKind::Phong);
@@ -66,15 +85,20 @@ Material fromGltf(const aiMaterial& src) {
   const float metallic = std::clamp(number(src, AI_MATKEY_METALLIC_FACTOR, 1.0f), 0.0f, 1.0f);
   const float roughness = std::clamp(number(src, AI_MATKEY_ROUGHNESS_FACTOR, 1.0f), 0.0f, 1.0f);
   const float alpha = std::max(roughness * roughness, 1e-2f);
-  if (!m.refracts()) s.kd = ColorTexture::uniform(base * (1 - metallic));
+  // The base colour texture multiplies the base colour wherever it appears (baseColorTexture
+  // is aiTextureType_DIFFUSE in Assimp's glTF 2 reader).
+  if (!m.refracts()) s.kd = textured(src, aiTextureType_DIFFUSE, base * (1 - metallic), open);
   s.ka = ColorTexture::uniform({0, 0, 0});
   s.ambientFollowsDiffuse = false;
   s.ks = ColorTexture::uniform(Rgb{0.04f, 0.04f, 0.04f} * (1 - metallic) + base * metallic);
   s.exponent = std::clamp(2 / (alpha * alpha) - 2, 1.0f, 1e4f);
-  s.km = ColorTexture::uniform(base * metallic);
+  s.km = metallic > 0 ? textured(src, aiTextureType_DIFFUSE, base * metallic, open)
+                      : ColorTexture::uniform({0, 0, 0});
   s.gloss = metallic > 0 ? roughness : 0;
-  s.ke = ColorTexture::uniform(colour(src, AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0}) *
-                               std::max(number(src, AI_MATKEY_EMISSIVE_INTENSITY, 1.0f), 0.0f));
+  s.ke = textured(src, aiTextureType_EMISSIVE,
+                  colour(src, AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0}) *
+                      std::max(number(src, AI_MATKEY_EMISSIVE_INTENSITY, 1.0f), 0.0f),
+                  open);
   if (m.refracts()) {
     const float ior = number(src, AI_MATKEY_REFRACTI, 1.5f);
     m.dielectric.ior = ior >= 1.0f && ior <= 10.0f ? ior : 1.5f;
@@ -95,15 +119,15 @@ Material fromGltf(const aiMaterial& src) {
 }  // namespace
 
 Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
-                              const std::string& fileName) {
+                              const std::string& fileName, const TextureOpener& openTexture) {
   aiString name;
   const std::string own = source.Get(AI_MATKEY_NAME, name) == AI_SUCCESS ? name.C_Str() : "";
   // A file without materials of its own (a PLY, an OBJ without MTL) gets Assimp's default,
   // which Glint replaces by its own default surface.
   Material m = own == AI_DEFAULT_MATERIAL_NAME || format == MeshFileFormat::Ply
                    ? defaultMaterial(MaterialKind::Phong)
-               : format == MeshFileFormat::Gltf ? fromGltf(source)
-                                                : fromMtl(source);
+               : format == MeshFileFormat::Gltf ? fromGltf(source, openTexture)
+                                                : fromMtl(source, openTexture);
   m.name = fileName + ":" + own;
   return m;
 }

@@ -1,8 +1,11 @@
 #pragma once
 // The materials of mesh files, mapped onto Glint's surface model (materials/): an OBJ's MTL
 // (Kd, Ks, Ns, Ka, Ke, Ni, illum) and glTF 2.0's metallic-roughness factors with
-// KHR_materials_transmission, _ior, _volume and _emissive_strength. The table is in
-// docs/scene-format.md ("Materials from mesh files"). Textures are not mapped yet.
+// KHR_materials_transmission, _ior, _volume and _emissive_strength, with their image textures
+// (map_Kd, map_Ks, map_Ke; glTF's base colour and emissive textures). The table is in
+// docs/scene-format.md ("Materials from mesh files").
+#include <functional>
+#include <memory>
 #include <string>
 
 #include "materials/material.h"
@@ -13,8 +16,12 @@ namespace glint {
 
 enum class MeshFileFormat { Obj, Ply, Gltf };
 
+// Opens a texture a material names, its path as the file spells it; null where it cannot be
+// read (the opener says why).
+using TextureOpener = std::function<std::shared_ptr<const ImageTexture>(const std::string& named)>;
+
 // The Glint material for `source`, named "FILE:NAME" (FILE the mesh file's name).
 Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
-                              const std::string& fileName);
+                              const std::string& fileName, const TextureOpener& openTexture);
 
 }  // namespace glint

@@ -40,6 +40,7 @@ uint32_t push(Scene& s, uint32_t groupId, GeomKind kind, uint32_t index, uint32_
 struct LocalMesh {
   std::vector<Vec3d> positions;
   std::vector<Vec3d> normals;                    // per vertex, for smooth shading; empty: flat
+  std::vector<Vec2f> uvs;                        // per vertex texture coordinates; may be empty
   std::vector<std::vector<Vec3d>> positionKeys;  // a deforming mesh's vertices per motion key
   std::vector<uint32_t> indices;
 };
@@ -58,6 +59,7 @@ void addMesh(SceneBuilder& b, const LocalMesh& local, const Placement& place, co
   };
   TriangleMesh mesh;
   mesh.indices = local.indices;
+  mesh.uvs = local.uvs;
   mesh.positions = placed(local.positions);
   for (const auto& key : local.positionKeys) mesh.positionKeys.push_back(placed(key));
   // Normals go through the inverse transpose, which keeps them outward under a mirroring
@@ -113,6 +115,16 @@ LocalMesh inlineMesh(const JsonNode& obj) {
       normals.fail("has " + std::to_string(m.normals.size()) + " normals; the mesh has " +
                    std::to_string(m.positions.size()) + " positions (one normal per position)");
   }
+  if (obj.has("uvs")) {
+    const JsonNode uvs = obj.at("uvs");
+    if (!uvs.isArray() || uvs.size() != m.positions.size())
+      uvs.fail("must hold one [u, v] pair per position (" + std::to_string(m.positions.size()) +
+               ")");
+    for (const JsonNode& uv : uvs.elements()) {
+      if (!uv.isArray() || uv.size() != 2) uv.fail("must be a pair [u, v]");
+      m.uvs.push_back({uv[0].number(), uv[1].number()});
+    }
+  }
   const JsonNode idx = obj.at("indices");
   for (const JsonNode& tri : idx.elements()) {
     if (tri.size() != 3) tri.fail("must be a triple of vertex indices");
@@ -155,6 +167,7 @@ FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
       LocalMesh m;
       for (const Vec3f& p : part.positions) m.positions.push_back(toDouble(p));
       for (const Vec3f& n : part.normals) m.normals.push_back(toDouble(n));
+      m.uvs = part.uvs;
       m.indices = part.indices;
       out.parts.push_back(std::move(m));
     }
@@ -372,11 +385,12 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
       v.fail("cannot triangulate: the polygon is degenerate or self-intersecting");
     addMesh(b, m, place, obj, groupId, material, objectId);
   } else {  // mesh
-    obj.checkKeys(
-        {"type", "file", "positions", "normals", "indices", "material", "transform", "motion"});
-    if (obj.has("file") && obj.has("normals"))
-      obj.at("normals").fail(
-          "a mesh from a file takes its normals from the file; remove \"normals\"");
+    obj.checkKeys({"type", "file", "positions", "normals", "uvs", "indices", "material",
+                   "transform", "motion"});
+    for (const char* key : {"normals", "uvs"})
+      if (obj.has("file") && obj.has(key))
+        obj.at(key).fail(std::string("a mesh from a file takes its ") + key +
+                         " from the file; remove \"" + key + "\"");
     if (obj.has("file") == obj.has("positions"))
       obj.fail("a mesh needs either \"file\" or \"positions\" with \"indices\"");
     if (obj.has("file") && obj.has("indices"))

@@ -1,6 +1,7 @@
 #pragma once
 // State shared by the parts of the loader while a Scene is assembled (internal to io/).
 #include <map>
+#include <memory>
 #include <string>
 
 #include "io/json_source.h"
@@ -16,6 +17,13 @@ struct SceneBuilder {
   std::map<std::string, uint32_t> groupIds;
   // Bounds of each group's contents, computed once however many instances place it.
   std::map<uint32_t, Bounds3f> groupBounds;
+  // Image textures by file and colour space: a file several materials use is opened once.
+  std::map<std::pair<std::string, std::string>, std::shared_ptr<const ImageTexture>> textures;
+
+  // The texture of `path` in `colorspace` (empty: the file's), opened on first use
+  // (film/texture_file.h; throws as openImageTexture does).
+  std::shared_ptr<const ImageTexture> texture(const std::string& path,
+                                              const std::string& colorspace);
 
   // World → render space (io/placement.h); set from the camera before anything is placed.
   Vec3f toRender(const JsonNode& worldPoint) const {

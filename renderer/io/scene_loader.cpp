@@ -1,15 +1,30 @@
 #include "io/scene_loader.h"
 
 #include <filesystem>
+#include <fstream>
 
 #include "core/hash.h"
 #include "core/input_files.h"
 #include "core/log.h"
 #include "core/sampler.h"
+#include "film/texture_file.h"
 #include "io/animation.h"
 #include "io/scene_builder.h"
 
 namespace glint {
+
+std::shared_ptr<const ImageTexture> SceneBuilder::texture(const std::string& path,
+                                                          const std::string& colorspace) {
+  auto& slot = textures[{path, colorspace}];
+  if (slot) return slot;
+  slot = openImageTexture(path, colorspace);
+  // The file's bytes join the scene hash, as a mesh file's do: crops rendered after a texture
+  // changed are not merged with ones rendered before.
+  std::ifstream in(path, std::ios::binary);
+  scene.sourceHash =
+      hashCombine(scene.sourceHash, hashBytes(std::string(std::istreambuf_iterator<char>(in), {})));
+  return slot;
+}
 
 namespace {
 
@@ -67,22 +82,62 @@ void parseCamera(const JsonNode& n, const std::optional<Animation>& animation, C
   }
 }
 
-ColorTexture parseColorTexture(const JsonNode& n) {
-  if (n.isArray()) return ColorTexture::uniform(n.color());
-  n.checkKeys({"checker"});
-  const JsonNode c = n.at("checker");
-  c.checkKeys({"scale", "a", "b"});
+// A solid pattern: {"checker" | "noise" | "marble" | "wood": {"scale", "a", "b"}}.
+ColorTexture parseSolidTexture(const JsonNode& n, TexturePattern pattern) {
+  n.checkKeys({"scale", "a", "b"});
   ColorTexture t;
-  t.checker = true;
-  t.scale = c.has("scale") ? c.at("scale").number(0, 3.4e38f, true) : 1.0f;
-  t.a = c.at("a").color();
-  t.b = c.at("b").color();
+  t.pattern = pattern;
+  t.scale = n.has("scale") ? n.at("scale").number(0, 3.4e38f, true) : 1.0f;
+  t.a = n.at("a").color();
+  t.b = n.at("b").color();
   return t;
+}
+
+// {"image": FILE, "factor": [r, g, b], "colorspace": NAME, "uv_scale": [su, sv],
+//  "uv_offset": [ou, ov], "uv_rotate": DEGREES}: the file relative to the scene file.
+ColorTexture parseImageTexture(SceneBuilder& b, const JsonNode& n) {
+  n.checkKeys({"image", "factor", "colorspace", "uv_scale", "uv_offset", "uv_rotate"});
+  const JsonNode file = n.at("image");
+  const std::filesystem::path rel(file.string());
+  const std::string path =
+      (rel.is_absolute() ? rel : std::filesystem::path(b.baseDir) / rel).lexically_normal();
+  ColorTexture t;
+  t.pattern = TexturePattern::Image;
+  t.constant = n.has("factor") ? n.at("factor").color() : Rgb{1, 1, 1};
+  const auto pair = [](const JsonNode& v) {
+    if (!v.isArray() || v.size() != 2) v.fail("must be a pair [u, v]");
+    return Vec2f{v[0].number(), v[1].number()};
+  };
+  const Vec2f scale = n.has("uv_scale") ? pair(n.at("uv_scale")) : Vec2f{1, 1};
+  const float angle = n.has("uv_rotate") ? n.at("uv_rotate").number() * kPi / 180 : 0;
+  t.uvTransform = UvTransform::offsetRotateScale(
+      n.has("uv_offset") ? pair(n.at("uv_offset")) : Vec2f{}, angle, scale);
+  try {
+    t.image = b.texture(path, n.has("colorspace") ? n.at("colorspace").string() : "");
+  } catch (const GlintError& e) {
+    (n.has("colorspace") && dynamic_cast<const UsageError*>(&e) ? n.at("colorspace") : file)
+        .fail(e.what());
+  }
+  return t;
+}
+
+ColorTexture parseColorTexture(SceneBuilder& b, const JsonNode& n) {
+  if (n.isArray()) return ColorTexture::uniform(n.color());
+  if (n.has("image")) return parseImageTexture(b, n);
+  n.checkKeys({"checker", "noise", "marble", "wood", "image"});
+  const std::vector<std::string> keys = n.keys();
+  if (keys.size() != 1) n.fail("must name one texture: checker, noise, marble, wood or image");
+  const std::string& kind = keys[0];
+  const TexturePattern pattern = kind == "checker"  ? TexturePattern::Checker
+                                 : kind == "noise"  ? TexturePattern::Noise
+                                 : kind == "marble" ? TexturePattern::Marble
+                                                    : TexturePattern::Wood;
+  return parseSolidTexture(n.at(kind), pattern);
 }
 
 // Every material type is the general surface of seed 002 §9.1 with its own defaults
 // (materials/material.h); a dielectric adds its interface.
-Material parseMaterial(const std::string& name, const JsonNode& n) {
+Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode& n) {
   const std::string type = n.at("type").choice({"phong", "mirror", "dielectric"});
   const MaterialKind kind = type == "phong"    ? MaterialKind::Phong
                             : type == "mirror" ? MaterialKind::Mirror
@@ -96,13 +151,13 @@ Material parseMaterial(const std::string& name, const JsonNode& n) {
   m.name = name;
   Surface& s = m.surface;
   if (auto v = n.get("kd")) {
-    s.kd = parseColorTexture(*v);
+    s.kd = parseColorTexture(b, *v);
     if (s.ambientFollowsDiffuse) s.ka = s.kd;  // k_a follows k_d unless given
   }
-  if (auto v = n.get("ka")) s.ka = parseColorTexture(*v), s.ambientFollowsDiffuse = false;
-  if (auto v = n.get("ks")) s.ks = parseColorTexture(*v);
-  if (auto v = n.get("km")) s.km = parseColorTexture(*v);
-  if (auto v = n.get("ke")) s.ke = parseColorTexture(*v);
+  if (auto v = n.get("ka")) s.ka = parseColorTexture(b, *v), s.ambientFollowsDiffuse = false;
+  if (auto v = n.get("ks")) s.ks = parseColorTexture(b, *v);
+  if (auto v = n.get("km")) s.km = parseColorTexture(b, *v);
+  if (auto v = n.get("ke")) s.ke = parseColorTexture(b, *v);
   if (auto v = n.get("exponent")) s.exponent = v->number(0, 1e9f);
   if (auto v = n.get("specular_model"))
     s.specularModel =
@@ -216,7 +271,7 @@ void parseScene(SceneBuilder& b, const JsonNode& root, std::optional<int> frame)
   if (auto mats = root.get("materials"))
     for (const std::string& name : mats->keys()) {
       b.materialIds[name] = static_cast<uint32_t>(s.materials.size());
-      s.materials.push_back(parseMaterial(name, mats->at(name)));
+      s.materials.push_back(parseMaterial(b, name, mats->at(name)));
     }
   if (auto lights = root.get("lights"))
     for (const JsonNode& l : lights->elements()) s.lights.push_back(parseLight(b, l));

@@ -44,21 +44,26 @@ struct Surface {
 
 // A surface at one hit, seen from one direction: its textures looked up there, once.
 struct SurfacePoint {
-  Vec3f n;   // unit shading normal, on the viewer's side
-  Vec3f wo;  // unit, towards the viewer
+  Vec3f n;          // unit shading normal, on the viewer's side
+  Vec3f wo;         // unit, towards the viewer
+  float footprint;  // the width of the pixel's footprint here (image textures filter over it)
   Rgb kd, ks, km;
 };
 
 // Always inlined (like forEachCoherentRay): out of line, their results came back through memory
 // (store forwarding; 7 % of a default render).
+// `footprint`: the width of the pixel's footprint at the point (integrator/footprint.h).
 [[gnu::always_inline]] inline SurfacePoint lookUp(const Surface& s, const ShadingPoint& sp,
-                                                  const Vec3f& wo, const Vec3d& worldOrigin) {
+                                                  const Vec3f& wo, float footprint,
+                                                  const Vec3d& worldOrigin) {
   SurfacePoint at;
   at.n = sp.shadingNormalFacing(wo);
   at.wo = wo;
-  at.kd = s.kd.eval(sp.p, worldOrigin);
-  at.ks = s.ks.eval(sp.p, worldOrigin);
-  at.km = s.km.eval(sp.p, worldOrigin);
+  at.footprint = footprint;
+  const TextureLookup where{sp, wo, footprint, worldOrigin};
+  at.kd = s.kd.eval(where);
+  at.ks = s.ks.eval(where);
+  at.km = s.km.eval(where);
   return at;
 }
 
@@ -68,10 +73,11 @@ struct SurfacePoint {
                                                      const ShadingPoint& sp,
                                                      const Rgb& ambientLight,
                                                      const Vec3d& worldOrigin) {
-  const Rgb ka = s.ambientFollowsDiffuse ? at.kd : s.ka.eval(sp.p, worldOrigin);
+  const TextureLookup where{sp, at.wo, at.footprint, worldOrigin};
+  const Rgb ka = s.ambientFollowsDiffuse ? at.kd : s.ka.eval(where);
   Rgb c = ka * ambientLight;
   if (s.emits() && (s.emissionSides == EmissionSides::Both || dot(at.wo, sp.ng) > 0))
-    c += s.ke.eval(sp.p, worldOrigin);
+    c += s.ke.eval(where);
   return c;
 }
 

@@ -1,31 +1,64 @@
 #pragma once
-// Colours that vary over a surface: a constant, or the procedural 3D checker of seed 001 §9
-// item 9. Every colour slot of a material (ka, kd, ks, km, ke) holds one.
+// Colours that vary over a surface. Every colour slot of a material (ka, kd, ks, km, ke) holds
+// one: a constant; a solid pattern of the point blending two colours a and b (checker, noise,
+// marble, wood: materials/procedural.h, seed 001 §9 item 9); or an image on the surface's
+// (u, v) times a constant factor (MTL's Kd × map_Kd, glTF's baseColorFactor × texture),
+// filtered over the pixel's footprint (materials/image_texture.h).
+#include <memory>
+
 #include "core/affine.h"
 #include "core/rgb.h"
 #include "core/vec.h"
+#include "geometry/shading_point.h"
+#include "materials/image_texture.h"
 
 namespace glint {
 
+enum class TexturePattern : uint8_t { Constant, Checker, Noise, Marble, Wood, Image };
+
+// Where a texture is read: the shading point, the direction towards the viewer and the width
+// of the pixel's footprint there (the integrators' ray cones, integrator/footprint.h); and the
+// scene's worldOrigin, which solid patterns add back to the render-space point (in double), so
+// that they stay fixed in world space.
+struct TextureLookup {
+  const ShadingPoint& sp;
+  const Vec3f& wo;
+  float footprint;
+  const Vec3d& worldOrigin;
+};
+
 struct ColorTexture {
-  Rgb constant;
-  bool checker = false;
-  Rgb a, b;
-  float scale = 1;
+  TexturePattern pattern = TexturePattern::Constant;
+  Rgb constant;     // the colour; for an image, the factor it is multiplied by
+  Rgb a, b;         // a solid pattern's two colours
+  float scale = 1;  // a solid pattern's feature size in world units
+  std::shared_ptr<const ImageTexture> image;
+  UvTransform uvTransform;
 
-  static ColorTexture uniform(const Rgb& c) { return {c, false, {}, {}, 1}; }
+  static ColorTexture uniform(const Rgb& c) {
+    ColorTexture t;
+    t.constant = c;
+    return t;
+  }
 
-  // At a render-space point: the checker is fixed in world space, so the point is moved back
-  // by the scene's worldOrigin (in double) before the cells are counted.
-  [[gnu::always_inline]] Rgb eval(const Vec3f& renderP, const Vec3d& worldOrigin) const {
-    return checker ? checkerAt(renderP, worldOrigin) : constant;
+  [[gnu::always_inline]] Rgb eval(const TextureLookup& at) const {
+    return pattern == TexturePattern::Constant ? constant : patternAt(at);
   }
   [[gnu::always_inline]] bool isBlack() const {
-    return checker ? a.isBlack() && b.isBlack() : constant.isBlack();
+    switch (pattern) {
+      case TexturePattern::Constant:
+      case TexturePattern::Image:
+        return constant.isBlack();
+      default:
+        return a.isBlack() && b.isBlack();
+    }
+  }
+  bool solid() const {
+    return pattern != TexturePattern::Constant && pattern != TexturePattern::Image;
   }
 
  private:
-  Rgb checkerAt(const Vec3f& renderP, const Vec3d& worldOrigin) const;
+  Rgb patternAt(const TextureLookup& at) const;
 };
 
 }  // namespace glint

@@ -22,6 +22,7 @@ std::vector<std::pair<const char*, bool>> table(const Features& f) {
           {"refraction", f.refraction},
           {"absorption", f.absorption},
           {"textures", f.textures},
+          {"image_textures", f.surfaceCoordinates},
           {"emission", f.emission},
           {"ambient", f.ambient},
           {"transparent_shadows", f.transparentShadows}};
@@ -59,7 +60,10 @@ Features computeFeatures(const Scene& scene) {
     f.reflection |= s.reflectsCoherently();
     f.gloss |= s.reflectsCoherently() && s.gloss > 0;
     f.emission |= s.emits();
-    for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke}) f.textures |= t->checker;
+    for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke}) {
+      f.textures |= t->pattern != TexturePattern::Constant;
+      f.surfaceCoordinates |= t->pattern == TexturePattern::Image;
+    }
     if (m.refracts()) {
       f.refraction = f.reflection = true;
       f.absorption |= m.dielectric.absorption.absorbs();

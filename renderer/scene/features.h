@@ -23,8 +23,11 @@ struct Features {
   bool reflection = false;  // some material has km ≠ 0
   bool refraction = false;  // some dielectric
   bool absorption = false;  // some dielectric with attenuation ≠ 1
-  bool textures = false;    // some checker
-  bool emission = false;    // some surface emits (k_e, or a visible area light)
+  bool textures = false;    // some colour slot is not a constant
+  // Some image texture: hits compute their (u, v) and tangents (ShadingPoint::uv), and rays
+  // carry the width of their pixel's footprint to filter the image over.
+  bool surfaceCoordinates = false;
+  bool emission = false;  // some surface emits (k_e, or a visible area light)
   bool ambient = false;
   bool transparentShadows = false;  // asked for and some dielectric can cast them
 

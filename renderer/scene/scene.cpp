@@ -1,6 +1,10 @@
 #include "scene/scene.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/check.h"
+#include "core/frame.h"
 
 namespace glint {
 
@@ -124,6 +128,7 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
     case GeomKind::Instance:
       GLINT_CHECK(false);
   }
+  if (features.surfaceCoordinates) surfaceCoordinates(g, hit, p, ray.time, worldFromObject, sp);
   if (worldFromObject) {
     pError = worldFromObject->pointError(p, pError);
     p = worldFromObject->point(p);
@@ -151,6 +156,70 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
   const Vec3f ng = normalize(n);
   storeWhole(sp.ng, ng);
   storeWhole(sp.ns, smoothMesh ? smoothNormal(*smoothMesh, hit, worldFromObject, ng) : ng);
+}
+
+void Scene::surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p, float time,
+                               const Transform* worldFromObject, ShadingPoint& sp) const {
+  Vec2f uv;
+  Vec3f dpdu, dpdv;
+  switch (g.kind) {
+    case GeomKind::Mesh: {
+      const TriangleMesh& m = meshes[g.index];
+      const Vec3f p0 = m.vertexAt(hit.primId, 0, time), p1 = m.vertexAt(hit.primId, 1, time),
+                  p2 = m.vertexAt(hit.primId, 2, time);
+      Vec2f uv0{0, 0}, uv1{1, 0}, uv2{0, 1};  // a mesh without coordinates: the barycentrics
+      if (m.hasUvs()) {
+        const uint32_t* tri = &m.indices[3 * size_t(hit.primId)];
+        uv0 = m.uvs[tri[0]], uv1 = m.uvs[tri[1]], uv2 = m.uvs[tri[2]];
+      }
+      const float b0 = 1 - hit.u - hit.v;
+      uv = {b0 * uv0.x + hit.u * uv1.x + hit.v * uv2.x, b0 * uv0.y + hit.u * uv1.y + hit.v * uv2.y};
+      // dp/du and dp/dv from the edges and their (u, v) differences (pbrt-v4 §6.5.3).
+      const float du1 = uv1.x - uv0.x, dv1 = uv1.y - uv0.y, du2 = uv2.x - uv0.x,
+                  dv2 = uv2.y - uv0.y;
+      const float det = du1 * dv2 - dv1 * du2;
+      const Vec3f e1 = p1 - p0, e2 = p2 - p0;
+      if (std::fabs(det) > 1e-20f) {
+        dpdu = (dv2 * e1 - dv1 * e2) / det;
+        dpdv = (du1 * e2 - du2 * e1) / det;
+      }
+      break;
+    }
+    case GeomKind::Sphere: {
+      // Latitude and longitude about the y axis: u = φ/2π around it, v = 1 − θ/π from the
+      // north pole, so that images stand upright.
+      const Sphere s = sphereAt(g.index, time);
+      const Vec3f q = (p - s.center) / s.radius;
+      const float phi = std::atan2(q.z, q.x), theta = std::acos(std::clamp(q.y, -1.0f, 1.0f));
+      uv = {(phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi), 1 - theta / kPi};
+      dpdu = 2 * kPi * s.radius * Vec3f{-q.z, 0, q.x};
+      const float sinTheta = std::sqrt(std::max(0.0f, 1 - q.y * q.y));
+      const float cosPhi = sinTheta > 0 ? q.x / sinTheta : 1,
+                  sinPhi = sinTheta > 0 ? q.z / sinTheta : 0;
+      dpdv = -kPi * s.radius * Vec3f{q.y * cosPhi, -sinTheta, q.y * sinPhi};
+      break;
+    }
+    case GeomKind::Quad:
+      uv = {hit.u, hit.v};
+      dpdu = quads[g.index].edge1;
+      dpdv = quads[g.index].edge2;
+      break;
+    case GeomKind::Disk:
+    case GeomKind::Plane: {
+      // A tangent frame of the normal, in world units from the centre (or the plane's point).
+      const bool disk = g.kind == GeomKind::Disk;
+      const Vec3f n = disk ? disks[g.index].normal : planes[g.index].normal;
+      const Vec3f origin = disk ? disks[g.index].center : planes[g.index].point;
+      orthonormalBasis(normalize(n), dpdu, dpdv);
+      uv = {dot(p - origin, dpdu), dot(p - origin, dpdv)};
+      break;
+    }
+    case GeomKind::Instance:
+      break;
+  }
+  sp.uv = uv;
+  sp.dpdu = worldFromObject ? worldFromObject->vector(dpdu) : dpdu;
+  sp.dpdv = worldFromObject ? worldFromObject->vector(dpdv) : dpdv;
 }
 
 Vec3f Scene::smoothNormal(const TriangleMesh& m, const Hit& hit, const Transform* worldFromObject,

@@ -135,6 +135,9 @@ class Scene {
   // outside instances).
   void shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldFromObject,
                     ShadingPoint& sp) const;
+  // sp's texture coordinates and tangents for a hit at object-space point p (ShadingPoint::uv).
+  void surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p, float time,
+                          const Transform* worldFromObject, ShadingPoint& sp) const;
   // The interpolated vertex normal at a hit on a smooth mesh, in world space, unit, on the side
   // of the geometric normal `ng` (which secondary rays leave from: no shadow terminator).
   static Vec3f smoothNormal(const TriangleMesh& m, const Hit& hit, const Transform* worldFromObject,

@@ -182,10 +182,11 @@ TEST(MeshFile, AFaceWithoutVerticesIsRefused) {
 }
 
 TEST(MeshFile, GltfIsReducedToItsGeometryBeforeAssimpReadsIt) {
-  // Skins, animations, cameras, morph targets, textures and vertex attributes other than
-  // positions and normals never reach Assimp: its glTF 2 reader dereferenced a null pointer for
-  // a skin without inverseBindMatrices (SEGV; tests/fuzz/regressions-mesh/gltf-skin-*.bin).
-  // Materials reach it as factors only, without their texture references.
+  // Skins, animations, cameras, morph targets and vertex attributes other than positions,
+  // normals and first texture coordinates never reach Assimp: its glTF 2 reader dereferenced a
+  // null pointer for a skin without inverseBindMatrices (SEGV;
+  // tests/fuzz/regressions-mesh/gltf-skin-*.bin). Materials reach it as factors and their base
+  // colour and emissive textures (by index alone); normal maps and other textures are dropped.
   const std::string in = R"({"asset": {"version": "2.0"}, "scene": 0,
     "scenes": [{"nodes": [0]}], "skins": [{"joints": [0]}], "animations": [], "cameras": [{}],
     "materials": [{"name": "m", "doubleSided": true, "normalTexture": {"index": 0},
@@ -195,15 +196,18 @@ TEST(MeshFile, GltfIsReducedToItsGeometryBeforeAssimpReadsIt) {
     "textures": [], "images": [], "samplers": [], "extras": {"x": 1},
     "nodes": [{"mesh": 0, "skin": 0, "camera": 0, "weights": [1], "translation": [1, 2, 3]}],
     "meshes": [{"weights": [1], "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1,
-      "JOINTS_0": 2}, "indices": 3, "material": 0, "targets": [{"POSITION": 4}]}]}],
+      "TEXCOORD_0": 5, "TEXCOORD_1": 6, "JOINTS_0": 2}, "indices": 3, "material": 0,
+      "targets": [{"POSITION": 4}]}]}],
     "accessors": [], "bufferViews": [], "buffers": []})";
   EXPECT_EQ(nlohmann::json::parse(gltfSubset("m.gltf", in)), nlohmann::json::parse(R"({
     "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
     "nodes": [{"mesh": 0, "translation": [1, 2, 3]}],
-    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 3,
-                                "material": 0}]}],
-    "materials": [{"name": "m", "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1]},
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 5},
+                                "indices": 3, "material": 0}]}],
+    "materials": [{"name": "m", "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1],
+                                                         "baseColorTexture": {"index": 0}},
                    "extensions": {"KHR_materials_volume": {"attenuationDistance": 2}}}],
+    "textures": [], "images": [], "samplers": [],
     "accessors": [], "bufferViews": [], "buffers": []})"));
 }
 

@@ -69,7 +69,7 @@ TEST(SceneParse, MaterialsKeepEveryKey) {
   };
   const Surface& p = named("p").surface;
   EXPECT_EQ(named("p").kind, MaterialKind::Phong);
-  EXPECT_TRUE(p.kd.checker);
+  EXPECT_EQ(p.kd.pattern, TexturePattern::Checker);
   EXPECT_EQ(p.kd.scale, 2);
   EXPECT_EQ(p.ka.constant, (Rgb{0.1f, 0, 0}));
   EXPECT_FALSE(p.ambientFollowsDiffuse);  // its own ka: the ambient term must evaluate it
@@ -113,7 +113,7 @@ TEST(SceneParse, AmbientFollowsDiffuseWithoutKa) {
     "objects": []})");
   const Surface& p = s.materials.at(0).surface;
   EXPECT_TRUE(p.ambientFollowsDiffuse);
-  EXPECT_TRUE(p.ka.checker);
+  EXPECT_EQ(p.ka.pattern, TexturePattern::Checker);
   EXPECT_EQ(p.ka.a, p.kd.a);
   EXPECT_EQ(p.ka.b, p.kd.b);
   EXPECT_EQ(p.ka.scale, p.kd.scale);

@@ -26,7 +26,7 @@ struct CoherentRay {
 std::vector<CoherentRay> raysFrom(const Material& m, const ShadingPoint& sp, const Vec3f& d,
                                   const SampleKey& key, float etaI = 1, float etaT = 1.5f) {
   std::vector<CoherentRay> out;
-  forEachCoherentRay(m, sp, lookUp(m.surface, sp, -d, {}), d, etaI, etaT, key, 0,
+  forEachCoherentRay(m, sp, lookUp(m.surface, sp, -d, 0, {}), d, etaI, etaT, key, 0,
                      [&](const Vec3f& direction, const Rgb& weight, bool crosses) {
                        out.push_back({direction, weight, crosses});
                      });
@@ -135,11 +135,11 @@ TEST(Material, BlurredRefractionThatTurnsBackIsDropped) {
 TEST(Material, AlbedoIsKdElseKmAndOneForGlass) {
   const Arrival hit;
   Material m = defaultMaterial(MaterialKind::Phong);
-  EXPECT_EQ(albedo(m, lookUp(m.surface, hit.sp, {0, 1, 0}, {})), (Rgb{0.5f, 0.5f, 0.5f}));
+  EXPECT_EQ(albedo(m, lookUp(m.surface, hit.sp, {0, 1, 0}, 0, {})), (Rgb{0.5f, 0.5f, 0.5f}));
   m = defaultMaterial(MaterialKind::Mirror);
-  EXPECT_EQ(albedo(m, lookUp(m.surface, hit.sp, {0, 1, 0}, {})), (Rgb{1, 1, 1}));
+  EXPECT_EQ(albedo(m, lookUp(m.surface, hit.sp, {0, 1, 0}, 0, {})), (Rgb{1, 1, 1}));
   m = defaultMaterial(MaterialKind::Dielectric);
-  EXPECT_EQ(albedo(m, lookUp(m.surface, hit.sp, {0, 1, 0}, {})), (Rgb{1, 1, 1}));
+  EXPECT_EQ(albedo(m, lookUp(m.surface, hit.sp, {0, 1, 0}, 0, {})), (Rgb{1, 1, 1}));
 }
 
 }  // namespace

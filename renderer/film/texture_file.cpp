@@ -1,0 +1,99 @@
+#include "film/texture_file.h"
+
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/input_files.h"
+#include "film/display.h"
+#include "film/image_limits.h"
+#include "film/oiio_module.h"
+
+namespace glint {
+
+namespace {
+
+class TextureFile final : public ImageTexture {
+ public:
+  TextureFile(std::string path, void* handle, const GlintOiioTextureInfo& info,
+              const std::string& colorspace, const oiio_module::TextureFunctions& functions)
+      : path_(std::move(path)),
+        handle_(handle),
+        channels_(info.channels),
+        toRendering_(colorspace),
+        lookup_(functions.lookup) {}
+
+  Rgb color(const ImageFootprint& at) const override {
+    float texel[3] = {0, 0, 0};
+    // Grey (and grey-alpha) images give their one colour channel to all three.
+    const int colorChannels = channels_ >= 3 ? 3 : 1;
+    if (!read(at, 0, colorChannels, texel)) return {};
+    if (colorChannels == 1) texel[1] = texel[2] = texel[0];
+    if (!toRendering_.isIdentity()) toRendering_.apply(texel);
+    return {texel[0], texel[1], texel[2]};
+  }
+
+  float alpha(const ImageFootprint& at) const override {
+    // RGBA's fourth channel, grey-alpha's second; an image without alpha is opaque.
+    const int channel = channels_ == 4 ? 3 : channels_ == 2 ? 1 : -1;
+    float a = 1;
+    if (channel >= 0 && !read(at, channel, 1, &a)) return 1;
+    return a;
+  }
+
+  const std::string& path() const override { return path_; }
+
+ private:
+  bool read(const ImageFootprint& at, int first, int count, float* out) const {
+    const float st[2] = {at.st.x, at.st.y};
+    const float axes[4] = {at.axisA.x, at.axisA.y, at.axisB.x, at.axisB.y};
+    // A file that fails mid-render (it was read whole when opened, so only a cache eviction
+    // and a changed file could) gives black: the per-ray path never throws.
+    return lookup_(handle_, st, axes, first, count, out) == 0;
+  }
+
+  std::string path_;
+  void* handle_;
+  int channels_;
+  ToRenderingSpace toRendering_;
+  GlintOiioTextureLookup lookup_;
+};
+
+}  // namespace
+
+std::string defaultTextureColorspace(bool floatTexels, const std::string& declared) {
+  if (floatTexels) return kRenderingColorspace;
+  for (const char* linear : {"linear", "Linear", "scene_linear", "lin_rec709"})
+    if (declared == linear) return kRenderingColorspace;
+  return "sRGB - Texture";
+}
+
+std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
+                                                     const std::string& colorspace) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw GlintError("texture not found (or not a regular file): " + path);
+  noteInputFile(path);
+  const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(path);
+  GlintOiioTextureInfo info{};
+  char error[512] = "";
+  void* handle = functions.open(path.c_str(), &info, error, sizeof error);
+  if (!handle) throw GlintError("cannot read texture " + path + ": " + excerpt(error));
+  if (info.channels < 1) throw GlintError("texture " + path + " has no channels");
+  // The TextureSystem reads an untiled file whole and mip-maps it in memory (4/3 of its
+  // float texels).
+  checkImageFits(path, "texture", info.width, info.height, 4.0 / 3 * 4 * info.channels);
+  auto texture = std::make_shared<TextureFile>(
+      path, handle, info,
+      colorspace.empty() ? defaultTextureColorspace(info.isFloat != 0, info.colorspace)
+                         : colorspace,
+      functions);
+  // One lookup now reads the file (and builds its mip levels): a truncated or corrupt image is
+  // refused here, with its reason, instead of rendering black.
+  float texel[4];
+  const float st[2] = {0.5f, 0.5f}, axes[4] = {0, 0, 0, 0};
+  if (functions.lookup(handle, st, axes, 0, std::min(info.channels, 4), texel) != 0)
+    throw GlintError("cannot read texture " + path + ": OpenImageIO could not read its texels");
+  return texture;
+}
+
+}  // namespace glint

@@ -1,0 +1,23 @@
+#pragma once
+// Image textures read from files by OpenImageIO's TextureSystem (through its module,
+// film/oiio_module.h: only scenes with image textures load it): mip-mapped, cached, filtered
+// over each lookup's footprint, repeating; colours converted to the rendering space by OCIO.
+#include <memory>
+#include <string>
+
+#include "materials/image_texture.h"
+
+namespace glint {
+
+// The colour space a file's texels are taken to be in when the scene does not say:
+// half or float texels (EXR, HDR) are scene-linear already; integer texels (PNG, JPEG, 8- and
+// 16-bit TIFF) are the sRGB encoding ("sRGB - Texture"), unless the file declares itself linear.
+std::string defaultTextureColorspace(bool floatTexels, const std::string& declared);
+
+// Opens `path` (an image file OpenImageIO reads) as a texture in `colorspace` (empty: as above).
+// Throws GlintError naming the file when it cannot be read or holds more pixels than an image
+// read may take (film/image_limits.h), and UsageError for a colour space OCIO does not know.
+std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
+                                                     const std::string& colorspace = "");
+
+}  // namespace glint

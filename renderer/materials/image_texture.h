@@ -1,0 +1,59 @@
+#pragma once
+// An image on a surface's (u, v) coordinates. Materials see only this interface; the images
+// themselves are read, mip-mapped, cached and filtered by OpenImageIO's TextureSystem outside
+// the shading layer (film/texture_file.h), and colour-converted to scene-linear there.
+#include <cmath>
+#include <string>
+
+#include "core/rgb.h"
+#include "core/vec.h"
+#include "geometry/shading_point.h"
+
+namespace glint {
+
+// Where on the image a lookup reads: (s, t) with t down from the top row, as image files store
+// rows, and the pixel's footprint as two axes in the same units (the derivatives of (s, t)
+// across the pixel; their lengths say how much of the image one pixel covers).
+struct ImageFootprint {
+  Vec2f st;
+  Vec2f axisA, axisB;
+};
+
+class ImageTexture {
+ public:
+  virtual ~ImageTexture() = default;
+  // The image's scene-linear colour and alpha filtered over the footprint; the image repeats
+  // outside [0, 1]².
+  virtual Rgb color(const ImageFootprint& at) const = 0;
+  virtual float alpha(const ImageFootprint& at) const = 0;
+  virtual const std::string& path() const = 0;
+};
+
+// A 2×3 affine map of texture coordinates (uv' = M·uv + offset): MTL's -s/-o options and
+// glTF's KHR_texture_transform. The identity by default.
+struct UvTransform {
+  float m00 = 1, m01 = 0, m10 = 0, m11 = 1;
+  Vec2f offset{0, 0};
+
+  Vec2f point(Vec2f uv) const {
+    return {m00 * uv.x + m01 * uv.y + offset.x, m10 * uv.x + m11 * uv.y + offset.y};
+  }
+  Vec2f vector(Vec2f d) const { return {m00 * d.x + m01 * d.y, m10 * d.x + m11 * d.y}; }
+
+  // Scale, then rotate counter-clockwise by `radians`, then offset (KHR_texture_transform's
+  // order).
+  static UvTransform offsetRotateScale(Vec2f offset, float radians, Vec2f scale) {
+    const float c = std::cos(radians), s = std::sin(radians);
+    return {c * scale.x, -s * scale.y, s * scale.x, c * scale.y, offset};
+  }
+};
+
+// The pixel's footprint on the surface at sp, mapped to the image through (u, v): a disc of
+// diameter `width` across the ray arriving from unit wo, projected onto the surface (stretched
+// by 1/cos along the ray's direction in the surface), carried into (u, v) by the inverse of the
+// surface's tangents dp/du, dp/dv, then through `transform`, with v flipped (t = 1 − v: (u, v)
+// has its origin at the bottom left, images at the top).
+ImageFootprint imageFootprint(const ShadingPoint& sp, const Vec3f& wo, float width,
+                              const UvTransform& transform);
+
+}  // namespace glint

@@ -1,0 +1,97 @@
+#include "materials/procedural.h"
+
+#include <cmath>
+#include <cstdint>
+
+#include "core/hash.h"
+
+namespace glint {
+
+namespace {
+
+// ⌊x⌋ as an integer, clamped to ±2^62 (NaN gives −2^62): std::floor is a libm call on baseline
+// x86-64, and converting a double beyond the integer range is undefined.
+long long floorToInteger(double x) {
+  constexpr double kLimit = 0x1p62;
+  if (!(std::fabs(x) < kLimit)) return x > 0 ? (1LL << 62) : -(1LL << 62);
+  const auto i = static_cast<long long>(x);  // truncates towards zero
+  return static_cast<double>(i) > x ? i - 1 : i;
+}
+
+// The gradient at a lattice point: one of the 12 edge directions of a cube (Perlin 2002), picked
+// by hashing the point (a hash instead of a permutation table: no period of 256 cells).
+double gradientDot(long long ix, long long iy, long long iz, double x, double y, double z) {
+  switch (hashKey(uint64_t(ix), uint64_t(iy), uint64_t(iz)) % 12) {
+    case 0:
+      return x + y;
+    case 1:
+      return -x + y;
+    case 2:
+      return x - y;
+    case 3:
+      return -x - y;
+    case 4:
+      return x + z;
+    case 5:
+      return -x + z;
+    case 6:
+      return x - z;
+    case 7:
+      return -x - z;
+    case 8:
+      return y + z;
+    case 9:
+      return -y + z;
+    case 10:
+      return y - z;
+    default:
+      return -y - z;
+  }
+}
+
+// Perlin's quintic fade 6t⁵ − 15t⁴ + 10t³: zero first and second derivatives at 0 and 1.
+double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
+double lerp(double t, double a, double b) { return a + t * (b - a); }
+
+}  // namespace
+
+float checkerPattern(const Vec3d& p) {
+  // A tiny bias keeps a plane lying exactly on a cell boundary (y = 0) on one side of it.
+  constexpr double kBias = 1e-4;
+  const auto cell = [](double x) { return floorToInteger(x + kBias); };
+  return ((cell(p.x) + cell(p.y) + cell(p.z)) & 1) ? 1.0f : 0.0f;
+}
+
+float perlinNoise(const Vec3d& p) {
+  const long long ix = floorToInteger(p.x), iy = floorToInteger(p.y), iz = floorToInteger(p.z);
+  const double x = p.x - double(ix), y = p.y - double(iy), z = p.z - double(iz);
+  const double u = fade(x), v = fade(y), w = fade(z);
+  const auto g = [&](int dx, int dy, int dz) {
+    return gradientDot(ix + dx, iy + dy, iz + dz, x - dx, y - dy, z - dz);
+  };
+  const double n =
+      lerp(w, lerp(v, lerp(u, g(0, 0, 0), g(1, 0, 0)), lerp(u, g(0, 1, 0), g(1, 1, 0))),
+           lerp(v, lerp(u, g(0, 0, 1), g(1, 0, 1)), lerp(u, g(0, 1, 1), g(1, 1, 1))));
+  // |n| ≤ 1 with these gradients (their dot products with an offset in the unit cell are at
+  // most 2, and the fades weight them down to 1 at most); the clamp only guards rounding.
+  return float(std::fmax(-1.0, std::fmin(1.0, n)));
+}
+
+float turbulence(const Vec3d& p, int octaves) {
+  double sum = 0, scale = 1;
+  for (int i = 0; i < octaves; ++i, scale *= 2) sum += std::fabs(perlinNoise(p * scale)) / scale;
+  return float(sum);
+}
+
+float noisePattern(const Vec3d& p) { return 0.5f + 0.5f * perlinNoise(p); }
+
+float marblePattern(const Vec3d& p) {
+  return float(0.5 + 0.5 * std::sin(p.x + 5.0 * turbulence(p)));
+}
+
+float woodPattern(const Vec3d& p) {
+  const double rings = std::sqrt(p.x * p.x + p.z * p.z) + 0.5 * turbulence(p * 0.5, 3);
+  return float(rings - std::floor(rings));
+}
+
+}  // namespace glint

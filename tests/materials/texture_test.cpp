@@ -1,0 +1,130 @@
+// Textures on their own (materials/texture.h, procedural.h, image_texture.h): the solid
+// patterns against their defining properties, and the pixel footprint carried into (u, v).
+#include "materials/texture.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "materials/procedural.h"
+
+namespace glint {
+namespace {
+
+TEST(Procedural, PerlinNoiseVanishesOnTheLatticeAndStaysInRange) {
+  // Perlin's gradient noise is zero at every integer point (each corner's gradient is dotted
+  // with a zero offset there) and within [-1, 1] everywhere.
+  for (int x = -3; x <= 3; ++x)
+    for (int z = -3; z <= 3; ++z) EXPECT_EQ(perlinNoise({double(x), 7, double(z)}), 0.0f);
+  float lo = 1, hi = -1;
+  for (int i = 0; i < 20000; ++i) {
+    const double t = i * 0.0137;
+    const float n = perlinNoise({t, std::sin(t) * 3.1, t * 0.37 - 4});
+    lo = std::min(lo, n), hi = std::max(hi, n);
+  }
+  EXPECT_GE(lo, -1.0f);
+  EXPECT_LE(hi, 1.0f);
+  // And it varies: over 20000 points spread across ~270 cells it reaches well past ±0.3
+  // (a constant or broken hash would not).
+  EXPECT_LT(lo, -0.3f);
+  EXPECT_GT(hi, 0.3f);
+}
+
+TEST(Procedural, PerlinNoiseIsContinuousAcrossCellFaces) {
+  // Either side of a lattice face, 1e-9 apart, the noise differs by at most its slope times
+  // that step (the gradient is bounded: |∇n| < 4 with these gradients and fades).
+  for (double y = 0.05; y < 1; y += 0.1) {
+    const float below = perlinNoise({2 - 1e-9, y, 0.3}), above = perlinNoise({2 + 1e-9, y, 0.3});
+    EXPECT_NEAR(below, above, 1e-7);
+  }
+}
+
+TEST(Procedural, PatternsAreBlendWeightsInTheUnitInterval) {
+  for (int i = 0; i < 5000; ++i) {
+    const Vec3d p{i * 0.031, i * 0.017 - 20, std::cos(i * 0.1) * 5};
+    for (float w : {noisePattern(p), marblePattern(p), woodPattern(p), checkerPattern(p)}) {
+      EXPECT_GE(w, 0.0f);
+      EXPECT_LE(w, 1.0f);
+    }
+  }
+  // The checker alternates by cell: (0.5, 0.5, 0.5) is cell sum 0, one cell over is sum 1.
+  EXPECT_EQ(checkerPattern({0.5, 0.5, 0.5}), 0.0f);
+  EXPECT_EQ(checkerPattern({1.5, 0.5, 0.5}), 1.0f);
+  // Wood's rings: on the y axis (radius 0) only turbulence moves the phase, which is ≥ 0 and
+  // small near the lattice point at the origin.
+  EXPECT_LT(woodPattern({0, 0, 0}), 1e-6f);
+}
+
+TEST(ColorTexture, SolidPatternsBlendTheirTwoColoursInWorldSpace) {
+  ColorTexture t;
+  t.pattern = TexturePattern::Checker;
+  t.a = {1, 0, 0};
+  t.b = {0, 0, 1};
+  t.scale = 2;
+  ShadingPoint sp;
+  sp.p = {0.5f, 0.5f, 0.5f};  // render space; the world origin moves it by 2 in x
+  const Vec3f wo{0, 0, 1};
+  // World point (2.5, 0.5, 0.5), scale 2 → (1.25, 0.25, 0.25): cell sum 1 → b.
+  EXPECT_EQ(t.eval({sp, wo, 0, Vec3d{2, 0, 0}}), (Rgb{0, 0, 1}));
+  EXPECT_EQ(t.eval({sp, wo, 0, Vec3d{}}), (Rgb{1, 0, 0}));
+  EXPECT_FALSE(t.isBlack());
+}
+
+// A surface in the x–y plane facing +z whose (u, v) runs 0.5 per unit in x and in y.
+ShadingPoint planeWithTangents() {
+  ShadingPoint sp;
+  sp.ng = sp.ns = {0, 0, 1};
+  sp.uv = {0.25f, 0.75f};
+  sp.dpdu = {2, 0, 0};
+  sp.dpdv = {0, 2, 0};
+  return sp;
+}
+
+TEST(ImageFootprint, HeadOnAFootprintOfWidthWCoversWOverTheTangentLength) {
+  const ShadingPoint sp = planeWithTangents();
+  const ImageFootprint f = imageFootprint(sp, {0, 0, 1}, 0.1f, {});
+  // t = 1 − v: images count rows from the top.
+  EXPECT_FLOAT_EQ(f.st.x, 0.25f);
+  EXPECT_FLOAT_EQ(f.st.y, 0.25f);
+  // 0.1 world units across is 0.05 in (u, v) along either axis, and the two axes are
+  // perpendicular.
+  EXPECT_NEAR(std::hypot(f.axisA.x, f.axisA.y), 0.05f, 1e-7);
+  EXPECT_NEAR(std::hypot(f.axisB.x, f.axisB.y), 0.05f, 1e-7);
+  EXPECT_NEAR(f.axisA.x * f.axisB.x + f.axisA.y * f.axisB.y, 0.0f, 1e-9);
+}
+
+TEST(ImageFootprint, ObliqueViewsStretchTheFootprintAlongTheRay) {
+  const ShadingPoint sp = planeWithTangents();
+  // Seen from 60° off the normal, in the x–z plane: along x (u) the footprint is 1/cos 60° = 2
+  // times longer; across (y, v) it keeps its width.
+  const float a = 60 * kPi / 180;
+  const ImageFootprint f = imageFootprint(sp, {std::sin(a), 0, std::cos(a)}, 0.1f, {});
+  EXPECT_NEAR(std::fabs(f.axisA.y), 0.05f, 1e-7);  // across: along v
+  EXPECT_NEAR(f.axisA.x, 0.0f, 1e-7);
+  EXPECT_NEAR(std::fabs(f.axisB.x), 0.1f, 1e-6);  // along: 0.05 / cos 60°
+  EXPECT_NEAR(f.axisB.y, 0.0f, 1e-7);
+}
+
+TEST(ImageFootprint, TheUvTransformMovesThePointAndScalesTheAxes) {
+  const ShadingPoint sp = planeWithTangents();
+  // Scale u by 4 and offset by (0.5, 0): u = 0.25 → 1.5; the footprint along u is 4× longer.
+  const UvTransform t = UvTransform::offsetRotateScale({0.5f, 0}, 0, {4, 1});
+  const ImageFootprint f = imageFootprint(sp, {0, 0, 1}, 0.1f, t);
+  EXPECT_FLOAT_EQ(f.st.x, 1.5f);
+  EXPECT_FLOAT_EQ(f.st.y, 0.25f);
+  const float lengthA = std::hypot(f.axisA.x, f.axisA.y),
+              lengthB = std::hypot(f.axisB.x, f.axisB.y);
+  EXPECT_NEAR(std::max(lengthA, lengthB), 0.2f, 1e-6);
+  EXPECT_NEAR(std::min(lengthA, lengthB), 0.05f, 1e-6);
+}
+
+TEST(ImageFootprint, WithoutTangentsTheImageIsReadAtAPoint) {
+  ShadingPoint sp = planeWithTangents();
+  sp.dpdu = sp.dpdv = {};
+  const ImageFootprint f = imageFootprint(sp, {0, 0, 1}, 0.1f, {});
+  EXPECT_EQ(f.axisA.x, 0.0f);
+  EXPECT_EQ(f.axisB.y, 0.0f);
+}
+
+}  // namespace
+}  // namespace glint
