@@ -295,6 +295,41 @@ void addInstance(SceneBuilder& b, uint32_t groupId, const Transform& xf, std::ve
   push(s, 0, GeomKind::Instance, static_cast<uint32_t>(s.instances.size() - 1), 0, objectId);
 }
 
+// Nested groups deeper than this are refused (a glTF node tree is a dozen levels).
+constexpr size_t kMaxNesting = 64;
+
+// Places group `groupId` by `toRender` (its space → render space), moving by `motion` when
+// given: a world-level instance of its own geometry, then, recursively, one for each instance
+// it holds (SceneBuilder::nested), composed with its transform. `path`: the groups being placed
+// around this one, which it must not hold (a cycle would place itself forever).
+void placeGroup(SceneBuilder& b, uint32_t groupId, const Affine& toRender,
+                std::vector<TrsKey> motion, uint32_t objectId, const JsonNode& where,
+                std::vector<uint32_t>& path) {
+  const std::string& name = b.scene.groups[groupId].name;
+  if (std::find(path.begin(), path.end(), groupId) != path.end())
+    where.fail("group " + inQuotes(name) + " holds an instance of itself");
+  if (path.size() >= kMaxNesting)
+    where.fail("groups nest deeper than " + std::to_string(kMaxNesting) + " levels");
+  const auto nested = b.nested.find(groupId);
+  if (nested != b.nested.end() && !motion.empty())
+    where.fail("group " + inQuotes(name) +
+               " holds instances, which a moving instance cannot place (nested groups are "
+               "flattened with static transforms): move the instances inside it instead");
+  Transform xf;
+  try {
+    xf = Placement(toRender).transform();
+  } catch (const std::invalid_argument& e) {
+    where.fail(e.what());
+  }
+  if (nested == b.nested.end() || !b.scene.groups[groupId].geometries.empty())
+    addInstance(b, groupId, xf, std::move(motion), objectId, where);
+  if (nested == b.nested.end()) return;
+  path.push_back(groupId);
+  for (const SceneBuilder::NestedInstance& n : nested->second)
+    placeGroup(b, n.groupId, toRender * n.local, {}, objectId, n.where, path);
+  path.pop_back();
+}
+
 // Adds a shape (not an instance) under `xf`; `motion` may hold "center" (spheres) or
 // "positions" (meshes); "transform" motion has been taken care of by the caller.
 void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uint32_t groupId,
@@ -461,8 +496,6 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
 
   if (type == "instance") {
     obj.checkKeys({"type", "group", "transform", "motion"});
-    if (groupId != 0)
-      obj.fail("instances inside groups are not supported (one level, like Embree's default)");
     if (motion && (motion->has("center") || motion->has("positions")))
       motion->fail("instances move by \"transform\" keys only");
     const JsonNode g = obj.at("group");
@@ -474,10 +507,16 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
       g.fail("no group named " + inQuotes(g.string()) +
              (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
     }
-    addInstance(b, it->second, place.transform(), std::move(transformKeys), objectId,
-                motion && motion->has("transform") ? motion->at("transform")
-                : obj.has("transform")             ? obj.at("transform")
-                                                   : obj);
+    if (groupId != 0) {  // placed with the group that holds it
+      b.nested[groupId].push_back({it->second, place.affine(), obj});
+      return;
+    }
+    std::vector<uint32_t> path;
+    placeGroup(b, it->second, place.affine(), std::move(transformKeys), objectId,
+               motion && motion->has("transform") ? motion->at("transform")
+               : obj.has("transform")             ? obj.at("transform")
+                                                  : obj,
+               path);
     return;
   }
   if (!transformKeys.empty()) {

@@ -22,6 +22,7 @@ class Placement {
   Vec3f point(const JsonNode& local) const { return point(local.vec3d()); }
   // The float transform: vectors, normals, the determinant, and Embree instances.
   const Transform& transform() const { return xf_; }
+  const Affine& affine() const { return affine_; }
 
  private:
   Affine affine_;

@@ -3,6 +3,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "io/json_source.h"
 #include "io/placement.h"
@@ -17,6 +18,15 @@ struct SceneBuilder {
   std::map<std::string, uint32_t> groupIds;
   // Bounds of each group's contents, computed once however many instances place it.
   std::map<uint32_t, Bounds3f> groupBounds;
+  // Instances inside groups, by the group that holds them. Debian's Embree has one instance
+  // level (PLATFORM.md): when a group is placed, each instance it holds becomes a world-level
+  // instance of its own, its transform composed in double (io/object_loader.cpp placeGroup).
+  struct NestedInstance {
+    uint32_t groupId;
+    Affine local;    // the group's space ← the nested group's space
+    JsonNode where;  // the instance's entry, for errors
+  };
+  std::map<uint32_t, std::vector<NestedInstance>> nested;
   // Image textures by file and colour space: a file several materials use is opened once.
   std::map<std::pair<std::string, std::string>, std::shared_ptr<const ImageTexture>> textures;
 
