@@ -33,6 +33,7 @@ const Module& module() {
       };
       symbol(m.writeImage, kGlintOiioWriteImageSymbol);
       symbol(m.texture.open, kGlintOiioTextureOpenSymbol);
+      symbol(m.texture.openMemory, kGlintOiioTextureOpenMemorySymbol);
       symbol(m.texture.lookup, kGlintOiioTextureLookupSymbol);
       if (!m.error.empty()) m.writeImage = nullptr, m.texture = {};
       return m;  // loaded for the rest of the process

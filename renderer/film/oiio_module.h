@@ -21,6 +21,7 @@ void writeImage(const std::string& path, const std::string& tmpPath, int width, 
 // `path` when the module cannot be loaded.
 struct TextureFunctions {
   GlintOiioTextureOpen open = nullptr;
+  GlintOiioTextureOpenMemory openMemory = nullptr;
   GlintOiioTextureLookup lookup = nullptr;
 };
 const TextureFunctions& textureFunctions(const std::string& path);

@@ -19,6 +19,11 @@ struct GlintOiioTextureInfo {
 // Opens `path` as a texture and fills `info`; returns its handle, or null with a message.
 using GlintOiioTextureOpen = void* (*)(const char* path, GlintOiioTextureInfo* info, char* error,
                                        size_t errorSize);
+// The same for an image held in memory (a glTF file's embedded PNG or JPEG): `name` ends in the
+// format's extension; the module keeps a copy of the bytes for the process's life.
+using GlintOiioTextureOpenMemory = void* (*)(const char* name, const void* bytes, size_t size,
+                                             GlintOiioTextureInfo* info, char* error,
+                                             size_t errorSize);
 // Filtered lookup of `channels` channels from `firstChannel` at st[0], st[1] over the footprint
 // axes (dsdx, dtdx, dsdy, dtdy), repeating outside [0, 1]; returns 0 on success.
 using GlintOiioTextureLookup = int (*)(void* handle, const float* st, const float* axes,
@@ -28,4 +33,5 @@ using GlintOiioTextureLookup = int (*)(void* handle, const float* st, const floa
 inline constexpr const char* kGlintOiioModuleName = "libglint_oiio.so";
 inline constexpr const char* kGlintOiioWriteImageSymbol = "glint_oiio_write_image";
 inline constexpr const char* kGlintOiioTextureOpenSymbol = "glint_oiio_texture_open";
+inline constexpr const char* kGlintOiioTextureOpenMemorySymbol = "glint_oiio_texture_open_memory";
 inline constexpr const char* kGlintOiioTextureLookupSymbol = "glint_oiio_texture_lookup";

@@ -1,11 +1,16 @@
 // libglint_oiio.so: the only code linked against OpenImageIO (film/oiio_module.h).
+#include <OpenImageIO/filesystem.h>
+#include <OpenImageIO/imagecache.h>
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
 #include <cstdio>
 #include <cstring>
+#include <list>
 #include <memory>
+#include <mutex>
 #include <type_traits>
+#include <vector>
 
 #include "film/oiio_module_abi.h"
 
@@ -43,13 +48,11 @@ OIIO::TextureSystem& textureSystem() {
   return *ts;
 }
 
-}  // namespace
-
-extern "C" __attribute__((visibility("default"))) void* glint_oiio_texture_open(
-    const char* path, GlintOiioTextureInfo* info, char* error, size_t errorSize) {
-  try {
+// A texture's handle and what the caller needs of its header; null with OpenImageIO's message.
+void* openHandle(const char* name, GlintOiioTextureInfo* info, char* error, size_t errorSize) {
+  {
     OIIO::TextureSystem& ts = textureSystem();
-    OIIO::TextureSystem::TextureHandle* handle = ts.get_texture_handle(OIIO::ustring(path));
+    OIIO::TextureSystem::TextureHandle* handle = ts.get_texture_handle(OIIO::ustring(name));
     const OIIO::ImageSpec* spec = handle ? ts.imagespec(handle, nullptr) : nullptr;
     if (!spec) {
       std::snprintf(error, errorSize, "%s", ts.geterror().c_str());
@@ -62,12 +65,54 @@ extern "C" __attribute__((visibility("default"))) void* glint_oiio_texture_open(
     std::snprintf(info->colorspace, sizeof info->colorspace, "%s",
                   spec->get_string_attribute("oiio:ColorSpace").c_str());
     return handle;
+  }
+}
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) void* glint_oiio_texture_open(
+    const char* path, GlintOiioTextureInfo* info, char* error, size_t errorSize) {
+  try {
+    return openHandle(path, info, error, errorSize);
   } catch (const std::exception& e) {
     std::snprintf(error, errorSize, "%s", e.what());
   }
   return nullptr;
 }
 static_assert(std::is_same_v<decltype(&glint_oiio_texture_open), GlintOiioTextureOpen>);
+
+extern "C" __attribute__((visibility("default"))) void* glint_oiio_texture_open_memory(
+    const char* name, const void* bytes, size_t size, GlintOiioTextureInfo* info, char* error,
+    size_t errorSize) {
+  try {
+    // The cache reads the image through a memory proxy, which (with its bytes) must outlive
+    // every lookup: kept until the process ends.
+    struct Held {
+      std::vector<unsigned char> bytes;
+      std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy;
+    };
+    static std::mutex mutex;
+    static std::list<Held> held;
+    OIIO::Filesystem::IOProxy* proxy = nullptr;
+    {
+      const std::lock_guard<std::mutex> lock(mutex);
+      Held& h = held.emplace_back();
+      h.bytes.assign(static_cast<const unsigned char*>(bytes),
+                     static_cast<const unsigned char*>(bytes) + size);
+      h.proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(h.bytes.data(), h.bytes.size());
+      proxy = h.proxy.get();
+    }
+    OIIO::ImageSpec config;
+    config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+    textureSystem().imagecache()->add_file(OIIO::ustring(name), nullptr, &config);
+    return openHandle(name, info, error, errorSize);
+  } catch (const std::exception& e) {
+    std::snprintf(error, errorSize, "%s", e.what());
+  }
+  return nullptr;
+}
+static_assert(
+    std::is_same_v<decltype(&glint_oiio_texture_open_memory), GlintOiioTextureOpenMemory>);
 
 extern "C" __attribute__((visibility("default"))) int glint_oiio_texture_lookup(
     void* handle, const float* st, const float* axes, int firstChannel, int channels, float* out) {

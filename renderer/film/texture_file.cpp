@@ -67,16 +67,14 @@ std::string defaultTextureColorspace(bool floatTexels, const std::string& declar
   return "sRGB - Texture";
 }
 
-std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
-                                                     const std::string& colorspace) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw GlintError("texture not found (or not a regular file): " + path);
-  noteInputFile(path);
-  const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(path);
-  GlintOiioTextureInfo info{};
-  char error[512] = "";
-  void* handle = functions.open(path.c_str(), &info, error, sizeof error);
+namespace {
+
+// The texture behind a handle the module opened (null: it could not, `error` says why), checked
+// and read once.
+std::shared_ptr<const ImageTexture> checkedTexture(const std::string& path, void* handle,
+                                                   const GlintOiioTextureInfo& info,
+                                                   const char* error, const std::string& colorspace,
+                                                   const oiio_module::TextureFunctions& functions) {
   if (!handle) throw GlintError("cannot read texture " + path + ": " + excerpt(error));
   if (info.channels < 1) throw GlintError("texture " + path + " has no channels");
   // The TextureSystem reads an untiled file whole and mip-maps it in memory (4/3 of its
@@ -94,6 +92,31 @@ std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
   if (functions.lookup(handle, st, axes, 0, std::min(info.channels, 4), texel) != 0)
     throw GlintError("cannot read texture " + path + ": OpenImageIO could not read its texels");
   return texture;
+}
+
+}  // namespace
+
+std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
+                                                     const std::string& colorspace) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw GlintError("texture not found (or not a regular file): " + path);
+  noteInputFile(path);
+  const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(path);
+  GlintOiioTextureInfo info{};
+  char error[512] = "";
+  void* handle = functions.open(path.c_str(), &info, error, sizeof error);
+  return checkedTexture(path, handle, info, error, colorspace, functions);
+}
+
+std::shared_ptr<const ImageTexture> openImageTextureInMemory(const std::string& name,
+                                                             const std::string& bytes) {
+  const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(name);
+  GlintOiioTextureInfo info{};
+  char error[512] = "";
+  void* handle =
+      functions.openMemory(name.c_str(), bytes.data(), bytes.size(), &info, error, sizeof error);
+  return checkedTexture(name, handle, info, error, "", functions);
 }
 
 }  // namespace glint

@@ -20,4 +20,9 @@ std::string defaultTextureColorspace(bool floatTexels, const std::string& declar
 std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
                                                      const std::string& colorspace = "");
 
+// The same for an image file's bytes held in memory (a glTF file's embedded PNG or JPEG):
+// `name` says where it came from in messages and ends in the format's extension (".png").
+std::shared_ptr<const ImageTexture> openImageTextureInMemory(const std::string& name,
+                                                             const std::string& bytes);
+
 }  // namespace glint

@@ -95,17 +95,30 @@ void checkAnImporterOfTheExtensionReadsIt(Assimp::Importer& importer, const std:
 // name's case does not match, the one file in the folder whose name matches regardless of case.
 // A texture that cannot be read is warned about and left out (the slot keeps its colour): real
 // assets often name textures they were not shipped with.
-TextureOpener textureOpener(const std::string& meshPath) {
+TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
   const std::filesystem::path dir = std::filesystem::path(meshPath).parent_path();
   auto opened = std::make_shared<std::map<std::string, std::shared_ptr<const ImageTexture>>>();
-  return [dir, meshPath, opened](const std::string& named) -> std::shared_ptr<const ImageTexture> {
+  return [dir, meshPath, opened,
+          &scene](const std::string& named) -> std::shared_ptr<const ImageTexture> {
     if (const auto it = opened->find(named); it != opened->end()) return it->second;
     std::shared_ptr<const ImageTexture>& slot = (*opened)[named];
     std::string name = named;
     std::replace(name.begin(), name.end(), '\\', '/');
-    if (name.empty() || name[0] == '*') {
-      log::warning("mesh " + meshPath + ": texture " + inQuotes(excerpt(named)) +
-                   " is embedded in the file, which Glint does not read; left out");
+    if (!name.empty() && name[0] == '*') {
+      // An image inside the file (a .glb's buffer view, a data URI): Assimp hands it over
+      // compressed, as the PNG or JPEG file it was.
+      const aiTexture* t = scene.GetEmbeddedTexture(name.c_str());
+      try {
+        if (!t || t->mHeight != 0 || !t->pcData)
+          throw GlintError("Glint reads embedded PNG and JPEG images only");
+        const std::string hint = t->achFormatHint;
+        slot = openImageTextureInMemory(
+            meshPath + "#" + name + "." + (hint.empty() ? std::string("png") : hint),
+            std::string(reinterpret_cast<const char*>(t->pcData), t->mWidth));
+      } catch (const GlintError& e) {
+        log::warning("mesh " + meshPath + ": embedded texture " + inQuotes(excerpt(named)) +
+                     " left out: " + e.what());
+      }
       return slot;
     }
     std::filesystem::path file(name);
@@ -207,7 +220,7 @@ MeshFile loadMeshFile(const std::string& path) {
                                                 : MeshFileFormat::Gltf;
   const std::string fileName = std::filesystem::path(path).filename().string();
   MeshFile file;
-  const TextureOpener openTexture = textureOpener(path);
+  const TextureOpener openTexture = textureOpener(path, *s);
   std::vector<int> partOfMaterial(s->mNumMaterials, -1);
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
     const aiMesh* m = s->mMeshes[mi];

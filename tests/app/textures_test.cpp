@@ -179,5 +179,32 @@ TEST(Textures, RealAssetsKeepTheirTextureCoordinatesAndMaps) {
   for (const TriangleMesh& part : s.parts) EXPECT_EQ(part.uvs.size(), part.positions.size());
 }
 
+TEST(Textures, AnImageEmbeddedInAGlbRendersAsTheSameImageBesideTheFile) {
+  const std::string dir = "/usr/share/assimp/models/glTF2/";
+  const std::string beside = dir + "BoxTextured-glTF/BoxTextured.gltf",
+                    glb = dir + "BoxTextured-glTF-Binary/BoxTextured.glb",
+                    dataUri = dir + "BoxTextured-glTF-Embedded/BoxTextured.gltf";
+  if (!std::filesystem::exists(glb) || !std::filesystem::exists(dataUri))
+    GTEST_SKIP() << "assimp-testmodels is not installed (tools/lib.sh installs it)";
+  // The same box three ways: its PNG beside the file, in the GLB's binary chunk, and as a
+  // base64 data URI. OpenImageIO reads the embedded bytes from memory (no file written); the
+  // frames are the same bytes' texels, so equal exactly.
+  const auto frame = [](const std::string& asset, const std::string& name) {
+    const std::string out = (test::tempDir() / name).string();
+    const auto r =
+        test::runGlint("render " + asset + " --quiet --spp 2 --width 40 --height 30 -o " + out);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("left out"), std::string::npos) << r.output;
+    return out;
+  };
+  const std::string a = frame(beside, "box_beside.exr"), b = frame(glb, "box_glb.exr"),
+                    c = frame(dataUri, "box_data_uri.exr");
+  for (const std::string& other : {b, c}) {
+    const auto r = test::runGlint("compare " + a + " " + other + " --json -");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("\"max_abs\": 0"), std::string::npos) << r.output;
+  }
+}
+
 }  // namespace
 }  // namespace glint
