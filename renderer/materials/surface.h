@@ -60,10 +60,9 @@ struct SurfacePoint {
   at.n = sp.shadingNormalFacing(wo);
   at.wo = wo;
   at.footprint = footprint;
-  const TextureLookup where{sp, wo, footprint, worldOrigin};
-  at.kd = s.kd.eval(where);
-  at.ks = s.ks.eval(where);
-  at.km = s.km.eval(where);
+  at.kd = s.kd.eval(sp, wo, footprint, worldOrigin);
+  at.ks = s.ks.eval(sp, wo, footprint, worldOrigin);
+  at.km = s.km.eval(sp, wo, footprint, worldOrigin);
   return at;
 }
 
@@ -73,11 +72,10 @@ struct SurfacePoint {
                                                      const ShadingPoint& sp,
                                                      const Rgb& ambientLight,
                                                      const Vec3d& worldOrigin) {
-  const TextureLookup where{sp, at.wo, at.footprint, worldOrigin};
-  const Rgb ka = s.ambientFollowsDiffuse ? at.kd : s.ka.eval(where);
+  const Rgb ka = s.ambientFollowsDiffuse ? at.kd : s.ka.eval(sp, at.wo, at.footprint, worldOrigin);
   Rgb c = ka * ambientLight;
   if (s.emits() && (s.emissionSides == EmissionSides::Both || dot(at.wo, sp.ng) > 0))
-    c += s.ke.eval(where);
+    c += s.ke.eval(sp, at.wo, at.footprint, worldOrigin);
   return c;
 }
 

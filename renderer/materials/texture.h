@@ -44,6 +44,13 @@ struct ColorTexture {
   [[gnu::always_inline]] Rgb eval(const TextureLookup& at) const {
     return pattern == TexturePattern::Constant ? constant : patternAt(at);
   }
+  // The same with the lookup's parts: a constant (nearly every slot) reads none of them, and
+  // the lookup is only assembled for a pattern.
+  [[gnu::always_inline]] Rgb eval(const ShadingPoint& sp, const Vec3f& wo, float footprint,
+                                  const Vec3d& worldOrigin) const {
+    return pattern == TexturePattern::Constant ? constant
+                                               : patternAt({sp, wo, footprint, worldOrigin});
+  }
   [[gnu::always_inline]] bool isBlack() const {
     switch (pattern) {
       case TexturePattern::Constant:

@@ -128,7 +128,7 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
     case GeomKind::Instance:
       GLINT_CHECK(false);
   }
-  if (features.surfaceCoordinates) surfaceCoordinates(g, hit, p, ray.time, worldFromObject, sp);
+  const Vec3f pObject = p;  // for the texture coordinates below
   if (worldFromObject) {
     pError = worldFromObject->pointError(p, pError);
     p = worldFromObject->point(p);
@@ -156,6 +156,8 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
   const Vec3f ng = normalize(n);
   storeWhole(sp.ng, ng);
   storeWhole(sp.ns, smoothMesh ? smoothNormal(*smoothMesh, hit, worldFromObject, ng) : ng);
+  if (features.surfaceCoordinates) [[unlikely]]
+    surfaceCoordinates(g, hit, pObject, ray.time, worldFromObject, sp);
 }
 
 void Scene::surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p, float time,
