@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "core/ray.h"
+#include "core/rgb.h"
 #include "geometry/hit.h"
 
 namespace glint {
@@ -21,6 +22,9 @@ struct ShadingPoint {
   // them out.
   Vec2f uv;
   Vec3f dpdu, dpdv;
+  // The mesh's interpolated vertex colour (white for other shapes), filled only in scenes whose
+  // materials use vertex colours (Features::vertexColors).
+  Rgb vertexColor;
 
   // The shading normal on the side of the surface that `w` points to. The side is the
   // geometric normal's to decide: a smooth normal can lean past a direction that ng puts in

@@ -7,6 +7,7 @@
 
 #include "core/bounds.h"
 #include "core/motion.h"
+#include "core/rgb.h"
 #include "core/vec.h"
 
 namespace glint {
@@ -23,6 +24,8 @@ struct TriangleMesh {
   // Per-vertex texture coordinates (u, v), origin at the image's bottom left; empty when the
   // mesh has none (its triangles then map (0,0), (1,0), (0,1) to their corners).
   std::vector<Vec2f> uvs;
+  // Per-vertex colours (linear RGB), empty when the mesh has none.
+  std::vector<Rgb> colors;
 
   bool deforming() const { return !positionKeys.empty(); }
   bool smooth() const { return !normals.empty(); }

@@ -126,7 +126,7 @@ std::string gltfSubset(const std::string& path, const std::string& text) {
     forEachIn(mesh, "primitives", [](json& primitive) {
       keepOnly(primitive, {"attributes", "indices", "mode", "material", "extensions"});
       if (const auto a = primitive.find("attributes"); a != primitive.end())
-        keepOnly(*a, {"POSITION", "NORMAL", "TEXCOORD_0"});
+        keepOnly(*a, {"POSITION", "NORMAL", "TEXCOORD_0", "COLOR_0"});
     });
   });
   forEachIn(doc, "textures", [](json& texture) { keepOnly(texture, {"source", "sampler"}); });

@@ -155,8 +155,8 @@ MeshFile loadMeshFile(const std::string& path) {
   }
   checkAnImporterOfTheExtensionReadsIt(importer, path);
   // Positions, the file's vertex normals (smooth shading), its first texture coordinates and
-  // its materials are kept; vertex colours are not imported.
-  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, aiComponent_COLORS);
+  // vertex colours, and its materials are kept.
+  importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, 0);
   // Read with no processing but Assimp's own validation: its post-processing steps index
   // vertices through the faces before any check of ours, and a face naming a vertex that does
   // not exist made them read and write out of bounds.
@@ -243,8 +243,15 @@ MeshFile loadMeshFile(const std::string& path) {
       mesh.positions.push_back({p.x, p.y, p.z});
       if (smooth) mesh.normals.push_back({m->mNormals[v].x, m->mNormals[v].y, m->mNormals[v].z});
     }
-    // Texture coordinates: where one mesh of a part has them and another not, the other's
-    // vertices take (0, 0).
+    // Vertex colours (RGB of the first set; negative or non-finite channels read as 0), and
+    // texture coordinates: where one mesh of a part has them and another not, the other's
+    // vertices take white and (0, 0).
+    if (const aiColor4D* c = m->mColors[0]) {
+      mesh.colors.resize(base, Rgb{1, 1, 1});
+      const auto channel = [](float v) { return std::isfinite(v) && v > 0 ? v : 0.0f; };
+      for (unsigned v = 0; v < m->mNumVertices; ++v)
+        mesh.colors.push_back({channel(c[v].r), channel(c[v].g), channel(c[v].b)});
+    }
     if (const aiVector3D* uv = m->mTextureCoords[0]) {
       mesh.uvs.resize(base, Vec2f{0, 0});
       for (unsigned v = 0; v < m->mNumVertices; ++v) {
@@ -265,8 +272,19 @@ MeshFile loadMeshFile(const std::string& path) {
       file.materials.erase(file.materials.begin() + ptrdiff_t(i));
     }
   if (file.parts.empty()) throw GlintError("mesh " + path + " has no triangles");
-  for (TriangleMesh& part : file.parts)
+  for (size_t i = 0; i < file.parts.size(); ++i) {
+    TriangleMesh& part = file.parts[i];
     if (part.hasUvs()) part.uvs.resize(part.positions.size(), Vec2f{0, 0});
+    // Vertex colours multiply the diffuse colour (glTF's COLOR_0 its base colour); a mesh of
+    // the part without them is white.
+    if (part.colors.empty()) continue;
+    part.colors.resize(part.positions.size(), Rgb{1, 1, 1});
+    Surface& surface = file.materials[i].surface;
+    if (surface.kd.pattern == TexturePattern::Constant)
+      surface.kd.pattern = TexturePattern::VertexColor;
+    if (surface.kd.pattern == TexturePattern::Image) surface.kd.timesVertexColor = true;
+    if (surface.ambientFollowsDiffuse) surface.ka = surface.kd;
+  }
   return file;
 }
 

@@ -41,6 +41,7 @@ struct LocalMesh {
   std::vector<Vec3d> positions;
   std::vector<Vec3d> normals;                    // per vertex, for smooth shading; empty: flat
   std::vector<Vec2f> uvs;                        // per vertex texture coordinates; may be empty
+  std::vector<Rgb> colors;                       // per vertex colours; may be empty
   std::vector<std::vector<Vec3d>> positionKeys;  // a deforming mesh's vertices per motion key
   std::vector<uint32_t> indices;
 };
@@ -60,6 +61,7 @@ void addMesh(SceneBuilder& b, const LocalMesh& local, const Placement& place, co
   TriangleMesh mesh;
   mesh.indices = local.indices;
   mesh.uvs = local.uvs;
+  mesh.colors = local.colors;
   mesh.positions = placed(local.positions);
   for (const auto& key : local.positionKeys) mesh.positionKeys.push_back(placed(key));
   // Normals go through the inverse transpose, which keeps them outward under a mirroring
@@ -168,6 +170,7 @@ FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
       for (const Vec3f& p : part.positions) m.positions.push_back(toDouble(p));
       for (const Vec3f& n : part.normals) m.normals.push_back(toDouble(n));
       m.uvs = part.uvs;
+      m.colors = part.colors;
       m.indices = part.indices;
       out.parts.push_back(std::move(m));
     }

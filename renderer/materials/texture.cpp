@@ -8,8 +8,11 @@
 namespace glint {
 
 Rgb ColorTexture::patternAt(const TextureLookup& at) const {
-  if (pattern == TexturePattern::Image)
-    return constant * image->color(imageFootprint(at.sp, at.wo, at.footprint, uvTransform));
+  if (pattern == TexturePattern::VertexColor) return constant * at.sp.vertexColor;
+  if (pattern == TexturePattern::Image) {
+    const Rgb c = constant * image->color(imageFootprint(at.sp, at.wo, at.footprint, uvTransform));
+    return timesVertexColor ? c * at.sp.vertexColor : c;
+  }
   // World space, one unit per feature (divided, not multiplied by 1/scale: the checker's cells
   // stay where they were before the other patterns came).
   const Vec3d world = toDouble(at.sp.p) + at.worldOrigin;

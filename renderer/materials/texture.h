@@ -14,7 +14,8 @@
 
 namespace glint {
 
-enum class TexturePattern : uint8_t { Constant, Checker, Noise, Marble, Wood, Image };
+// VertexColor: the constant times the mesh's interpolated vertex colour (ShadingPoint).
+enum class TexturePattern : uint8_t { Constant, Checker, Noise, Marble, Wood, Image, VertexColor };
 
 // Where a texture is read: the shading point, the direction towards the viewer and the width
 // of the pixel's footprint there (the integrators' ray cones, integrator/footprint.h); and the
@@ -34,6 +35,7 @@ struct ColorTexture {
   float scale = 1;  // a solid pattern's feature size in world units
   std::shared_ptr<const ImageTexture> image;
   UvTransform uvTransform;
+  bool timesVertexColor = false;  // an image also multiplied by the vertex colour (glTF COLOR_0)
 
   static ColorTexture uniform(const Rgb& c) {
     ColorTexture t;
@@ -55,13 +57,11 @@ struct ColorTexture {
     switch (pattern) {
       case TexturePattern::Constant:
       case TexturePattern::Image:
+      case TexturePattern::VertexColor:
         return constant.isBlack();
       default:
         return a.isBlack() && b.isBlack();
     }
-  }
-  bool solid() const {
-    return pattern != TexturePattern::Constant && pattern != TexturePattern::Image;
   }
 
  private:

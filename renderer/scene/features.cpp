@@ -23,6 +23,7 @@ std::vector<std::pair<const char*, bool>> table(const Features& f) {
           {"absorption", f.absorption},
           {"textures", f.textures},
           {"image_textures", f.surfaceCoordinates},
+          {"vertex_colors", f.vertexColors},
           {"emission", f.emission},
           {"ambient", f.ambient},
           {"transparent_shadows", f.transparentShadows}};
@@ -63,6 +64,7 @@ Features computeFeatures(const Scene& scene) {
     for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke}) {
       f.textures |= t->pattern != TexturePattern::Constant;
       f.surfaceCoordinates |= t->pattern == TexturePattern::Image;
+      f.vertexColors |= t->pattern == TexturePattern::VertexColor || t->timesVertexColor;
     }
     if (m.refracts()) {
       f.refraction = f.reflection = true;

@@ -27,7 +27,8 @@ struct Features {
   // Some image texture: hits compute their (u, v) and tangents (ShadingPoint::uv), and rays
   // carry the width of their pixel's footprint to filter the image over.
   bool surfaceCoordinates = false;
-  bool emission = false;  // some surface emits (k_e, or a visible area light)
+  bool vertexColors = false;  // some slot multiplies by a mesh's vertex colours
+  bool emission = false;      // some surface emits (k_e, or a visible area light)
   bool ambient = false;
   bool transparentShadows = false;  // asked for and some dielectric can cast them
 

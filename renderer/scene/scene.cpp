@@ -158,6 +158,15 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
   storeWhole(sp.ns, smoothMesh ? smoothNormal(*smoothMesh, hit, worldFromObject, ng) : ng);
   if (features.surfaceCoordinates) [[unlikely]]
     surfaceCoordinates(g, hit, pObject, ray.time, worldFromObject, sp);
+  if (features.vertexColors) [[unlikely]] {
+    sp.vertexColor = Rgb{1, 1, 1};
+    if (g.kind == GeomKind::Mesh && !meshes[g.index].colors.empty()) {
+      const TriangleMesh& m = meshes[g.index];
+      const uint32_t* tri = &m.indices[3 * size_t(hit.primId)];
+      sp.vertexColor = m.colors[tri[0]] * (1 - hit.u - hit.v) + m.colors[tri[1]] * hit.u +
+                       m.colors[tri[2]] * hit.v;
+    }
+  }
 }
 
 void Scene::surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p, float time,

@@ -70,6 +70,28 @@ TEST(Textures, MapKdOnUvsReproducesTheTexturesLinearisedTexels) {
   }
 }
 
+TEST(Textures, VertexColoursMultiplyTheDiffuseColour) {
+  // OBJ's extension "v x y z r g b": the bottom corners red-ish, the top ones blue-ish; Kd 0.5.
+  test::writeTemp("coloured_quad.mtl", "newmtl c\nKa 0 0 0\nKd 0.5 0.5 0.5\nKs 0 0 0\nillum 1\n");
+  test::writeTemp("coloured_quad.obj",
+                  "mtllib coloured_quad.mtl\nv 0 0 0 0.8 0.2 0.1\nv 1 0 0 0.8 0.2 0.1\n"
+                  "v 1 1 0 0.1 0.3 0.9\nv 0 1 0 0.1 0.3 0.9\nusemtl c\nf 1 2 3\nf 1 3 4\n");
+  const Film film = render(R"({
+    "render": {"width": 16, "height": 16, "spp": 1, "sampler": "regular"},
+    "camera": {"type": "orthographic", "eye": [0.5, 0.5, 5], "look_at": [0.5, 0.5, 0],
+               "height": 1},
+    "lights": [{"type": "directional", "direction": [0, 0, -1], "intensity": [1, 1, 1]}],
+    "objects": [{"type": "mesh", "file": "coloured_quad.obj"}]})",
+                           "coloured_quad.json");
+  // Lit head on by a unit light, a pixel is k_d = 0.5 × the colour interpolated at its centre:
+  // linear in y from the bottom colour (y = 0) to the top (y = 1). Row 3 from the top has its
+  // centre at y = 1 − 3.5/16. Float interpolation: 1e-6.
+  const double y = 1 - 3.5 / 16;
+  const double expected[3] = {0.5 * (0.8 + (0.1 - 0.8) * y), 0.5 * (0.2 + (0.3 - 0.2) * y),
+                              0.5 * (0.1 + (0.9 - 0.1) * y)};
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(film.pixel(8, 3)[c], expected[c], 1e-6) << c;
+}
+
 TEST(Textures, AJsonImageTextureSaysWhichFileIsMissing) {
   const std::string error = test::sceneErrorOf(R"({
     "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
