@@ -25,6 +25,7 @@
 #include "io/gltf_subset.h"
 #include "io/mesh_limits.h"
 #include "io/mesh_materials.h"
+#include "io/ply_reader.h"
 
 namespace glint {
 
@@ -144,6 +145,7 @@ MeshFile loadMeshFile(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw GlintError("mesh file not found: " + path);
   noteInputFile(path);
   checkMeshFileBeforeImport(path);
+  if (lowerExtension(path) == ".ply") return readPlyFile(path);  // Glint's own (io/ply_reader.h)
   Assimp::Importer importer;
   auto* files = new BoundedFiles(path);
   importer.SetIOHandler(files);  // the importer owns it
@@ -279,11 +281,7 @@ MeshFile loadMeshFile(const std::string& path) {
     // the part without them is white.
     if (part.colors.empty()) continue;
     part.colors.resize(part.positions.size(), Rgb{1, 1, 1});
-    Surface& surface = file.materials[i].surface;
-    if (surface.kd.pattern == TexturePattern::Constant)
-      surface.kd.pattern = TexturePattern::VertexColor;
-    if (surface.kd.pattern == TexturePattern::Image) surface.kd.timesVertexColor = true;
-    if (surface.ambientFollowsDiffuse) surface.ka = surface.kd;
+    multiplyDiffuseByVertexColors(file.materials[i].surface);
   }
   return file;
 }

@@ -4,7 +4,8 @@
 // own test file invalid/OutOfMemory.off hangs it), and a file of any other format, or with a
 // documented extension but foreign content, reached one of its 40 importers. So Glint reads only
 // the formats it documents, files of bounded size, and PLY files whose element counts fit in
-// the file (docs/scene-format.md, docs/hardening.md).
+// the file (docs/scene-format.md, docs/hardening.md). PLY files are read by Glint's own reader
+// (io/ply_reader.h), which keeps these checks.
 #include <cstdint>
 #include <string>
 
@@ -27,9 +28,9 @@ const char* meshFormatList();
 void checkMeshFileBeforeImport(const std::string& path);
 
 // The PLY check alone, on a file's bytes (`fileSize` is the whole file's size, `head` its first
-// bytes, at least the header): throws GlintError naming `path` when the header has no
-// end_header line (Assimp's reader never returns), or an element's count times the least bytes
-// one element can take exceeds what follows the header.
+// bytes, at least the header): throws GlintError naming `path` when the header is not PLY
+// 1.0's or has no end_header line (Assimp's reader never returned), or an element's count times
+// the least bytes one element can take exceeds what follows the header (io/ply_header.h).
 void checkPlyCounts(const std::string& path, const std::string& head, uint64_t fileSize);
 
 }  // namespace glint

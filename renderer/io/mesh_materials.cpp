@@ -118,6 +118,13 @@ Material fromGltf(const aiMaterial& src, const TextureOpener& open) {
 
 }  // namespace
 
+void multiplyDiffuseByVertexColors(Surface& surface) {
+  if (surface.kd.pattern == TexturePattern::Constant)
+    surface.kd.pattern = TexturePattern::VertexColor;
+  if (surface.kd.pattern == TexturePattern::Image) surface.kd.timesVertexColor = true;
+  if (surface.ambientFollowsDiffuse) surface.ka = surface.kd;
+}
+
 Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
                               const std::string& fileName, const TextureOpener& openTexture) {
   aiString name;

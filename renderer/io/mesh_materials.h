@@ -20,6 +20,10 @@ enum class MeshFileFormat { Obj, Ply, Gltf };
 // read (the opener says why).
 using TextureOpener = std::function<std::shared_ptr<const ImageTexture>(const std::string& named)>;
 
+// A part with vertex colours: they multiply its diffuse colour (an image's too, as glTF's
+// COLOR_0 multiplies its base colour), and the ambient colour where it follows the diffuse.
+void multiplyDiffuseByVertexColors(Surface& surface);
+
 // The Glint material for `source`, named "FILE:NAME" (FILE the mesh file's name).
 Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
                               const std::string& fileName, const TextureOpener& openTexture);

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "io/load_progress.h"
+#include "io/mesh_materials.h"
 #include "io/ply_body.h"
 #include "io/ply_header.h"
 
@@ -334,10 +335,7 @@ MeshFile readPlyFile(const std::string& path) {
   // diffuse colour the vertex colours where the file has them (as io/mesh_io.cpp does).
   Material m = defaultMaterial(MaterialKind::Phong);
   m.name = std::filesystem::path(path).filename().string() + ":";
-  if (!file.parts[0].colors.empty()) {
-    m.surface.kd.pattern = TexturePattern::VertexColor;
-    if (m.surface.ambientFollowsDiffuse) m.surface.ka = m.surface.kd;
-  }
+  if (!file.parts[0].colors.empty()) multiplyDiffuseByVertexColors(m.surface);
   file.materials.push_back(std::move(m));
   return file;
 }
