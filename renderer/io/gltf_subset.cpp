@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/log.h"
 
 namespace glint {
 
@@ -50,6 +51,57 @@ template <typename F>
 void forEachIn(json& j, const char* key, F&& f) {
   if (const auto it = j.find(key); it != j.end() && it->is_array())
     for (json& element : *it) f(element);
+}
+
+// Whether `key` of `object` (when there) is an index below `count`.
+bool indexBelow(const json& object, const char* key, size_t count) {
+  const auto it = object.find(key);
+  return it == object.end() || (it->is_number_unsigned() && it->get<size_t>() < count);
+}
+
+size_t countOf(const json& doc, const char* key) {
+  const auto it = doc.find(key);
+  return it != doc.end() && it->is_array() ? it->size() : 0;
+}
+
+// The reduced file's textures, images and samplers, and the materials' references to them:
+// every reference an index in range, every image a URI or an embedded PNG or JPEG.
+bool texturesAreWellFormed(const json& doc) {
+  const size_t textures = countOf(doc, "textures"), images = countOf(doc, "images"),
+               samplers = countOf(doc, "samplers");
+  for (const char* key : {"textures", "images", "samplers"})
+    if (doc.contains(key) && !doc[key].is_array()) return false;
+  for (size_t i = 0; i < textures; ++i) {
+    const json& t = doc["textures"][i];
+    if (!t.is_object() || !indexBelow(t, "source", images) || !indexBelow(t, "sampler", samplers))
+      return false;
+  }
+  for (size_t i = 0; i < images; ++i) {
+    const json& image = doc["images"][i];
+    if (!image.is_object()) return false;
+    if (image.contains("uri")) {
+      if (!image["uri"].is_string()) return false;
+      continue;
+    }
+    const auto mime = image.find("mimeType");
+    if (!image.contains("bufferView") ||
+        !indexBelow(image, "bufferView", countOf(doc, "bufferViews")) || mime == image.end() ||
+        !mime->is_string() || (*mime != "image/png" && *mime != "image/jpeg"))
+      return false;
+  }
+  for (size_t i = 0; i < countOf(doc, "materials"); ++i) {
+    const json& m = doc["materials"][i];
+    if (!m.is_object()) continue;
+    const auto textureInfoOk = [&](const json& owner, const char* key) {
+      const auto info = owner.find(key);
+      return info == owner.end() ||
+             (info->is_object() && info->contains("index") && indexBelow(*info, "index", textures));
+    };
+    if (!textureInfoOk(m, "emissiveTexture")) return false;
+    if (const auto pbr = m.find("pbrMetallicRoughness"); pbr != m.end() && pbr->is_object())
+      if (!textureInfoOk(*pbr, "baseColorTexture")) return false;
+  }
+  return true;
 }
 
 }  // namespace
@@ -134,6 +186,24 @@ std::string gltfSubset(const std::string& path, const std::string& text) {
     keepOnly(image, {"name", "uri", "mimeType", "bufferView"});
   });
   forEachIn(doc, "samplers", [](json& sampler) { keepOnly(sampler, {"wrapS", "wrapT"}); });
+  if (!texturesAreWellFormed(doc)) {
+    // Assimp 5.2.5 trusts them: an embedded image whose mimeType was not image/... made its
+    // reader strcmp a null pointer (SEGV, found by glint_fuzz_mesh). The file keeps its
+    // geometry and colour factors.
+    log::warning("mesh " + path +
+                 ": its textures are malformed (an index out of range, or an embedded image "
+                 "that is not image/png or image/jpeg); they are left out");
+    doc.erase("textures");
+    doc.erase("images");
+    doc.erase("samplers");
+    forEachIn(doc, "materials", [](json& material) {
+      if (!material.is_object()) return;
+      material.erase("emissiveTexture");
+      if (const auto pbr = material.find("pbrMetallicRoughness");
+          pbr != material.end() && pbr->is_object())
+        pbr->erase("baseColorTexture");
+    });
+  }
   try {
     return doc.dump();
   } catch (const json::exception& e) {

@@ -187,6 +187,7 @@ TEST(MeshFile, GltfIsReducedToItsGeometryBeforeAssimpReadsIt) {
   // null pointer for a skin without inverseBindMatrices (SEGV;
   // tests/fuzz/regressions-mesh/gltf-skin-*.bin). Materials reach it as factors and their base
   // colour and emissive textures (by index alone); normal maps and other textures are dropped.
+  // (This file's base colour texture names a texture that does not exist, so it goes too.)
   const std::string in = R"({"asset": {"version": "2.0"}, "scene": 0,
     "scenes": [{"nodes": [0]}], "skins": [{"joints": [0]}], "animations": [], "cameras": [{}],
     "materials": [{"name": "m", "doubleSided": true, "normalTexture": {"index": 0},
@@ -204,11 +205,34 @@ TEST(MeshFile, GltfIsReducedToItsGeometryBeforeAssimpReadsIt) {
     "nodes": [{"mesh": 0, "translation": [1, 2, 3]}],
     "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 5},
                                 "indices": 3, "material": 0}]}],
-    "materials": [{"name": "m", "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1],
-                                                         "baseColorTexture": {"index": 0}},
+    "materials": [{"name": "m", "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1]},
                    "extensions": {"KHR_materials_volume": {"attenuationDistance": 2}}}],
-    "textures": [], "images": [], "samplers": [],
     "accessors": [], "bufferViews": [], "buffers": []})"));
+}
+
+TEST(MeshFile, MalformedGltfTexturesAreLeftOutBeforeAssimpReadsThem) {
+  // An embedded image whose mimeType is not image/png or image/jpeg made Assimp's reader strcmp
+  // a null pointer (SEGV; regressions-mesh/glb-embedded-image-mimetype-not-image-segv.bin); a
+  // texture naming an image that does not exist is as malformed. Either way the textures,
+  // images, samplers and the materials' references to them go; the factors stay.
+  for (const char* images : {R"([{"bufferView": 0, "mimeType": "image.png"}])", "[]"}) {
+    const json subset = json::parse(gltfSubset("m.gltf", std::string(
+                                                             R"({"asset": {"version": "2.0"},
+      "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1],
+                                              "baseColorTexture": {"index": 0}}}],
+      "textures": [{"source": 0}], "images": )") + images + R"(,
+      "bufferViews": [{"buffer": 0, "byteLength": 4}], "buffers": [{"byteLength": 4}]})"));
+    EXPECT_FALSE(subset.contains("textures")) << images;
+    EXPECT_FALSE(subset.contains("images")) << images;
+    EXPECT_EQ(subset["materials"][0], json::parse(R"({"pbrMetallicRoughness":
+      {"baseColorFactor": [1, 0, 0, 1]}})"));
+  }
+  // Well formed, they stay.
+  const json kept = json::parse(gltfSubset("m.gltf", R"({"asset": {"version": "2.0"},
+    "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],
+    "textures": [{"source": 0}], "images": [{"bufferView": 0, "mimeType": "image/png"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 4}], "buffers": [{"byteLength": 4}]})"));
+  EXPECT_EQ(kept["images"].size(), 1u);
 }
 
 TEST(MeshFile, OnlyTrianglePrimitivesOfAGltfReachAssimp) {
