@@ -141,7 +141,7 @@ TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
 
 }  // namespace
 
-MeshFile loadMeshFile(const std::string& path) {
+MeshFile loadMeshFile(const std::string& path, bool readTextures) {
   if (!std::filesystem::is_regular_file(path)) throw GlintError("mesh file not found: " + path);
   noteInputFile(path);
   checkMeshFileBeforeImport(path);
@@ -222,7 +222,9 @@ MeshFile loadMeshFile(const std::string& path) {
                                                 : MeshFileFormat::Gltf;
   const std::string fileName = std::filesystem::path(path).filename().string();
   MeshFile file;
-  const TextureOpener openTexture = textureOpener(path, *s);
+  const TextureOpener openTexture =
+      readTextures ? textureOpener(path, *s)
+                   : [](const std::string&) { return std::shared_ptr<const ImageTexture>(); };
   std::vector<int> partOfMaterial(s->mNumMaterials, -1);
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
     const aiMesh* m = s->mMeshes[mi];

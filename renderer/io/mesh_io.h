@@ -18,6 +18,8 @@ struct MeshFile {
 };
 
 // Throws GlintError naming the path tried and the reason (Glint's or Assimp's).
-MeshFile loadMeshFile(const std::string& path);
+// `readTextures` false leaves the image textures materials name unread (their slots keep their
+// factors): the mesh fuzzer tests Glint's and Assimp's readers, not OpenImageIO's decoders.
+MeshFile loadMeshFile(const std::string& path, bool readTextures = true);
 
 }  // namespace glint
