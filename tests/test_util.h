@@ -9,7 +9,10 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "core/error.h"
+#include "io/mesh_io.h"
 #include "io/scene_loader.h"
 
 namespace glint::test {
@@ -25,8 +28,21 @@ inline std::filesystem::path tempDir() {
 
 inline std::string writeTemp(const std::string& name, const std::string& text) {
   const auto path = tempDir() / name;
-  std::ofstream(path) << text;
+  std::ofstream(path, std::ios::binary) << text;
   return path.string();
+}
+
+// The message of the error loading `bytes` written as mesh file `name` gives (it must name the
+// file), or "(loaded)".
+inline std::string meshLoadError(const std::string& name, const std::string& bytes) {
+  const std::string path = writeTemp(name, bytes);
+  try {
+    loadMeshFile(path);
+    return "(loaded)";
+  } catch (const GlintError& e) {
+    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
+    return e.what();
+  }
 }
 
 inline std::string readFile(const std::string& path) {

@@ -44,19 +44,6 @@ std::string binaryPly(int32_t badIndex) {
   return s;
 }
 
-// The message of the error loading `bytes` as `name` gives, or "(loaded)".
-std::string loadError(const std::string& name, const std::string& bytes) {
-  const std::string path = (test::tempDir() / name).string();
-  std::ofstream(path, std::ios::binary) << bytes;
-  try {
-    loadMeshFile(path);
-    return "(loaded)";
-  } catch (const GlintError& e) {
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-    return e.what();
-  }
-}
-
 TEST(MeshFile, FacesNamingMissingVerticesAreRefused) {
   // Seen segfaulting render, info and validate: an index far past the end, one just past it
   // (which read uninitialised memory), a negative one, and the same in a binary file.
@@ -64,9 +51,9 @@ TEST(MeshFile, FacesNamingMissingVerticesAreRefused) {
        {std::pair{"far.ply", asciiPly("3 0 1 99999")}, std::pair{"next.ply", asciiPly("3 0 1 3")},
         std::pair{"negative.ply", asciiPly("3 0 1 -1")},
         std::pair{"binary.ply", binaryPly(123456789)}, std::pair{"binneg.ply", binaryPly(-7)}})
-    EXPECT_NE(loadError(name, bytes), "(loaded)") << name;
+    EXPECT_NE(test::meshLoadError(name, bytes), "(loaded)") << name;
   // The same file with a valid face loads: one triangle.
-  EXPECT_EQ(loadError("good.ply", asciiPly("3 0 1 2")), "(loaded)");
+  EXPECT_EQ(test::meshLoadError("good.ply", asciiPly("3 0 1 2")), "(loaded)");
 }
 
 // A binary PLY header of `vertices` float3 vertices and `faces` triangle faces (uchar count,
@@ -86,40 +73,43 @@ const char* kOutOfMemoryOff =
 TEST(MeshFile, OnlyTheDocumentedFormatsAreRead) {
   // The OFF reader is never reached, whatever the file holds; nor are Assimp's other 40.
   for (const char* name : {"hang.off", "model.stl", "scene.dae", "noextension"}) {
-    const std::string message = loadError(name, kOutOfMemoryOff);
+    const std::string message = test::meshLoadError(name, kOutOfMemoryOff);
     EXPECT_NE(message.find("Glint reads OBJ (.obj), PLY (.ply) and glTF 2.0 (.gltf, .glb)"),
               std::string::npos)
         << message;
   }
   // Extensions compare without case: the triangle of asciiPly loads from a .PLY too.
-  EXPECT_EQ(loadError("upper.PLY", asciiPly("3 0 1 2")), "(loaded)");
+  EXPECT_EQ(test::meshLoadError("upper.PLY", asciiPly("3 0 1 2")), "(loaded)");
 }
 
 TEST(MeshFile, ForeignContentBehindAGltfNameIsRefused) {
   // .gltf and .glb are claimed by Assimp's glTF 1 and glTF 2 readers; when neither recognised
   // the file, Assimp offered it to every reader by content, and the OFF reader took this one.
   // Glint parses glTF itself first (io/gltf_subset.h), so OFF bytes stop there.
-  EXPECT_NE(loadError("off.gltf", kOutOfMemoryOff).find("not glTF JSON"), std::string::npos);
-  EXPECT_NE(loadError("off.glb", kOutOfMemoryOff).find("not a GLB 2 file"), std::string::npos);
+  EXPECT_NE(test::meshLoadError("off.gltf", kOutOfMemoryOff).find("not glTF JSON"),
+            std::string::npos);
+  EXPECT_NE(test::meshLoadError("off.glb", kOutOfMemoryOff).find("not a GLB 2 file"),
+            std::string::npos);
   // JSON that neither glTF reader recognises (no "asset") is refused before Assimp's search by
   // content: its readers of the extension are asked first.
-  const std::string message = loadError("empty.gltf", "{}");
+  const std::string message = test::meshLoadError("empty.gltf", "{}");
   EXPECT_NE(message.find("its content is not .gltf"), std::string::npos) << message;
 }
 
 TEST(MeshFile, PlyElementCountsMustFitInTheFile) {
   // 10^9 faces of at least 1 byte (an empty list's uchar count) in a 100-byte body: Assimp's
   // binary PLY reader took 3.5 GB in 20 s and went on.
-  EXPECT_NE(loadError("faces.ply", binaryPlyDeclaring("3", "1000000000", 100))
+  EXPECT_NE(test::meshLoadError("faces.ply", binaryPlyDeclaring("3", "1000000000", 100))
                 .find("declares 1000000000 \"face\" elements, each at least 1 byte, but the file "
                       "has 100 bytes after its header"),
             std::string::npos);
   // 5·10^8 ASCII vertices of 3 values (at least 2 bytes each: a digit and a separator).
   std::string ascii = asciiPly("3 0 1 2");
   ascii.replace(ascii.find("vertex 3"), 8, "vertex 500000000");
-  EXPECT_NE(loadError("ascii.ply", ascii).find("each at least 6 bytes"), std::string::npos);
+  EXPECT_NE(test::meshLoadError("ascii.ply", ascii).find("each at least 6 bytes"),
+            std::string::npos);
   // Past 2^32 - 1 Assimp's count would wrap: refused as such.
-  EXPECT_NE(loadError("wrap.ply", binaryPlyDeclaring("4294967299", "1", 49))
+  EXPECT_NE(test::meshLoadError("wrap.ply", binaryPlyDeclaring("4294967299", "1", 49))
                 .find("more than the 4294967295"),
             std::string::npos);
   // The bound is exact: 3 vertices of 12 bytes and a face of at least 1 byte (an empty list's
@@ -138,7 +128,8 @@ TEST(MeshFile, PlyElementCountsMustFitInTheFile) {
 TEST(MeshFile, APlyHeaderThatNeverEndsIsRefused) {
   // Assimp 5.2.5's PLY reader never returns on a header without end_header, even this one
   // (found by glint_fuzz_mesh; tests/fuzz/regressions-mesh/ply-*-no-end-header.bin).
-  EXPECT_NE(loadError("noend.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n")
+  EXPECT_NE(test::meshLoadError("noend.ply",
+                                "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n")
                 .find("its PLY header has no end_header line"),
             std::string::npos);
 }
@@ -154,7 +145,7 @@ TEST(MeshFile, APlyHeaderMustBeMadeOfPly10Lines) {
            kVertices + "3 0 1 2\n";
   };
   const auto error = [&](const std::string& lines) {
-    return loadError("header.ply", header(lines));
+    return test::meshLoadError("header.ply", header(lines));
   };
   EXPECT_EQ(error("format ascii 1.0\nCreated by Blender3D 247\n"), "(loaded)");
   EXPECT_NE(error("format ascii 1.0\nformat ascii 1.0\n").find("is a second format line"),
@@ -167,7 +158,7 @@ TEST(MeshFile, APlyHeaderMustBeMadeOfPly10Lines) {
       error("format ascii 1.0\nelement e 1\nproperty quad x\n").find("is not \"property TYPE"),
       std::string::npos);
   EXPECT_NE(error("").find("has no format line"), std::string::npos);
-  EXPECT_NE(loadError("first.ply", "ply\x82\n" + header("format ascii 1.0\n").substr(4))
+  EXPECT_NE(test::meshLoadError("first.ply", "ply\x82\n" + header("format ascii 1.0\n").substr(4))
                 .find("should be \"ply\" alone"),
             std::string::npos);
 }
@@ -177,7 +168,7 @@ TEST(MeshFile, AFaceWithoutVerticesIsRefused) {
   // exit 134 from glint render), beside a valid triangle too (found by glint_fuzz_mesh).
   std::string ply = asciiPly("3 0 1 2") + "0\n";
   ply.replace(ply.find("element face 1"), 14, "element face 2");
-  EXPECT_NE(loadError("empty-face.ply", ply).find("face 1 of mesh 0 has no vertices"),
+  EXPECT_NE(test::meshLoadError("empty-face.ply", ply).find("face 1 of mesh 0 has no vertices"),
             std::string::npos);
 }
 
@@ -244,7 +235,8 @@ TEST(MeshFile, OnlyTrianglePrimitivesOfAGltfReachAssimp) {
                                {"mode": 4}, {"mode": 5}, {"mode": 6}, {"mode": "4"}]}]})"));
   EXPECT_EQ(subset["meshes"][0]["primitives"],
             json::parse(R"([{}, {"mode": 4}, {"mode": 5}, {"mode": 6}])"));
-  const std::string error = loadError("line-loop.gltf", R"({"asset": {"version": "2.0"}, "scene": 0,
+  const std::string error =
+      test::meshLoadError("line-loop.gltf", R"({"asset": {"version": "2.0"}, "scene": 0,
     "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
     "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": 2}]}],
     "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3"}]})");
@@ -352,7 +344,7 @@ TEST(MeshFile, FilesAMeshNamesMustBeRegularFiles) {
     "bufferViews": [{"buffer": 0, "byteLength": 36}],
     "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
                    "min": [0, 0, 0], "max": [1, 1, 0]}]})";
-  const std::string message = loadError("fifo/mesh.gltf", gltf);
+  const std::string message = test::meshLoadError("fifo/mesh.gltf", gltf);
   EXPECT_NE(message.find("buffer.bin"), std::string::npos) << message;
 }
 

@@ -34,24 +34,6 @@ struct Body {
   }
 };
 
-std::string write(const std::string& name, const std::string& bytes) {
-  const std::string path = (test::tempDir() / name).string();
-  std::ofstream(path, std::ios::binary) << bytes;
-  return path;
-}
-
-// The message of the error reading `bytes` as `name`, or "(loaded)".
-std::string readError(const std::string& name, const std::string& bytes) {
-  const std::string path = write(name, bytes);
-  try {
-    loadMeshFile(path);
-    return "(loaded)";
-  } catch (const GlintError& e) {
-    EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
-    return e.what();
-  }
-}
-
 // A unit square (0,0,0) (1,0,0) (1,1,0) (0,1,0) as one quad and a triangle (0,1,0) (1,1,0)
 // (0.5,1.5,0) above it, with normals (0,0,1) and uvs = (x, y / 2): five vertices, two faces.
 const float kXyz[5][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5f, 1.5f, 0}};
@@ -113,10 +95,10 @@ void expectQuadAndTriangle(const MeshFile& file, const std::string& what) {
 }
 
 TEST(PlyReader, AsciiAndBothBinaryByteOrdersGiveTheSameMesh) {
-  expectQuadAndTriangle(loadMeshFile(write("quad.ply", asciiQuadAndTriangle())), "ascii");
-  expectQuadAndTriangle(loadMeshFile(write("quad-le.ply", binaryQuadAndTriangle(false))),
+  expectQuadAndTriangle(loadMeshFile(test::writeTemp("quad.ply", asciiQuadAndTriangle())), "ascii");
+  expectQuadAndTriangle(loadMeshFile(test::writeTemp("quad-le.ply", binaryQuadAndTriangle(false))),
                         "binary little endian");
-  expectQuadAndTriangle(loadMeshFile(write("quad-be.ply", binaryQuadAndTriangle(true))),
+  expectQuadAndTriangle(loadMeshFile(test::writeTemp("quad-be.ply", binaryQuadAndTriangle(true))),
                         "binary big endian");
 }
 
@@ -126,7 +108,7 @@ TEST(PlyReader, APolygonIsAFanFromItsFirstCorner) {
       "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
       "property float z\nelement face 2\nproperty list uchar uint vertex_indices\nend_header\n"
       "1 0 0\n0.25 1 0\n-1 0.5 0\n-1 -0.5 0\n0.25 -1 0\n5 0 1 2 3 4\n2 0 1\n";
-  const TriangleMesh m = loadMeshFile(write("pentagon.ply", ply)).parts.at(0);
+  const TriangleMesh m = loadMeshFile(test::writeTemp("pentagon.ply", ply)).parts.at(0);
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 3, 4}));
   EXPECT_TRUE(m.normals.empty());  // no nx ny nz: shaded flat
   EXPECT_TRUE(m.uvs.empty());
@@ -151,7 +133,7 @@ TEST(PlyReader, OtherElementsAndPropertiesAreSkippedBySize) {
   b.put(int32_t{-9}).put(uint8_t{3}).put(uint8_t{0}).put(uint8_t{1}).put(uint8_t{2});
   b.put(6u);
   for (int i = 0; i < 6; ++i) b.put(0.25f);
-  const MeshFile file = loadMeshFile(write("skipped.ply", s + b.bytes));
+  const MeshFile file = loadMeshFile(test::writeTemp("skipped.ply", s + b.bytes));
   const TriangleMesh& m = file.parts.at(0);
   ASSERT_EQ(m.positions.size(), 3u);
   EXPECT_EQ(m.positions[1].x, 2.0f);
@@ -170,7 +152,7 @@ TEST(PlyReader, VertexColoursBecomeTheDiffuseColour) {
       "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
       "property uchar alpha\nelement face 1\nproperty list uchar int vertex_indices\n"
       "end_header\n0 0 0 255 0 51 7\n1 0 0 0 255 0 7\n0 1 0 0 0 255 7\n3 0 1 2\n";
-  const MeshFile file = loadMeshFile(write("colours.ply", ply));
+  const MeshFile file = loadMeshFile(test::writeTemp("colours.ply", ply));
   const TriangleMesh& m = file.parts.at(0);
   ASSERT_EQ(m.colors.size(), 3u);
   EXPECT_EQ(m.colors[0].r, 1.0f);
@@ -188,13 +170,14 @@ TEST(PlyReader, VertexColoursBecomeTheDiffuseColour) {
                         0.f, 1.f, 1.f, 1.f})
     b.put(v);
   b.put(uint8_t{3}).put(int32_t{0}).put(int32_t{1}).put(int32_t{2});
-  const TriangleMesh f = loadMeshFile(write("float-colours.ply", floats + b.bytes)).parts.at(0);
+  const TriangleMesh f =
+      loadMeshFile(test::writeTemp("float-colours.ply", floats + b.bytes)).parts.at(0);
   ASSERT_EQ(f.colors.size(), 3u);
   EXPECT_EQ(f.colors[0].r, 0.5f);
   EXPECT_EQ(f.colors[0].g, 0.0f);  // -1: 0
   EXPECT_EQ(f.colors[0].b, 0.25f);
   // Without colours the part has none and its diffuse colour stays constant.
-  const MeshFile plain = loadMeshFile(write("plain.ply", asciiQuadAndTriangle()));
+  const MeshFile plain = loadMeshFile(test::writeTemp("plain.ply", asciiQuadAndTriangle()));
   EXPECT_TRUE(plain.parts.at(0).colors.empty());
   EXPECT_EQ(plain.materials.at(0).surface.kd.pattern, TexturePattern::Constant);
 }
@@ -206,7 +189,7 @@ TEST(PlyReader, VerticesNoTriangleUsesAreDropped) {
       "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
       "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
       "0 0 0\n1000 0 0\n1 0 0\n0 1 0\n3 0 2 3\n";
-  const TriangleMesh m = loadMeshFile(write("unused.ply", ply)).parts.at(0);
+  const TriangleMesh m = loadMeshFile(test::writeTemp("unused.ply", ply)).parts.at(0);
   ASSERT_EQ(m.positions.size(), 3u);
   EXPECT_EQ(m.positions[1].x, 1.0f);
   EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2}));
@@ -216,30 +199,31 @@ TEST(PlyReader, VerticesNoTriangleUsesAreDropped) {
 TEST(PlyReader, AnIndexOutsideTheVerticesIsRefused) {
   std::string ascii = asciiQuadAndTriangle();
   ascii.replace(ascii.find("3 3 2 4"), 7, "3 3 2 5");
-  EXPECT_NE(
-      readError("index.ply", ascii).find(": face 1 of mesh 0 names vertex 5, but there are only 5"),
-      std::string::npos);
+  EXPECT_NE(test::meshLoadError("index.ply", ascii)
+                .find(": face 1 of mesh 0 names vertex 5, but there are only 5"),
+            std::string::npos);
   std::string binary = binaryQuadAndTriangle(true);
   // The last index (vertex 4, big endian) becomes 0xffffffff.
   binary.replace(binary.size() - 4, 4, std::string(4, '\xff'));
-  EXPECT_NE(readError("index-be.ply", binary).find("names vertex 4294967295, but there are only 5"),
+  EXPECT_NE(test::meshLoadError("index-be.ply", binary)
+                .find("names vertex 4294967295, but there are only 5"),
             std::string::npos);
   ascii.replace(ascii.find("3 3 2 5"), 7, "3 3 2 -1");
-  EXPECT_NE(readError("negative.ply", ascii).find("names vertex -1"), std::string::npos);
+  EXPECT_NE(test::meshLoadError("negative.ply", ascii).find("names vertex -1"), std::string::npos);
 }
 
 TEST(PlyReader, ABodyCutShortIsRefused) {
   // Binary: the last face's 3 indices need 12 bytes; 2 are left. The header's counts still fit
   // (a face takes at least its 2-byte count), so the list's own check finds it.
   const std::string binary = binaryQuadAndTriangle(false);
-  EXPECT_NE(readError("cut.ply", binary.substr(0, binary.size() - 10))
+  EXPECT_NE(test::meshLoadError("cut.ply", binary.substr(0, binary.size() - 10))
                 .find("PLY face 1 of 2 (byte " + std::to_string(binary.size() - 12) +
                       "), property vertex_index: its list of 3 values needs 12 bytes, but the "
                       "file has 2 left"),
             std::string::npos);
   // ASCII: the last line (22: 15 header lines, 5 vertices, 2 faces) lacks its last index.
   const std::string ascii = asciiQuadAndTriangle();
-  EXPECT_NE(readError("cut-ascii.ply", ascii.substr(0, ascii.size() - 3))
+  EXPECT_NE(test::meshLoadError("cut-ascii.ply", ascii.substr(0, ascii.size() - 3))
                 .find("PLY face 1 of 2 (line 22), property vertex_indices: its list of 3 values "
                       "needs at least 6 bytes, but the file has 4 left"),
             std::string::npos);
@@ -249,7 +233,7 @@ TEST(PlyReader, CountsThatLieAboutTheFileAreRefusedBeforeAllocating) {
   // 1000 vertices of 8 values declared, 5 given: the header's counts must fit the file.
   std::string ascii = asciiQuadAndTriangle();
   ascii.replace(ascii.find("vertex 5"), 8, "vertex 1000");
-  EXPECT_NE(readError("count.ply", ascii)
+  EXPECT_NE(test::meshLoadError("count.ply", ascii)
                 .find("declares 1000 \"vertex\" elements, each at least "
                       "16 bytes"),
             std::string::npos);
@@ -258,14 +242,14 @@ TEST(PlyReader, CountsThatLieAboutTheFileAreRefusedBeforeAllocating) {
   std::string huge = asciiQuadAndTriangle();
   huge.replace(huge.find("list uchar int"), 14, "list uint int");
   huge.replace(huge.find("3 3 2 4"), 1, "4000000000");
-  EXPECT_NE(readError("huge-list.ply", huge)
+  EXPECT_NE(test::meshLoadError("huge-list.ply", huge)
                 .find("its list of 4000000000 values needs at least 8000000000 bytes"),
             std::string::npos);
   // A count that does not fit its type is refused as such: a coordinate where a uchar count
   // belongs (a misaligned line).
   std::string misaligned = asciiQuadAndTriangle();
   misaligned.replace(misaligned.find("4 0 1 2 3"), 1, "0.5");
-  EXPECT_NE(readError("misaligned.ply", misaligned)
+  EXPECT_NE(test::meshLoadError("misaligned.ply", misaligned)
                 .find("PLY face 0 of 2 (line 21), property vertex_indices: \"0.5\" is not a uchar"),
             std::string::npos);
 }
@@ -273,32 +257,33 @@ TEST(PlyReader, CountsThatLieAboutTheFileAreRefusedBeforeAllocating) {
 TEST(PlyReader, ValuesMustBeFiniteNumbers) {
   std::string ascii = asciiQuadAndTriangle();
   const size_t vertex2 = ascii.find("1 1 0 0 0 1");
-  EXPECT_NE(readError("nan.ply", std::string(ascii).replace(vertex2, 1, "nan"))
+  EXPECT_NE(test::meshLoadError("nan.ply", std::string(ascii).replace(vertex2, 1, "nan"))
                 .find("vertex 2 of mesh 0 is not finite (nan, 1.000000, 0.000000)"),
             std::string::npos);
   // 1e999 is past double's range; 1e39 past float's: both infinite as floats.
-  EXPECT_NE(readError("inf.ply", std::string(ascii).replace(vertex2, 1, "1e999"))
+  EXPECT_NE(test::meshLoadError("inf.ply", std::string(ascii).replace(vertex2, 1, "1e999"))
                 .find("vertex 2 of mesh 0 is not finite"),
             std::string::npos);
-  EXPECT_NE(readError("float.ply", std::string(ascii).replace(vertex2 + 6, 1, "1e39"))
+  EXPECT_NE(test::meshLoadError("float.ply", std::string(ascii).replace(vertex2 + 6, 1, "1e39"))
                 .find("the normal of vertex 2 of mesh 0 is not finite"),
             std::string::npos);
-  EXPECT_NE(readError("word.ply", std::string(ascii).replace(vertex2, 1, "one"))
+  EXPECT_NE(test::meshLoadError("word.ply", std::string(ascii).replace(vertex2, 1, "one"))
                 .find("PLY vertex 2 of 5 (line 18), property x: \"one\" is not a number"),
             std::string::npos);
   // 1e-999 is below double's range: it reads as 0, a finite value.
-  EXPECT_EQ(readError("tiny.ply", std::string(ascii).replace(vertex2 + 4, 1, "1e-999")),
+  EXPECT_EQ(test::meshLoadError("tiny.ply", std::string(ascii).replace(vertex2 + 4, 1, "1e-999")),
             "(loaded)");
 }
 
 TEST(PlyReader, WhatTheFileLacksIsNamed) {
-  EXPECT_NE(readError("empty.ply", "").find("is not a PLY file"), std::string::npos);
+  EXPECT_NE(test::meshLoadError("empty.ply", "").find("is not a PLY file"), std::string::npos);
   std::string noFaces = asciiQuadAndTriangle();
   noFaces.replace(noFaces.find("element face 2"), 14, "element face 0");
-  EXPECT_NE(readError("no-faces.ply", noFaces).find(" has no triangles"), std::string::npos);
+  EXPECT_NE(test::meshLoadError("no-faces.ply", noFaces).find(" has no triangles"),
+            std::string::npos);
   std::string noZ = asciiQuadAndTriangle();
   noZ.replace(noZ.find("property float z"), 16, "property float w");
-  EXPECT_NE(readError("no-z.ply", noZ).find("its PLY vertex element has no x, y and z"),
+  EXPECT_NE(test::meshLoadError("no-z.ply", noZ).find("its PLY vertex element has no x, y and z"),
             std::string::npos);
 }
 
@@ -315,7 +300,7 @@ TEST(PlyReader, BigFilesLogTheirProgressUnlessQuiet) {
   for (const int32_t i : {0, 1, 2}) face.append(reinterpret_cast<const char*>(&i), 4);
   b.bytes.reserve(b.bytes.size() + 13 * 1000000);
   for (int f = 0; f < 1000000; ++f) b.bytes += face;
-  const std::string path = write("million.ply", s + b.bytes);
+  const std::string path = test::writeTemp("million.ply", s + b.bytes);
   testing::internal::CaptureStderr();
   EXPECT_EQ(loadMeshFile(path).parts.at(0).triangleCount(), 1000000u);
   const std::string log = testing::internal::GetCapturedStderr();
@@ -336,7 +321,7 @@ TEST(PlyReader, BigFilesLogTheirProgressUnlessQuiet) {
   log::setLevel(log::Level::Info);
   // A small file says nothing.
   testing::internal::CaptureStderr();
-  loadMeshFile(write("small.ply", asciiQuadAndTriangle()));
+  loadMeshFile(test::writeTemp("small.ply", asciiQuadAndTriangle()));
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
 }
 
