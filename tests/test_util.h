@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "film/image_file.h"
 #include "io/mesh_io.h"
 #include "io/scene_loader.h"
 
@@ -43,6 +44,36 @@ inline std::string meshLoadError(const std::string& name, const std::string& byt
     EXPECT_NE(std::string(e.what()).find(path), std::string::npos) << e.what();
     return e.what();
   }
+}
+
+// An 8 × 8 grey PNG in the temporary folder, black in its left half and white in its right: as
+// an opacity matte (materials/cutout.h), holes where u < 0.5 and solid where u > 0.5 (filtering
+// blends the two only within a texel of u = 0.5, and of u = 0 where the image repeats).
+// Written once: a scene that read it makes it one of the run's inputs, which Glint refuses to
+// overwrite.
+inline std::string writeHalfMatte() {
+  static const std::string path = [] {
+    const std::string p = (tempDir() / "half_matte.png").string();
+    std::vector<uint16_t> codes;
+    for (int y = 0; y < 8; ++y)
+      for (int x = 0; x < 8; ++x) codes.insert(codes.end(), 3, x < 4 ? 0 : 255);
+    writeRgbImage(p, 8, 8, 8, codes);
+    return p;
+  }();
+  return path;
+}
+
+// RFC 4648 base64, for the data URIs of glTF files the tests write.
+inline std::string base64(const std::string& bytes) {
+  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (size_t i = 0; i < bytes.size(); i += 3) {
+    const size_t n = std::min<size_t>(3, bytes.size() - i);  // bytes in this group
+    uint32_t v = 0;
+    for (size_t k = 0; k < 3; ++k) v = v << 8 | (k < n ? uint8_t(bytes[i + k]) : 0u);
+    for (size_t k = 0; k < 4; ++k) out += k <= n ? digits[(v >> (18 - 6 * k)) & 63] : '=';
+  }
+  return out;
 }
 
 inline std::string readFile(const std::string& path) {

@@ -1,6 +1,7 @@
 #include "accel/accelerator.h"
 
 #include "accel/brute_force.h"
+#include "accel/cutout_hits.h"
 #include "accel/embree_accel.h"
 #include "accel/reference_bvh.h"
 #include "scene/scene.h"
@@ -40,11 +41,24 @@ std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene)
   return nullptr;
 }
 
+namespace {
+
+// Plane i's first hit along `ray` that its material's cut-out keeps.
+float planeHit(const Scene& scene, size_t i, const Ray& ray) {
+  const Geometry& g = scene.groups[0].geometries[scene.planeGeometries[i]];
+  float u = 0, v = 0;
+  return firstKeptHit(scene, g, 0, ray, u, v, [&](const Ray& r, float&, float&) {
+    return intersectPlane(scene.planes[i], r);
+  });
+}
+
+}  // namespace
+
 void intersectPlanes(const Scene& scene, const Ray& ray, Hit& hit) {
   for (size_t i = 0; i < scene.planes.size(); ++i) {
     Ray clipped = ray;
     clipped.tMax = std::min(ray.tMax, hit.t);
-    const float t = intersectPlane(scene.planes[i], clipped);
+    const float t = planeHit(scene, i, clipped);
     if (t < clipped.tMax) {
       hit = Hit{};
       hit.t = t;
@@ -55,8 +69,8 @@ void intersectPlanes(const Scene& scene, const Ray& ray, Hit& hit) {
 }
 
 bool occludedByPlanes(const Scene& scene, const Ray& ray) {
-  for (const Plane& p : scene.planes)
-    if (intersectPlane(p, ray) < ray.tMax) return true;
+  for (size_t i = 0; i < scene.planes.size(); ++i)
+    if (planeHit(scene, i, ray) < ray.tMax) return true;
   return false;
 }
 

@@ -1,5 +1,6 @@
 #include "accel/brute_force.h"
 
+#include "accel/cutout_hits.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -17,23 +18,38 @@ void BruteForce::intersectGroup(uint32_t groupId, const Ray& ray, uint32_t instI
         r.tMax = t;
       }
     };
+    // The first hit of primitive `prim` that a cut-out keeps (accel/cutout_hits.h).
+    const auto kept = [&](uint32_t prim, auto test) {
+      return firstKeptHit(scene_, g, prim, r, u, v, test);
+    };
     switch (g.kind) {
       case GeomKind::Mesh: {
         const TriangleMesh& m = scene_.meshes[g.index];
         for (uint32_t tri = 0; tri < m.triangleCount(); ++tri)
-          record(intersectTriangle(m.vertexAt(tri, 0, r.time), m.vertexAt(tri, 1, r.time),
-                                   m.vertexAt(tri, 2, r.time), r, u, v),
+          record(kept(tri,
+                      [&](const Ray& q, float& tu, float& tv) {
+                        return intersectTriangle(m.vertexAt(tri, 0, q.time),
+                                                 m.vertexAt(tri, 1, q.time),
+                                                 m.vertexAt(tri, 2, q.time), q, tu, tv);
+                      }),
                  tri);
         break;
       }
       case GeomKind::Sphere:
-        record(intersectSphere(scene_.sphereAt(g.index, r.time), r), 0);
+        record(
+            kept(0, [&](const Ray& q, float&,
+                        float&) { return intersectSphere(scene_.sphereAt(g.index, q.time), q); }),
+            0);
         break;
       case GeomKind::Quad:
-        record(intersectQuad(scene_.quads[g.index], r, u, v), 0);
+        record(kept(0, [&](const Ray& q, float& tu,
+                           float& tv) { return intersectQuad(scene_.quads[g.index], q, tu, tv); }),
+               0);
         break;
       case GeomKind::Disk:
-        record(intersectDisk(scene_.disks[g.index], r), 0);
+        record(kept(0, [&](const Ray& q, float&,
+                           float&) { return intersectDisk(scene_.disks[g.index], q); }),
+               0);
         break;
       case GeomKind::Plane:
         break;  // shared loop in intersectPlanes

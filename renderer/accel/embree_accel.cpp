@@ -6,6 +6,7 @@
 #include <mutex>
 #include <string>
 
+#include "accel/cutout_hits.h"
 #include "core/error.h"
 #include "geometry/shape_lanes.h"
 #include "scene/scene.h"
@@ -68,9 +69,10 @@ std::string embreeVersionString() {
 struct EmbreeAccel::UserShape {
   GeomKind kind;
   const Scene* scene = nullptr;
-  uint32_t index = 0;  // into scene->spheres, quads or disks
+  uint32_t index = 0;  // into scene->spheres, quads, disks or meshes
   bool lanes = false;  // a quad or a sphere that does not move: packets test it lane-parallel
                        // (disks, which only visible lights make, are tested one ray at a time)
+  const Geometry* cutout = nullptr;  // the entry, when its material has a cut-out
 };
 
 namespace {
@@ -85,10 +87,32 @@ Ray toRay(RTCRayN* rays, unsigned N, unsigned i) {
   return r;
 }
 
-float intersectUser(const EmbreeAccel::UserShape& s, const Ray& r, float& u, float& v) {
+float intersectShape(const EmbreeAccel::UserShape& s, const Ray& r, float& u, float& v) {
   if (s.kind == GeomKind::Sphere) return intersectSphere(s.scene->sphereAt(s.index, r.time), r);
   if (s.kind == GeomKind::Disk) return intersectDisk(s.scene->disks[s.index], r);
   return intersectQuad(s.scene->quads[s.index], r, u, v);
+}
+
+// The shape's first hit that its cut-out, if any, keeps (accel/cutout_hits.h).
+float intersectUser(const EmbreeAccel::UserShape& s, const Ray& r, float& u, float& v) {
+  if (!s.cutout) return intersectShape(s, r, u, v);
+  return firstKeptHit(*s.scene, *s.cutout, 0, r, u, v, [&](const Ray& q, float& tu, float& tv) {
+    return intersectShape(s, q, tu, tv);
+  });
+}
+
+// Triangles of a mesh with a cut-out: Embree offers each candidate hit, at the ray's tfar (for
+// closest hits and for occlusion), and those in a hole are refused.
+void cutoutFilter(const RTCFilterFunctionNArguments* args) {
+  const auto& s = *static_cast<const EmbreeAccel::UserShape*>(args->geometryUserPtr);
+  const unsigned N = args->N;
+  for (unsigned i = 0; i < N; ++i) {
+    if (args->valid[i] == 0) continue;
+    if (s.scene->cutAway(*s.cutout, toRay(args->ray, N, i), RTCRayN_tfar(args->ray, N, i),
+                         RTCHitN_primID(args->hit, N, i), RTCHitN_u(args->hit, N, i),
+                         RTCHitN_v(args->hit, N, i)))
+      args->valid[i] = 0;
+  }
 }
 
 void userBounds(const RTCBoundsFunctionArguments* args) {
@@ -231,14 +255,26 @@ void EmbreeAccel::addGeometries(RTCScene rtcScene, uint32_t groupId) {
         }
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                    m.indices.data(), 0, 3 * sizeof(uint32_t), m.triangleCount());
+        if (scene_.materials[g.materialId].cutout.active() && scene_.features.cutouts) {
+          auto shape = std::make_unique<UserShape>(UserShape{g.kind, &scene_, g.index, false, &g});
+          rtcSetGeometryUserData(geom, shape.get());
+          rtcSetGeometryIntersectFilterFunction(geom, cutoutFilter);
+          rtcSetGeometryOccludedFilterFunction(geom, cutoutFilter);
+          userShapes_.push_back(std::move(shape));
+        }
         break;
       }
       case GeomKind::Sphere:
       case GeomKind::Quad:
       case GeomKind::Disk: {
-        const bool lanes = g.kind == GeomKind::Quad ||
-                           (g.kind == GeomKind::Sphere && scene_.sphereCenterKeys[g.index].empty());
-        auto shape = std::make_unique<UserShape>(UserShape{g.kind, &scene_, g.index, lanes});
+        const bool cutout =
+            scene_.features.cutouts && scene_.materials[g.materialId].cutout.active();
+        // A cut-out is tested one ray at a time, beside its hole test.
+        const bool lanes =
+            !cutout && (g.kind == GeomKind::Quad ||
+                        (g.kind == GeomKind::Sphere && scene_.sphereCenterKeys[g.index].empty()));
+        auto shape = std::make_unique<UserShape>(
+            UserShape{g.kind, &scene_, g.index, lanes, cutout ? &g : nullptr});
         geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
         // Time steps only for what moves: a static scene gets none.
         if (const size_t steps = scene_.timeSteps(g); steps > 1)

@@ -1,7 +1,8 @@
 #pragma once
 // Embree 3 backend: one RTCScene per group, groups placed by Embree instances (shared, not
 // copied), triangle meshes shared with Embree without copying, spheres and quads as user
-// geometry calling the shared intersection routines of geometry/shapes.h.
+// geometry calling the shared intersection routines of geometry/shapes.h. Geometries whose
+// material has an opacity cut-out pass over hits in its holes (filter functions for triangles).
 #include <embree3/rtcore.h>
 
 #include <vector>
@@ -39,7 +40,7 @@ class EmbreeAccel final : public Accelerator {
   double buildSeconds() const { return buildSeconds_; }
   int64_t bytes() const { return bytes_; }
 
-  struct UserShape;  // what a user-geometry callback needs, owned here
+  struct UserShape;  // what a user-geometry or cut-out filter callback needs, owned here
 
  private:
   RTCScene buildGroup(uint32_t groupId);

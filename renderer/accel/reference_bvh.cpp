@@ -8,6 +8,7 @@
 #include <memory>
 #include <numeric>
 
+#include "accel/cutout_hits.h"
 #include "core/check.h"
 #include "scene/scene.h"
 
@@ -327,25 +328,38 @@ bool ReferenceBvh::intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray
     const auto& c = tree.corners[slot];
     t = intersectTriangle(c[0], c[1], c[2], r, u, v);
     if (!(t < r.tMax)) return false;
+    // A triangle meets a ray once: a hit in a cut-out's hole leaves nothing behind it.
+    if (scene_.features.cutouts &&
+        scene_.cutAway(scene_.groups[groupId].geometries[p.geom], r, t, p.prim, u, v))
+      return false;
     hit = Hit{t, u, v, p.geom, p.prim, instId};
     return true;
   }
   const Geometry& g = scene_.groups[groupId].geometries[p.geom];
+  // The first hit that a cut-out keeps (accel/cutout_hits.h).
+  const auto kept = [&](auto test) { return firstKeptHit(scene_, g, p.prim, r, u, v, test); };
   switch (g.kind) {
     case GeomKind::Mesh: {
       const TriangleMesh& m = scene_.meshes[g.index];
-      t = intersectTriangle(m.vertexAt(p.prim, 0, r.time), m.vertexAt(p.prim, 1, r.time),
-                            m.vertexAt(p.prim, 2, r.time), r, u, v);
+      t = kept([&](const Ray& q, float& tu, float& tv) {
+        return intersectTriangle(m.vertexAt(p.prim, 0, q.time), m.vertexAt(p.prim, 1, q.time),
+                                 m.vertexAt(p.prim, 2, q.time), q, tu, tv);
+      });
       break;
     }
     case GeomKind::Sphere:
-      t = intersectSphere(scene_.sphereAt(g.index, r.time), r);
+      t = kept([&](const Ray& q, float&, float&) {
+        return intersectSphere(scene_.sphereAt(g.index, q.time), q);
+      });
       break;
     case GeomKind::Quad:
-      t = intersectQuad(scene_.quads[g.index], r, u, v);
+      t = kept([&](const Ray& q, float& tu, float& tv) {
+        return intersectQuad(scene_.quads[g.index], q, tu, tv);
+      });
       break;
     case GeomKind::Disk:
-      t = intersectDisk(scene_.disks[g.index], r);
+      t = kept(
+          [&](const Ray& q, float&, float&) { return intersectDisk(scene_.disks[g.index], q); });
       break;
     case GeomKind::Plane:
       return false;

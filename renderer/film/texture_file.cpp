@@ -32,9 +32,9 @@ class TextureFile final : public ImageTexture {
     return {texel[0], texel[1], texel[2]};
   }
 
-  float alpha(const ImageFootprint& at) const override {
-    // RGBA's fourth channel, grey-alpha's second; an image without alpha is opaque.
-    const int channel = channels_ == 4 ? 3 : channels_ == 2 ? 1 : -1;
+  float coverage(const ImageFootprint& at, bool greyWithoutAlpha) const override {
+    // RGBA's fourth channel, grey-alpha's second; else the first, or opaque.
+    const int channel = channels_ == 4 ? 3 : channels_ == 2 ? 1 : greyWithoutAlpha ? 0 : -1;
     float a = 1;
     if (channel >= 0 && !read(at, channel, 1, &a)) return 1;
     return a;

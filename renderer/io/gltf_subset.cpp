@@ -135,8 +135,8 @@ std::string gltfSubset(const std::string& path, const std::string& text) {
     if (const auto info = object.find(key); info != object.end()) keepOnly(*info, {"index"});
   };
   forEachIn(doc, "materials", [&](json& material) {
-    keepOnly(material,
-             {"name", "pbrMetallicRoughness", "emissiveFactor", "emissiveTexture", "extensions"});
+    keepOnly(material, {"name", "pbrMetallicRoughness", "emissiveFactor", "emissiveTexture",
+                        "alphaMode", "alphaCutoff", "extensions"});
     if (!material.is_object()) return;
     keepTextureInfo(material, "emissiveTexture");
     if (const auto pbr = material.find("pbrMetallicRoughness"); pbr != material.end()) {

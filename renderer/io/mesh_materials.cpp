@@ -1,10 +1,13 @@
 #include "io/mesh_materials.h"
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/ObjMaterial.h>
 #include <assimp/material.h>
 
 #include <algorithm>
 #include <cmath>
+
+#include "core/log.h"
 
 namespace glint {
 
@@ -24,19 +27,61 @@ float number(const aiMaterial& m, const char* key, unsigned type, unsigned index
   return v;
 }
 
+// The material's first texture of `type`, where it has one that opens.
+std::shared_ptr<const ImageTexture> firstTexture(const aiMaterial& m, aiTextureType type,
+                                                 const TextureOpener& open) {
+  aiString path;
+  if (m.GetTextureCount(type) == 0 || m.GetTexture(type, 0, &path) != AI_SUCCESS) return nullptr;
+  return open(path.C_Str());
+}
+
 // The slot's colour `factor` times the material's first texture of `type`, where it has one
 // that opens; else the factor alone.
 ColorTexture textured(const aiMaterial& m, aiTextureType type, const Rgb& factor,
                       const TextureOpener& open) {
-  aiString path;
-  if (m.GetTextureCount(type) == 0 || m.GetTexture(type, 0, &path) != AI_SUCCESS)
-    return ColorTexture::uniform(factor);
   ColorTexture t = ColorTexture::uniform(factor);
-  if (auto image = open(path.C_Str())) {
+  if (auto image = firstTexture(m, type, open)) {
     t.pattern = TexturePattern::Image;
     t.image = std::move(image);
   }
   return t;
+}
+
+// MTL's dissolve: map_d (its alpha, else its grey) times d makes a cut-out at one half. A
+// dissolve without a map would blend the surface with what is behind it, which Glint does not
+// render (materials/cutout.h): the surface stays opaque, with a warning (not for glass, whose
+// dissolve exporters write for the transparency Glint renders by refraction).
+Cutout mtlCutout(const aiMaterial& src, const TextureOpener& open, const Material& m) {
+  Cutout c;
+  const float d = number(src, AI_MATKEY_OPACITY, 1.0f);
+  c.image = firstTexture(src, aiTextureType_OPACITY, open);
+  if (c.image) {
+    c.coverage = std::clamp(d, 0.0f, 1.0f);
+    c.channel = Cutout::Channel::AlphaElseGrey;
+  } else if (d < 1 && !m.refracts()) {
+    log::warning("material " + m.name + ": dissolve d " + std::to_string(d) +
+                 " without map_d is not rendered (Glint cuts out, it does not blend): opaque");
+  }
+  return c;
+}
+
+// glTF's alphaMode: "MASK" cuts where the base colour's alpha (factor times texture) is below
+// alphaCutoff; "BLEND" would blend, which Glint does not render: opaque, with a warning.
+Cutout gltfCutout(const aiMaterial& src, const TextureOpener& open, const std::string& name) {
+  Cutout c;
+  aiString mode;
+  if (src.Get(AI_MATKEY_GLTF_ALPHAMODE, mode) != AI_SUCCESS) return c;
+  if (std::string(mode.C_Str()) == "BLEND")
+    log::warning("material " + name +
+                 ": alphaMode BLEND is not rendered (Glint cuts out, it does not blend): opaque");
+  if (std::string(mode.C_Str()) != "MASK") return c;
+  aiColor4D base(1, 1, 1, 1);
+  src.Get(AI_MATKEY_BASE_COLOR, base);
+  c.coverage = std::isfinite(base.a) ? std::clamp(base.a, 0.0f, 1.0f) : 1.0f;
+  c.cutoff = std::clamp(number(src, AI_MATKEY_GLTF_ALPHACUTOFF, 0.5f), 0.0f, 1.0f);
+  c.image = firstTexture(src, aiTextureType_DIFFUSE, open);
+  c.channel = Cutout::Channel::Alpha;
+  return c;
 }
 
 // MTL's illumination models (the OBJ specification's `illum`): 3, 5 and 8 trace reflections,
@@ -136,6 +181,8 @@ Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
                : format == MeshFileFormat::Gltf ? fromGltf(source, openTexture)
                                                 : fromMtl(source, openTexture);
   m.name = fileName + ":" + own;
+  if (format == MeshFileFormat::Gltf) m.cutout = gltfCutout(source, openTexture, m.name);
+  if (format == MeshFileFormat::Obj) m.cutout = mtlCutout(source, openTexture, m);
   return m;
 }
 

@@ -93,32 +93,61 @@ ColorTexture parseSolidTexture(const JsonNode& n, TexturePattern pattern) {
   return t;
 }
 
-// {"image": FILE, "factor": [r, g, b], "colorspace": NAME, "uv_scale": [su, sv],
-//  "uv_offset": [ou, ov], "uv_rotate": DEGREES}: the file relative to the scene file.
-ColorTexture parseImageTexture(SceneBuilder& b, const JsonNode& n) {
-  n.checkKeys({"image", "factor", "colorspace", "uv_scale", "uv_offset", "uv_rotate"});
-  const JsonNode file = n.at("image");
-  const std::filesystem::path rel(file.string());
-  const std::string path =
-      (rel.is_absolute() ? rel : std::filesystem::path(b.baseDir) / rel).lexically_normal();
-  ColorTexture t;
-  t.pattern = TexturePattern::Image;
-  t.constant = n.has("factor") ? n.at("factor").color() : Rgb{1, 1, 1};
+// "uv_scale": [su, sv], "uv_offset": [ou, ov], "uv_rotate": DEGREES, each optional.
+UvTransform parseUvTransform(const JsonNode& n) {
   const auto pair = [](const JsonNode& v) {
     if (!v.isArray() || v.size() != 2) v.fail("must be a pair [u, v]");
     return Vec2f{v[0].number(), v[1].number()};
   };
   const Vec2f scale = n.has("uv_scale") ? pair(n.at("uv_scale")) : Vec2f{1, 1};
   const float angle = n.has("uv_rotate") ? n.at("uv_rotate").number() * kPi / 180 : 0;
-  t.uvTransform = UvTransform::offsetRotateScale(
-      n.has("uv_offset") ? pair(n.at("uv_offset")) : Vec2f{}, angle, scale);
+  return UvTransform::offsetRotateScale(n.has("uv_offset") ? pair(n.at("uv_offset")) : Vec2f{},
+                                        angle, scale);
+}
+
+// The image file n.image names, relative to the scene file, in n.colorspace (or its default).
+std::shared_ptr<const ImageTexture> parseImageFile(SceneBuilder& b, const JsonNode& n) {
+  const JsonNode file = n.at("image");
+  const std::filesystem::path rel(file.string());
+  const std::string path =
+      (rel.is_absolute() ? rel : std::filesystem::path(b.baseDir) / rel).lexically_normal();
   try {
-    t.image = b.texture(path, n.has("colorspace") ? n.at("colorspace").string() : "");
+    return b.texture(path, n.has("colorspace") ? n.at("colorspace").string() : "");
   } catch (const GlintError& e) {
     (n.has("colorspace") && dynamic_cast<const UsageError*>(&e) ? n.at("colorspace") : file)
         .fail(e.what());
   }
+}
+
+// {"image": FILE, "factor": [r, g, b], "colorspace": NAME, "uv_scale", "uv_offset",
+//  "uv_rotate"}.
+ColorTexture parseImageTexture(SceneBuilder& b, const JsonNode& n) {
+  n.checkKeys({"image", "factor", "colorspace", "uv_scale", "uv_offset", "uv_rotate"});
+  ColorTexture t;
+  t.pattern = TexturePattern::Image;
+  t.constant = n.has("factor") ? n.at("factor").color() : Rgb{1, 1, 1};
+  t.uvTransform = parseUvTransform(n);
+  t.image = parseImageFile(b, n);
   return t;
+}
+
+// "opacity": a coverage in [0, 1], or {"image": FILE, "factor": c, "uv_scale", "uv_offset",
+// "uv_rotate"}: the image's alpha (its first channel if it has none) times c; with
+// "opacity_cutoff" (default 0.5) it makes a cut-out (materials/cutout.h).
+Cutout parseCutout(SceneBuilder& b, const JsonNode& material) {
+  Cutout c;
+  if (auto v = material.get("opacity_cutoff")) c.cutoff = v->number(0, 1);
+  const JsonNode n = material.at("opacity");
+  if (!n.isObject()) {
+    c.coverage = n.number(0, 1);
+    return c;
+  }
+  n.checkKeys({"image", "factor", "uv_scale", "uv_offset", "uv_rotate"});
+  c.coverage = n.has("factor") ? n.at("factor").number(0, 1) : 1.0f;
+  c.uvTransform = parseUvTransform(n);
+  c.image = parseImageFile(b, n);
+  c.channel = Cutout::Channel::AlphaElseGrey;
+  return c;
 }
 
 ColorTexture parseColorTexture(SceneBuilder& b, const JsonNode& n) {
@@ -142,8 +171,17 @@ Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode&
   const MaterialKind kind = type == "phong"    ? MaterialKind::Phong
                             : type == "mirror" ? MaterialKind::Mirror
                                                : MaterialKind::Dielectric;
-  std::vector<std::string> keys = {"type",           "ka",   "kd", "ks", "km", "ke", "exponent",
-                                   "specular_model", "gloss"};
+  std::vector<std::string> keys = {"type",
+                                   "ka",
+                                   "kd",
+                                   "ks",
+                                   "km",
+                                   "ke",
+                                   "exponent",
+                                   "specular_model",
+                                   "gloss",
+                                   "opacity",
+                                   "opacity_cutoff"};
   if (kind == MaterialKind::Dielectric)
     keys.insert(keys.end(), {"ior", "attenuation", "fresnel", "blur"});
   n.checkKeys(keys);
@@ -163,6 +201,10 @@ Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode&
     s.specularModel =
         v->choice({"blinn", "phong"}) == "blinn" ? SpecularModel::BlinnPhong : SpecularModel::Phong;
   if (auto v = n.get("gloss")) s.gloss = v->number(0, 3.4e38f);
+  if (n.has("opacity"))
+    m.cutout = parseCutout(b, n);
+  else if (auto v = n.get("opacity_cutoff"))
+    v->fail("needs an \"opacity\" to cut");
   if (kind != MaterialKind::Dielectric) return m;
   Dielectric& d = m.dielectric;
   if (auto v = n.get("ior")) d.ior = v->number(0, 1e3f, true);

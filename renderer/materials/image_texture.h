@@ -22,10 +22,13 @@ struct ImageFootprint {
 class ImageTexture {
  public:
   virtual ~ImageTexture() = default;
-  // The image's scene-linear colour and alpha filtered over the footprint; the image repeats
-  // outside [0, 1]².
+  // The image's scene-linear colour filtered over the footprint; the image repeats outside
+  // [0, 1]².
   virtual Rgb color(const ImageFootprint& at) const = 0;
-  virtual float alpha(const ImageFootprint& at) const = 0;
+  // The image as one number, as the file stores it (no colour conversion), filtered likewise:
+  // its alpha channel; for an image without one, its first channel when `greyWithoutAlpha` (a
+  // matte), else 1 (opaque). Opacity cut-outs read it (materials/cutout.h).
+  virtual float coverage(const ImageFootprint& at, bool greyWithoutAlpha) const = 0;
   virtual const std::string& path() const = 0;
 };
 

@@ -11,6 +11,7 @@
 
 #include "core/sampler.h"
 #include "geometry/shading_point.h"
+#include "materials/cutout.h"
 #include "materials/dielectric.h"
 #include "materials/surface.h"
 
@@ -23,6 +24,7 @@ struct Material {
   MaterialKind kind = MaterialKind::Phong;
   Surface surface;
   Dielectric dielectric;  // read only when kind is Dielectric
+  Cutout cutout;          // holes in the surface; read by the intersection backends
 
   bool refracts() const { return kind == MaterialKind::Dielectric; }
 };

@@ -24,6 +24,7 @@ std::vector<std::pair<const char*, bool>> table(const Features& f) {
           {"textures", f.textures},
           {"image_textures", f.surfaceCoordinates},
           {"vertex_colors", f.vertexColors},
+          {"opacity_cutouts", f.cutouts},
           {"emission", f.emission},
           {"ambient", f.ambient},
           {"transparent_shadows", f.transparentShadows}};
@@ -61,6 +62,7 @@ Features computeFeatures(const Scene& scene) {
     f.reflection |= s.reflectsCoherently();
     f.gloss |= s.reflectsCoherently() && s.gloss > 0;
     f.emission |= s.emits();
+    f.cutouts |= m.cutout.active();
     for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke}) {
       f.textures |= t->pattern != TexturePattern::Constant;
       f.surfaceCoordinates |= t->pattern == TexturePattern::Image;

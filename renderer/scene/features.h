@@ -28,7 +28,10 @@ struct Features {
   // carry the width of their pixel's footprint to filter the image over.
   bool surfaceCoordinates = false;
   bool vertexColors = false;  // some slot multiplies by a mesh's vertex colours
-  bool emission = false;      // some surface emits (k_e, or a visible area light)
+  // Some material has an opacity cut-out: backends test candidate hits against it
+  // (Scene::cutAway), and Embree gets filter functions for those geometries only.
+  bool cutouts = false;
+  bool emission = false;  // some surface emits (k_e, or a visible area light)
   bool ambient = false;
   bool transparentShadows = false;  // asked for and some dielectric can cast them
 

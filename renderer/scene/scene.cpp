@@ -171,13 +171,19 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
 
 void Scene::surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p, float time,
                                const Transform* worldFromObject, ShadingPoint& sp) const {
-  Vec2f uv;
   Vec3f dpdu, dpdv;
+  sp.uv = uvAt(g, hit, p, time, &dpdu, &dpdv);
+  sp.dpdu = worldFromObject ? worldFromObject->vector(dpdu) : dpdu;
+  sp.dpdv = worldFromObject ? worldFromObject->vector(dpdv) : dpdv;
+}
+
+Vec2f Scene::uvAt(const Geometry& g, const Hit& hit, const Vec3f& p, float time, Vec3f* dpdu,
+                  Vec3f* dpdv) const {
+  Vec2f uv;
+  Vec3f tu, tv;  // dp/du, dp/dv
   switch (g.kind) {
     case GeomKind::Mesh: {
       const TriangleMesh& m = meshes[g.index];
-      const Vec3f p0 = m.vertexAt(hit.primId, 0, time), p1 = m.vertexAt(hit.primId, 1, time),
-                  p2 = m.vertexAt(hit.primId, 2, time);
       Vec2f uv0{0, 0}, uv1{1, 0}, uv2{0, 1};  // a mesh without coordinates: the barycentrics
       if (m.hasUvs()) {
         const uint32_t* tri = &m.indices[3 * size_t(hit.primId)];
@@ -185,14 +191,17 @@ void Scene::surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p
       }
       const float b0 = 1 - hit.u - hit.v;
       uv = {b0 * uv0.x + hit.u * uv1.x + hit.v * uv2.x, b0 * uv0.y + hit.u * uv1.y + hit.v * uv2.y};
+      if (!dpdu) return uv;
       // dp/du and dp/dv from the edges and their (u, v) differences (pbrt-v4 §6.5.3).
+      const Vec3f p0 = m.vertexAt(hit.primId, 0, time), p1 = m.vertexAt(hit.primId, 1, time),
+                  p2 = m.vertexAt(hit.primId, 2, time);
       const float du1 = uv1.x - uv0.x, dv1 = uv1.y - uv0.y, du2 = uv2.x - uv0.x,
                   dv2 = uv2.y - uv0.y;
       const float det = du1 * dv2 - dv1 * du2;
       const Vec3f e1 = p1 - p0, e2 = p2 - p0;
       if (std::fabs(det) > 1e-20f) {
-        dpdu = (dv2 * e1 - dv1 * e2) / det;
-        dpdv = (du1 * e2 - du2 * e1) / det;
+        tu = (dv2 * e1 - dv1 * e2) / det;
+        tv = (du1 * e2 - du2 * e1) / det;
       }
       break;
     }
@@ -203,17 +212,17 @@ void Scene::surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p
       const Vec3f q = (p - s.center) / s.radius;
       const float phi = std::atan2(q.z, q.x), theta = std::acos(std::clamp(q.y, -1.0f, 1.0f));
       uv = {(phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi), 1 - theta / kPi};
-      dpdu = 2 * kPi * s.radius * Vec3f{-q.z, 0, q.x};
+      tu = 2 * kPi * s.radius * Vec3f{-q.z, 0, q.x};
       const float sinTheta = std::sqrt(std::max(0.0f, 1 - q.y * q.y));
       const float cosPhi = sinTheta > 0 ? q.x / sinTheta : 1,
                   sinPhi = sinTheta > 0 ? q.z / sinTheta : 0;
-      dpdv = -kPi * s.radius * Vec3f{q.y * cosPhi, -sinTheta, q.y * sinPhi};
+      tv = -kPi * s.radius * Vec3f{q.y * cosPhi, -sinTheta, q.y * sinPhi};
       break;
     }
     case GeomKind::Quad:
       uv = {hit.u, hit.v};
-      dpdu = quads[g.index].edge1;
-      dpdv = quads[g.index].edge2;
+      tu = quads[g.index].edge1;
+      tv = quads[g.index].edge2;
       break;
     case GeomKind::Disk:
     case GeomKind::Plane: {
@@ -221,16 +230,33 @@ void Scene::surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p
       const bool disk = g.kind == GeomKind::Disk;
       const Vec3f n = disk ? disks[g.index].normal : planes[g.index].normal;
       const Vec3f origin = disk ? disks[g.index].center : planes[g.index].point;
-      orthonormalBasis(normalize(n), dpdu, dpdv);
-      uv = {dot(p - origin, dpdu), dot(p - origin, dpdv)};
+      orthonormalBasis(normalize(n), tu, tv);
+      uv = {dot(p - origin, tu), dot(p - origin, tv)};
       break;
     }
     case GeomKind::Instance:
       break;
   }
-  sp.uv = uv;
-  sp.dpdu = worldFromObject ? worldFromObject->vector(dpdu) : dpdu;
-  sp.dpdv = worldFromObject ? worldFromObject->vector(dpdv) : dpdv;
+  if (dpdu) *dpdu = tu, *dpdv = tv;
+  return uv;
+}
+
+Vec2f Scene::textureCoordinates(const Geometry& g, const Ray& ray, float t, uint32_t prim, float u,
+                                float v) const {
+  const Hit hit{t, u, v, 0, prim, kInvalidId};
+  const Vec3f onRay = ray.o + t * ray.d;
+  // The point shadingPoint would find (a mesh's and a quad's (u, v) need none).
+  Vec3f p = onRay, unusedError;
+  if (g.kind == GeomKind::Sphere) {
+    const Sphere s = sphereAt(g.index, ray.time);
+    const Vec3f n = onRay - s.center;
+    p = s.center + n * (s.radius / length(n));
+  } else if (g.kind == GeomKind::Disk) {
+    projectOntoPlane(onRay, disks[g.index].center, disks[g.index].normal, p, unusedError);
+  } else if (g.kind == GeomKind::Plane) {
+    projectOntoPlane(onRay, planes[g.index].point, planes[g.index].normal, p, unusedError);
+  }
+  return uvAt(g, hit, p, ray.time, nullptr, nullptr);
 }
 
 Vec3f Scene::smoothNormal(const TriangleMesh& m, const Hit& hit, const Transform* worldFromObject,

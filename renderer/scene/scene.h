@@ -125,6 +125,16 @@ class Scene {
   Bounds3f groupBounds(uint32_t groupId) const;
   size_t triangleCount() const;
 
+  // Whether a candidate hit at distance t along `ray` (in the space of g's group), on primitive
+  // `prim` at (u, v) (Hit's conventions), falls in a hole of its material's cut-out
+  // (materials/cutout.h). Every backend asks it of every candidate hit, so all agree on where
+  // the holes are.
+  bool cutAway(const Geometry& g, const Ray& ray, float t, uint32_t prim, float u, float v) const {
+    if (!features.cutouts) return false;
+    const Cutout& c = materials[g.materialId].cutout;
+    return c.active() && c.holeAt(textureCoordinates(g, ray, t, prim, u, v));
+  }
+
   const Geometry& geometry(const Hit& hit) const;
   Sphere sphereAt(uint32_t index, float time) const;
   // Time steps the accelerators need for a geometry entry: 1 when static.
@@ -138,6 +148,13 @@ class Scene {
   // sp's texture coordinates and tangents for a hit at object-space point p (ShadingPoint::uv).
   void surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p, float time,
                           const Transform* worldFromObject, ShadingPoint& sp) const;
+  // The (u, v) of a hit at object-space point p, and the object-space tangents dp/du, dp/dv
+  // where `dpdu` is not null.
+  Vec2f uvAt(const Geometry& g, const Hit& hit, const Vec3f& p, float time, Vec3f* dpdu,
+             Vec3f* dpdv) const;
+  // The (u, v) of a candidate hit (cutAway's arguments), without a ShadingPoint.
+  Vec2f textureCoordinates(const Geometry& g, const Ray& ray, float t, uint32_t prim, float u,
+                           float v) const;
   // The interpolated vertex normal at a hit on a smooth mesh, in world space, unit, on the side
   // of the geometric normal `ng` (which secondary rays leave from: no shadow terminator).
   static Vec3f smoothNormal(const TriangleMesh& m, const Hit& hit, const Transform* worldFromObject,

@@ -14,18 +14,6 @@
 namespace glint {
 namespace {
 
-std::string base64(const std::string& bytes) {
-  static const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (size_t i = 0; i < bytes.size(); i += 3) {
-    const size_t n = std::min<size_t>(3, bytes.size() - i);  // bytes in this group
-    uint32_t v = 0;
-    for (size_t k = 0; k < 3; ++k) v = v << 8 | (k < n ? uint8_t(bytes[i + k]) : 0u);
-    for (size_t k = 0; k < 4; ++k) out += k <= n ? digits[(v >> (18 - 6 * k)) & 63] : '=';
-  }
-  return out;
-}
-
 // A 2 × 2 quad in the z = 0 plane facing +z, base colour (0.8, 0.2, 0.1), not metallic,
 // roughness 1; a camera "front" 3 units in front of it and a camera "side" 3 units to its right
 // turned to look at it edge on (a node rotation of 90° about y, under a parent that moves it);
@@ -55,7 +43,7 @@ std::string quadScene(const std::string& nodes) {
                     {"buffer": 0, "byteOffset": 48, "byteLength": 12}],
     "buffers": [{"byteLength": 60,
                  "uri": "data:application/octet-stream;base64,)" +
-         base64(buffer) + R"("}]})";
+         test::base64(buffer) + R"("}]})";
 }
 
 const char* kNodes = R"({"mesh": 0},

@@ -116,6 +116,23 @@ TEST(SceneError, NonFiniteNumbersAreRejected) {
             "scene.json:4: objects[0].center[0]: is out of the float range, got 1e+300");
 }
 
+TEST(SceneError, OpacityCutOutsCheckTheirRangesAndNeedAnOpacity) {
+  const auto material = [](const std::string& keys) {
+    return test::sceneErrorOf(
+        "{\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0]},\n"
+        "\"materials\": {\"m\": {\"type\": \"phong\", " +
+        keys + "}}, \"objects\": []}");
+  };
+  // A coverage is a fraction of the surface that is there: [0, 1].
+  EXPECT_EQ(material("\"opacity\": 1.5"),
+            "scene.json:2: materials.m.opacity: must be <= 1, got 1.5");
+  EXPECT_EQ(material("\"opacity\": {\"image\": \"x.png\", \"factor\": -0.5}"),
+            "scene.json:2: materials.m.opacity.factor: must be >= 0, got -0.5");
+  // A cutoff alone would cut nothing: a mistake, not a default.
+  EXPECT_EQ(material("\"opacity_cutoff\": 0.2"),
+            "scene.json:2: materials.m.opacity_cutoff: needs an \"opacity\" to cut");
+}
+
 TEST(SceneError, SyntaxErrorNamesItsLine) {
   const std::string msg = test::sceneErrorOf("{\n\"camera\": {\n\"eye\": [0,0,5],,\n}}");
   EXPECT_EQ(msg.rfind("scene.json:3: invalid JSON: syntax error", 0), 0u) << msg;
