@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <set>
 
 #include "core/error.h"
 #include "core/hash.h"
@@ -148,6 +149,26 @@ struct FileMesh {
   std::vector<Material> materials;
 };
 
+// The bytes of the image files a mesh file's materials read join the scene hash, as the mesh
+// file's own do (an image embedded in it is part of those already), so crops rendered after a
+// texture changed are not merged with ones rendered before.
+void hashTextureFiles(SceneBuilder& b, const std::vector<Material>& materials) {
+  std::set<std::string> paths;
+  for (const Material& m : materials) {
+    const Surface& s = m.surface;
+    for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke})
+      if (t->image) paths.insert(t->image->path());
+    if (m.cutout.image) paths.insert(m.cutout.image->path());
+  }
+  for (const std::string& path : paths) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) continue;  // embedded: "FILE#*0.png"
+    std::ifstream in(path, std::ios::binary);
+    b.scene.sourceHash = hashCombine(
+        b.scene.sourceHash, hashBytes(std::string(std::istreambuf_iterator<char>(in), {})));
+  }
+}
+
 FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
   const std::filesystem::path rel(fileNode.string());
   const std::filesystem::path full =
@@ -174,6 +195,7 @@ FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
       m.indices = part.indices;
       out.parts.push_back(std::move(m));
     }
+    hashTextureFiles(b, loaded.materials);
     out.materials = std::move(loaded.materials);
     return out;
   } catch (const GlintError& e) {

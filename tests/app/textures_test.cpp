@@ -70,6 +70,31 @@ TEST(Textures, MapKdOnUvsReproducesTheTexturesLinearisedTexels) {
   }
 }
 
+TEST(Textures, AMeshFilesTextureBytesJoinTheSceneHash) {
+  // merge refuses crops of different scenes by this hash: a changed map_Kd must change it, as a
+  // changed mesh or JSON image texture does.
+  const std::string png = (test::tempDir() / "hashed.png").string();
+  writeQuadrantTexture(png);
+  test::writeTemp("hashed_quad.mtl", "newmtl tex\nKd 1 1 1\nmap_Kd hashed.png\n");
+  test::writeTemp("hashed_quad.obj",
+                  "mtllib hashed_quad.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+                  "vt 0 0\nvt 1 0\nvt 0 1\nusemtl tex\nf 1/1 2/2 3/3\n");
+  const std::string text = R"({"camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
+    "objects": [{"type": "mesh", "file": "hashed_quad.obj"}]})";
+  const auto hash = [&] {
+    return loadSceneText(text, test::writeTemp("hashed.json", text), test::tempDir().string())
+        .sourceHash;
+  };
+  const uint64_t before = hash();
+  EXPECT_EQ(hash(), before);  // the same bytes, the same hash
+  // Another image in its place (written beside it, then copied over: Glint refuses to write
+  // over an input of the run).
+  const std::string other = (test::tempDir() / "hashed_other.png").string();
+  writeRgbImage(other, 1, 1, 8, {1, 2, 3});
+  test::writeTemp("hashed.png", test::readFile(other));
+  EXPECT_NE(hash(), before);
+}
+
 TEST(Textures, VertexColoursMultiplyTheDiffuseColour) {
   // OBJ's extension "v x y z r g b": the bottom corners red-ish, the top ones blue-ish; Kd 0.5.
   test::writeTemp("coloured_quad.mtl", "newmtl c\nKa 0 0 0\nKd 0.5 0.5 0.5\nKs 0 0 0\nillum 1\n");
