@@ -2,11 +2,14 @@
 
 #include <nlohmann/json.hpp>
 
+#include <charconv>
 #include <cstdint>
 #include <cstring>
+#include <string_view>
 
 #include "core/error.h"
 #include "core/log.h"
+#include "io/gltf_texture_transform.h"
 
 namespace glint {
 
@@ -104,9 +107,36 @@ bool texturesAreWellFormed(const json& doc) {
   return true;
 }
 
+// The KHR_texture_transform of the textureInfo `owner[key]`; null where there is none.
+json textureTransformOf(const json& owner, const char* key) {
+  if (!owner.is_object()) return nullptr;
+  const auto info = owner.find(key);
+  if (info == owner.end() || !info->is_object()) return nullptr;
+  const auto extensions = info->find("extensions");
+  if (extensions == info->end() || !extensions->is_object()) return nullptr;
+  const auto transform = extensions->find("KHR_texture_transform");
+  return transform == extensions->end() ? json() : *transform;
+}
+
+constexpr std::string_view kMaterialTag = "glint:gltf-material:";
+
 }  // namespace
 
-std::string gltfSubset(const std::string& path, const std::string& text) {
+std::string gltfMaterialTag(size_t index) {
+  return std::string(kMaterialTag) + std::to_string(index);
+}
+
+std::optional<size_t> gltfMaterialIndex(const std::string& name) {
+  if (name.compare(0, kMaterialTag.size(), kMaterialTag) != 0) return std::nullopt;
+  const char *first = name.data() + kMaterialTag.size(), *last = name.data() + name.size();
+  size_t index = 0;
+  const auto [end, error] = std::from_chars(first, last, index);
+  if (error != std::errc() || end != last || first == last) return std::nullopt;
+  return index;
+}
+
+std::string gltfSubset(const std::string& path, const std::string& text,
+                       std::vector<GltfMaterialInfo>* materials) {
   if (nestingDepth(text) > kMaxDepth)
     throw GlintError("mesh " + path + ": its JSON nests more than " + std::to_string(kMaxDepth) +
                      " levels deep (a glTF file needs about 6)");
@@ -129,6 +159,24 @@ std::string gltfSubset(const std::string& path, const std::string& text) {
   keepOnly(doc,
            {"asset", "scene", "scenes", "nodes", "meshes", "materials", "accessors", "bufferViews",
             "buffers", "textures", "images", "samplers", "extensionsUsed", "extensionsRequired"});
+  // The materials' names, each then replaced by its tag, and their textures' transforms (read
+  // once the textures are known to be well formed, below).
+  std::vector<std::pair<json, json>> baseColorAndEmissiveTransforms;
+  if (materials) {
+    materials->assign(countOf(doc, "materials"), {});
+    baseColorAndEmissiveTransforms.resize(materials->size());
+    for (size_t i = 0; i < materials->size(); ++i) {
+      json& material = doc["materials"][i];
+      if (!material.is_object()) continue;
+      if (const auto name = material.find("name"); name != material.end() && name->is_string())
+        (*materials)[i].name = name->get<std::string>();
+      material["name"] = gltfMaterialTag(i);
+      const auto pbr = material.find("pbrMetallicRoughness");
+      baseColorAndEmissiveTransforms[i] = {
+          textureTransformOf(pbr != material.end() ? *pbr : json(), "baseColorTexture"),
+          textureTransformOf(material, "emissiveTexture")};
+    }
+  }
   // Materials as their factors and the base colour and emission textures (io/mesh_materials.h),
   // read from the first texture coordinates.
   const auto keepTextureInfo = [](json& object, const char* key) {
@@ -186,7 +234,8 @@ std::string gltfSubset(const std::string& path, const std::string& text) {
     keepOnly(image, {"name", "uri", "mimeType", "bufferView"});
   });
   forEachIn(doc, "samplers", [](json& sampler) { keepOnly(sampler, {"wrapS", "wrapT"}); });
-  if (!texturesAreWellFormed(doc)) {
+  const bool texturesKept = texturesAreWellFormed(doc);
+  if (!texturesKept) {
     // Assimp 5.2.5 trusts them: an embedded image whose mimeType was not image/... made its
     // reader strcmp a null pointer (SEGV, found by glint_fuzz_mesh). The file keeps its
     // geometry and colour factors.
@@ -203,6 +252,15 @@ std::string gltfSubset(const std::string& path, const std::string& text) {
           pbr != material.end() && pbr->is_object())
         pbr->erase("baseColorTexture");
     });
+  }
+  for (size_t i = 0; materials && texturesKept && i < materials->size(); ++i) {
+    GltfMaterialInfo& m = (*materials)[i];
+    const std::string where = "mesh " + path + ": material " + std::to_string(i) +
+                              (m.name.empty() ? "" : " " + inQuotes(excerpt(m.name)));
+    m.baseColorUv =
+        gltfTextureTransform(baseColorAndEmissiveTransforms[i].first, where + " baseColorTexture");
+    m.emissiveUv =
+        gltfTextureTransform(baseColorAndEmissiveTransforms[i].second, where + " emissiveTexture");
   }
   try {
     return doc.dump();
@@ -226,10 +284,11 @@ std::string glbJsonChunk(const std::string& path, const std::string& bytes) {
   return bytes.substr(20, u32(12));
 }
 
-std::string glbSubset(const std::string& path, const std::string& bytes) {
+std::string glbSubset(const std::string& path, const std::string& bytes,
+                      std::vector<GltfMaterialInfo>* materials) {
   const std::string json = glbJsonChunk(path, bytes);
   const uint64_t jsonLength = json.size();
-  std::string text = gltfSubset(path, json);
+  std::string text = gltfSubset(path, json, materials);
   text.append((4 - text.size() % 4) % 4, ' ');  // chunks are 4-byte aligned, padded with spaces
   const std::string rest = bytes.substr(20 + jsonLength);
   std::string out = bytes.substr(0, 12);

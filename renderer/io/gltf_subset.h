@@ -7,21 +7,46 @@
 // samplers behind them. Skins, animations, morph targets, cameras and lights (which Glint reads
 // itself, io/gltf_scene.h) are removed before Assimp sees the file, so its readers for them never
 // run: Assimp 5.2.5 dereferenced a null pointer on a skin without inverseBindMatrices (found by
-// glint_fuzz_mesh). Geometry-compression extensions stay.
+// glint_fuzz_mesh). Geometry-compression extensions stay. The textures' KHR_texture_transform
+// is read by Glint (io/gltf_texture_transform.h), not by Assimp (whose reader of it indexes the
+// offset and scale arrays without checking their sizes).
+#include <optional>
 #include <string>
+#include <vector>
+
+#include "materials/image_texture.h"
 
 namespace glint {
+
+// What Glint reads from one of a glTF file's materials itself: its name as the file gives it
+// (empty when it has none), and its base colour and emissive textures' KHR_texture_transform
+// in Glint's (u, v) (the identity where there is none).
+struct GltfMaterialInfo {
+  std::string name;
+  UvTransform baseColorUv, emissiveUv;
+};
+
+// The name a glTF file's material `index` reaches Assimp with, and back (nullopt for a name that
+// is not one of these). Assimp 5.2.5 numbers the materials it imports in the order its meshes
+// first use them, leaving out those none uses, so its index does not say which of the file's
+// materials it holds; this name does.
+std::string gltfMaterialTag(size_t index);
+std::optional<size_t> gltfMaterialIndex(const std::string& name);
 
 // The glTF JSON `text` of `path` reduced as above. Throws GlintError naming `path` when it is
 // not a JSON object (nlohmann's strict reader: invalid UTF-8 is refused, which Assimp's lenient
 // reader would take whole), nests more than 64 levels (Assimp's reader recurses once per
-// level) or declares a glTF version other than 2.
-std::string gltfSubset(const std::string& path, const std::string& text);
+// level) or declares a glTF version other than 2. Given `materials`, it receives one entry per
+// element of the file's `materials` (a malformed texture transform is warned about there and
+// ignored), and each material's name in the subset is its gltfMaterialTag.
+std::string gltfSubset(const std::string& path, const std::string& text,
+                       std::vector<GltfMaterialInfo>* materials = nullptr);
 
 // The same for a GLB file's bytes: its JSON chunk is reduced and the container's lengths
 // rewritten; the binary chunk is kept as it is. Throws as above, and when the bytes are not a
 // GLB 2 container.
-std::string glbSubset(const std::string& path, const std::string& bytes);
+std::string glbSubset(const std::string& path, const std::string& bytes,
+                      std::vector<GltfMaterialInfo>* materials = nullptr);
 
 // A GLB file's JSON chunk; throws GlintError naming `path` when the bytes are not a GLB 2
 // container.

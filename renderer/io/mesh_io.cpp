@@ -150,10 +150,12 @@ MeshFile loadMeshFile(const std::string& path, bool readTextures) {
   auto* files = new BoundedFiles(path);
   importer.SetIOHandler(files);  // the importer owns it
   const std::string ext = lowerExtension(path);
+  std::vector<GltfMaterialInfo> gltfMaterials;  // what Glint reads of them itself
   if (ext == ".gltf" || ext == ".glb") {
     std::ifstream in(path, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), {});
-    files->replaceMeshBytes(ext == ".gltf" ? gltfSubset(path, bytes) : glbSubset(path, bytes));
+    files->replaceMeshBytes(ext == ".gltf" ? gltfSubset(path, bytes, &gltfMaterials)
+                                           : glbSubset(path, bytes, &gltfMaterials));
   }
   checkAnImporterOfTheExtensionReadsIt(importer, path);
   // Positions, the file's vertex normals (smooth shading), its first texture coordinates and
@@ -237,8 +239,8 @@ MeshFile loadMeshFile(const std::string& path, bool readTextures) {
     if (part < 0) {
       part = int(file.parts.size());
       file.parts.emplace_back();
-      file.materials.push_back(
-          materialFromMeshFile(*s->mMaterials[m->mMaterialIndex], format, fileName, openTexture));
+      file.materials.push_back(materialFromMeshFile(*s->mMaterials[m->mMaterialIndex], format,
+                                                    fileName, openTexture, gltfMaterials));
     }
     TriangleMesh& mesh = file.parts[size_t(part)];
     const auto base = static_cast<uint32_t>(mesh.positions.size());

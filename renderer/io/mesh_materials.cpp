@@ -35,14 +35,15 @@ std::shared_ptr<const ImageTexture> firstTexture(const aiMaterial& m, aiTextureT
   return open(path.C_Str());
 }
 
-// The slot's colour `factor` times the material's first texture of `type`, where it has one
-// that opens; else the factor alone.
+// The slot's colour `factor` times the material's first texture of `type`, read through
+// `uvTransform`, where it has one that opens; else the factor alone.
 ColorTexture textured(const aiMaterial& m, aiTextureType type, const Rgb& factor,
-                      const TextureOpener& open) {
+                      const TextureOpener& open, const UvTransform& uvTransform = {}) {
   ColorTexture t = ColorTexture::uniform(factor);
   if (auto image = firstTexture(m, type, open)) {
     t.pattern = TexturePattern::Image;
     t.image = std::move(image);
+    t.uvTransform = uvTransform;
   }
   return t;
 }
@@ -65,9 +66,11 @@ Cutout mtlCutout(const aiMaterial& src, const TextureOpener& open, const Materia
   return c;
 }
 
-// glTF's alphaMode: "MASK" cuts where the base colour's alpha (factor times texture) is below
-// alphaCutoff; "BLEND" would blend, which Glint does not render: opaque, with a warning.
-Cutout gltfCutout(const aiMaterial& src, const TextureOpener& open, const std::string& name) {
+// glTF's alphaMode: "MASK" cuts where the base colour's alpha (factor times texture, read
+// through `baseColorUv`) is below alphaCutoff; "BLEND" would blend, which Glint does not render:
+// opaque, with a warning.
+Cutout gltfCutout(const aiMaterial& src, const TextureOpener& open, const std::string& name,
+                  const UvTransform& baseColorUv) {
   Cutout c;
   aiString mode;
   if (src.Get(AI_MATKEY_GLTF_ALPHAMODE, mode) != AI_SUCCESS) return c;
@@ -80,6 +83,7 @@ Cutout gltfCutout(const aiMaterial& src, const TextureOpener& open, const std::s
   c.coverage = std::isfinite(base.a) ? std::clamp(base.a, 0.0f, 1.0f) : 1.0f;
   c.cutoff = std::clamp(number(src, AI_MATKEY_GLTF_ALPHACUTOFF, 0.5f), 0.0f, 1.0f);
   c.image = firstTexture(src, aiTextureType_DIFFUSE, open);
+  if (c.image) c.uvTransform = baseColorUv;
   c.channel = Cutout::Channel::Alpha;
   return c;
 }
@@ -120,8 +124,9 @@ Material fromMtl(const aiMaterial& src, const TextureOpener& open) {
 // glTF's metallic-roughness model on the general surface: the dielectric base reflects diffusely
 // (k_d = base × (1 − metallic)) with a 4 % highlight; the metal part mirrors its base colour
 // (k_m = base × metallic), blurred by its roughness (gloss); the highlight's exponent is
-// Blinn-Phong's match to the GGX width α = roughness², 2/α² − 2.
-Material fromGltf(const aiMaterial& src, const TextureOpener& open) {
+// Blinn-Phong's match to the GGX width α = roughness², 2/α² − 2. The textures are read through
+// their KHR_texture_transform, which Glint reads itself (`own`).
+Material fromGltf(const aiMaterial& src, const TextureOpener& open, const GltfMaterialInfo& own) {
   const float transmission =
       std::clamp(number(src, AI_MATKEY_TRANSMISSION_FACTOR, 0.0f), 0.0f, 1.0f);
   Material m = defaultMaterial(transmission > 0 ? MaterialKind::Dielectric : MaterialKind::Phong);
@@ -132,18 +137,19 @@ Material fromGltf(const aiMaterial& src, const TextureOpener& open) {
   const float alpha = std::max(roughness * roughness, 1e-2f);
   // The base colour texture multiplies the base colour wherever it appears (baseColorTexture
   // is aiTextureType_DIFFUSE in Assimp's glTF 2 reader).
-  if (!m.refracts()) s.kd = textured(src, aiTextureType_DIFFUSE, base * (1 - metallic), open);
+  if (!m.refracts())
+    s.kd = textured(src, aiTextureType_DIFFUSE, base * (1 - metallic), open, own.baseColorUv);
   s.ka = ColorTexture::uniform({0, 0, 0});
   s.ambientFollowsDiffuse = false;
   s.ks = ColorTexture::uniform(Rgb{0.04f, 0.04f, 0.04f} * (1 - metallic) + base * metallic);
   s.exponent = std::clamp(2 / (alpha * alpha) - 2, 1.0f, 1e4f);
-  s.km = metallic > 0 ? textured(src, aiTextureType_DIFFUSE, base * metallic, open)
+  s.km = metallic > 0 ? textured(src, aiTextureType_DIFFUSE, base * metallic, open, own.baseColorUv)
                       : ColorTexture::uniform({0, 0, 0});
   s.gloss = metallic > 0 ? roughness : 0;
   s.ke = textured(src, aiTextureType_EMISSIVE,
                   colour(src, AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0}) *
                       std::max(number(src, AI_MATKEY_EMISSIVE_INTENSITY, 1.0f), 0.0f),
-                  open);
+                  open, own.emissiveUv);
   if (m.refracts()) {
     const float ior = number(src, AI_MATKEY_REFRACTI, 1.5f);
     m.dielectric.ior = ior >= 1.0f && ior <= 10.0f ? ior : 1.5f;
@@ -171,17 +177,28 @@ void multiplyDiffuseByVertexColors(Surface& surface) {
 }
 
 Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
-                              const std::string& fileName, const TextureOpener& openTexture) {
+                              const std::string& fileName, const TextureOpener& openTexture,
+                              const std::vector<GltfMaterialInfo>& gltfMaterials) {
   aiString name;
-  const std::string own = source.Get(AI_MATKEY_NAME, name) == AI_SUCCESS ? name.C_Str() : "";
+  std::string own = source.Get(AI_MATKEY_NAME, name) == AI_SUCCESS ? name.C_Str() : "";
+  // A glTF material reached Assimp named by its index in the file (io/gltf_subset.h): its own
+  // name is restored as Assimp would have read it (an aiString: at most 1023 bytes, up to the
+  // first NUL), and its texture transforms found.
+  GltfMaterialInfo gltf;
+  if (const auto i = gltfMaterialIndex(own);
+      format == MeshFileFormat::Gltf && i && *i < gltfMaterials.size()) {
+    gltf = gltfMaterials[*i];
+    own = aiString(gltf.name).C_Str();
+  }
   // A file without materials of its own (a PLY, an OBJ without MTL) gets Assimp's default,
   // which Glint replaces by its own default surface.
   Material m = own == AI_DEFAULT_MATERIAL_NAME || format == MeshFileFormat::Ply
                    ? defaultMaterial(MaterialKind::Phong)
-               : format == MeshFileFormat::Gltf ? fromGltf(source, openTexture)
+               : format == MeshFileFormat::Gltf ? fromGltf(source, openTexture, gltf)
                                                 : fromMtl(source, openTexture);
   m.name = fileName + ":" + own;
-  if (format == MeshFileFormat::Gltf) m.cutout = gltfCutout(source, openTexture, m.name);
+  if (format == MeshFileFormat::Gltf)
+    m.cutout = gltfCutout(source, openTexture, m.name, gltf.baseColorUv);
   if (format == MeshFileFormat::Obj) m.cutout = mtlCutout(source, openTexture, m);
   return m;
 }

@@ -2,12 +2,14 @@
 // The materials of mesh files, mapped onto Glint's surface model (materials/): an OBJ's MTL
 // (Kd, Ks, Ns, Ka, Ke, Ni, illum) and glTF 2.0's metallic-roughness factors with
 // KHR_materials_transmission, _ior, _volume and _emissive_strength, with their image textures
-// (map_Kd, map_Ks, map_Ke; glTF's base colour and emissive textures). The table is in
-// docs/scene-format.md ("Materials from mesh files").
+// (map_Kd, map_Ks, map_Ke; glTF's base colour and emissive textures, with their
+// KHR_texture_transform). The table is in docs/scene-format.md ("Materials from mesh files").
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "io/gltf_subset.h"
 #include "materials/material.h"
 
 struct aiMaterial;
@@ -24,8 +26,11 @@ using TextureOpener = std::function<std::shared_ptr<const ImageTexture>(const st
 // COLOR_0 multiplies its base colour), and the ambient colour where it follows the diffuse.
 void multiplyDiffuseByVertexColors(Surface& surface);
 
-// The Glint material for `source`, named "FILE:NAME" (FILE the mesh file's name).
+// The Glint material for `source`, named "FILE:NAME" (FILE the mesh file's name). A glTF
+// material named by its gltfMaterialTag takes its name and texture transforms from
+// `gltfMaterials` (io/gltf_subset.h).
 Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
-                              const std::string& fileName, const TextureOpener& openTexture);
+                              const std::string& fileName, const TextureOpener& openTexture,
+                              const std::vector<GltfMaterialInfo>& gltfMaterials = {});
 
 }  // namespace glint

@@ -44,7 +44,8 @@ struct UvTransform {
   Vec2f vector(Vec2f d) const { return {m00 * d.x + m01 * d.y, m10 * d.x + m11 * d.y}; }
 
   // Scale, then rotate counter-clockwise by `radians`, then offset (KHR_texture_transform's
-  // order).
+  // order; a glTF file's, given in its texture space whose v runs down, becomes one of these
+  // with another offset: io/gltf_texture_transform.h).
   static UvTransform offsetRotateScale(Vec2f offset, float radians, Vec2f scale) {
     const float c = std::cos(radians), s = std::sin(radians);
     return {c * scale.x, -s * scale.y, s * scale.x, c * scale.y, offset};
