@@ -33,14 +33,18 @@ nlohmann::json gltfLight(const GltfLight& l) {
     return {{"type", "directional"},
             {"direction", {l.direction.x, l.direction.y, l.direction.z}},
             {"intensity", intensity}};
-  // A spot light shines as a point light over its whole sphere: Glint has no cone.
-  if (l.type == GltfLight::Type::Spot)
-    log::warning("glTF light " + inQuotes(l.name) +
-                 " is a spot light; Glint renders it as a point light (no cone)");
-  return {{"type", "point"},
-          {"position", {l.position.x, l.position.y, l.position.z}},
-          {"intensity", intensity},
-          {"falloff", "inverse_square"}};
+  nlohmann::json light = {{"type", "point"},
+                          {"position", {l.position.x, l.position.y, l.position.z}},
+                          {"intensity", intensity},
+                          {"falloff", "inverse_square"}};
+  if (l.type == GltfLight::Type::Spot) {
+    light["type"] = "spot";
+    light["direction"] = {l.direction.x, l.direction.y, l.direction.z};
+    // In degrees; outer ≤ 90 exactly, whatever π/2 · 180/π rounds to.
+    light["inner_angle"] = std::min(l.innerConeAngle * 180 / M_PI, 90.0);
+    light["outer_angle"] = std::min(l.outerConeAngle * 180 / M_PI, 90.0);
+  }
+  return light;
 }
 
 // A mesh file given in place of a scene: the file with its own materials. A glTF file's own

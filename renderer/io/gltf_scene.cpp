@@ -213,9 +213,19 @@ class Reader {
       light.type = GltfLight::Type::Directional;
     else if (type == "point")
       light.type = GltfLight::Type::Point;
-    else if (type == "spot")
+    else if (type == "spot") {
       light.type = GltfLight::Type::Spot;
-    else
+      // spot.innerConeAngle, outerConeAngle: 0 ≤ inner < outer ≤ π/2 (the specification).
+      const auto spot = l.find("spot");
+      if (spot != l.end() && !spot->is_object()) fail(where + ".spot is not an object");
+      if (spot != l.end()) {
+        light.innerConeAngle = number(*spot, "innerConeAngle", 0, where + ".spot");
+        light.outerConeAngle = number(*spot, "outerConeAngle", M_PI / 4, where + ".spot");
+      }
+      if (!(light.innerConeAngle >= 0 && light.innerConeAngle < light.outerConeAngle &&
+            light.outerConeAngle <= M_PI / 2))
+        fail(where + ".spot must have 0 <= innerConeAngle < outerConeAngle <= pi/2");
+    } else
       fail(where + ".type must be \"directional\", \"point\" or \"spot\"");
     if (const auto c = numbers(l, "color", 3, where); !c.empty()) {
       if (c[0] < 0 || c[1] < 0 || c[2] < 0) fail(where + ".color must not be negative");

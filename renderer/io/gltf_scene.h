@@ -2,6 +2,7 @@
 // What a glTF 2.0 file says about its scene beyond the meshes (which Assimp places,
 // io/mesh_io.h): its cameras and its KHR_lights_punctual lights, each placed by the node tree
 // of the file's default scene (every node's transform composed with its parents').
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@ struct GltfLight {
   double intensity = 1;  // candela (point, spot) or lux (directional)
   Vec3d position;        // point, spot
   Vec3d direction;       // directional, spot: unit, the way the light travels (node's −z)
+  double innerConeAngle = 0, outerConeAngle = M_PI / 4;  // spot: radians from the axis
 };
 
 struct GltfSceneInfo {

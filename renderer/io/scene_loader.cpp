@@ -221,15 +221,25 @@ Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode&
 }
 
 Light parseLight(const SceneBuilder& b, const JsonNode& n) {
-  const std::string type = n.at("type").choice({"point", "directional", "quad", "disk"});
-  if (type == "point") {
-    n.checkKeys({"type", "position", "intensity", "falloff"});
+  const std::string type = n.at("type").choice({"point", "spot", "directional", "quad", "disk"});
+  if (type == "point" || type == "spot") {
+    std::vector<std::string> keys = {"type", "position", "intensity", "falloff"};
+    if (type == "spot") keys.insert(keys.end(), {"direction", "inner_angle", "outer_angle"});
+    n.checkKeys(keys);
     PointLight l;
     l.position = b.toRender(n.at("position"));
     l.intensity = n.color("intensity", l.intensity);
     if (auto v = n.get("falloff"))
       l.falloff =
           v->choice({"none", "inverse_square"}) == "none" ? Falloff::None : Falloff::InverseSquare;
+    if (type == "point") return l;
+    // The cone's half-angles in degrees, glTF's defaults: full on the axis only, none past 45°.
+    l.spotAxis = n.at("direction").direction();
+    const float outer = n.has("outer_angle") ? n.at("outer_angle").number(0, 90, true) : 45;
+    const float inner = n.has("inner_angle") ? n.at("inner_angle").number(0, 90) : 0;
+    if (inner > outer) n.at("inner_angle").fail("must not be wider than outer_angle");
+    l.cosInner = std::cos(inner * kPi / 180);
+    l.cosOuter = std::cos(outer * kPi / 180);
     return l;
   }
   if (type == "directional") {

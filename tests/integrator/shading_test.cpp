@@ -19,6 +19,22 @@ TEST(Shading, LambertUnderPointLightWithFalloff) {
   EXPECT_NEAR(L.r, 0.6f * 3 * (2 / std::sqrt(5.0f)) / 5, 1e-6);
 }
 
+TEST(Shading, SpotLightOnAFloorInsideAndOutsideItsCones) {
+  // A spot 1 above the origin pointing down, inner 20°, outer 40°, no falloff; k_d 1 floor.
+  // Under it: k_d·I·cos 0 = 1. At x = tan 30° the point is 30° off the axis: glTF's fade
+  // t² = 0.331507 (lights/light.h, tested there) times cos 30° at the floor = 0.287094. Past
+  // tan 40° = 0.8391: dark.
+  const auto t = load(R"("materials": {"m": {"type": "phong", "kd": [1,1,1], "ka": [0,0,0]}},
+    "lights": [{"type": "spot", "position": [0,1,0], "direction": [0,-1,0], "intensity": [1,1,1],
+                "inner_angle": 20, "outer_angle": 40}],
+    "objects": [{"type": "plane", "point": [0,0,0], "normal": [0,1,0], "material": "m"}])");
+  EXPECT_NEAR(t.trace(rayTo({0, 0.5f, 2}, {0, 0, 0})).r, 1.0, 1e-6);
+  const float x30 = std::tan(30 * kPi / 180);
+  EXPECT_NEAR(t.trace(rayTo({x30, 0.5f, 2}, {x30, 0, 0})).r, 0.331507 * std::cos(30 * kPi / 180),
+              1e-5);
+  EXPECT_EQ(t.trace(rayTo({0.85f, 0.5f, 2}, {0.85f, 0, 0})).r, 0);
+}
+
 std::string specularScene(const char* model) {
   return std::string(R"("materials": {"m": {"type": "phong", "kd": [0.2,0.2,0.2], "ka": [0,0,0],
       "ks": [0.5,0.5,0.5], "exponent": 10, "specular_model": ")") +

@@ -110,6 +110,43 @@ TEST(GltfScene, AnUnknownCameraNamesTheCamerasThereAre) {
   }
 }
 
+// quadScene with its one light replaced by `light`.
+std::string quadWithLight(const std::string& light) {
+  std::string text = quadScene(kNodes);
+  const std::string directional =
+      R"({"type": "directional", "color": [1, 1, 1], "intensity": 3.14159265358979})";
+  text.replace(text.find(directional), directional.size(), light);
+  return text;
+}
+
+TEST(GltfScene, SpotLightsKeepTheirCones) {
+  // Light node 3 sits at the origin facing −z (no rotation); cones of 0.2 and 0.5 radians.
+  const std::string file = test::writeTemp(
+      "quad_spot.gltf",
+      quadWithLight(R"({"type": "spot", "intensity": 2, "spot": {"innerConeAngle": 0.2,
+                                                                 "outerConeAngle": 0.5}})"));
+  const Scene scene = loadSceneOrDefault(file, std::nullopt, "");
+  ASSERT_EQ(scene.lights.size(), 1u);
+  const auto* spot = std::get_if<PointLight>(&scene.lights[0]);
+  ASSERT_NE(spot, nullptr);
+  ASSERT_TRUE(spot->isSpot());
+  EXPECT_NEAR(spot->spotAxis.z, -1, 1e-6);
+  EXPECT_NEAR(spot->cosInner, std::cos(0.2), 1e-6);
+  EXPECT_NEAR(spot->cosOuter, std::cos(0.5), 1e-6);
+  EXPECT_NEAR(spot->intensity.r, 2 / M_PI, 1e-6);  // candela over π (scene_source.cpp)
+  // The specification wants 0 ≤ inner < outer ≤ π/2.
+  const std::string bad = test::writeTemp(
+      "quad_bad_spot.gltf",
+      quadWithLight(R"({"type": "spot", "spot": {"innerConeAngle": 0.5, "outerConeAngle": 0.5}})"));
+  try {
+    readGltfSceneInfo(bad);
+    FAIL() << "no error";
+  } catch (const GlintError& e) {
+    EXPECT_NE(std::string(e.what()).find("innerConeAngle < outerConeAngle"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(GltfScene, ACyclicNodeTreeIsRefused) {
   // Node 0 lists node 4 as its child, and 4 lists 0: an endless recursion in a naive reader.
   const std::string nodes = R"({"mesh": 0, "children": [4]},

@@ -133,6 +133,14 @@ TEST(SceneError, OpacityCutOutsCheckTheirRangesAndNeedAnOpacity) {
             "scene.json:2: materials.m.opacity_cutoff: needs an \"opacity\" to cut");
 }
 
+TEST(SceneError, ASpotLightsInnerConeMustFitInItsOuter) {
+  EXPECT_EQ(test::sceneErrorOf(std::string(kHead) +
+                               "\"lights\": [{\"type\": \"spot\", \"position\": [0,1,0], "
+                               "\"direction\": [0,-1,0], \"inner_angle\": 50, "
+                               "\"outer_angle\": 40}], \"objects\": []}"),
+            "scene.json:4: lights[0].inner_angle: must not be wider than outer_angle");
+}
+
 TEST(SceneError, SyntaxErrorNamesItsLine) {
   const std::string msg = test::sceneErrorOf("{\n\"camera\": {\n\"eye\": [0,0,5],,\n}}");
   EXPECT_EQ(msg.rfind("scene.json:3: invalid JSON: syntax error", 0), 0u) << msg;

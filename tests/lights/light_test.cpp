@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace glint {
 namespace {
 
@@ -18,6 +20,28 @@ TEST(Lights, PointLightFallsOffOnlyWhenAsked) {
   EXPECT_EQ(s.intensity, (Rgb{3, 3, 3}));
   const PointLight falling{{1, 2, 0}, {3, 3, 3}, Falloff::InverseSquare};
   EXPECT_NEAR(sampleLight(falling, {0, 0, 0}, {}).intensity.r, 3.0f / 5, 1e-7);
+}
+
+TEST(Lights, SpotLightShinesFullyInsideItsInnerConeAndFadesToItsOuter) {
+  // Down the −y axis from (0, 1, 0), inner 20°, outer 40°: glTF's fade, the square of the
+  // cosine's linear ramp between the two cones.
+  PointLight spot{{0, 1, 0}, {2, 2, 2}, Falloff::None};
+  spot.spotAxis = {0, -1, 0};
+  spot.cosInner = std::cos(20 * kPi / 180);
+  spot.cosOuter = std::cos(40 * kPi / 180);
+  ASSERT_TRUE(spot.isSpot());
+  const auto at = [&](float degrees) {  // a point on the unit sphere `degrees` off the axis
+    const float a = degrees * kPi / 180;
+    return sampleLight(spot, Vec3f{std::sin(a), 1 - std::cos(a), 0}, {}).intensity.r;
+  };
+  EXPECT_FLOAT_EQ(at(0), 2);   // on the axis
+  EXPECT_FLOAT_EQ(at(19), 2);  // inside the inner cone
+  // 30°: t = (cos 30° − cos 40°)/(cos 20° − cos 40°) = 0.099981/0.173649 = 0.575766, t² = 0.331507.
+  EXPECT_NEAR(at(30), 2 * 0.331507f, 1e-5);
+  EXPECT_EQ(at(41), 0);   // outside the outer cone
+  EXPECT_EQ(at(120), 0);  // behind the light
+  // A plain point light has no axis and no cone.
+  EXPECT_FALSE((PointLight{{0, 1, 0}, {2, 2, 2}, Falloff::None}.isSpot()));
 }
 
 TEST(Lights, DirectionalLightIsAtInfinity) {
