@@ -57,7 +57,30 @@ void checkExrHeaders(const std::string& path) {
         fail("its header attribute \"" + excerpt(name) + "\" declares " + std::to_string(size) +
              " bytes, but the file has " + std::to_string(fileSize - std::min(at, fileSize)) +
              " left");
-      in.seekg(size, std::ios::cur);
+      if (type == "chlist") {
+        // OpenEXR reads a channel list record by record up to its empty name, whatever size
+        // it declares, and reads the next attribute from there: so must this check, or a
+        // list longer than its size hides the next attribute's true size from it (found by
+        // glint_fuzz_exr: a string OpenEXR then sized to 1.8 GB).
+        for (std::string channel = readName(); !channel.empty(); channel = readName()) {
+          char record[16];  // pixel type, pLinear and 3 reserved bytes, x and y sampling
+          if (!in.read(record, sizeof record)) fail("the header is cut short");
+        }
+      } else if (type == "preview") {
+        // Likewise a preview image: its width and height, then 4 bytes per pixel, allocated
+        // before they are read.
+        uint32_t extent[2] = {};
+        if (!in.read(reinterpret_cast<char*>(extent), sizeof extent))
+          fail("the header is cut short");
+        const uint64_t bytes = 4 * uint64_t(extent[0]) * uint64_t(extent[1]);
+        const uint64_t left = fileSize - std::min(uint64_t(in.tellg()), fileSize);
+        if (bytes > left)
+          fail("its preview image declares " + std::to_string(bytes) + " bytes, but the file has " +
+               std::to_string(left) + " left");
+        in.seekg(std::streamoff(bytes), std::ios::cur);
+      } else {
+        in.seekg(size, std::ios::cur);
+      }
       name = readName();
     }
     if (!multipart) return;
