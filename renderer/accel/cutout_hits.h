@@ -13,7 +13,7 @@ template <class Test>
 [[gnu::always_inline]] inline float firstKeptHit(const Scene& scene, const Geometry& g,
                                                  uint32_t prim, Ray r, float& u, float& v,
                                                  Test&& test) {
-  const bool cut = scene.features.cutouts && scene.materials[g.materialId].cutout.active();
+  const bool cut = scene.hasCutout(g);
   // No shape meets a ray more than twice, so a third test finds nothing. (One call of `test`
   // in the loop: a second one kept GCC from inlining the shape tests, 1 % of a default render.)
   for (int tries = 0;; ++tries) {

@@ -262,7 +262,7 @@ void EmbreeAccel::addGeometries(RTCScene rtcScene, uint32_t groupId) {
         }
         rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                    m.indices.data(), 0, 3 * sizeof(uint32_t), m.triangleCount());
-        if (scene_.materials[g.materialId].cutout.active() && scene_.features.cutouts) {
+        if (scene_.hasCutout(g)) {
           auto shape = std::make_unique<UserShape>(UserShape{g.kind, &scene_, g.index, false, &g});
           rtcSetGeometryUserData(geom, shape.get());
           rtcSetGeometryIntersectFilterFunction(geom, cutoutFilter);
@@ -274,8 +274,7 @@ void EmbreeAccel::addGeometries(RTCScene rtcScene, uint32_t groupId) {
       case GeomKind::Sphere:
       case GeomKind::Quad:
       case GeomKind::Disk: {
-        const bool cutout =
-            scene_.features.cutouts && scene_.materials[g.materialId].cutout.active();
+        const bool cutout = scene_.hasCutout(g);
         // A cut-out is tested one ray at a time, beside its hole test.
         const bool lanes =
             !cutout && (g.kind == GeomKind::Quad ||

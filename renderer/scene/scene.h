@@ -130,9 +130,12 @@ class Scene {
   // (materials/cutout.h). Every backend asks it of every candidate hit, so all agree on where
   // the holes are.
   bool cutAway(const Geometry& g, const Ray& ray, float t, uint32_t prim, float u, float v) const {
-    if (!features.cutouts) return false;
-    const Cutout& c = materials[g.materialId].cutout;
-    return c.active() && c.holeAt(textureCoordinates(g, ray, t, prim, u, v));
+    return hasCutout(g) &&
+           materials[g.materialId].cutout.holeAt(textureCoordinates(g, ray, t, prim, u, v));
+  }
+  // Whether g's material has a cut-out (only then do backends test its hits against it).
+  bool hasCutout(const Geometry& g) const {
+    return features.cutouts && materials[g.materialId].cutout.active();
   }
 
   const Geometry& geometry(const Hit& hit) const;
