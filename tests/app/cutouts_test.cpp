@@ -8,6 +8,7 @@
 
 #include "accel/accelerator.h"
 #include "film/oiio_module.h"
+#include "gltf_util.h"
 #include "oracle_util.h"
 #include "render/render_job.h"
 #include "test_util.h"
@@ -96,34 +97,6 @@ TEST(Cutouts, MtlMapDCutsWhereItsGreyIsDark) {
   expectHolesLeftSolidRight(renderScene(scene, *accel, quiet()).film, 1.0, "map_d");
 }
 
-// A glTF unit square at z = 0 (u = x) whose one material is `material`, its base colour texture
-// "alpha_half.png" where one is named.
-std::string gltfSquare(const std::string& material) {
-  const float positions[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-  const float uvs[8] = {0, 1, 1, 1, 1, 0, 0, 0};  // glTF's v runs down the image
-  const uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
-  std::string buffer(reinterpret_cast<const char*>(positions), sizeof positions);
-  buffer.append(reinterpret_cast<const char*>(uvs), sizeof uvs);
-  buffer.append(reinterpret_cast<const char*>(indices), sizeof indices);
-  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
-    "nodes": [{"mesh": 0}],
-    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2,
-                                "material": 0}]}],
-    "materials": [)" +
-         material + R"(],
-    "textures": [{"source": 0}], "images": [{"uri": "alpha_half.png"}],
-    "accessors": [
-      {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
-       "min": [0, 0, 0], "max": [1, 1, 0]},
-      {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
-      {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}],
-    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
-                    {"buffer": 0, "byteOffset": 48, "byteLength": 32},
-                    {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
-    "buffers": [{"byteLength": 92, "uri": "data:application/octet-stream;base64,)" +
-         test::base64(buffer) + R"("}]})";
-}
-
 TEST(Cutouts, GltfMaskCutsWhereBaseColourAlphaIsBelowTheCutoff) {
   // 8 × 8 white RGBA, alpha 0.3 in the left half and 1 in the right (16-bit codes).
   std::vector<uint16_t> codes;
@@ -133,7 +106,7 @@ TEST(Cutouts, GltfMaskCutsWhereBaseColourAlphaIsBelowTheCutoff) {
   const std::string png = (test::tempDir() / "alpha_half.png").string();
   oiio_module::writeImage(png, png, 8, 8, 4, 16, codes);
   const auto render = [](const std::string& material, const std::string& name) {
-    test::writeTemp(name + ".gltf", gltfSquare(material));
+    test::writeTemp(name + ".gltf", test::gltfSquares({0}, "[" + material + "]", "alpha_half.png"));
     const Scene scene =
         sceneAt(squareView(R"({"type": "mesh", "file": ")" + name + R"(.gltf"})"), name + ".json");
     const auto accel = makeAccelerator(AccelKind::Embree, scene);

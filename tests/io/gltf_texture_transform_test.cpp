@@ -11,6 +11,7 @@
 
 #include "accel/accelerator.h"
 #include "film/image_file.h"
+#include "gltf_util.h"
 #include "io/gltf_subset.h"
 #include "io/gltf_texture_transform.h"
 #include "io/mesh_io.h"
@@ -167,46 +168,6 @@ double srgbToLinear(int code) {
   return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
 }
 
-// A glTF file of unit squares at z = 0, square i at x ∈ [2i, 2i + 1] drawn with material
-// `materialOf[i]` of `materials` (a JSON array); glTF's u = x − 2i and v = 1 − y (v runs down
-// the image, so the image stands upright on the square); texture 0 is regions.png.
-std::string gltfSquares(const std::vector<int>& materialOf, const std::string& materials) {
-  const float positions[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-  const float uvs[8] = {0, 1, 1, 1, 1, 0, 0, 0};
-  const uint16_t indices[6] = {0, 1, 2, 0, 2, 3};
-  std::string buffer(reinterpret_cast<const char*>(positions), sizeof positions);
-  buffer.append(reinterpret_cast<const char*>(uvs), sizeof uvs);
-  buffer.append(reinterpret_cast<const char*>(indices), sizeof indices);
-  json nodes = json::array(), meshes = json::array(), scene = json::object();
-  for (size_t i = 0; i < materialOf.size(); ++i) {
-    json node = json::object(), primitive = json::object();
-    node["mesh"] = i;
-    node["translation"] = json::array({2.0 * double(i), 0.0, 0.0});
-    nodes.push_back(node);
-    primitive["attributes"] = json::parse(R"({"POSITION": 0, "TEXCOORD_0": 1})");
-    primitive["indices"] = 2;
-    primitive["material"] = materialOf[i];
-    meshes.push_back(json::object());
-    meshes.back()["primitives"] = json::array({primitive});
-    scene["nodes"].push_back(i);
-  }
-  return R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_texture_transform"],
-    "scene": 0, "scenes": [)" +
-         scene.dump() + R"(], "nodes": )" + nodes.dump() + R"(, "meshes": )" + meshes.dump() +
-         R"(, "materials": )" + materials + R"(,
-    "textures": [{"source": 0}], "images": [{"uri": "regions.png"}],
-    "accessors": [
-      {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3",
-       "min": [0, 0, 0], "max": [1, 1, 0]},
-      {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
-      {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}],
-    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
-                    {"buffer": 0, "byteOffset": 48, "byteLength": 32},
-                    {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
-    "buffers": [{"byteLength": 92, "uri": "data:application/octet-stream;base64,)" +
-         test::base64(buffer) + R"("}]})";
-}
-
 // A textureInfo of texture 0 with the extension `transform` (JSON; none where empty).
 std::string textureInfo(const std::string& transform) {
   return R"({"index": 0)" +
@@ -223,16 +184,15 @@ TEST(GltfTextureTransform, EachMaterialGetsItsOwnTransformWhateverOrderAssimpGiv
   // km and cut-out) and emission turn by π/2: in Glint [[0, −1], [1, 0]] and the offset
   // (0 + 1·1, 1 − 0 − 0·1) = (1, 1).
   const std::string transformed = textureInfo(R"({"rotation": 1.5707963267948966})");
-  const std::string path =
-      test::writeTemp("two_materials.gltf",
-                      gltfSquares({1, 0}, R"([
+  const std::string path = test::writeTemp(
+      "two_materials.gltf", test::gltfSquares({1, 0},
+                                              R"([
         {"name": "shifted", "pbrMetallicRoughness": {"metallicFactor": 0, "baseColorTexture": )" +
-                                              textureInfo(R"({"offset": [0.5, 0]})") + R"(}},
+                                                  textureInfo(R"({"offset": [0.5, 0]})") + R"(}},
         {"name": "turned", "alphaMode": "MASK", "emissiveFactor": [1, 1, 1],
          "emissiveTexture": )" + transformed +
-                                              R"(, "pbrMetallicRoughness": {"metallicFactor": 1,
-         "baseColorTexture": )" + transformed +
-                                              "}}]"));
+                                                  R"(, "pbrMetallicRoughness": {"metallicFactor": 1,
+         "baseColorTexture": )" + transformed + "}}]"));
   const MeshFile file = loadMeshFile(path);
   ASSERT_EQ(file.materials.size(), 2u);
   for (const Material& m : file.materials) {
@@ -280,9 +240,9 @@ TEST(GltfTextureTransform, AMaterialWithoutANameKeepsNone) {
   // Its tag is not its name: the Glint material is "FILE:" as before.
   writeRegionsImage();
   const MeshFile file = loadMeshFile(test::writeTemp(
-      "unnamed.gltf", gltfSquares({0}, "[{" + std::string(R"("pbrMetallicRoughness": {
+      "unnamed.gltf", test::gltfSquares({0}, "[{" + std::string(R"("pbrMetallicRoughness": {
         "baseColorTexture": )") + textureInfo(R"({"scale": [2, 2]})") +
-                                           "}}]")));
+                                                 "}}]")));
   ASSERT_EQ(file.materials.size(), 1u);
   EXPECT_EQ(file.materials[0].name, "unnamed.gltf:");
   EXPECT_NEAR(file.materials[0].surface.kd.uvTransform.m00, 2, 1e-7);
@@ -327,7 +287,7 @@ TEST(GltfTextureTransform, KhronosSampleModelKeepsEachMaterialsTransform) {
 // reads c·1·cos 0 + k_s 0.04 (Blinn-Phong, exponent 1, head on); an emission adds itself.
 Film renderSquare(const std::string& material, const std::string& name) {
   writeRegionsImage();
-  test::writeTemp(name + ".gltf", gltfSquares({0}, "[" + material + "]"));
+  test::writeTemp(name + ".gltf", test::gltfSquares({0}, "[" + material + "]"));
   const std::string sceneText = R"({
     "render": {"width": 64, "height": 64, "spp": 1, "sampler": "regular"},
     "camera": {"type": "orthographic", "eye": [0.5, 0.5, 5], "look_at": [0.5, 0.5, 0],
