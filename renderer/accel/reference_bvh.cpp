@@ -329,9 +329,7 @@ bool ReferenceBvh::intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray
     t = intersectTriangle(c[0], c[1], c[2], r, u, v);
     if (!(t < r.tMax)) return false;
     // A triangle meets a ray once: a hit in a cut-out's hole leaves nothing behind it.
-    if (scene_.features.cutouts &&
-        scene_.cutAway(scene_.groups[groupId].geometries[p.geom], r, t, p.prim, u, v))
-      return false;
+    if (scene_.cutAway(scene_.groups[groupId].geometries[p.geom], r, t, p.prim, u, v)) return false;
     hit = Hit{t, u, v, p.geom, p.prim, instId};
     return true;
   }

@@ -244,17 +244,19 @@ Vec2f Scene::uvAt(const Geometry& g, const Hit& hit, const Vec3f& p, float time,
 Vec2f Scene::textureCoordinates(const Geometry& g, const Ray& ray, float t, uint32_t prim, float u,
                                 float v) const {
   const Hit hit{t, u, v, 0, prim, kInvalidId};
-  const Vec3f onRay = ray.o + t * ray.d;
-  // The point shadingPoint would find (a mesh's and a quad's (u, v) need none).
-  Vec3f p = onRay, unusedError;
-  if (g.kind == GeomKind::Sphere) {
-    const Sphere s = sphereAt(g.index, ray.time);
-    const Vec3f n = onRay - s.center;
-    p = s.center + n * (s.radius / length(n));
-  } else if (g.kind == GeomKind::Disk) {
-    projectOntoPlane(onRay, disks[g.index].center, disks[g.index].normal, p, unusedError);
-  } else if (g.kind == GeomKind::Plane) {
-    projectOntoPlane(onRay, planes[g.index].point, planes[g.index].normal, p, unusedError);
+  // The point shadingPoint would find; a mesh's and a quad's (u, v) come from the hit alone.
+  Vec3f p, unusedError;
+  if (g.kind == GeomKind::Sphere || g.kind == GeomKind::Disk || g.kind == GeomKind::Plane) {
+    const Vec3f onRay = ray.o + t * ray.d;
+    if (g.kind == GeomKind::Sphere) {
+      const Sphere s = sphereAt(g.index, ray.time);
+      const Vec3f n = onRay - s.center;
+      p = s.center + n * (s.radius / length(n));
+    } else if (g.kind == GeomKind::Disk) {
+      projectOntoPlane(onRay, disks[g.index].center, disks[g.index].normal, p, unusedError);
+    } else {
+      projectOntoPlane(onRay, planes[g.index].point, planes[g.index].normal, p, unusedError);
+    }
   }
   return uvAt(g, hit, p, ray.time, nullptr, nullptr);
 }
