@@ -6,6 +6,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -44,6 +45,14 @@ Vec2f glintSt(Vec2f uv, const UvTransform& t) {
   return imageFootprint(sp, {0, 0, 1}, 0.01f, t).st;
 }
 
+// Expects t's matrix [[m00, m01], [m10, m11]] and offset (x, y) to be `expected`, each within
+// `tolerance`.
+void expectTransform(const UvTransform& t, const std::array<float, 6>& expected, double tolerance) {
+  const float actual[6] = {t.m00, t.m01, t.m10, t.m11, t.offset.x, t.offset.y};
+  const char* names[6] = {"m00", "m01", "m10", "m11", "offset.x", "offset.y"};
+  for (size_t i = 0; i < 6; ++i) EXPECT_NEAR(actual[i], expected[i], tolerance) << names[i];
+}
+
 TEST(GltfTextureTransform, GlintReadsTheTexelTheExtensionNamesByHand) {
   // offset (0.25, 0.1), rotation π/2, scale (0.5, 2). Glint's (u, v) = (0.2, 0.3) is glTF's
   // (0.2, 1 − 0.3) = (0.2, 0.7) (Assimp flips v). The extension: S → (0.1, 1.4); R(π/2) with
@@ -54,12 +63,7 @@ TEST(GltfTextureTransform, GlintReadsTheTexelTheExtensionNamesByHand) {
   EXPECT_NEAR(st.y, 0.0f, 1e-6);
   // Glint's own (u', v') is then (1.65, 1 − 0.0): the matrix [[c·su, −s·sv], [s·su, c·sv]] =
   // [[0, −2], [0.5, 0]] and the offset (o_u + s·sv, 1 − o_v − c·sv) = (2.25, 0.9).
-  EXPECT_NEAR(t.m00, 0.0f, 1e-7);
-  EXPECT_NEAR(t.m01, -2.0f, 1e-7);
-  EXPECT_NEAR(t.m10, 0.5f, 1e-7);
-  EXPECT_NEAR(t.m11, 0.0f, 1e-7);
-  EXPECT_NEAR(t.offset.x, 2.25f, 1e-7);
-  EXPECT_NEAR(t.offset.y, 0.9f, 1e-7);
+  expectTransform(t, {0.0f, -2.0f, 0.5f, 0.0f, 2.25f, 0.9f}, 1e-7);
 }
 
 TEST(GltfTextureTransform, GlintReadsTheTexelTheExtensionNamesEverywhere) {
@@ -199,12 +203,7 @@ TEST(GltfTextureTransform, EachMaterialGetsItsOwnTransformWhateverOrderAssimpGiv
     if (m.name == "two_materials.gltf:shifted") {
       const UvTransform& t = m.surface.kd.uvTransform;
       ASSERT_EQ(m.surface.kd.pattern, TexturePattern::Image);
-      EXPECT_NEAR(t.m00, 1, 1e-7);
-      EXPECT_NEAR(t.m01, 0, 1e-7);
-      EXPECT_NEAR(t.m10, 0, 1e-7);
-      EXPECT_NEAR(t.m11, 1, 1e-7);
-      EXPECT_NEAR(t.offset.x, 0.5f, 1e-7);
-      EXPECT_NEAR(t.offset.y, 0.0f, 1e-7);
+      expectTransform(t, {1, 0, 0, 1, 0.5f, 0.0f}, 1e-7);
       EXPECT_TRUE(isIdentity(m.surface.ke.uvTransform));  // no emission texture
     } else {
       EXPECT_EQ(m.name, "two_materials.gltf:turned");
@@ -272,12 +271,8 @@ TEST(GltfTextureTransform, KhronosSampleModelKeepsEachMaterialsTransform) {
   // "Rotation", π/8: cos 0.9238795, sin 0.3826834; matrix [[cos, −sin], [sin, cos]], offset
   // (sin, 1 − cos) = (0.3826834, 0.0761205).
   const UvTransform rotation = transformOf("Rotation");
-  EXPECT_NEAR(rotation.m00, 0.9238795f, 1e-6);
-  EXPECT_NEAR(rotation.m01, -0.3826834f, 1e-6);
-  EXPECT_NEAR(rotation.m10, 0.3826834f, 1e-6);
-  EXPECT_NEAR(rotation.m11, 0.9238795f, 1e-6);
-  EXPECT_NEAR(rotation.offset.x, 0.3826834f, 1e-6);
-  EXPECT_NEAR(rotation.offset.y, 0.0761205f, 1e-6);
+  expectTransform(rotation,
+                  {0.9238795f, -0.3826834f, 0.3826834f, 0.9238795f, 0.3826834f, 0.0761205f}, 1e-6);
   EXPECT_TRUE(isIdentity(transformOf("Correct")));  // a marker without the extension
 }
 
