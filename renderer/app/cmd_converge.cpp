@@ -1,5 +1,10 @@
 // `glint converge SCENE`: error against run time over a series of sample counts, per sampler and
 // backend, against a reference rendered with an independent seed (or given as an EXR).
+// `glint converge --from-render FRAME.exr`: the same from one render's passes and its own error
+// estimates (glint:passes), with nothing rendered.
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfMultiPartInputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #include <charconv>
 #include <cstdio>
 #include <ctime>
@@ -11,9 +16,11 @@
 #include "app/scene_source.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/input_files.h"
 #include "core/log.h"
 #include "film/atomic_file.h"
 #include "film/compare.h"
+#include "film/exr_input.h"
 #include "render/render_job.h"
 
 namespace glint {
@@ -30,6 +37,7 @@ struct ConvergeArgs {
   std::optional<int> width, height;
   int threads = 0;
   std::string csv, plot, json;
+  std::string fromRender;  // an EXR written by glint render, or its --stats-json
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -52,7 +60,89 @@ Image renderImage(const Scene& scene, const Accelerator& accel, int threads, dou
   return imageFromFilm(r.film);
 }
 
+// The series as --csv, --plot and --json ask; `about` opens the JSON object.
+void writeOutputs(const ConvergeArgs& a, const std::vector<ConvergenceSeries>& series,
+                  const std::string& title, const nlohmann::json& about) {
+  if (!a.csv.empty()) {
+    std::string csv = "series,spp,seconds,cpu_seconds,rmse,relmse\n";
+    for (const auto& s : series)
+      for (const auto& p : s.points) {
+        char line[256];
+        std::snprintf(line, sizeof line, "%s,%d,%.6f,%.6f,%.8g,%.8g\n", s.name.c_str(), p.spp,
+                      p.seconds, p.cpuSeconds, p.rmse, p.relmse);
+        csv += line;
+      }
+    writeTextFileAtomically(a.csv, csv);
+  }
+  if (!a.plot.empty()) writeConvergenceSvg(a.plot, title, series);
+  if (!a.json.empty()) {
+    nlohmann::json j = about;
+    for (const auto& s : series) {
+      nlohmann::json js{{"name", s.name}, {"slope", s.slope}, {"spp_slope", s.sppSlope}};
+      for (const auto& p : s.points)
+        js["points"].push_back({{"spp", p.spp},
+                                {"seconds", p.seconds},
+                                {"cpu_seconds", p.cpuSeconds},
+                                {"rmse", p.rmse},
+                                {"relmse", p.relmse}});
+      j["series"].push_back(js);
+    }
+    writeTextFileAtomically(a.json, j.dump(2) + "\n");
+  }
+}
+
+// The passes a render recorded: the `passes` of its --stats-json, or its EXR's glint:passes.
+nlohmann::json passesOf(const std::string& path) {
+  std::string text;
+  if (path.size() > 5 && path.substr(path.size() - 5) == ".json") {
+    text = readInputFile(path, size_t{64} << 20, "a render's --stats-json");
+  } else {
+    const auto file = openExr(path);
+    const auto* passes = file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:passes");
+    if (!passes)
+      throw UsageError(path +
+                       " has no glint:passes: it was not written by a glint render that "
+                       "records its passes");
+    text = "{\"passes\": " + passes->value() + "}";
+  }
+  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
+  if (j.is_discarded() || !j.is_object() || !j.contains("passes") || !j["passes"].is_array())
+    throw UsageError(path + ": its passes are not a JSON list");
+  return j["passes"];
+}
+
+// --from-render: one series, the render's passes with their estimated errors.
+int convergeFromRender(const ConvergeArgs& a) {
+  ConvergenceSeries s;
+  s.name = "estimated";
+  for (const nlohmann::json& p : passesOf(a.fromRender)) {
+    ConvergencePoint point;
+    const auto number = [&](const char* key) {
+      if (!p.is_object() || !p.contains(key) || !p[key].is_number())
+        throw UsageError(a.fromRender + ": a pass has no number \"" + key +
+                         "\" (a render without an error estimate: one sample, or a regular "
+                         "grid)");
+      return p[key].get<double>();
+    };
+    point.spp = static_cast<int>(number("spp"));
+    point.seconds = number("seconds");
+    point.rmse = number("estimated_rmse");
+    point.relmse = number("estimated_relmse");
+    s.points.push_back(point);
+    std::printf("pass to spp %6d  %9.4f s  estimated rmse %.6g  relmse %.6g\n", point.spp,
+                point.seconds, point.rmse, point.relmse);
+  }
+  if (s.points.empty()) throw UsageError(a.fromRender + " records no finished pass");
+  fitSlopes(s);
+  std::printf("estimated          slope %.3f against seconds, %.3f against spp\n", s.slope,
+              s.sppSlope);
+  writeOutputs(a, {s}, "Estimated error against time: " + a.fromRender,
+               {{"from_render", a.fromRender}});
+  return kExitOk;
+}
+
 int runConverge(const ConvergeArgs& a) {
+  if (!a.fromRender.empty()) return convergeFromRender(a);
   Scene scene = loadSceneOrDefault(a.scenePath);
   if (a.width) scene.render.width = *a.width;
   if (a.height) scene.render.height = *a.height;
@@ -134,39 +224,12 @@ int runConverge(const ConvergeArgs& a) {
     }
   }
 
-  if (!a.csv.empty()) {
-    std::string csv = "series,spp,seconds,cpu_seconds,rmse,relmse\n";
-    for (const auto& s : series)
-      for (const auto& p : s.points) {
-        char line[256];
-        std::snprintf(line, sizeof line, "%s,%d,%.6f,%.6f,%.8g,%.8g\n", s.name.c_str(), p.spp,
-                      p.seconds, p.cpuSeconds, p.rmse, p.relmse);
-        csv += line;
-      }
-    writeTextFileAtomically(a.csv, csv);
-  }
-  if (!a.plot.empty())
-    writeConvergenceSvg(
-        a.plot, "Error against time: " + scene.sourcePath + ", " + size + ", " + referenceLabel,
-        series);
-  if (!a.json.empty()) {
-    nlohmann::json j;
-    j["scene"] = scene.sourcePath;
-    j["width"] = scene.render.width;
-    j["height"] = scene.render.height;
-    j["reference"] = referenceInfo;
-    for (const auto& s : series) {
-      nlohmann::json js{{"name", s.name}, {"slope", s.slope}, {"spp_slope", s.sppSlope}};
-      for (const auto& p : s.points)
-        js["points"].push_back({{"spp", p.spp},
-                                {"seconds", p.seconds},
-                                {"cpu_seconds", p.cpuSeconds},
-                                {"rmse", p.rmse},
-                                {"relmse", p.relmse}});
-      j["series"].push_back(js);
-    }
-    writeTextFileAtomically(a.json, j.dump(2) + "\n");
-  }
+  writeOutputs(a, series,
+               "Error against time: " + scene.sourcePath + ", " + size + ", " + referenceLabel,
+               {{"scene", scene.sourcePath},
+                {"width", scene.render.width},
+                {"height", scene.render.height},
+                {"reference", referenceInfo}});
   return kExitOk;
 }
 
@@ -192,6 +255,10 @@ CommandRunner addConvergeCommand(CLI::App& app) {
       ->check(CLI::Range(1, 1 << 15));
   cmd->add_option("--threads", a->threads, "Render threads (default: all)")
       ->check(CLI::Range(1, 4096));
+  cmd->add_option("--from-render", a->fromRender,
+                  "No renders: the passes of one render (its EXR, or its --stats-json) with the "
+                  "error it estimated after each")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--csv", a->csv, "Write every point as CSV");
   cmd->add_option("--plot", a->plot, "Write the log-log plot (SVG)");
   cmd->add_option("--json", a->json, "Write the series as JSON");

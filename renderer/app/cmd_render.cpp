@@ -1,7 +1,11 @@
 #include <glint_version.h>
 
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfMultiPartInputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 #include <filesystem>
 #include <fstream>
+
 #include <nlohmann/json.hpp>
 
 #include "app/commands.h"
@@ -16,9 +20,11 @@
 #include "core/sampler.h"
 #include "film/atomic_file.h"
 #include "film/display.h"
+#include "film/exr_input.h"
 #include "film/exr_output.h"
 #include "io/scene_loader.h"
 #include "render/render_job.h"
+#include "render/resume_state.h"
 
 namespace glint {
 
@@ -48,6 +54,9 @@ struct RenderArgs {
   std::string compression = "zip";
   bool stats = false;
   bool quiet = false;
+  SamplingRequest sampling;  // --target-rmse, --target-relmse, --time-limit, --min/max-spp
+  double previewEvery = 0;   // seconds; 0: no previews
+  std::string resume;        // a frame to continue
 };
 
 std::string hex(uint64_t v) {
@@ -80,6 +89,22 @@ std::optional<PixelWindow> cropWindow(const RenderArgs& a, const RenderSettings&
   return w;
 }
 
+// The finished passes (CLI.md: `passes`), also kept in the EXR's glint:passes.
+nlohmann::json passesJson(const std::vector<PassRecord>& passes) {
+  nlohmann::json list = nlohmann::json::array();
+  const auto orNull = [](const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json();
+  };
+  for (const PassRecord& p : passes)
+    list.push_back({{"spp", p.spp},
+                    {"mean_spp", p.meanSpp},
+                    {"seconds", p.seconds},
+                    {"estimated_rmse", orNull(p.estimated.rmse)},
+                    {"estimated_relmse", orNull(p.estimated.relmse)},
+                    {"pixels_sampled", p.pixelsSampled}});
+  return list;
+}
+
 nlohmann::json statsJson(const Scene& scene, const RenderStats& st, uint64_t clampedValues) {
   nlohmann::json j;
   j["seconds"] = st.seconds;
@@ -93,6 +118,16 @@ nlohmann::json statsJson(const Scene& scene, const RenderStats& st, uint64_t cla
   j["features_used"] = scene.features.used();
   j["features_left_out"] = scene.features.leftOut();
   j["integrator"] = st.integrator == IntegratorKind::Reference ? "reference" : "production";
+  j["sampler"] = samplerName(st.sampler);
+  const auto orNull = [](const std::optional<double>& v) {
+    return v ? nlohmann::json(*v) : nlohmann::json();
+  };
+  // The estimates of the frame's error from its own samples (docs/validation.md).
+  j["estimated_rmse"] = orNull(st.estimated.rmse);
+  j["estimated_relmse"] = orNull(st.estimated.relmse);
+  j["passes"] = passesJson(st.passes);
+  j["pixel_spp"] = {{"min", st.minPixelSpp}, {"max", st.maxPixelSpp}};
+  j["time_limit_reached"] = st.timeLimitReached;
   // Of the whole process up to now: scene, acceleration structure, film and the EXR written.
   j["peak_rss_bytes"] = peakResidentBytes();
   return j;
@@ -113,6 +148,16 @@ void printStats(const Scene& scene, const RenderStats& st) {
   std::printf("Mrays/s          %.2f\n",
               st.seconds > 0 ? double(st.rays.total()) / st.seconds * 1e-6 : 0.0);
   std::printf("non-finite       %llu samples\n", (unsigned long long)st.rays.nonfiniteSamples);
+  if (st.estimated.rmse)
+    std::printf("estimated error  RMSE %.4g, relMSE %.4g (from the render's own samples)\n",
+                *st.estimated.rmse, *st.estimated.relmse);
+  else
+    std::printf("estimated error  none (%s)\n", st.sampler == SamplerKind::Regular
+                                                    ? "a regular grid has no randomness"
+                                                    : "a pixel has one sample");
+  std::printf("samples/pixel    %d to %d, %zu passes (%s sampler)%s\n", st.minPixelSpp,
+              st.maxPixelSpp, st.passes.size(), std::string(samplerName(st.sampler)).c_str(),
+              st.timeLimitReached ? ", stopped by the time limit" : "");
   std::printf("peak memory      %.1f MB (resident)\n", double(peakResidentBytes()) * 1e-6);
   std::printf("features used    %s\n", join(scene.features.used()).c_str());
   std::printf("left out         %s\n", join(scene.features.leftOut()).c_str());
@@ -133,6 +178,36 @@ uint64_t settingsHash(const Scene& scene, const std::string& accel, const std::s
                  hashBytes(accel), hashBytes(extras + frame));
 }
 
+// The sampling options that change pixels, for the settings hash.
+std::string samplingSettings(const SamplingRequest& r) {
+  std::string s;
+  const auto add = [&](const char* name, double v) {
+    if (v > 0) s += std::string(" ") + name + " " + std::to_string(v);
+  };
+  add("target-rmse", r.target.rmse);
+  add("target-relmse", r.target.relmse);
+  add("time-limit", r.timeLimitSeconds);
+  add("min-spp", r.minSpp);
+  add("max-spp", r.maxSpp);
+  return s;
+}
+
+// What must match for --resume to continue a frame: the settings hash without the sample
+// counts and time limit, the sampler actually used, and, for a sampler whose sets are laid out
+// for one total (stratified), that total.
+std::string resumeHash(const RenderArgs& a, const Scene& scene) {
+  const PassPlan plan = PassPlan::make(scene.render.spp, scene.render.sampler, a.sampling);
+  Scene withoutSpp = scene;
+  withoutSpp.render.spp = 0;
+  SamplingRequest targets = a.sampling;
+  targets.maxSpp = 0;
+  targets.timeLimitSeconds = 0;
+  return hex(hashKey(settingsHash(withoutSpp, a.accel,
+                                  a.aovs + (a.half ? " half" : "") + " " + a.integrator +
+                                      samplingSettings(targets)),
+                     uint64_t(plan.sampler), uint64_t(plan.progressive() ? 0 : plan.maxSpp)));
+}
+
 ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderResult& result) {
   const RenderStats& st = result.stats;
   const PixelWindow& w = result.film.window();
@@ -145,9 +220,12 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
                {"glint:settings_hash",
                 hex(settingsHash(scene, a.accel,
                                  a.aovs + (a.half ? " half" : "") +
-                                     (a.integrator == "production" ? "" : " " + a.integrator)))},
+                                     (a.integrator == "production" ? "" : " " + a.integrator) +
+                                     samplingSettings(a.sampling)))},
                {"glint:integrator", a.integrator},
-               {"glint:sampler", std::string(samplerName(scene.render.sampler))},
+               {"glint:sampler", std::string(samplerName(st.sampler))},
+               {"glint:passes", passesJson(st.passes).dump()},
+               {"glint:resume_hash", resumeHash(a, scene)},
                {"glint:accel", a.accel},
                {"glint:seed", std::to_string(scene.render.seed)},  // 64-bit: kept exact as text
                {"glint:crop", std::to_string(w.x0) + " " + std::to_string(w.x1) + " " +
@@ -157,15 +235,67 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
                {"glint:colorspace", kRenderingColorspace}};
   m.ints = {{"glint:spp", scene.render.spp},
             {"glint:max_depth", scene.render.maxDepth},
-            {"glint:partial", result.partial ? 1 : 0}};
+            {"glint:partial", result.partial ? 1 : 0},
+            {"glint:min_pixel_spp", st.minPixelSpp},
+            {"glint:max_pixel_spp", st.maxPixelSpp}};
   if (scene.animation) m.ints.push_back({"glint:frame", scene.animation->frame});
   m.floats = {{"glint:render_seconds", static_cast<float>(st.seconds)},
               {"glint:rays", static_cast<float>(st.rays.total())}};
+  if (st.estimated.rmse) {
+    m.floats.push_back({"glint:estimated_rmse", static_cast<float>(*st.estimated.rmse)});
+    m.floats.push_back({"glint:estimated_relmse", static_cast<float>(*st.estimated.relmse)});
+  }
   // The camera works in render space (world − worldOrigin); compositors want world space.
   const Vec3d toRender = Vec3d{} - scene.worldOrigin;
   m.matrices = {{"worldToCamera", afterTranslation(camera.worldToCamera(), toRender)},
                 {"worldToNDC", afterTranslation(camera.worldToNdc(), toRender)}};
   return m;
+}
+
+// The state of --resume's frame, after checking it is this frame with these settings; its
+// passes, each later by the seconds this render starts after (none: they are its own).
+std::vector<PixelEstimate> readResumable(const RenderArgs& a, const Scene& scene,
+                                         const std::optional<PixelWindow>& crop,
+                                         std::vector<PassRecord>& passes) {
+  const RenderSettings& r = scene.render;
+  const PixelWindow window = crop.value_or(PixelWindow{0, r.width, 0, r.height});
+  const PassPlan plan = PassPlan::make(r.spp, r.sampler, a.sampling);
+  {
+    const auto file = openExr(a.resume);
+    const auto* hash =
+        file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:resume_hash");
+    if (!hash || hash->value() != resumeHash(a, scene))
+      throw UsageError(
+          a.resume +
+          (hash ? " was rendered from another scene, or with other settings or a "
+                  "stratified sampler laid out for another spp"
+                : " has no glint:resume_hash: it was not written by this Glint") +
+          ": --resume continues a frame with the scene and every setting but --spp / "
+          "--max-spp / --time-limit the same (render with --resumable to continue a frame to "
+          "any spp)");
+    const auto* earlier = file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:passes");
+    const nlohmann::json list =
+        earlier ? nlohmann::json::parse(earlier->value(), nullptr, false) : nlohmann::json();
+    if (list.is_array())
+      for (const nlohmann::json& p : list) {
+        if (!p.is_object() || !p.value("spp", nlohmann::json()).is_number_integer()) continue;
+        PassRecord record{};
+        record.spp = p["spp"].get<int>();
+        record.meanSpp = p.value("mean_spp", 0.0);
+        record.seconds = p.value("seconds", 0.0);
+        const auto number = [&](const char* key) -> std::optional<double> {
+          const nlohmann::json v = p.value(key, nlohmann::json());
+          return v.is_number() ? std::optional<double>(v.get<double>()) : std::nullopt;
+        };
+        record.estimated = {number("estimated_rmse"), number("estimated_relmse")};
+        record.pixelsSampled = p.value("pixels_sampled", int64_t{0});
+        passes.push_back(record);
+      }
+  }
+  std::vector<PixelEstimate> state =
+      readResumeState(a.resume, window, r.width, r.height, plan.maxSpp);
+  log::info("resuming " + a.resume + " to " + std::to_string(plan.maxSpp) + " spp");
+  return state;
 }
 
 // Renders one frame (of an animated scene: `frame`, default its first) and writes its outputs,
@@ -182,6 +312,7 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   opt.tileOrder = a.tileOrder == "row" ? TileOrder::RowMajor : TileOrder::Morton;
   opt.cancel = &interrupt::requested();
   opt.aovs = AovSet::parse(a.aovs);
+  opt.sampling = a.sampling;
   AccelKind kind = AccelKind::Embree;
   parseAccelKind(a.accel, kind);
 
@@ -229,10 +360,42 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
               std::to_string(scene.render.height) + " at " + std::to_string(scene.render.spp) +
               " spp to " + job.out);
     opt.crop = job.crop;
-    const RenderResult result = renderScene(scene, *accel, opt);
-
-    const uint64_t clamped = writeExr(job.out, result.film, exrMetadata(a, scene, result),
-                                      {a.half, a.compression, a.multipart});
+    std::vector<PixelEstimate> resumeFrom;
+    std::vector<PassRecord> earlierPasses;
+    if (!a.resume.empty()) {
+      resumeFrom = readResumable(a, scene, job.crop, earlierPasses);
+      opt.resumeFrom = &resumeFrom;
+    }
+    // The frame as written: with its state when it may be continued (render/resume_state.h):
+    // asked for, or partial (interrupted, a preview), or cut by the time limit, or itself a
+    // continuation.
+    const auto write = [&](const RenderResult& r, bool partial) {
+      ExrMetadata m = exrMetadata(a, scene, r);
+      for (auto& [key, value] : m.ints)
+        if (key == "glint:partial") value = partial ? 1 : 0;
+      const bool resumable =
+          a.sampling.progressive || partial || r.stats.timeLimitReached || !a.resume.empty();
+      if (!resumable) return writeExr(job.out, r.film, m, {a.half, a.compression, a.multipart});
+      Film withState = r.film;
+      addResumeState(withState, r.estimates);
+      return writeExr(job.out, withState, m, {a.half, a.compression, a.multipart});
+    };
+    // --preview-every: the frame so far, written as the frame is (atomically), marked partial.
+    auto lastPreview = std::chrono::steady_clock::now();
+    const PassCallback preview = [&](const RenderResult& soFar) {
+      const auto now = std::chrono::steady_clock::now();
+      if (std::chrono::duration<double>(now - lastPreview).count() < a.previewEvery) return;
+      lastPreview = now;
+      write(soFar, true);
+      if (!display.empty()) writeDisplayImage(display, soFar.film, a.ocio);
+      log::info("preview: " + job.out + " at " + std::to_string(soFar.stats.passes.back().spp) +
+                " spp");
+    };
+    RenderResult result =
+        renderScene(scene, *accel, opt, a.previewEvery > 0 ? preview : PassCallback());
+    result.stats.passes.insert(result.stats.passes.begin(), earlierPasses.begin(),
+                               earlierPasses.end());
+    const uint64_t clamped = write(result, result.partial);
     if (clamped > 0)
       log::warning(std::to_string(clamped) + " values beyond " +
                    (a.half ? "half-float's ±65504" : "float's range") +
@@ -245,7 +408,8 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
       log::warning(std::to_string(result.stats.rays.nonfiniteSamples) +
                    " non-finite samples were dropped (written as black)");
     if (result.partial) {
-      // CLI.md: interrupted → a valid partial EXR (unrendered pixels have alpha 0), exit 130.
+      // CLI.md: interrupted → a valid partial EXR (each pixel keeps the passes it finished;
+      // one that finished none has alpha 0), exit 130.
       log::warning("interrupted: wrote the partial frame " + job.out + " (glint:partial = 1)");
       return kExitInterrupted;
     }
@@ -270,11 +434,23 @@ void checkCropsAndOutputs(const RenderArgs& a) {
   if (a.outputs.size() != crops)
     throw UsageError(std::to_string(crops) + " --crop need one -o each, in the same order (got " +
                      std::to_string(a.outputs.size()) + ")");
-  if (!a.display.empty() || !a.statsJson.empty())
-    throw UsageError("--display and --stats-json take one crop: give them with a single --crop");
+  if (!a.display.empty() || !a.statsJson.empty() || !a.resume.empty())
+    throw UsageError(
+        "--display, --stats-json and --resume take one crop: give them with a "
+        "single --crop");
 }
 
-int runRender(const RenderArgs& a) {
+// Whether --resume's frame drew from the Sobol sequence: then its continuation must too, as a
+// --resumable render (the sampler is part of glint:resume_hash, which readResumable checks).
+bool drewFromSobol(const std::string& path) {
+  const auto file = openExr(path);
+  const auto* sampler = file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:sampler");
+  return sampler && sampler->value() == samplerName(SamplerKind::Sobol);
+}
+
+int runRender(const RenderArgs& given) {
+  RenderArgs a = given;
+  if (!a.resume.empty() && drewFromSobol(a.resume)) a.sampling.progressive = true;
   if (a.quiet) log::setLevel(log::Level::Warning);
   checkCropsAndOutputs(a);
   if (a.frames.empty()) return renderFrame(a, a.frame);
@@ -323,6 +499,35 @@ CommandRunner addRenderCommand(CLI::App& app) {
   addDisplayOptions(*cmd, args->ocio);
   cmd->add_option("--spp", args->spp, "Samples per pixel")
       ->check(CLI::Range(1, static_cast<int>(kMaxSampleSet)));
+  cmd->add_option("--target-rmse", args->sampling.target.rmse,
+                  "Adaptive sampling: a pixel stops taking samples once its estimated RMSE is "
+                  "at most this")
+      ->check(CLI::PositiveNumber & notNaN());
+  cmd->add_option("--target-relmse", args->sampling.target.relmse,
+                  "Adaptive sampling: a pixel stops once its estimated relMSE is at most this")
+      ->check(CLI::PositiveNumber & notNaN());
+  cmd->add_option("--time-limit", args->sampling.timeLimitSeconds,
+                  "Stop after the last pass that ends within this many seconds of rendering "
+                  "(the first pass always finishes)")
+      ->check(CLI::PositiveNumber & notNaN());
+  cmd->add_option("--min-spp", args->sampling.minSpp,
+                  "Samples every pixel takes before adaptive sampling may stop it (default "
+                  "min(16, --max-spp))")
+      ->check(CLI::Range(1, static_cast<int>(kMaxSampleSet)));
+  cmd->add_option("--max-spp", args->sampling.maxSpp,
+                  "The most samples a pixel may take (default: the spp)")
+      ->check(CLI::Range(1, static_cast<int>(kMaxSampleSet)));
+  cmd->add_option("--preview-every", args->previewEvery,
+                  "Rewrite the output (and --display) with the passes done so far, at most this "
+                  "often in seconds")
+      ->check(CLI::PositiveNumber & notNaN());
+  cmd->add_option("--resume", args->resume,
+                  "Continue this frame (partial, a preview, time-limited, or --resumable) to "
+                  "--spp: the same pixels as a straight render at --spp; -o may name it")
+      ->check(CLI::ExistingFile);
+  cmd->add_flag("--resumable", args->sampling.progressive,
+                "Keep each pixel's sampling state with the frame, so --resume can continue it to "
+                "any spp (draws from the Sobol sequence, whose sets do not depend on the spp)");
   cmd->add_option("--seed", args->seed, "Scene seed")->check(wholeNumberUpTo(UINT64_MAX));
   CLI::Option* frame =
       cmd->add_option("--frame", args->frame,

@@ -107,7 +107,7 @@ double samplingSeconds(const Scene& scene, int threads) {
   std::vector<float> sink(tiles.size());
   const auto start = Clock::now();
   runTiles(tiles, threads, [&](size_t t) {
-    SampleKey keys[kCameraChunk];  // in runs, as renderTile draws them
+    SampleKey keys[kCameraChunk];  // in runs, as a render draws them
     Ray rays[kCameraChunk];
     CameraSampling::Points points;
     float acc = 0;

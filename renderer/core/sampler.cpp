@@ -293,11 +293,18 @@ uint64_t Sampler::pixelKey(int px, int py) const {
   return hashKey(seed_, static_cast<uint32_t>(px), static_cast<uint32_t>(py));
 }
 
-SamplePattern Sampler::pattern(uint64_t pixelKey, uint32_t dim) const {
-  // hashKey folds left, so a dimension's pattern hash is hashKey(seed, px, py, dim).
-  const uint64_t hash = hashCombine(pixelKey, dim);
+SamplePattern Sampler::pattern(uint64_t pixelKey, uint32_t dim, int half) const {
+  // hashKey folds left, so a dimension's pattern hash is hashKey(seed, px, py, dim), and a
+  // half's extends it by one more step: the halves' sets are independent of each other.
+  constexpr uint64_t kHalfKey = 0x68616c66u;  // "half"
+  const uint64_t wholeHash = hashCombine(pixelKey, dim);
+  const uint64_t hash = half == kWholeSet
+                            ? wholeHash
+                            : hashCombine(wholeHash, kHalfKey + static_cast<uint64_t>(half));
   SamplePattern p;
   p.hash = hash;
+  p.samples = static_cast<uint32_t>(half == kWholeSet ? spp_ : halfSampleCount(spp_, half));
+  if (half != kWholeSet) p.cellStride = 2, p.cellOffset = static_cast<uint32_t>(half);
   p.scramble[0] = key32(hash);
   if (kind_ == SamplerKind::Sobol) {
     p.scramble[1] = key32(mix64(hash + 1));
@@ -320,7 +327,8 @@ void Sampler::get2D(const SamplePattern& pattern, int index, int firstSub, int s
   if (pattern.cellCentres) {
     const int n = static_cast<int>(std::ceil(std::sqrt(double(spp_))));
     for (int j = 0; j < size; ++j) {
-      const int cell = static_cast<int>(first) + j;
+      const auto cell = static_cast<int>((first + static_cast<uint32_t>(j)) * pattern.cellStride +
+                                         pattern.cellOffset);
       out[j] = {(static_cast<float>(cell % n) + 0.5f) / float(n),
                 (static_cast<float>(cell / n) + 0.5f) / float(n)};
     }
@@ -334,7 +342,8 @@ void Sampler::get2D(const SamplePattern& pattern, int index, int firstSub, int s
     case SamplerKind::Sobol:
     case SamplerKind::Stratified:
     case SamplerKind::Regular:  // beyond the pixel dimension: stratified
-      return drawSetRun(kind_, pattern, static_cast<uint32_t>(spp_ * count), first, size, out);
+      return drawSetRun(kind_, pattern, pattern.samples * static_cast<uint32_t>(count), first, size,
+                        out);
   }
 }
 

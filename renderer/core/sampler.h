@@ -34,14 +34,27 @@ constexpr uint32_t dimension(Dim kind, int depth = 0, int index = 0) {
          (static_cast<uint32_t>(index) << 16);
 }
 
+// A render draws each pixel's samples as two halves from independent sample sets (each
+// stratified, or each a scrambled sequence of its own): the difference of the two halves'
+// means estimates the error of the pixel without the bias that stratification gives a sample
+// variance (docs/validation.md, Error estimate). A render of n samples gives half 0 the first
+// ceil(n/2) of them, half 1 the rest; kWholeSet is the pixel's one set of all its spp.
+inline constexpr int kWholeSet = -1;
+constexpr int halfSampleCount(int64_t samples, int half) {
+  return static_cast<int>(half == 0 ? (samples + 1) / 2 : samples / 2);
+}
+
 // One dimension's sample set within one pixel: the hashes that depend only on (pixel,
-// dimension), computed once and shared by every sample drawn from the set.
+// dimension, half), computed once and shared by every sample drawn from the set.
 struct SamplePattern {
-  uint64_t hash = 0;          // hashKey(seed, px, py, dim): keys each sample's jitter
+  uint64_t hash = 0;          // hashKey(seed, px, py, dim) (and the half): keys each jitter
   uint32_t scramble[3] = {};  // stratified: the permutation key; sobol: index, x, y scrambles
+  uint32_t samples = 0;       // the camera samples the set is stratified over
   // A regular sampler's pixel dimension: cell centres. Regular grids are for pixel offsets
-  // only; a regular render's other dimensions are stratified.
+  // only; a regular render's other dimensions are stratified. Both halves share the one grid
+  // of the pixel's spp cells: half h's sample j is cell 2j + h.
   bool cellCentres = false;
+  uint32_t cellStride = 1, cellOffset = 0;
 };
 
 class Sampler {
@@ -57,12 +70,13 @@ class Sampler {
   // one more step, once for all the samples drawn from it (e.g. once per light at a shading
   // point, not once per shadow sample).
   uint64_t pixelKey(int px, int py) const;
-  SamplePattern pattern(uint64_t pixelKey, uint32_t dim) const;
+  // The set of `half` (0 or 1), or of the whole pixel (kWholeSet).
+  SamplePattern pattern(uint64_t pixelKey, uint32_t dim, int half = kWholeSet) const;
 
-  // Sample `index` in [0, spp) of the pattern's dimension, each coordinate in [0, 1),
-  // stratified over the spp samples of the pixel and over `count` sub-samples (e.g. shadow
-  // samples per camera sample): flat index index·count + sub of a set of spp·count. For the
-  // pixel dimension, the offset inside the pixel.
+  // Sample `index` in [0, pattern.samples) of the pattern's dimension, each coordinate in
+  // [0, 1), stratified over the set's samples and over `count` sub-samples (e.g. shadow
+  // samples per camera sample): flat index index·count + sub of a set of samples·count. For
+  // the pixel dimension, the offset inside the pixel.
   Vec2f get2D(const SamplePattern& pattern, int index, int sub = 0, int count = 1) const;
   // get2D(pattern, index, firstSub + j, count) into out[j] for j in [0, size): the same
   // values, drawn side by side (sampler.cpp). Flat indices index·count + firstSub + j run on
@@ -82,15 +96,16 @@ struct SampleKey {
   SampleKey(const Sampler* s, int x, int y, int i)
       : SampleKey(s, x, y, i, s ? s->pixelKey(x, y) : 0) {}
   // With the pixel's key computed once for all its samples (Sampler::pixelKey).
-  SampleKey(const Sampler* s, int x, int y, int i, uint64_t key)
-      : sampler(s), px(x), py(y), index(i), pixelKey(key) {}
+  SampleKey(const Sampler* s, int x, int y, int i, uint64_t key, int h = kWholeSet)
+      : sampler(s), px(x), py(y), index(i), half(h), pixelKey(key) {}
 
   const Sampler* sampler = nullptr;
-  int px = 0, py = 0, index = 0;
+  int px = 0, py = 0, index = 0;  // index: within the half's set (or the whole set)
+  int half = kWholeSet;
   uint64_t pixelKey = 0;
 
   // A dimension's pattern, for drawing several sub-samples of it (a light's shadow samples).
-  SamplePattern pattern(uint32_t dim) const { return sampler->pattern(pixelKey, dim); }
+  SamplePattern pattern(uint32_t dim) const { return sampler->pattern(pixelKey, dim, half); }
   Vec2f get2D(const SamplePattern& pattern, int sub, int count) const {
     return sampler->get2D(pattern, index, sub, count);
   }

@@ -45,10 +45,18 @@ size_t Film::addPlane(std::string name, std::vector<std::string> channels, bool 
 }
 
 void Film::setPlanePixel(size_t plane, int x, int y, const double* values) {
+  double* p = planePixel(plane, x, y);
+  for (size_t c = 0; c < planes_[plane].channels.size(); ++c) p[c] = values[c];
+}
+
+double* Film::planePixel(size_t plane, int x, int y) {
   FilmPlane& p = planes_[plane];
-  const size_t n = p.channels.size();
-  const size_t at = offset(x, y) / 4 * n;
-  for (size_t c = 0; c < n; ++c) p.values[at + c] = values[c];
+  return &p.values[offset(x, y) / 4 * p.channels.size()];
+}
+
+const double* Film::planePixel(size_t plane, int x, int y) const {
+  const FilmPlane& p = planes_[plane];
+  return &p.values[offset(x, y) / 4 * p.channels.size()];
 }
 
 namespace {

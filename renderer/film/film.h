@@ -43,6 +43,8 @@ class Film {
   // AOV planes, added before rendering; each pixel is written by the task that owns it.
   size_t addPlane(std::string name, std::vector<std::string> channels, bool isUint = false);
   void setPlanePixel(size_t plane, int x, int y, const double* values);
+  double* planePixel(size_t plane, int x, int y);  // the plane's channels at (x, y)
+  const double* planePixel(size_t plane, int x, int y) const;
   const std::vector<FilmPlane>& planes() const { return planes_; }
 
   // Metadata that belongs with the planes, for whoever reads them (Cryptomatte's names and

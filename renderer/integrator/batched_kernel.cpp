@@ -279,11 +279,13 @@ void BatchedKernel::drawLightPoints(const SampleKey* keys, int count, Scratch& s
     const int n = lights_[li].samples;
     if (lights_[li].delta || used + count * n > Scratch::kMaxLightPoints) continue;
     points[li] = scratch.lightPoints + used;
-    // Per pixel: its run of samples key.index + i, sub-samples j, is one run of flat indices
-    // (key.index + i)·n + j of its set.
+    // Per pixel and half: its run of samples key.index + i, sub-samples j, is one run of flat
+    // indices (key.index + i)·n + j of its set.
     for (int begin = 0, end; begin < count; begin = end) {
       const SampleKey& key = keys[begin];
-      for (end = begin + 1; end < count && keys[end].px == key.px && keys[end].py == key.py;) ++end;
+      for (end = begin + 1; end < count && keys[end].px == key.px && keys[end].py == key.py &&
+                            keys[end].half == key.half;)
+        ++end;
       key.get2D(key.pattern(dimension(Dim::Light, 0, static_cast<int>(li))), 0, (end - begin) * n,
                 n, scratch.lightPoints + used + begin * n);
     }

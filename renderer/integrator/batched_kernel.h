@@ -37,8 +37,8 @@ class BatchedKernel {
 
   // Radiance along `count` camera rays whose closest hits are known (traced together as a
   // coherent stream, Accelerator::intersectCoherent), samples keys[i]: runs of consecutive
-  // samples of one or several pixels, as renderTile makes them. aovs, when given, holds a
-  // record pointer (or null) per sample, whose viewAxis must be set (the camera's unit view
+  // samples of one half of one or several pixels, as renderTilePass makes them. aovs, when given,
+  // holds a record pointer (or null) per sample, whose viewAxis must be set (the camera's unit view
   // direction, for depth); the record receives what the camera ray hit. out[i] does not depend on
   // which other samples share the call, bit for bit.
   void traceCameraHits(const Ray* rays, const Hit* hits, const SampleKey* keys, int count,
@@ -166,7 +166,7 @@ class BatchedKernel {
   void queueLight(const LitPoint& pt, size_t li, const SamplePattern& pattern, int first, int size,
                   int count, Queue& queue, const Vec2f* points = nullptr) const;
   // For a camera chunk: the points of the area lights among the first kMaxPrecomputedLights
-  // for the `count` camera samples of `keys` (runs of consecutive samples of a pixel), into
+  // for the `count` camera samples of `keys` (runs of consecutive samples of a pixel's half), into
   // the scratch; lightPointsOf[li] stays null for a delta light or one that no longer fits.
   static constexpr size_t kMaxPrecomputedLights = 8;
   void drawLightPoints(const SampleKey* keys, int count, Scratch& scratch) const;

@@ -81,8 +81,16 @@ AovLayout AovLayout::create(const AovSet& set, const Scene& scene, Film& film) {
   return l;
 }
 
+AovTables::AovTables(const AovLayout& layout, const PixelWindow& window) : window_(window) {
+  const auto pixels = static_cast<size_t>(window.area());
+  if (layout.objectId != SIZE_MAX) objectIds_.resize(pixels);
+  if (layout.cryptoObject != SIZE_MAX) {
+    cryptoObjects_.resize(pixels);
+    cryptoMaterials_.resize(pixels);
+  }
+}
+
 void PixelAovs::begin() {
-  n_ = 0;
   anyHit_ = false;
   minDepth_ = 0;
   std::fill(std::begin(normal_), std::end(normal_), 0.0);
@@ -91,21 +99,12 @@ void PixelAovs::begin() {
   std::fill(std::begin(direct_), std::end(direct_), 0.0);
   std::fill(std::begin(indirect_), std::end(indirect_), 0.0);
   std::fill(std::begin(lights_), std::end(lights_), 0.0);
-  std::fill(std::begin(mean_), std::end(mean_), 0.0);
-  std::fill(std::begin(m2_), std::end(m2_), 0.0);
   ids_.clear();
   cryptoObjects_.clear();
   cryptoMaterials_.clear();
 }
 
 void PixelAovs::add(const Radiance& r, const AovSample& s) {
-  ++n_;
-  const double L[3] = {r.L.r, r.L.g, r.L.b};
-  for (int c = 0; c < 3; ++c) {  // Welford: numerically stable running mean and M2
-    const double d = L[c] - mean_[c];
-    mean_[c] += d / n_;
-    m2_[c] += d * (L[c] - mean_[c]);
-  }
   // A non-finite sample counts as black in every plane: its record (which may hold the
   // non-finite values) is not used, so nothing non-finite reaches the EXR.
   if (!s.hit || !r.valid) return;
@@ -124,63 +123,46 @@ void PixelAovs::add(const Radiance& r, const AovSample& s) {
   addRgb(indirect_, {r.L.r - s.direct.r, r.L.g - s.direct.g, r.L.b - s.direct.b});
   for (size_t i = 0; i < layout_.lights && i < size_t(AovSet::kMaxLights); ++i)
     addRgb(&lights_[3 * i], s.perLight[i]);
-  auto it =
-      std::find_if(ids_.begin(), ids_.end(), [&](const auto& e) { return e.first == s.objectId; });
-  if (it == ids_.end())
-    ids_.push_back({s.objectId, 1});
-  else
-    ++it->second;
+  if (layout_.objectId != SIZE_MAX) ids_.add(s.objectId);
   if (layout_.cryptoObject != SIZE_MAX) {
     cryptoObjects_.add(s.objectId - 1);
     cryptoMaterials_.add(s.materialId);
   }
 }
 
-void PixelAovs::end(Film& film, int x, int y) const {
-  const double inv = n_ > 0 ? 1.0 / n_ : 0;
-  const auto put = [&](size_t plane, const double* acc) {
+void PixelAovs::commit(Film& sums, AovTables& tables, int x, int y) const {
+  const auto addTo = [&](size_t plane, const double* acc) {
     if (plane == SIZE_MAX) return;
-    const double v[3] = {acc[0] * inv, acc[1] * inv, acc[2] * inv};
-    film.setPlanePixel(plane, x, y, v);
+    double* sum = sums.planePixel(plane, x, y);
+    for (int c = 0; c < 3; ++c) sum[c] += acc[c];
   };
-  if (layout_.depth != SIZE_MAX) film.setPlanePixel(layout_.depth, x, y, &minDepth_);
-  put(layout_.normal, normal_);
-  put(layout_.position, position_);
-  put(layout_.albedo, albedo_);
-  put(layout_.direct, direct_);
-  put(layout_.indirect, indirect_);
+  if (layout_.depth != SIZE_MAX && anyHit_) {
+    // Hits are at t > 0, so 0 marks a pixel that no pass has seen hit yet.
+    double& depth = *sums.planePixel(layout_.depth, x, y);
+    if (depth == 0 || minDepth_ < depth) depth = minDepth_;
+  }
+  addTo(layout_.normal, normal_);
+  addTo(layout_.position, position_);
+  addTo(layout_.albedo, albedo_);
+  addTo(layout_.direct, direct_);
+  addTo(layout_.indirect, indirect_);
   if (layout_.firstLight != SIZE_MAX)
-    for (size_t i = 0; i < layout_.lights; ++i) put(layout_.firstLight + i, &lights_[3 * i]);
-  if (layout_.objectId != SIZE_MAX) {
-    double id = 0;
-    int best = 0;
-    for (const auto& [objectId, count] : ids_)
-      if (count > best || (count == best && objectId < id)) {
-        best = count;
-        id = objectId;
-      }
-    film.setPlanePixel(layout_.objectId, x, y, &id);
-  }
-  if (layout_.cryptoObject != SIZE_MAX) {
-    putCryptomatte(film, x, y, layout_.cryptoObject, cryptoObjects_, layout_.objectCryptoIds);
-    putCryptomatte(film, x, y, layout_.cryptoMaterial, cryptoMaterials_, layout_.materialCryptoIds);
-  }
-  if (layout_.variance != SIZE_MAX) {
-    // Variance of the mean: the sample variance m2/(n − 1) divided by n.
-    const double denom = n_ > 1 ? double(n_) * double(n_ - 1) : 0;
-    const double v[3] = {denom > 0 ? m2_[0] / denom : 0, denom > 0 ? m2_[1] / denom : 0,
-                         denom > 0 ? m2_[2] / denom : 0};
-    film.setPlanePixel(layout_.variance, x, y, v);
-  }
+    for (size_t i = 0; i < layout_.lights; ++i) addTo(layout_.firstLight + i, &lights_[3 * i]);
+  if (CoverageTable* t = tables.objectIds(x, y)) t->add(ids_);
+  if (CoverageTable* t = tables.cryptoObjects(x, y)) t->add(cryptoObjects_);
+  if (CoverageTable* t = tables.cryptoMaterials(x, y)) t->add(cryptoMaterials_);
 }
 
-void PixelAovs::putCryptomatte(Film& film, int x, int y, size_t firstPlane,
-                               const CoverageTable& table, const std::vector<float>& ids) const {
+namespace {
+
+// Writes the table's first kCryptomatteRanks ranks into the layers from `firstPlane` on.
+void putCryptomatte(Film& film, int x, int y, size_t firstPlane, const CoverageTable& table,
+                    const std::vector<float>& ids, double samples) {
   // Coverage is the share of all the pixel's samples (the beauty's box filter), so the
   // background's share is what the ranks leave of 1. Ranks that nothing fills are ID 0,
   // coverage 0, as the specification asks.
   const CoverageTable ranked = table.ranked();
-  const double inv = n_ > 0 ? 1.0 / n_ : 0;
+  const double inv = samples > 0 ? 1.0 / samples : 0;
   for (int layer = 0; layer < (kCryptomatteRanks + 1) / 2; ++layer) {
     double v[4] = {0, 0, 0, 0};
     for (int k = 0; k < 2; ++k) {
@@ -190,6 +172,48 @@ void PixelAovs::putCryptomatte(Film& film, int x, int y, size_t firstPlane,
       v[2 * k + 1] = ranked[rank].count * inv;
     }
     film.setPlanePixel(firstPlane + size_t(layer), x, y, v);
+  }
+}
+
+}  // namespace
+
+void resolveAovs(const AovLayout& layout, const Film& sums, const AovTables& tables,
+                 const PixelEstimate& pixel, Film& out, int x, int y) {
+  const double samples = static_cast<double>(pixel.samples());
+  const double inv = samples > 0 ? 1.0 / samples : 0;
+  const auto average = [&](size_t plane) {
+    if (plane == SIZE_MAX) return;
+    const double* sum = sums.planePixel(plane, x, y);
+    const double v[3] = {sum[0] * inv, sum[1] * inv, sum[2] * inv};
+    out.setPlanePixel(plane, x, y, v);
+  };
+  if (layout.depth != SIZE_MAX)
+    out.setPlanePixel(layout.depth, x, y, sums.planePixel(layout.depth, x, y));
+  average(layout.normal);
+  average(layout.position);
+  average(layout.albedo);
+  average(layout.direct);
+  average(layout.indirect);
+  if (layout.firstLight != SIZE_MAX)
+    for (size_t i = 0; i < layout.lights; ++i) average(layout.firstLight + i);
+  if (const CoverageTable* ids = tables.objectIds(x, y)) {
+    // ranked() puts the most frequent first, ties to the smaller id.
+    const double id = ids->size() > 0 ? ids->ranked()[0].id : 0;
+    out.setPlanePixel(layout.objectId, x, y, &id);
+  }
+  if (layout.cryptoObject != SIZE_MAX) {
+    putCryptomatte(out, x, y, layout.cryptoObject, *tables.cryptoObjects(x, y),
+                   layout.objectCryptoIds, samples);
+    putCryptomatte(out, x, y, layout.cryptoMaterial, *tables.cryptoMaterials(x, y),
+                   layout.materialCryptoIds, samples);
+  }
+  if (layout.variance != SIZE_MAX) {
+    // The halves' estimate (pixel_estimate.h), 0 where a pixel has one sample and none can be
+    // made. Finite for any float samples (a squared difference of two is below 1e78); the EXR
+    // writer clamps what is beyond the channel's type, and counts it.
+    double v[3] = {0, 0, 0};
+    pixel.varianceOfMean(v);
+    out.setPlanePixel(layout.variance, x, y, v);
   }
 }
 

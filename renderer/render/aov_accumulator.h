@@ -1,10 +1,14 @@
 #pragma once
-// Turns per-sample AOV records into film planes, one pixel at a time (docs/output.md):
-// depth is the nearest hit over the pixel's samples; normal, position, albedo, direct,
-// indirect and per-light values are averaged over all samples (misses add zero, so they are
-// premultiplied by coverage like the beauty); the object id is the most frequent one (ties go
-// to the smaller id); variance is that of the pixel's mean beauty, s²/n. Cryptomatte ranks the
-// objects and materials of the pixel's first hits by their share of its samples.
+// Turns per-sample AOV records into film planes (docs/output.md): depth is the nearest hit over
+// the pixel's samples; normal, position, albedo, direct, indirect and per-light values are
+// averaged over all samples (misses add zero, so they are premultiplied by coverage like the
+// beauty); the object id is the most frequent one (ties go to the smaller id); variance is the
+// estimated variance of the pixel's mean beauty (render/pixel_estimate.h). Cryptomatte ranks
+// the objects and materials of the pixel's first hits by their share of its samples.
+//
+// A render adds a pixel's samples pass by pass: while it runs, the film's AOV planes hold sums
+// (depth: the nearest hit so far, 0 for none) and AovTables the id counts; resolveAovs turns
+// them into the planes written out.
 #include <cstdint>
 #include <vector>
 
@@ -12,6 +16,7 @@
 #include "integrator/aov.h"
 #include "integrator/radiance.h"
 #include "render/coverage_table.h"
+#include "render/pixel_estimate.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -33,27 +38,49 @@ struct AovLayout {
   static AovLayout create(const AovSet& set, const Scene& scene, Film& film);
 };
 
+// Each pixel's counts of the object ids and materials its samples saw, kept between passes
+// only for the AOVs that rank them (object id, Cryptomatte).
+struct AovTables {
+  AovTables(const AovLayout& layout, const PixelWindow& window);
+  CoverageTable* objectIds(int x, int y) { return at(objectIds_, x, y); }
+  CoverageTable* cryptoObjects(int x, int y) { return at(cryptoObjects_, x, y); }
+  CoverageTable* cryptoMaterials(int x, int y) { return at(cryptoMaterials_, x, y); }
+  const CoverageTable* objectIds(int x, int y) const { return at(objectIds_, x, y); }
+  const CoverageTable* cryptoObjects(int x, int y) const { return at(cryptoObjects_, x, y); }
+  const CoverageTable* cryptoMaterials(int x, int y) const { return at(cryptoMaterials_, x, y); }
+
+ private:
+  template <class Tables>
+  auto at(Tables& tables, int x, int y) const -> decltype(tables.data()) {
+    if (tables.empty()) return nullptr;
+    return tables.data() + size_t(y - window_.y0) * size_t(window_.width()) +
+           size_t(x - window_.x0);
+  }
+  PixelWindow window_;
+  std::vector<CoverageTable> objectIds_, cryptoObjects_, cryptoMaterials_;
+};
+
+// One pixel's samples of one pass: begin, add each sample, then commit adds them to the film's
+// sums and the pixel's tables.
 class PixelAovs {
  public:
   explicit PixelAovs(const AovLayout& layout) : layout_(layout) {}
   void begin();
   void add(const Radiance& r, const AovSample& s);
-  void end(Film& film, int x, int y) const;
+  void commit(Film& sums, AovTables& tables, int x, int y) const;
 
  private:
-  // Writes the table's first kCryptomatteRanks ranks into the layers from `firstPlane` on.
-  void putCryptomatte(Film& film, int x, int y, size_t firstPlane, const CoverageTable& table,
-                      const std::vector<float>& ids) const;
-
   const AovLayout& layout_;
-  int n_ = 0;
   double minDepth_ = 0;
   bool anyHit_ = false;
   double normal_[3], position_[3], albedo_[3], direct_[3], indirect_[3];
   double lights_[3 * AovSet::kMaxLights];
-  double mean_[3], m2_[3];  // Welford over the beauty
-  std::vector<std::pair<uint32_t, int>> ids_;
+  CoverageTable ids_;                              // object ids
   CoverageTable cryptoObjects_, cryptoMaterials_;  // object ids (from 0) and material indices
 };
+
+// The finished AOV planes of `out` (a film with the same planes as `sums`) for pixel (x, y).
+void resolveAovs(const AovLayout& layout, const Film& sums, const AovTables& tables,
+                 const PixelEstimate& pixel, Film& out, int x, int y);
 
 }  // namespace glint

@@ -17,13 +17,17 @@ class CoverageTable {
   };
 
   void clear() { size_ = 0; }
-  void add(uint32_t id) {
+  void add(uint32_t id, uint32_t count = 1) {
     for (int i = 0; i < size_; ++i)
       if (entries_[i].id == id) {
-        ++entries_[i].count;
+        entries_[i].count += count;
         return;
       }
-    if (size_ < kCapacity) entries_[size_++] = {id, 1};
+    if (size_ < kCapacity) entries_[size_++] = {id, count};
+  }
+  // Adds another table's counts (a pass's to the pixel's).
+  void add(const CoverageTable& other) {
+    for (int i = 0; i < other.size_; ++i) add(other.entries_[i].id, other.entries_[i].count);
   }
   // The entries sorted by count, most first; equal counts by id, smaller first, so the order
   // does not depend on which sample came first.

@@ -15,6 +15,7 @@
 #include <tbb/enumerable_thread_specific.h>
 
 #include "camera/camera.h"
+#include "core/check.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "core/memory.h"
@@ -40,12 +41,29 @@ struct FrameContext {
   const Scene& scene;
   const Accelerator& accel;
   const RenderOptions& opt;
-  Film& film;
   const Camera& camera;
   const CameraSampling& cameraSampling;
   const Sampler& sampler;
   const AovLayout& aovLayout;
   std::atomic<int>& loggedNonfinite;
+  // The state passes leave, one entry per pixel of the window (row-major), and the AOV sums.
+  std::vector<PixelEstimate>& estimates;
+  Film& aovSums;
+  AovTables& aovTables;
+
+  PixelEstimate& estimate(int x, int y) const {
+    const PixelWindow& w = aovSums.window();
+    return estimates[size_t(y - w.y0) * size_t(w.width()) + size_t(x - w.x0)];
+  }
+};
+
+// The pass being rendered: the samples per pixel it brings pixels up to, which pixels take
+// part, and when a time limit stops it.
+struct PassContext {
+  int end = 0;
+  const std::vector<uint8_t>& sampled;  // per pixel of the window, as FrameContext::estimates
+  std::optional<std::chrono::steady_clock::time_point> deadline;
+  std::atomic<bool>& deadlinePassed;
 };
 
 // Shades a chunk of camera samples with the production kernel: their rays traced as one
@@ -74,150 +92,211 @@ struct ReferenceShading {
   }
 };
 
-// Whether a cancel was asked for; polled between chunks, so a render stops within one chunk of
-// samples per thread at any spp, not at the end of a tile.
-bool cancelled(const RenderOptions& opt) {
-  return opt.cancel && opt.cancel->load(std::memory_order_relaxed);
+// Whether a cancel was asked for, or the time limit has passed; polled between chunks, so a
+// render stops within one chunk of samples per thread at any spp, not at the end of a tile.
+bool stopped(const RenderOptions& opt, const PassContext& pass) {
+  if (opt.cancel && opt.cancel->load(std::memory_order_relaxed)) return true;
+  if (!pass.deadline) return false;
+  if (pass.deadlinePassed.load(std::memory_order_relaxed)) return true;
+  if (std::chrono::steady_clock::now() < *pass.deadline) return false;
+  pass.deadlinePassed = true;
+  return true;
 }
 
-// One tile, its camera samples shaded in chunks by `shade` (ProductionShading or
-// ReferenceShading). AOV records are made only when AOVs are asked for. Returns false when a
-// cancel stopped it: the pixel being summed then, and those after it, stay unrendered.
+// One pass over one tile: each pixel that takes part gets its samples from where it stands up
+// to the pass's end, half 0's then half 1's, made and shaded in chunks by `shade`
+// (ProductionShading or ReferenceShading). A chunk holds several pixels' samples at low spp and
+// a run of one pixel's at high spp; a pixel's new state is kept only once all its samples of
+// the pass are in, so a stop leaves every pixel at the end of a pass. AOV records are made only
+// when AOVs are asked for. Returns false when a stop cut the tile short.
 template <class Shading>
-bool renderTile(const FrameContext& f, Shading& shade, const PixelWindow& tile,
-                RayCounters& counters) {
-  const RenderSettings& rs = f.scene.render;
+bool renderTilePass(const FrameContext& f, const PassContext& pass, Shading& shade,
+                    const PixelWindow& tile, RayCounters& counters) {
   const bool aovs = f.opt.aovs.any();
-  const bool transparent = rs.transparentBackground;
+  const bool transparent = f.scene.render.transparentBackground;
   const bool aovSamples = f.opt.aovs.needsSamples();
   const Vec3f viewAxis = -f.camera.w();
   PixelAovs pixelAovs(f.aovLayout);
-  // Camera samples are made and shaded in chunks. Below kCameraChunk spp a chunk holds several
-  // whole pixels along the row; from it on, a run of one pixel's samples. Samples are still
-  // summed per pixel in index order. The arrays live per tile: declared per pixel, their
-  // initialisation cost 13 % of a 1-spp render.
+  // The arrays live per tile: declared per pixel, their initialisation cost 13 % of a 1-spp
+  // render.
   Ray rays[kCameraChunk];
   SampleKey keys[kCameraChunk];
   Radiance radiance[kCameraChunk];
+  bool firstOfPixel[kCameraChunk], lastOfPixel[kCameraChunk];
   // Written only when AOVs are asked for (cleared per sample, they cost 264 bytes of stores
   // each).
   UninitializedArray<AovSample, kCameraChunk> records;
   AovSample* recordOf[kCameraChunk];
   CameraSampling::Points cameraPoints;
-  const int pixelsPerChunk = std::max(1, kCameraChunk / rs.spp);
-  const int samplesPerChunk = std::min(kCameraChunk, rs.spp);
-  const double inv = 1.0 / rs.spp;
-  double sum[4] = {0, 0, 0, 0};  // the pixel being summed
-  for (int y = tile.y0; y < tile.y1; ++y)
-    for (int x0 = tile.x0; x0 < tile.x1; x0 += pixelsPerChunk) {
-      const int pixels = std::min(pixelsPerChunk, tile.x1 - x0);
-      // Samples [first, first + runLength) of each of the pixels; several pixels only when
-      // their samples all fit (runLength = spp).
-      for (int first = 0; first < rs.spp; first += samplesPerChunk) {
-        if (cancelled(f.opt)) return false;
-        const int runLength = std::min(samplesPerChunk, rs.spp - first);
-        const int count = pixels * runLength;
-        for (int p = 0; p < pixels; ++p)
-          f.cameraSampling.pixelRays(f.sampler, x0 + p, y, first, runLength, keys + p * runLength,
-                                     rays + p * runLength, cameraPoints);
-        if (aovSamples)
-          for (int i = 0; i < count; ++i) {
-            records[i] = AovSample{};
-            records[i].viewAxis = viewAxis;
-            recordOf[i] = &records[i];
-          }
-        shade(rays, keys, count, radiance, aovSamples ? recordOf : nullptr, counters);
-        for (int p = 0; p < pixels; ++p) {
-          const int x = x0 + p;
-          if (first == 0) {
-            sum[0] = sum[1] = sum[2] = sum[3] = 0;
-            if (aovs) pixelAovs.begin();
-          }
-          for (int i = p * runLength; i < (p + 1) * runLength; ++i) {
-            Radiance& r = radiance[i];
-            if (f.opt.sampleHook) f.opt.sampleHook(x, y, r);
-            if (!r.L.isFinite()) r.L = {}, r.valid = false;
-            // The beauty is premultiplied: the background is opaque, or, on a transparent
-            // film, a miss adds neither colour nor coverage (docs/output.md, Alpha).
-            if (!transparent)
-              r.alpha = 1;
-            else if (r.alpha == 0)
-              r.L = {};
-            if (aovs) pixelAovs.add(r, aovSamples ? records[i] : kNoRecord);
-            sum[3] += r.alpha;
-            if (!r.valid) {
-              // A non-finite sample never reaches the film: it counts as black.
-              ++counters.nonfiniteSamples;
-              if (f.loggedNonfinite.fetch_add(1) < kMaxLoggedNonfinite)
-                log::warning("non-finite sample at pixel (" + std::to_string(x) + ", " +
-                             std::to_string(y) + ") sample " + std::to_string(keys[i].index));
-              continue;
-            }
-            sum[0] += r.L.r;
-            sum[1] += r.L.g;
-            sum[2] += r.L.b;
-          }
-          if (first + runLength < rs.spp) continue;  // the pixel goes on in the next chunk
-          f.film.setPixel(x, y, sum[0] * inv, sum[1] * inv, sum[2] * inv, sum[3] * inv);
-          if (aovs) pixelAovs.end(f.film, x, y);
-        }
+  PixelEstimate pixel;  // the state of the pixel being sampled, kept when its last sample is in
+  int count = 0;        // samples in the chunk
+  const auto flush = [&]() {
+    if (count == 0) return true;
+    if (stopped(f.opt, pass)) return false;
+    if (aovSamples)
+      for (int i = 0; i < count; ++i) {
+        records[i] = AovSample{};
+        records[i].viewAxis = viewAxis;
+        recordOf[i] = &records[i];
+      }
+    shade(rays, keys, count, radiance, aovSamples ? recordOf : nullptr, counters);
+    for (int i = 0; i < count; ++i) {
+      const SampleKey& key = keys[i];
+      if (firstOfPixel[i]) {
+        pixel = f.estimate(key.px, key.py);
+        if (aovs) pixelAovs.begin();
+      }
+      Radiance& r = radiance[i];
+      if (f.opt.sampleHook) f.opt.sampleHook(key.px, key.py, r);
+      if (!r.L.isFinite()) r.L = {}, r.valid = false;
+      // The beauty is premultiplied: the background is opaque, or, on a transparent film, a
+      // miss adds neither colour nor coverage (docs/output.md, Alpha).
+      if (!transparent)
+        r.alpha = 1;
+      else if (r.alpha == 0)
+        r.L = {};
+      if (aovs) pixelAovs.add(r, aovSamples ? records[i] : kNoRecord);
+      if (!r.valid) {
+        // A non-finite sample never reaches the film: it counts as black.
+        ++counters.nonfiniteSamples;
+        if (f.loggedNonfinite.fetch_add(1) < kMaxLoggedNonfinite)
+          log::warning("non-finite sample at pixel (" + std::to_string(key.px) + ", " +
+                       std::to_string(key.py) + ") sample " + std::to_string(key.index) +
+                       " of half " + std::to_string(key.half));
+      }
+      pixel.half[key.half].add(r.L, r.alpha);
+      if (lastOfPixel[i]) {
+        f.estimate(key.px, key.py) = pixel;
+        if (aovs) pixelAovs.commit(f.aovSums, f.aovTables, key.px, key.py);
       }
     }
-  return true;
+    count = 0;
+    return true;
+  };
+  const PixelWindow& window = f.aovSums.window();
+  for (int y = tile.y0; y < tile.y1; ++y)
+    for (int x = tile.x0; x < tile.x1; ++x) {
+      if (!pass.sampled[size_t(y - window.y0) * size_t(window.width()) + size_t(x - window.x0)])
+        continue;
+      const int64_t taken = f.estimate(x, y).samples();
+      const uint64_t pixelKey = f.sampler.pixelKey(x, y);
+      bool first = true;
+      for (int half = 0; half < 2; ++half)
+        for (int j = halfSampleCount(taken, half), end = halfSampleCount(pass.end, half);
+             j < end;) {
+          if (count == kCameraChunk && !flush()) return false;
+          const int run = std::min(end - j, kCameraChunk - count);
+          for (int i = 0; i < run; ++i) {
+            keys[count + i] = SampleKey(&f.sampler, x, y, j + i, pixelKey, half);
+            firstOfPixel[count + i] = first && i == 0;
+            lastOfPixel[count + i] = false;
+          }
+          first = false;
+          f.cameraSampling.rays(keys + count, run, rays + count, cameraPoints);
+          count += run;
+          j += run;
+        }
+      if (!first) lastOfPixel[count - 1] = true;
+    }
+  return flush();
 }
 
 // The tiles of one render, and what their loop shares besides the frame.
 struct TileWork {
   const std::vector<PixelWindow>& tiles;
-  std::vector<RayCounters>& counters;  // per tile
+  std::vector<RayCounters>& counters;  // per tile, over all passes
   Progress& progress;
-  std::atomic<bool>& skipped;  // set when a cancel left tiles out
+  std::atomic<bool>& stopped;  // set when a cancel or the time limit cut the pass short
   int threads;
 };
 
-// Runs tile(i, counters) for every tile on the scheduler, until a cancel stops them.
+// Runs tile(i, counters) for every tile on the scheduler, until a stop.
 template <class RenderOneTile>
-void forEachTile(const FrameContext& f, TileWork& work, RenderOneTile&& tile) {
+void forEachTile(const FrameContext& f, const PassContext& pass, TileWork& work,
+                 RenderOneTile&& tile) {
   runTiles(work.tiles, work.threads, [&](size_t i) {
-    if (cancelled(f.opt)) {
-      work.skipped = true;
+    if (stopped(f.opt, pass)) {
+      work.stopped = true;
       return;
     }
     // Counted on this thread's stack: neighbouring tiles' counters share cache lines, which
     // two threads would otherwise write in their inner loops.
     RayCounters counters;
     const bool complete = tile(i, counters);
-    work.counters[i] = counters;
+    work.counters[i] += counters;
     if (!complete) {
-      work.skipped = true;
+      work.stopped = true;
       return;
     }
-    work.progress.advance(work.tiles[i].area(), counters.total());
+    work.progress.advance(static_cast<int64_t>(counters.camera), counters.total());
   });
 }
 
 // Every tile with the production kernel. A thread keeps one scratch for all the tiles it
 // renders: made per tile, its allocation, clearing and page faults cost 5 % of a render's time
 // at 32-pixel tiles and 18 % at 8 (default scene, one thread).
-void renderTilesProduction(const FrameContext& f, TileWork& work) {
+class ProductionTiles {
+ public:
+  ProductionTiles(const FrameContext& f) : f_(f), kernel_(f.scene, f.accel) {}
+  void render(const PassContext& pass, TileWork& work) {
+    forEachTile(f_, pass, work, [&](size_t i, RayCounters& counters) {
+      std::unique_ptr<Scratch>& scratch = scratches_.local();
+      if (!scratch) scratch = std::make_unique<Scratch>();
+      ProductionShading shade{kernel_, f_.accel, *scratch, {}};
+      return renderTilePass(f_, pass, shade, work.tiles[i], counters);
+    });
+  }
+
+ private:
   using Scratch = BatchedKernel::Scratch;
-  const BatchedKernel kernel(f.scene, f.accel);  // const: shared by the threads
-  tbb::enumerable_thread_specific<std::unique_ptr<Scratch>> scratches;
-  forEachTile(f, work, [&](size_t i, RayCounters& counters) {
-    std::unique_ptr<Scratch>& scratch = scratches.local();
-    if (!scratch) scratch = std::make_unique<Scratch>();
-    ProductionShading shade{kernel, f.accel, *scratch, {}};
-    return renderTile(f, shade, work.tiles[i], counters);
-  });
-}
+  const FrameContext& f_;
+  const BatchedKernel kernel_;  // const: shared by the threads
+  tbb::enumerable_thread_specific<std::unique_ptr<Scratch>> scratches_;
+};
 
 // Every tile with the reference integrator (beauty only, no AOVs).
-void renderTilesReference(const FrameContext& f, TileWork& work) {
-  const ReferenceIntegrator integrator(f.scene, f.accel);
-  forEachTile(f, work, [&](size_t i, RayCounters& counters) {
-    ReferenceShading shade{integrator};
-    return renderTile(f, shade, work.tiles[i], counters);
-  });
+class ReferenceTiles {
+ public:
+  ReferenceTiles(const FrameContext& f) : f_(f), integrator_(f.scene, f.accel) {}
+  void render(const PassContext& pass, TileWork& work) {
+    forEachTile(f_, pass, work, [&](size_t i, RayCounters& counters) {
+      ReferenceShading shade{integrator_};
+      return renderTilePass(f_, pass, shade, work.tiles[i], counters);
+    });
+  }
+
+ private:
+  const FrameContext& f_;
+  const ReferenceIntegrator integrator_;
+};
+
+// The frame as it stands: each pixel's mean and the AOVs' finished values.
+Film resolveFrame(const FrameContext& f) {
+  Film out = f.aovSums;
+  const PixelWindow& w = out.window();
+  for (int y = w.y0; y < w.y1; ++y)
+    for (int x = w.x0; x < w.x1; ++x) {
+      const PixelEstimate& pixel = f.estimate(x, y);
+      double rgba[4];
+      pixel.mean(rgba);
+      out.setPixel(x, y, rgba[0], rgba[1], rgba[2], rgba[3]);
+      if (f.opt.aovs.any()) resolveAovs(f.aovLayout, f.aovSums, f.aovTables, pixel, out, x, y);
+    }
+  return out;
+}
+
+// The statistics of the frame as it stands, besides the rays and time.
+void describeSamples(const std::vector<PixelEstimate>& estimates, SamplerKind sampler,
+                     RenderStats& stats) {
+  stats.sampler = sampler;
+  stats.estimated = estimateFrameError(estimates, sampler);
+  int64_t fewest = std::numeric_limits<int64_t>::max(), most = 0;
+  for (const PixelEstimate& p : estimates) {
+    fewest = std::min(fewest, p.samples());
+    most = std::max(most, p.samples());
+  }
+  stats.minPixelSpp = estimates.empty() ? 0 : static_cast<int>(fewest);
+  stats.maxPixelSpp = static_cast<int>(most);
 }
 
 }  // namespace
@@ -232,8 +311,7 @@ bool parseIntegratorKind(const std::string& name, IntegratorKind& out) {
   return true;
 }
 
-void checkSampleSets(const Scene& scene) {
-  const int64_t spp = scene.render.spp;
+void checkSampleSets(const Scene& scene, int64_t spp) {
   const std::string limit = "the sampler's limit of " + std::to_string(kMaxSampleSet);
   if (spp > kMaxSampleSet)
     throw UsageError("spp " + std::to_string(spp) + " is more than " + limit);
@@ -257,50 +335,108 @@ void checkFrameFits(int64_t pixels, size_t channels, uint64_t availableBytes) {
                    " is available: render it in pieces with --crop, or on a farm");
 }
 
-RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt) {
-  const auto start = std::chrono::steady_clock::now();
+RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt,
+                         const PassCallback& onPass) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  const auto secondsSince = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
   const RenderSettings& rs = scene.render;
-  checkSampleSets(scene);
+  const PassPlan plan = PassPlan::make(rs.spp, rs.sampler, opt.sampling);
+  checkSampleSets(scene, plan.maxSpp);
   const PixelWindow window = opt.crop.value_or(PixelWindow{0, rs.width, 0, rs.height});
   {
-    // The AOV planes' channels, from the layout itself on a one-pixel film.
+    // The AOV planes' channels, from the layout itself on a one-pixel film; and the state a
+    // pixel keeps between passes, in doubles.
     Film probe(1, 1, PixelWindow{0, 1, 0, 1});
     AovLayout::create(opt.aovs, scene, probe);
-    size_t channels = 4;
-    for (const FilmPlane& plane : probe.planes()) channels += plane.channels.size();
+    size_t channels = 4 + sizeof(PixelEstimate) / 12;
+    for (const FilmPlane& plane : probe.planes()) channels += 2 * plane.channels.size();
     checkFrameFits(window.area(), channels, availableMemoryBytes());
   }
-  Film film(rs.width, rs.height, window);
+  Film aovSums(rs.width, rs.height, window);
   const Camera camera(scene.cameraDesc, rs.width, rs.height);
-  const Sampler sampler(rs.sampler, rs.spp, rs.seed);
+  const Sampler sampler(plan.sampler, plan.maxSpp, rs.seed);
   // AOV work happens only when AOVs are asked for (leave out what is not needed).
-  const AovLayout aovLayout = AovLayout::create(opt.aovs, scene, film);
+  const AovLayout aovLayout = AovLayout::create(opt.aovs, scene, aovSums);
   if (opt.integrator == IntegratorKind::Reference && opt.aovs.any())
     throw UsageError("the reference integrator renders the beauty only: drop --aov");
+  AovTables aovTables(aovLayout, window);
+  std::vector<PixelEstimate> estimates(static_cast<size_t>(window.area()));
+  if (opt.resumeFrom) {
+    GLINT_CHECK(opt.resumeFrom->size() == estimates.size());
+    if (opt.aovs.needsSamples())
+      throw UsageError(
+          "--resume continues the beauty and its variance only: the other AOVs' "
+          "sums are not kept with the frame");
+    estimates = *opt.resumeFrom;
+  }
 
   const int threads = opt.threads > 0 ? opt.threads : defaultThreadCount();
   const int tileSize = effectiveTileSize(window, opt.tileSize, threads);
   const std::vector<PixelWindow> tiles = makeTiles(window, tileSize, opt.tileOrder);
-  std::atomic<bool> skipped{false};
   std::vector<RayCounters> tileCounters(tiles.size());
-  Progress progress(window.area(), opt.progress);
+  Progress progress(window.area() * plan.maxSpp, opt.progress);
   std::atomic<int> loggedNonfinite{0};
   const CameraSampling cameraSampling(scene, camera);
-  const FrameContext frame{scene,          accel,   opt,       film,           camera,
-                           cameraSampling, sampler, aovLayout, loggedNonfinite};
-
-  TileWork work{tiles, tileCounters, progress, skipped, threads};
+  const FrameContext frame{scene,     accel,           opt,       camera,  cameraSampling, sampler,
+                           aovLayout, loggedNonfinite, estimates, aovSums, aovTables};
+  std::optional<ProductionTiles> production;
+  std::optional<ReferenceTiles> reference;
   if (opt.integrator == IntegratorKind::Reference)
-    renderTilesReference(frame, work);
+    reference.emplace(frame);
   else
-    renderTilesProduction(frame, work);
-  progress.finish();
+    production.emplace(frame);
 
-  RenderResult result{std::move(film), {}, skipped.load(), tileSize};
-  for (const RayCounters& c : tileCounters) result.stats.rays += c;
-  result.stats.integrator = opt.integrator;
-  result.stats.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  RenderResult result{Film(rs.width, rs.height, window), {}, false, tileSize};
+  const auto statsSoFar = [&] {
+    result.stats.rays = {};
+    for (const RayCounters& c : tileCounters) result.stats.rays += c;
+    result.stats.integrator = opt.integrator;
+    result.stats.seconds = secondsSince(start);
+    describeSamples(estimates, plan.sampler, result.stats);
+  };
+  std::vector<uint8_t> sampled(estimates.size(), 1);
+  std::atomic<bool> deadlinePassed{false};
+  for (size_t k = 0; k < plan.ends.size(); ++k) {
+    const int end = plan.ends[k];
+    int64_t pixels = 0;
+    for (size_t p = 0; p < estimates.size(); ++p)
+      pixels += sampled[p] = plan.needsSamples(estimates[p], end);
+    if (pixels == 0) continue;  // every pixel is past this pass (resumed), or met its target
+    // The time limit applies from the second pass on: the first is what makes a frame.
+    std::optional<Clock::time_point> deadline;
+    if (plan.timeLimitSeconds > 0 && k > 0)  // a limit past 30 years is none (no overflow)
+      deadline = start + std::chrono::duration_cast<Clock::duration>(
+                             std::chrono::duration<double>(std::min(plan.timeLimitSeconds, 1e9)));
+    const PassContext pass{end, sampled, deadline, deadlinePassed};
+    std::atomic<bool> stopped{false};
+    TileWork work{tiles, tileCounters, progress, stopped, threads};
+    if (reference)
+      reference->render(pass, work);
+    else
+      production->render(pass, work);
+    if (stopped) {
+      result.stats.timeLimitReached = deadlinePassed.load();
+      result.partial = !result.stats.timeLimitReached;
+      break;
+    }
+    statsSoFar();
+    int64_t samples = 0;
+    for (const PixelEstimate& p : estimates) samples += p.samples();
+    result.stats.passes.push_back({end, double(samples) / double(estimates.size()),
+                                   result.stats.seconds, result.stats.estimated, pixels});
+    if (onPass && k + 1 < plan.ends.size()) {
+      result.film = resolveFrame(frame);
+      result.estimates = estimates;
+      onPass(result);
+    }
+  }
+  progress.finish();
+  result.film = resolveFrame(frame);
+  statsSoFar();
+  result.estimates = std::move(estimates);
   return result;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // Renders a scene into a film: camera samples per pixel through the integrator, box filter,
-// non-finite samples counted and dropped, tiles on all cores, progress on stderr.
+// non-finite samples counted and dropped, tiles on all cores, progress on stderr. The samples
+// come in passes (render/pass_plan.h), after each of which the frame knows its estimated error.
 #include <algorithm>
 #include <atomic>
 #include <functional>
@@ -12,6 +13,7 @@
 #include "integrator/aov.h"
 #include "integrator/batched_kernel.h"
 #include "integrator/ray_counters.h"
+#include "render/pass_plan.h"
 #include "render/tile_scheduler.h"
 #include "scene/scene.h"
 
@@ -27,9 +29,14 @@ struct RenderOptions {
   std::optional<PixelWindow> crop;  // default: the full frame
   bool progress = true;
   // When set to true (by a signal handler), each thread stops after its chunk of samples in
-  // flight, and the result is marked partial. Unrendered pixels, and a pixel whose samples were
-  // not all taken, stay at zero, alpha 0.
+  // flight, and the result is marked partial. A pixel keeps the passes it finished; one that
+  // finished none stays at zero, alpha 0.
   const std::atomic<bool>* cancel = nullptr;
+  // Adaptive sampling, a time limit, bounds on a pixel's samples (render/pass_plan.h).
+  SamplingRequest sampling;
+  // The state a render of the same frame and settings left (render/resume_state.h): its
+  // pixels go on from there. Null: from nothing.
+  const std::vector<PixelEstimate>* resumeFrom = nullptr;
   AovSet aovs;  // none by default
   // The production kernel (integrator/batched_kernel.h), or its oracle, the depth-first
   // reference integrator (integrator/reference.h: `--integrator reference`, beauty only).
@@ -102,24 +109,39 @@ class CameraSampling {
   bool openShutter_;
 };
 
+// One finished pass: where the frame stood when it ended.
+struct PassRecord {
+  int spp = 0;            // the samples per pixel the pass brought pixels up to
+  double meanSpp = 0;     // the samples per pixel taken so far, averaged over the frame
+  double seconds = 0;     // since the render began
+  FrameError estimated;   // the frame's estimated error after the pass
+  int64_t pixelsSampled;  // the pixels the pass added samples to
+};
+
 struct RenderStats {
   double seconds = 0;
   RayCounters rays;
   IntegratorKind integrator = IntegratorKind::Production;
+  SamplerKind sampler = SamplerKind::Stratified;  // the one used (PassPlan::sampler)
+  std::vector<PassRecord> passes;                 // the finished ones
+  FrameError estimated;                           // of the frame as written
+  int minPixelSpp = 0, maxPixelSpp = 0;           // the fewest and most samples of a pixel
+  bool timeLimitReached = false;                  // a pass was cut short by --time-limit
 };
 
 struct RenderResult {
   Film film;
   RenderStats stats;
-  bool partial = false;  // cancelled before every tile was rendered
+  bool partial = false;  // cancelled before every pixel had the samples the plan gave it
   int tileSize = 0;      // the effective tile edge
+  std::vector<PixelEstimate> estimates;  // each pixel's state, to resume from
 };
 
-// Throws UsageError, naming the numbers and the light, when one pixel's set of samples (its spp,
-// or spp × an area light's samples) is larger than kMaxSampleSet (core/sampler.h). The loader
-// bounds spp alone; the product needs the light and a --spp override, so renderScene checks it
-// before anything renders.
-void checkSampleSets(const Scene& scene);
+// Throws UsageError, naming the numbers and the light, when one pixel's set of samples (`spp`,
+// the most a pixel may take, or spp × an area light's samples) is larger than kMaxSampleSet
+// (core/sampler.h). The loader bounds spp alone; the product needs the light and a --spp or
+// --max-spp override, so renderScene checks it before anything renders.
+void checkSampleSets(const Scene& scene, int64_t spp);
 
 // Throws UsageError when a frame of `pixels` pixels with `channels` film channels (RGBA and
 // the AOVs') would not fit in `availableBytes`: the film holds doubles, and writing it makes
@@ -128,6 +150,11 @@ void checkSampleSets(const Scene& scene);
 // availableBytes 0 means unknown: no check.
 void checkFrameFits(int64_t pixels, size_t channels, uint64_t availableBytes);
 
-RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt);
+// Called after each finished pass with the frame so far (its film resolved, its stats up to
+// that pass): previews. Runs on the calling thread, between passes.
+using PassCallback = std::function<void(const RenderResult& soFar)>;
+
+RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt,
+                         const PassCallback& onPass = {});
 
 }  // namespace glint

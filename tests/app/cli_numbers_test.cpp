@@ -132,6 +132,8 @@ TEST(CliNumbers, HostileValuesOfEveryNumericOptionAreRefusedOrUsed) {
   const std::vector<std::string> bench = {"bench",         scene, "--random-rays", "256",
                                           "--render-runs", "0",   "--accel",       "bvh"};
   const std::vector<std::string> plan = {"plan", scene};
+  std::vector<std::string> adaptive = render;  // 8 spp: room for adaptive sampling's passes
+  adaptive.insert(adaptive.end(), {"--spp", "8"});
   std::vector<std::string> cropLast = render;
   cropLast.insert(cropLast.end(), {"--crop", "0", "4", "0"});
   const std::vector<NumericOption> options = {
@@ -143,6 +145,12 @@ TEST(CliNumbers, HostileValuesOfEveryNumericOptionAreRefusedOrUsed) {
       {render, "--height"},
       {render, "--max-depth"},
       {render, "--tile-size"},
+      {adaptive, "--target-rmse"},
+      {adaptive, "--target-relmse"},
+      {adaptive, "--time-limit"},
+      {adaptive, "--min-spp"},
+      {adaptive, "--max-spp"},
+      {adaptive, "--preview-every"},
       {render, "--crop", "", "", {"4", "0", "4"}},  // X0
       {cropLast, ""},                               // Y1, after "--crop 0 4 0"
       {{"validate", scene, "--no-brute"}, "--rays"},
@@ -203,8 +211,10 @@ TEST(CliNumbers, HostileValuesOfEveryNumericOptionAreRefusedOrUsed) {
       if (r.exitCode == 2) {
         EXPECT_FALSE(r.output.empty()) << "glint" << shown << ": no message";
       }
-      const bool realValued =
-          o.option == "--threshold" || o.option == "--min-agreement" || o.option == "--ray";
+      const bool realValued = o.option == "--threshold" || o.option == "--min-agreement" ||
+                              o.option == "--ray" || o.option == "--target-rmse" ||
+                              o.option == "--target-relmse" || o.option == "--time-limit" ||
+                              o.option == "--preview-every";
       if (neverValid(v, realValued) && o.option != "--scene-hash") {
         EXPECT_EQ(r.exitCode, 2) << "glint" << shown << " accepted " << v << "\n" << r.output;
       }

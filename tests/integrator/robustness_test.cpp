@@ -51,10 +51,10 @@ TEST(SampleSets, SetsBeyondTheSamplersLimitAreRefusedBeforeRendering) {
                {"type": "quad", "corner": [0, 5, 0], "edge1": [1, 0, 0], "edge2": [0, 0, 1],
                 "samples": 256}],
     "objects": []})");
-  EXPECT_NO_THROW(checkSampleSets(s));  // 2^20 × 2^8 = 2^28
+  EXPECT_NO_THROW(checkSampleSets(s, s.render.spp));  // 2^20 × 2^8 = 2^28
   s.render.spp = 1048577;
   try {
-    checkSampleSets(s);
+    checkSampleSets(s, s.render.spp);
     FAIL() << "accepted";
   } catch (const UsageError& e) {
     EXPECT_NE(std::string(e.what()).find("spp 1048577 × the 256 samples of lights[1]"),
@@ -69,9 +69,9 @@ TEST(SampleSets, SetsBeyondTheSamplersLimitAreRefusedBeforeRendering) {
   // spp alone: 2^28 passes (with no area light), 2^28 + 1 does not.
   s.lights.resize(1);
   s.render.spp = 1 << 28;
-  EXPECT_NO_THROW(checkSampleSets(s));
+  EXPECT_NO_THROW(checkSampleSets(s, s.render.spp));
   s.render.spp = (1 << 28) + 1;
-  EXPECT_THROW(checkSampleSets(s), UsageError);
+  EXPECT_THROW(checkSampleSets(s, s.render.spp), UsageError);
 }
 
 TEST(FrameMemory, AFrameThatCannotFitIsRefusedWithItsSize) {

@@ -94,8 +94,11 @@ TEST(Aov, EveryAovRoundTripsWithExactValues) {
 
 TEST(Aov, VarianceOfAHalfCoveredPixel) {
   // One pixel, 2 × 2 regular samples at (±0.25, ±0.25); a white (ambient-only, L = 1) quad
-  // covers x > 0, the background is 0: samples 1, 0, 1, 0. Mean 0.5, sample variance
-  // 4·0.25/3 = 1/3, variance of the mean 1/12. Alpha 0.5; the id of the hits is 1.
+  // covers x > 0, the background is 0. The render's two halves take alternate cells of the
+  // grid: half 0 cells 0 and 2 (x < 0: 0, 0), half 1 cells 1 and 3 (x > 0: 1, 1). Mean 0.5;
+  // the variance of the mean from the halves' means 0 and 1: (2·2/4²)·(0 − 1)² = 1/4. (A
+  // regular grid has no randomness: this measures how its two interleaved grids disagree, and
+  // the frame reports no estimated error.) Alpha 0.5; the id of the hits is 1.
   const std::string scene = test::writeTemp("var.json", R"({
     "render": {"width": 1, "height": 1, "spp": 4, "sampler": "regular", "ambient": [1,1,1],
                "transparent_background": true},
@@ -109,13 +112,13 @@ TEST(Aov, VarianceOfAHalfCoveredPixel) {
   const auto ch = readChannels(out);
   EXPECT_FLOAT_EQ(ch.at("R")[0], 0.5f);
   EXPECT_FLOAT_EQ(ch.at("A")[0], 0.5f);
-  EXPECT_NEAR(ch.at("Variance.R")[0], 1.0 / 12, 1e-7);
+  EXPECT_NEAR(ch.at("Variance.R")[0], 0.25, 1e-7);
   EXPECT_EQ(ch.at("id")[0], 1.0f);
 }
 
 TEST(Aov, ValuesBeyondTheirChannelTypeAreClampedNeverInfinite) {
   // The half-covered pixel above with L = 1e20: mean 5e19 (beyond half's 65504), variance of
-  // the mean (4·(5e19)²/3)/4 = 8.3e38 (beyond float's 3.4e38). Written as they are, they would
+  // the mean (1e20)²/4 = 2.5e39 (beyond float's 3.4e38). Written as they are, they would
   // be +Inf; each is clamped to its type's largest finite value, and counted.
   const std::string scene = test::writeTemp("hot.json", R"({
     "render": {"width": 1, "height": 1, "spp": 4, "sampler": "regular", "ambient": [1e20,1e20,1e20],

@@ -1,0 +1,115 @@
+#include "render/resume_state.h"
+
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfMultiPartInputFile.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+
+#include "core/error.h"
+#include "core/sampler.h"
+#include "film/exr_input.h"
+#include "film/image_limits.h"
+
+namespace glint {
+
+namespace {
+
+constexpr int kDoublesPerHalf = 7;                         // mean ×3, m2 ×3, alpha
+constexpr int kChannelsPerHalf = 2 * kDoublesPerHalf + 1;  // + the count
+constexpr int kChannels = 2 * kChannelsPerHalf;
+
+std::string channelName(int i) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%s.%02d", kResumeLayer, i);
+  return name;
+}
+
+double* doublesOf(HalfEstimate& h, int k) {
+  return k < 3 ? &h.mean[k] : k < 6 ? &h.m2[k - 3] : &h.alpha;
+}
+
+}  // namespace
+
+void addResumeState(Film& film, const std::vector<PixelEstimate>& estimates) {
+  std::vector<std::string> names;
+  for (int i = 0; i < kChannels; ++i) names.push_back(channelName(i));
+  const size_t plane = film.addPlane(kResumeLayer, names, true);
+  const PixelWindow& w = film.window();
+  size_t p = 0;
+  for (int y = w.y0; y < w.y1; ++y)
+    for (int x = w.x0; x < w.x1; ++x, ++p) {
+      PixelEstimate e = estimates[p];
+      double v[kChannels];
+      for (int h = 0; h < 2; ++h) {
+        double* out = v + h * kChannelsPerHalf;
+        for (int k = 0; k < kDoublesPerHalf; ++k) {
+          const auto bits = std::bit_cast<uint64_t>(*doublesOf(e.half[h], k));
+          out[2 * k] = double(bits >> 32);
+          out[2 * k + 1] = double(bits & 0xffffffffu);
+        }
+        out[2 * kDoublesPerHalf] = double(e.half[h].count);
+      }
+      film.setPlanePixel(plane, x, y, v);
+    }
+}
+
+std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelWindow& window,
+                                           int fullWidth, int fullHeight, int64_t maxSamples) {
+  // Not noted as an input file: -o may name the partial itself, which the continued frame
+  // replaces atomically once it is complete.
+  const auto file = openExr(path);
+  const Imf::Header& header = file->header(0);
+  const ExrWindow w = exrWindow(path, header);
+  if (w.x != window.x0 || w.y != window.y0 || w.width != window.width() ||
+      w.height != window.height() || w.fullWidth != fullWidth || w.fullHeight != fullHeight)
+    throw UsageError(path + " covers pixels [" + std::to_string(w.x) + "," +
+                     std::to_string(w.x + w.width) + ") x [" + std::to_string(w.y) + "," +
+                     std::to_string(w.y + w.height) + ") of a " + std::to_string(w.fullWidth) +
+                     "x" + std::to_string(w.fullHeight) + " frame: --resume continues the same " +
+                     "frame and crop only");
+  std::vector<ExrSlice> slices;
+  for (int i = 0; i < kChannels; ++i) {
+    const Imf::Channel* c = header.channels().findChannel(channelName(i));
+    if (!c || c->type != Imf::UINT)
+      throw UsageError(path + " holds no resume state (" + channelName(i) +
+                       "): only a frame Glint wrote with --resumable, or a partial, preview "
+                       "or time-limited one, can be resumed");
+    slices.push_back({channelName(i), Imf::UINT, sizeof(uint32_t) * size_t(i)});
+  }
+  const size_t pixelBytes = sizeof(uint32_t) * kChannels;
+  checkImageFits(path, "data window", w.width, w.height, double(pixelBytes));
+  std::vector<uint32_t> words;
+  readPixelsInBands(path, *file, 0, slices, pixelBytes, words);
+  std::vector<PixelEstimate> out(size_t(window.area()));
+  for (size_t p = 0; p < out.size(); ++p) {
+    const uint32_t* in = words.data() + p * kChannels;
+    for (int h = 0; h < 2; ++h) {
+      HalfEstimate& half = out[p].half[h];
+      const uint32_t* hw = in + h * kChannelsPerHalf;
+      for (int k = 0; k < kDoublesPerHalf; ++k)
+        *doublesOf(half, k) = std::bit_cast<double>(uint64_t{hw[2 * k]} << 32 | hw[2 * k + 1]);
+      const uint32_t count = hw[2 * kDoublesPerHalf];
+      bool valid = count <= uint64_t(maxSamples) && half.alpha >= 0 && half.alpha <= count;
+      for (int k = 0; k < kDoublesPerHalf; ++k) valid = valid && std::isfinite(*doublesOf(half, k));
+      for (double m2 : half.m2) valid = valid && m2 >= 0;
+      if (!valid)
+        throw UsageError(path + ": the resume state of pixel (" +
+                         std::to_string(window.x0 + int(p % size_t(window.width()))) + ", " +
+                         std::to_string(window.y0 + int(p / size_t(window.width()))) +
+                         ") is not one a render leaves (a non-finite or negative value, or " +
+                         "more samples than the --spp asked)");
+      half.count = static_cast<int32_t>(count);
+    }
+    if (halfSampleCount(out[p].samples(), 0) != out[p].half[0].count)
+      throw UsageError(path +
+                       ": the halves of a pixel's resume state do not split its samples "
+                       "as a render does");
+  }
+  return out;
+}
+
+}  // namespace glint

@@ -1,0 +1,146 @@
+// The command line of passes: the estimate in --stats-json and the EXR, --resume (and what it
+// refuses), --preview-every, and `glint converge --from-render`.
+#include <gtest/gtest.h>
+
+#include <OpenImageIO/imageio.h>
+
+#include <nlohmann/json.hpp>
+
+#include "film/exr_output.h"
+#include "test_util.h"
+
+namespace glint {
+namespace {
+
+std::string tmp(const std::string& name) { return (test::tempDir() / name).string(); }
+
+std::string soft(const std::string& more) {
+  return std::string(GLINT_SCENES_DIR) + "/soft_shadows.json --quiet --width 48 --height 32 " +
+         more;
+}
+
+TEST(PassesCli, StatsAndMetadataCarryTheEstimateAndThePasses) {
+  const std::string out = tmp("est.exr"), stats = tmp("est.json");
+  ASSERT_EQ(
+      test::runGlint("render " + soft("--spp 8 -o " + out + " --stats-json " + stats)).exitCode, 0);
+  const nlohmann::json j = nlohmann::json::parse(test::readFile(stats));
+  ASSERT_TRUE(j["estimated_rmse"].is_number());
+  ASSERT_EQ(j["passes"].size(), 3u);  // to 2, 4, 8 spp
+  EXPECT_EQ(j["passes"][2]["spp"], 8);
+  // The last pass's estimate is the frame's.
+  EXPECT_EQ(j["passes"][2]["estimated_rmse"], j["estimated_rmse"]);
+  auto in = OIIO::ImageInput::open(out);
+  ASSERT_TRUE(in);
+  EXPECT_FLOAT_EQ(in->spec().get_float_attribute("glint:estimated_rmse"),
+                  j["estimated_rmse"].get<float>());
+  EXPECT_EQ(nlohmann::json::parse(in->spec().get_string_attribute("glint:passes")), j["passes"]);
+  // A plain frame carries no resume state (it would triple the file for nothing).
+  EXPECT_EQ(in->spec().channelindex("glint_resume.00"), -1);
+  // One sample: no estimate, null rather than a made-up number.
+  ASSERT_EQ(
+      test::runGlint("render " + soft("--spp 1 -o " + out + " --stats-json " + stats)).exitCode, 0);
+  EXPECT_TRUE(nlohmann::json::parse(test::readFile(stats))["estimated_rmse"].is_null());
+}
+
+TEST(PassesCli, ResumeGivesTheStraightRendersPixelsAndRefusesAnotherFrame) {
+  const std::string part = tmp("resume-part.exr"), straight = tmp("resume-straight.exr");
+  ASSERT_EQ(test::runGlint("render " + soft("--resumable --spp 8 -o " + part)).exitCode, 0);
+  ASSERT_EQ(test::runGlint("render " + soft("--resumable --spp 32 -o " + straight)).exitCode, 0);
+  // -o names the partial itself: it is replaced by the continued frame.
+  const auto run = test::runGlint("render " + soft("--spp 32 --resume " + part + " -o " + part));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(readImage(part).pixels, readImage(straight).pixels);
+  // Another seed, another setting, a frame without state: exit 2, the frame named.
+  for (const std::string& other : {std::string("--seed 9"), std::string("--max-depth 2")}) {
+    const auto r = test::runGlint("render " + soft("--spp 32 " + other + " --resume " + straight +
+                                                   " -o " + tmp("resume-x.exr")));
+    EXPECT_EQ(r.exitCode, 2) << other << r.output;
+    EXPECT_NE(r.output.find(straight), std::string::npos) << r.output;
+  }
+  const std::string plain = tmp("resume-plain.exr");
+  ASSERT_EQ(test::runGlint("render " + soft("--spp 8 -o " + plain)).exitCode, 0);
+  const auto r =
+      test::runGlint("render " + soft("--spp 8 --resume " + plain + " -o " + tmp("y.exr")));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+}
+
+TEST(PassesCli, AResumeStateThatNoRenderLeavesIsRefused) {
+  // A resumable frame whose first pixel's half-0 mean R is rewritten to NaN's bits, all else
+  // (the resume hash included) kept: the state is refused, naming the file and the pixel.
+  const std::string good = tmp("state-good.exr"), bad = tmp("state-bad.exr");
+  ASSERT_EQ(test::runGlint("render " + soft("--resumable --spp 4 -o " + good)).exitCode, 0);
+  auto in = OIIO::ImageInput::open(good);
+  ASSERT_TRUE(in);
+  OIIO::ImageSpec spec = in->spec();
+  std::vector<float> pixels(size_t(spec.image_pixels()) * size_t(spec.nchannels));
+  ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
+  in->close();
+  // Every channel as float keeps the beauty; the UINT state channels are rewritten as UINT.
+  std::vector<OIIO::TypeDesc> formats(size_t(spec.nchannels), OIIO::TypeDesc::FLOAT);
+  const int hi = spec.channelindex("glint_resume.00"), lo = spec.channelindex("glint_resume.01");
+  ASSERT_GE(hi, 0);
+  auto raw = OIIO::ImageInput::open(good);
+  std::vector<uint32_t> words(pixels.size());
+  ASSERT_TRUE(raw->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT, words.data()));
+  for (int c = 0; c < spec.nchannels; ++c)
+    if (spec.channelformat(c) == OIIO::TypeDesc::UINT) formats[size_t(c)] = OIIO::TypeDesc::UINT;
+  spec.channelformats = formats;
+  words[size_t(hi)] = 0x7ff80000u;  // pixel 0: NaN
+  words[size_t(lo)] = 0;
+  auto outFile = OIIO::ImageOutput::create(bad);
+  ASSERT_TRUE(outFile && outFile->open(bad, spec));
+  // Per channel, from the buffer its type was read into.
+  std::vector<unsigned char> mixed;
+  for (size_t p = 0; p < size_t(spec.image_pixels()); ++p)
+    for (int c = 0; c < spec.nchannels; ++c) {
+      const size_t i = p * size_t(spec.nchannels) + size_t(c);
+      const auto* bytes = formats[size_t(c)] == OIIO::TypeDesc::UINT
+                              ? reinterpret_cast<const unsigned char*>(&words[i])
+                              : reinterpret_cast<const unsigned char*>(&pixels[i]);
+      mixed.insert(mixed.end(), bytes, bytes + 4);
+    }
+  ASSERT_TRUE(outFile->write_image(OIIO::TypeDesc::UNKNOWN, mixed.data()));
+  outFile->close();
+  const auto r =
+      test::runGlint("render " + soft("--spp 8 --resume " + bad + " -o " + tmp("z.exr")));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("pixel (0, 0)"), std::string::npos) << r.output;
+}
+
+TEST(PassesCli, PreviewsAreWrittenAndTheFinalFrameIsComplete) {
+  const std::string out = tmp("preview.exr");
+  const auto r = test::runGlint("render " + std::string(GLINT_SCENES_DIR) +
+                                "/soft_shadows.json --width 48 --height 32 --spp 16 "
+                                "--preview-every 0.000001 -o " +
+                                out);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  // Passes end at 2, 4, 8 and 16: a preview after each but the last.
+  for (const char* spp : {"at 2 spp", "at 4 spp", "at 8 spp"})
+    EXPECT_NE(r.output.find(std::string("preview: ") + out + " " + spp), std::string::npos)
+        << r.output;
+  auto in = OIIO::ImageInput::open(out);
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().get_int_attribute("glint:partial", -1), 0);
+  EXPECT_EQ(in->spec().get_int_attribute("glint:min_pixel_spp", -1), 16);
+}
+
+TEST(PassesCli, ConvergeFromRenderReadsThePassesOfAFrame) {
+  const std::string out = tmp("from-render.exr"), json = tmp("from-render.json");
+  ASSERT_EQ(test::runGlint("render " + soft("--spp 16 -o " + out)).exitCode, 0);
+  const auto r = test::runGlint("converge --from-render " + out + " --json " + json);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(test::readFile(json));
+  const nlohmann::json& points = j["series"][0]["points"];
+  ASSERT_EQ(points.size(), 4u);
+  EXPECT_EQ(points[3]["spp"], 16);
+  // The estimated error falls from pass to pass (each halves the variance or better).
+  for (size_t i = 1; i < points.size(); ++i)
+    EXPECT_LT(points[i]["rmse"].get<double>(), points[i - 1]["rmse"].get<double>());
+  // A file without passes: exit 2, named.
+  const std::string png = test::writeTemp("not-a-render.exr", "not an EXR at all");
+  const auto bad = test::runGlint("converge --from-render " + png);
+  EXPECT_EQ(bad.exitCode, 2) << bad.output;
+}
+
+}  // namespace
+}  // namespace glint

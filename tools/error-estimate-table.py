@@ -1,0 +1,127 @@
+#!/usr/bin/env python3
+"""How well a render's own error estimate matches its true error (docs/validation.md, "Error
+estimate"), and what adaptive sampling buys (docs/performance.md, "Adaptive sampling").
+
+estimate: for each bundled scene, an independent reference (another seed) at 64x the largest
+sample count, then renders at each sample count; each row gives the render's estimated RMSE
+(--stats-json: estimated_rmse), its true RMSE against the reference (`glint compare`), and their
+ratio. The reference's own variance adds 1/64 of the render's at the largest count (RMSE
++0.8 %) and less below it.
+
+adaptive: for each scene, uniform renders at a ladder of sample counts and adaptive renders at a
+ladder of --target-rmse, each against one reference; the time each needs to reach a given true
+RMSE (interpolated in log-log between the ladder's points) and their ratio. Runs alternate
+uniform and adaptive so that load from other processes hits both alike.
+
+Prints markdown tables; writes images and JSON under --out.
+"""
+
+import argparse
+import json
+import math
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def glint(args, binary):
+    subprocess.run([binary] + args, check=True, stdout=subprocess.DEVNULL)
+
+
+def render(binary, scene, out, size, seed, spp, extra=()):
+    stats = out.with_suffix(".json")
+    glint(["render", str(scene), "-o", str(out), "--quiet", "--width", str(size[0]), "--height",
+           str(size[1]), "--seed", str(seed), "--spp", str(spp), "--stats-json", str(stats),
+           *extra], binary)
+    return json.loads(stats.read_text())
+
+
+def compare(binary, image, reference):
+    out = image.with_suffix(".cmp.json")
+    glint(["compare", str(image), str(reference), "--json", str(out)], binary)
+    return json.loads(out.read_text())
+
+
+def scenes(names):
+    every = sorted(p for p in (ROOT / "scenes").glob("*.json"))
+    return [p for p in every if not names or p.stem in names]
+
+
+def estimate_table(args):
+    print("| scene | spp | estimated RMSE | true RMSE | ratio |")
+    print("|---|---:|---:|---:|---:|")
+    worst = 1.0
+    for scene in scenes(args.scenes):
+        ref = args.out / f"{scene.stem}-ref.exr"
+        render(args.glint, scene, ref, args.size, 7919, 64 * max(args.spp))
+        for spp in args.spp:
+            img = args.out / f"{scene.stem}-{spp}.exr"
+            st = render(args.glint, scene, img, args.size, 1, spp)
+            true = compare(args.glint, img, ref)["rmse"]
+            est = st["estimated_rmse"]
+            ratio = est / true if true > 0 else float("nan")
+            worst = max(worst, ratio, 1 / ratio) if ratio == ratio else worst
+            print(f"| {scene.stem} | {spp} | {est:.3g} | {true:.3g} | {ratio:.2f} |", flush=True)
+    print(f"\nworst ratio (either way): {worst:.2f}")
+
+
+def time_to(points, target):
+    """Seconds at which the (seconds, rmse) ladder reaches `target`, log-log interpolated."""
+    points = sorted(points)
+    for (t0, e0), (t1, e1) in zip(points, points[1:]):
+        if e0 >= target >= e1 and e0 > e1:
+            f = (math.log(e0) - math.log(target)) / (math.log(e0) - math.log(e1))
+            return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0)))
+    return None
+
+
+def adaptive_table(args):
+    print("| scene | true RMSE | uniform s | adaptive s | speed-up |")
+    print("|---|---:|---:|---:|---:|")
+    for scene in scenes(args.scenes):
+        ref = args.out / f"{scene.stem}-aref.exr"
+        render(args.glint, scene, ref, args.size, 7919, args.reference_spp)
+        uniform, adaptive = [], []
+        for k, spp in enumerate(args.ladder):
+            for _ in range(args.runs):
+                img = args.out / f"{scene.stem}-u{spp}.exr"
+                st = render(args.glint, scene, img, args.size, 1, spp)
+                uniform.append((st["seconds"], compare(args.glint, img, ref)["rmse"]))
+                img = args.out / f"{scene.stem}-a{spp}.exr"
+                # The target that uniform sampling at this spp reaches, so the ladders overlap.
+                target = uniform[-1][1]
+                st = render(args.glint, scene, img, args.size, 1, args.max_spp,
+                            ["--target-rmse", f"{target:.6g}", "--min-spp", str(args.min_spp)])
+                adaptive.append((st["seconds"], compare(args.glint, img, ref)["rmse"]))
+        for spp in args.ladder[1:-1]:
+            goal = next(e for (t, e), s in zip(uniform[:: args.runs], args.ladder) if s == spp)
+            tu, ta = time_to(uniform, goal), time_to(adaptive, goal)
+            if tu and ta:
+                print(f"| {scene.stem} | {goal:.3g} | {tu:.3f} | {ta:.3f} | {tu / ta:.2f} |",
+                      flush=True)
+            else:
+                print(f"| {scene.stem} | {goal:.3g} | {tu} | {ta} | not reached |", flush=True)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    p.add_argument("table", choices=["estimate", "adaptive"])
+    p.add_argument("--glint", default=str(ROOT / "build/bin/glint"))
+    p.add_argument("--out", type=Path, default=Path("/tmp/glint-error-estimate"))
+    p.add_argument("--size", type=int, nargs=2, default=[80, 60])
+    p.add_argument("--spp", type=int, nargs="+", default=[4, 16, 64, 256])
+    p.add_argument("--scenes", nargs="*", default=[])
+    p.add_argument("--ladder", type=int, nargs="+", default=[4, 8, 16, 32, 64, 128])
+    p.add_argument("--reference-spp", type=int, default=4096)
+    p.add_argument("--max-spp", type=int, default=1024)
+    p.add_argument("--min-spp", type=int, default=8)
+    p.add_argument("--runs", type=int, default=1)
+    args = p.parse_args()
+    args.out.mkdir(parents=True, exist_ok=True)
+    (estimate_table if args.table == "estimate" else adaptive_table)(args)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
