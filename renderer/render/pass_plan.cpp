@@ -37,6 +37,35 @@ PassPlan PassPlan::make(int spp, SamplerKind sceneSampler, const SamplingRequest
   return plan;
 }
 
+int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int width, int end,
+                               std::vector<uint8_t>& sampled) const {
+  sampled.assign(pixels.size(), 0);
+  const int height = width > 0 ? static_cast<int>(pixels.size() / size_t(width)) : 0;
+  std::vector<double> ratio;
+  if (adaptive()) {
+    ratio.resize(pixels.size());
+    for (size_t p = 0; p < pixels.size(); ++p) ratio[p] = target.ratio(pixels[p]);
+  }
+  int64_t count = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const size_t p = size_t(y) * size_t(width) + size_t(x);
+      const int64_t n = pixels[p].samples();
+      bool needs = n < end;
+      if (needs && adaptive() && n >= minSpp) {
+        double sum = 0;
+        int neighbours = 0;
+        for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
+          for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx, ++neighbours)
+            sum += ratio[size_t(ny) * size_t(width) + size_t(nx)];
+        needs = std::max(ratio[p], sum / neighbours) > 1;
+      }
+      sampled[p] = needs;
+      count += needs;
+    }
+  return count;
+}
+
 FrameError estimateFrameError(const std::vector<PixelEstimate>& pixels, SamplerKind sampler) {
   FrameError e;
   if (sampler == SamplerKind::Regular || pixels.empty()) return e;

@@ -44,12 +44,19 @@ struct PassPlan {
     return sampler == SamplerKind::Sobol || sampler == SamplerKind::Random;
   }
 
-  // Whether a pixel with this state takes part in the pass that ends at `end` samples.
-  bool needsSamples(const PixelEstimate& pixel, int end) const {
-    const int64_t n = pixel.samples();
-    if (n >= end) return false;
-    return !(adaptive() && n >= minSpp && target.metBy(pixel));
-  }
+  // Marks in `sampled` the pixels of a `width`-wide row-major grid that take part in the pass
+  // that ends at `end` samples, and returns how many: those below `end` that, under adaptive
+  // sampling, have fewer than minSpp samples, or whose error over the target
+  // (ErrorTarget::ratio), or its mean over their 3 × 3 neighbourhood, is above 1. One pixel's
+  // estimate has a degree of freedom per channel (with 4× the target's variance, it reads below
+  // the target one time in three); the neighbourhood's nine give the decision the steadiness it
+  // lacks, and the larger of the two keeps a noisy pixel among quiet ones sampling.
+  int64_t choosePixels(const std::vector<PixelEstimate>& pixels, int width, int end,
+                       std::vector<uint8_t>& sampled) const;
+  // How far a pixel's samples depend on other pixels': one pixel per adaptive decision, one
+  // fewer than the passes. A crop renders this many pixels around it (inside the frame) so
+  // that each of its pixels is sampled as in the full frame.
+  int apron() const { return adaptive() ? static_cast<int>(ends.size()) : 0; }
 };
 
 // A frame's estimated error: the pixels' estimates (PixelEstimate::varianceOfMean) averaged as

@@ -1,5 +1,8 @@
 #include "render/pixel_estimate.h"
 
+#include <algorithm>
+#include <limits>
+
 #include "film/compare.h"
 
 namespace glint {
@@ -25,30 +28,18 @@ bool PixelEstimate::varianceOfMean(double out[3]) const {
   return true;
 }
 
-bool PixelEstimate::conservativeVarianceOfMean(double out[3]) const {
-  const double n0 = half[0].count, n1 = half[1].count, n = n0 + n1;
-  if (n < 2) return false;
-  for (int c = 0; c < 3; ++c) {
-    // Chan et al.'s pooling of two Welford states: the halves' squared deviations plus what
-    // the distance between their means adds.
-    const double d = half[0].mean[c] - half[1].mean[c];
-    const double m2 = half[0].m2[c] + half[1].m2[c] + (n > 0 ? d * d * n0 * n1 / n : 0);
-    out[c] = m2 / ((n - 1) * n);
-  }
-  return true;
-}
-
-bool ErrorTarget::metBy(const PixelEstimate& pixel) const {
+double ErrorTarget::ratio(const PixelEstimate& pixel) const {
   double variance[3], value[4];
-  if (!pixel.conservativeVarianceOfMean(variance)) return false;
-  if (rmse > 0 && (variance[0] + variance[1] + variance[2]) / 3 > rmse * rmse) return false;
+  if (!pixel.varianceOfMean(variance)) return std::numeric_limits<double>::infinity();
+  double worst = 0;
+  if (rmse > 0) worst = (variance[0] + variance[1] + variance[2]) / 3 / (rmse * rmse);
   if (relmse > 0) {
     pixel.mean(value);
     double rel = 0;
     for (int c = 0; c < 3; ++c) rel += variance[c] / (value[c] * value[c] + kRelMseEpsilon);
-    if (rel / 3 > relmse) return false;
+    worst = std::max(worst, rel / 3 / relmse);
   }
-  return true;
+  return worst;
 }
 
 }  // namespace glint

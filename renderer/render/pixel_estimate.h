@@ -1,11 +1,10 @@
 #pragma once
 // What a render keeps of each pixel between passes: for each of its two independently sampled
-// halves (core/sampler.h), the running mean and squared deviations of its samples (Welford)
-// and their summed coverage. From them come the pixel's mean, an unbiased estimate of that
-// mean's variance that stays valid under stratification (the halves' difference), and a
-// conservative one from the samples' spread for adaptive stopping (docs/validation.md, Error
-// estimate). Samples are added in index order within a half, so the state is the same bits
-// whatever the passes, threads or tiles that added them.
+// halves (core/sampler.h), the running mean of its samples and their summed coverage. From them
+// come the pixel's mean and an unbiased estimate of that mean's variance that stays valid under
+// stratification: the halves' difference (docs/validation.md, Error estimate). Samples are
+// added in index order within a half, so the state is the same bits whatever the passes,
+// threads or tiles that added them.
 #include <cstdint>
 
 #include "integrator/radiance.h"
@@ -13,20 +12,16 @@
 namespace glint {
 
 struct HalfEstimate {
-  double mean[3] = {0, 0, 0};
-  double m2[3] = {0, 0, 0};  // sum of squared deviations from the mean
-  double alpha = 0;          // summed coverage
+  double mean[3] = {0, 0, 0};  // a running mean (not a sum: no loss of small late samples)
+  double alpha = 0;            // summed coverage
   int32_t count = 0;
 
   void add(const Rgb& L, double coverage) {
     ++count;
     const double inv = 1.0 / count;
-    const double x[3] = {L.r, L.g, L.b};
-    for (int c = 0; c < 3; ++c) {
-      const double d = x[c] - mean[c];
-      mean[c] += d * inv;
-      m2[c] += d * (x[c] - mean[c]);
-    }
+    mean[0] += (double(L.r) - mean[0]) * inv;
+    mean[1] += (double(L.g) - mean[1]) * inv;
+    mean[2] += (double(L.b) - mean[2]) * inv;
     alpha += coverage;
   }
 };
@@ -45,21 +40,18 @@ struct PixelEstimate {
   // One degree of freedom per channel: unbiased, noisy for one pixel. False when a half is
   // empty (one sample).
   bool varianceOfMean(double out[3]) const;
-
-  // The variance of the mean as if the samples were independent, s²/n from the pooled spread:
-  // in expectation at least the variance of a stratified or scrambled estimate, with n − 2
-  // degrees of freedom, so what adaptive sampling can stop on safely. False below 2 samples.
-  bool conservativeVarianceOfMean(double out[3]) const;
 };
 
 // The per-pixel errors that adaptive sampling aims at: the RMSE (root of the channels' mean
-// squared error) or the relMSE (squared error over value² + kRelMseEpsilon, as `glint compare` has
-// it, channels' mean).
+// squared error) or the relMSE (squared error over value² + kRelMseEpsilon, as `glint compare`
+// has it, channels' mean).
 struct ErrorTarget {
   double rmse = 0, relmse = 0;  // 0: no target of that kind
   bool any() const { return rmse > 0 || relmse > 0; }
-  // Whether the pixel's conservative estimate meets every target given.
-  bool metBy(const PixelEstimate& pixel) const;
+  // The pixel's estimated error over the target, in squared terms (MSE / rmse², relMSE /
+  // relmse), the larger of the two targets given: at most 1 meets them. Infinity where the
+  // pixel has no estimate.
+  double ratio(const PixelEstimate& pixel) const;
 };
 
 }  // namespace glint

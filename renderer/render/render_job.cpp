@@ -270,17 +270,30 @@ class ReferenceTiles {
   const ReferenceIntegrator integrator_;
 };
 
-// The frame as it stands: each pixel's mean and the AOVs' finished values.
-Film resolveFrame(const FrameContext& f) {
-  Film out = f.aovSums;
-  const PixelWindow& w = out.window();
-  for (int y = w.y0; y < w.y1; ++y)
-    for (int x = w.x0; x < w.x1; ++x) {
+// The pixels' states inside `window` (of the sampled window), row-major.
+std::vector<PixelEstimate> estimatesIn(const FrameContext& f, const PixelWindow& window) {
+  std::vector<PixelEstimate> out;
+  out.reserve(static_cast<size_t>(window.area()));
+  for (int y = window.y0; y < window.y1; ++y)
+    for (int x = window.x0; x < window.x1; ++x) out.push_back(f.estimate(x, y));
+  return out;
+}
+
+// The frame as it stands in `window`: each pixel's mean and the AOVs' finished values.
+Film resolveFrame(const FrameContext& f, const PixelWindow& window) {
+  const Film& sums = f.aovSums;
+  Film out(sums.fullWidth(), sums.fullHeight(), window);
+  for (const FilmPlane& plane : sums.planes())
+    out.addPlane(plane.name, plane.channels, plane.isUint);
+  for (const auto& [key, value] : sums.stringAttributes()) out.addAttribute(key, value);
+  for (const auto& [key, value] : sums.intAttributes()) out.addAttribute(key, value);
+  for (int y = window.y0; y < window.y1; ++y)
+    for (int x = window.x0; x < window.x1; ++x) {
       const PixelEstimate& pixel = f.estimate(x, y);
       double rgba[4];
       pixel.mean(rgba);
       out.setPixel(x, y, rgba[0], rgba[1], rgba[2], rgba[3]);
-      if (f.opt.aovs.any()) resolveAovs(f.aovLayout, f.aovSums, f.aovTables, pixel, out, x, y);
+      if (f.opt.aovs.any()) resolveAovs(f.aovLayout, sums, f.aovTables, pixel, out, x, y);
     }
   return out;
 }
@@ -346,6 +359,12 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   const PassPlan plan = PassPlan::make(rs.spp, rs.sampler, opt.sampling);
   checkSampleSets(scene, plan.maxSpp);
   const PixelWindow window = opt.crop.value_or(PixelWindow{0, rs.width, 0, rs.height});
+  // Adaptive sampling decides from each pixel's neighbours: a crop samples an apron around it
+  // too, so that its pixels are sampled as in the full frame (PassPlan::apron).
+  const int apron = plan.apron();
+  const PixelWindow sampledWindow{
+      std::max(0, window.x0 - apron), std::min(rs.width, window.x1 + apron),
+      std::max(0, window.y0 - apron), std::min(rs.height, window.y1 + apron)};
   {
     // The AOV planes' channels, from the layout itself on a one-pixel film; and the state a
     // pixel keeps between passes, in doubles.
@@ -353,18 +372,22 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
     AovLayout::create(opt.aovs, scene, probe);
     size_t channels = 4 + sizeof(PixelEstimate) / 12;
     for (const FilmPlane& plane : probe.planes()) channels += 2 * plane.channels.size();
-    checkFrameFits(window.area(), channels, availableMemoryBytes());
+    checkFrameFits(sampledWindow.area(), channels, availableMemoryBytes());
   }
-  Film aovSums(rs.width, rs.height, window);
+  Film aovSums(rs.width, rs.height, sampledWindow);
   const Camera camera(scene.cameraDesc, rs.width, rs.height);
   const Sampler sampler(plan.sampler, plan.maxSpp, rs.seed);
   // AOV work happens only when AOVs are asked for (leave out what is not needed).
   const AovLayout aovLayout = AovLayout::create(opt.aovs, scene, aovSums);
   if (opt.integrator == IntegratorKind::Reference && opt.aovs.any())
     throw UsageError("the reference integrator renders the beauty only: drop --aov");
-  AovTables aovTables(aovLayout, window);
-  std::vector<PixelEstimate> estimates(static_cast<size_t>(window.area()));
+  AovTables aovTables(aovLayout, sampledWindow);
+  std::vector<PixelEstimate> estimates(static_cast<size_t>(sampledWindow.area()));
   if (opt.resumeFrom) {
+    if (sampledWindow.area() != window.area())
+      throw UsageError(
+          "--resume continues an adaptive render of the full frame only: a crop's "
+          "adaptive sampling depends on pixels around it, whose state is not kept");
     GLINT_CHECK(opt.resumeFrom->size() == estimates.size());
     if (opt.aovs.needsSamples())
       throw UsageError(
@@ -374,10 +397,10 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   }
 
   const int threads = opt.threads > 0 ? opt.threads : defaultThreadCount();
-  const int tileSize = effectiveTileSize(window, opt.tileSize, threads);
-  const std::vector<PixelWindow> tiles = makeTiles(window, tileSize, opt.tileOrder);
+  const int tileSize = effectiveTileSize(sampledWindow, opt.tileSize, threads);
+  const std::vector<PixelWindow> tiles = makeTiles(sampledWindow, tileSize, opt.tileOrder);
   std::vector<RayCounters> tileCounters(tiles.size());
-  Progress progress(window.area() * plan.maxSpp, opt.progress);
+  Progress progress(sampledWindow.area() * plan.maxSpp, opt.progress);
   std::atomic<int> loggedNonfinite{0};
   const CameraSampling cameraSampling(scene, camera);
   const FrameContext frame{scene,     accel,           opt,       camera,  cameraSampling, sampler,
@@ -395,15 +418,13 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
     for (const RayCounters& c : tileCounters) result.stats.rays += c;
     result.stats.integrator = opt.integrator;
     result.stats.seconds = secondsSince(start);
-    describeSamples(estimates, plan.sampler, result.stats);
+    describeSamples(estimatesIn(frame, window), plan.sampler, result.stats);
   };
   std::vector<uint8_t> sampled(estimates.size(), 1);
   std::atomic<bool> deadlinePassed{false};
   for (size_t k = 0; k < plan.ends.size(); ++k) {
     const int end = plan.ends[k];
-    int64_t pixels = 0;
-    for (size_t p = 0; p < estimates.size(); ++p)
-      pixels += sampled[p] = plan.needsSamples(estimates[p], end);
+    const int64_t pixels = plan.choosePixels(estimates, sampledWindow.width(), end, sampled);
     if (pixels == 0) continue;  // every pixel is past this pass (resumed), or met its target
     // The time limit applies from the second pass on: the first is what makes a frame.
     std::optional<Clock::time_point> deadline;
@@ -424,19 +445,19 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
     }
     statsSoFar();
     int64_t samples = 0;
-    for (const PixelEstimate& p : estimates) samples += p.samples();
-    result.stats.passes.push_back({end, double(samples) / double(estimates.size()),
+    for (const PixelEstimate& p : estimatesIn(frame, window)) samples += p.samples();
+    result.stats.passes.push_back({end, double(samples) / double(window.area()),
                                    result.stats.seconds, result.stats.estimated, pixels});
     if (onPass && k + 1 < plan.ends.size()) {
-      result.film = resolveFrame(frame);
-      result.estimates = estimates;
+      result.film = resolveFrame(frame, window);
+      result.estimates = estimatesIn(frame, window);
       onPass(result);
     }
   }
   progress.finish();
-  result.film = resolveFrame(frame);
+  result.film = resolveFrame(frame, window);
   statsSoFar();
-  result.estimates = std::move(estimates);
+  result.estimates = estimatesIn(frame, window);
   return result;
 }
 

@@ -18,7 +18,7 @@ namespace glint {
 
 namespace {
 
-constexpr int kDoublesPerHalf = 7;                         // mean ×3, m2 ×3, alpha
+constexpr int kDoublesPerHalf = 4;                         // mean ×3, alpha
 constexpr int kChannelsPerHalf = 2 * kDoublesPerHalf + 1;  // + the count
 constexpr int kChannels = 2 * kChannelsPerHalf;
 
@@ -28,9 +28,7 @@ std::string channelName(int i) {
   return name;
 }
 
-double* doublesOf(HalfEstimate& h, int k) {
-  return k < 3 ? &h.mean[k] : k < 6 ? &h.m2[k - 3] : &h.alpha;
-}
+double* doublesOf(HalfEstimate& h, int k) { return k < 3 ? &h.mean[k] : &h.alpha; }
 
 }  // namespace
 
@@ -95,13 +93,13 @@ std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelW
       const uint32_t count = hw[2 * kDoublesPerHalf];
       bool valid = count <= uint64_t(maxSamples) && half.alpha >= 0 && half.alpha <= count;
       for (int k = 0; k < kDoublesPerHalf; ++k) valid = valid && std::isfinite(*doublesOf(half, k));
-      for (double m2 : half.m2) valid = valid && m2 >= 0;
       if (!valid)
-        throw UsageError(path + ": the resume state of pixel (" +
-                         std::to_string(window.x0 + int(p % size_t(window.width()))) + ", " +
-                         std::to_string(window.y0 + int(p / size_t(window.width()))) +
-                         ") is not one a render leaves (a non-finite or negative value, or " +
-                         "more samples than the --spp asked)");
+        throw UsageError(
+            path + ": the resume state of pixel (" +
+            std::to_string(window.x0 + int(p % size_t(window.width()))) + ", " +
+            std::to_string(window.y0 + int(p / size_t(window.width()))) +
+            ") is not one a render leaves (a non-finite value, a negative coverage, or " +
+            "more samples than the --spp asked)");
       half.count = static_cast<int32_t>(count);
     }
     if (halfSampleCount(out[p].samples(), 0) != out[p].half[0].count)

@@ -125,8 +125,9 @@ TEST(AdaptiveSampling, TargetIsMetAndSamplesGoWhereTheNoiseIs) {
   const Scene scene = load(kSoftShadows, 16, 1, SamplerKind::Stratified);
   const double target = 0.006;
   const RenderResult r = render(scene, kSoftShadows.crop, adaptive(target, 8, 1024));
-  // Every pixel stopped on the conservative estimate (≥ the true variance in expectation), so
-  // the frame's true RMSE is at most the target.
+  // A pixel stops when its estimate and its neighbourhood's mean both meet the target, so the
+  // frame's true RMSE is at most the target (the estimate is unbiased; the neighbourhood makes
+  // the decision steady).
   EXPECT_LE(trueRmse(r.film, kSoftShadows), target);
   // The crop holds lit floor and penumbra: the flat pixels stop early, the penumbra takes more.
   EXPECT_EQ(r.stats.minPixelSpp, 8);

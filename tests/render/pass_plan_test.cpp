@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "core/error.h"
 
 namespace glint {
@@ -53,18 +56,21 @@ PixelEstimate twoHalves() {
   return p;
 }
 
-TEST(PixelEstimate, MeanAndBothVarianceEstimates) {
+TEST(PixelEstimate, MeanAndVarianceOfTheMeanFromTheHalves) {
   const PixelEstimate p = twoHalves();
-  double mean[4], v[3], s[3];
+  double mean[4], v[3];
   p.mean(mean);
   EXPECT_DOUBLE_EQ(mean[0], 3.0);  // (1 + 3 + 2 + 6) / 4
   EXPECT_DOUBLE_EQ(mean[3], 1.0);
   // Halves' means 2 and 4, n0 = n1 = 2: (2·2/16)·(2 − 4)² = 1.
   ASSERT_TRUE(p.varianceOfMean(v));
   EXPECT_DOUBLE_EQ(v[0], 1.0);
-  // Pooled: deviations from 3 are −2, 0, −1, 3: Σ = 14, s² = 14/3, s²/n = 14/12.
-  ASSERT_TRUE(p.conservativeVarianceOfMean(s));
-  EXPECT_DOUBLE_EQ(s[1], 14.0 / 12.0);
+  // Unequal halves, 3 and 1 samples: means 2 and 6, weight 3·1/16: (3/16)·16 = 3.
+  PixelEstimate q;
+  for (float x : {1.f, 2.f, 3.f}) q.half[0].add({x, x, x}, 1);
+  q.half[1].add({6, 6, 6}, 1);
+  ASSERT_TRUE(q.varianceOfMean(v));
+  EXPECT_DOUBLE_EQ(v[2], 3.0);
 }
 
 TEST(PixelEstimate, OneSampleHasNoEstimate) {
@@ -72,26 +78,53 @@ TEST(PixelEstimate, OneSampleHasNoEstimate) {
   p.half[0].add({1, 1, 1}, 1);
   double v[3];
   EXPECT_FALSE(p.varianceOfMean(v));
-  EXPECT_FALSE(p.conservativeVarianceOfMean(v));
   // A pixel without an estimate never meets a target (it keeps taking samples).
   ErrorTarget t;
   t.rmse = 1e9;
-  EXPECT_FALSE(t.metBy(p));
+  EXPECT_EQ(t.ratio(p), std::numeric_limits<double>::infinity());
 }
 
-TEST(ErrorTarget, RmseAndRelmseOnTheConservativeEstimate) {
-  const PixelEstimate p = twoHalves();  // s²/n = 14/12 per channel, mean 3
+TEST(ErrorTarget, RatioOfTheEstimateToRmseAndRelmseTargets) {
+  const PixelEstimate p = twoHalves();  // variance of the mean 1 per channel, mean 3
   ErrorTarget t;
-  t.rmse = std::sqrt(14.0 / 12.0) * 1.001;
-  EXPECT_TRUE(t.metBy(p));
-  t.rmse = std::sqrt(14.0 / 12.0) * 0.999;
-  EXPECT_FALSE(t.metBy(p));
-  // relMSE: (14/12) / (9 + 0.01) = 0.12948...
+  t.rmse = 0.5;
+  EXPECT_DOUBLE_EQ(t.ratio(p), 4.0);  // 1 / 0.5²
+  // relMSE: 1 / (9 + 0.01); over a target of 0.05.
   ErrorTarget rel;
-  rel.relmse = 0.1295;
-  EXPECT_TRUE(rel.metBy(p));
-  rel.relmse = 0.1294;
-  EXPECT_FALSE(rel.metBy(p));
+  rel.relmse = 0.05;
+  EXPECT_DOUBLE_EQ(rel.ratio(p), 1 / 9.01 / 0.05);
+  // Both: the larger.
+  rel.rmse = 0.5;
+  EXPECT_DOUBLE_EQ(rel.ratio(p), 4.0);
+}
+
+TEST(PassPlan, AdaptiveChoiceWeighsEachPixelAndItsNeighbourhood) {
+  SamplingRequest r;
+  r.target.rmse = 1.5;  // ratio of twoHalves(): 1 / 2.25 = 0.44
+  r.minSpp = 4;
+  r.maxSpp = 64;
+  const PassPlan plan = PassPlan::make(16, SamplerKind::Sobol, r);
+  // A 4 × 3 grid of quiet pixels (4 samples each), one noisy one at (1, 1), one at (3, 2)
+  // with 2 samples (below --min-spp).
+  std::vector<PixelEstimate> grid(12, twoHalves());
+  PixelEstimate noisy;
+  for (float v : {0.f, 0.f}) noisy.half[0].add({v, v, v}, 1);
+  for (float v : {20.f, 20.f}) noisy.half[1].add({v, v, v}, 1);  // ratio 100 / 2.25 = 44
+  grid[5] = noisy;
+  PixelEstimate young;
+  young.half[0].add({1, 1, 1}, 1);
+  young.half[1].add({1, 1, 1}, 1);
+  grid[11] = young;
+  std::vector<uint8_t> sampled;
+  EXPECT_EQ(plan.choosePixels(grid, 4, 8, sampled), 10);
+  // The noisy pixel and its 8 neighbours (their 3 × 3 means hold its 44 / 9 or / 6 or / 4),
+  // and the young pixel; not (3, 0) and (3, 1)... whose neighbourhoods miss (1, 1).
+  const std::vector<uint8_t> expected = {1, 1, 1, 0,  //
+                                         1, 1, 1, 0,  //
+                                         1, 1, 1, 1};
+  EXPECT_EQ(sampled, expected);
+  // A pass that every pixel has reached samples none.
+  EXPECT_EQ(plan.choosePixels(grid, 4, 2, sampled), 0);
 }
 
 TEST(FrameError, AveragesPixelsLikeCompareAndIsAbsentForRegularGrids) {
