@@ -89,12 +89,14 @@ std::optional<PixelWindow> cropWindow(const RenderArgs& a, const RenderSettings&
   return w;
 }
 
+// An estimate, or null where there is none (one sample, a regular grid).
+nlohmann::json orNull(const std::optional<double>& v) {
+  return v ? nlohmann::json(*v) : nlohmann::json();
+}
+
 // The finished passes (CLI.md: `passes`), also kept in the EXR's glint:passes.
 nlohmann::json passesJson(const std::vector<PassRecord>& passes) {
   nlohmann::json list = nlohmann::json::array();
-  const auto orNull = [](const std::optional<double>& v) {
-    return v ? nlohmann::json(*v) : nlohmann::json();
-  };
   for (const PassRecord& p : passes)
     list.push_back({{"spp", p.spp},
                     {"mean_spp", p.meanSpp},
@@ -119,9 +121,6 @@ nlohmann::json statsJson(const Scene& scene, const RenderStats& st, uint64_t cla
   j["features_left_out"] = scene.features.leftOut();
   j["integrator"] = st.integrator == IntegratorKind::Reference ? "reference" : "production";
   j["sampler"] = samplerName(st.sampler);
-  const auto orNull = [](const std::optional<double>& v) {
-    return v ? nlohmann::json(*v) : nlohmann::json();
-  };
   // The estimates of the frame's error from its own samples (docs/validation.md).
   j["estimated_rmse"] = orNull(st.estimated.rmse);
   j["estimated_relmse"] = orNull(st.estimated.relmse);
@@ -195,8 +194,7 @@ std::string samplingSettings(const SamplingRequest& r) {
 // What must match for --resume to continue a frame: the settings hash without the sample
 // counts and time limit, the sampler actually used, and, for a sampler whose sets are laid out
 // for one total (stratified), that total.
-std::string resumeHash(const RenderArgs& a, const Scene& scene) {
-  const PassPlan plan = PassPlan::make(scene.render.spp, scene.render.sampler, a.sampling);
+std::string resumeHash(const RenderArgs& a, const Scene& scene, const PassPlan& plan) {
   Scene withoutSpp = scene;
   withoutSpp.render.spp = 0;
   SamplingRequest targets = a.sampling;
@@ -208,7 +206,8 @@ std::string resumeHash(const RenderArgs& a, const Scene& scene) {
                      uint64_t(plan.sampler), uint64_t(plan.progressive() ? 0 : plan.maxSpp)));
 }
 
-ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderResult& result) {
+ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const PassPlan& plan,
+                        const RenderResult& result) {
   const RenderStats& st = result.stats;
   const PixelWindow& w = result.film.window();
   const Camera camera(scene.cameraDesc, scene.render.width, scene.render.height);
@@ -225,7 +224,7 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
                {"glint:integrator", a.integrator},
                {"glint:sampler", std::string(samplerName(st.sampler))},
                {"glint:passes", passesJson(st.passes).dump()},
-               {"glint:resume_hash", resumeHash(a, scene)},
+               {"glint:resume_hash", resumeHash(a, scene, plan)},
                {"glint:accel", a.accel},
                {"glint:seed", std::to_string(scene.render.seed)},  // 64-bit: kept exact as text
                {"glint:crop", std::to_string(w.x0) + " " + std::to_string(w.x1) + " " +
@@ -255,16 +254,16 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const RenderRes
 // The state of --resume's frame, after checking it is this frame with these settings; its
 // passes, each later by the seconds this render starts after (none: they are its own).
 std::vector<PixelEstimate> readResumable(const RenderArgs& a, const Scene& scene,
+                                         const PassPlan& plan,
                                          const std::optional<PixelWindow>& crop,
                                          std::vector<PassRecord>& passes) {
   const RenderSettings& r = scene.render;
   const PixelWindow window = crop.value_or(PixelWindow{0, r.width, 0, r.height});
-  const PassPlan plan = PassPlan::make(r.spp, r.sampler, a.sampling);
   {
     const auto file = openExr(a.resume);
     const auto* hash =
         file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:resume_hash");
-    if (!hash || hash->value() != resumeHash(a, scene))
+    if (!hash || hash->value() != resumeHash(a, scene, plan))
       throw UsageError(
           a.resume +
           (hash ? " was rendered from another scene, or with other settings or a "
@@ -304,6 +303,9 @@ std::vector<PixelEstimate> readResumable(const RenderArgs& a, const Scene& scene
 int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   Scene scene = loadSceneOrDefault(a.scenePath, frame, a.camera);
   applyOverrides(a, scene);
+  // How renderScene will spend the samples (it makes the same plan): for the metadata and
+  // --resume, and to refuse contradictory bounds before anything is built.
+  const PassPlan plan = PassPlan::make(scene.render.spp, scene.render.sampler, a.sampling);
   RenderOptions opt;
   opt.threads = a.threads.value_or(0);
   opt.tileSize = a.tileSize;
@@ -363,14 +365,14 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
     std::vector<PixelEstimate> resumeFrom;
     std::vector<PassRecord> earlierPasses;
     if (!a.resume.empty()) {
-      resumeFrom = readResumable(a, scene, job.crop, earlierPasses);
+      resumeFrom = readResumable(a, scene, plan, job.crop, earlierPasses);
       opt.resumeFrom = &resumeFrom;
     }
     // The frame as written: with its state when it may be continued (render/resume_state.h):
     // asked for, or partial (interrupted, a preview), or cut by the time limit, or itself a
     // continuation.
     const auto write = [&](const RenderResult& r, bool partial) {
-      ExrMetadata m = exrMetadata(a, scene, r);
+      ExrMetadata m = exrMetadata(a, scene, plan, r);
       for (auto& [key, value] : m.ints)
         if (key == "glint:partial") value = partial ? 1 : 0;
       const bool resumable =
@@ -393,6 +395,9 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
     };
     RenderResult result =
         renderScene(scene, *accel, opt, a.previewEvery > 0 ? preview : PassCallback());
+    // The earlier render's passes come first; this one's start where its time ended.
+    if (!earlierPasses.empty())
+      for (PassRecord& p : result.stats.passes) p.seconds += earlierPasses.back().seconds;
     result.stats.passes.insert(result.stats.passes.begin(), earlierPasses.begin(),
                                earlierPasses.end());
     const uint64_t clamped = write(result, result.partial);

@@ -5,7 +5,6 @@
 #include <string>
 
 #include "core/error.h"
-#include "film/compare.h"
 
 namespace glint {
 
@@ -38,13 +37,13 @@ PassPlan PassPlan::make(int spp, SamplerKind sceneSampler, const SamplingRequest
 }
 
 int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int width, int end,
-                               std::vector<uint8_t>& sampled) const {
+                               const FrameSpread& spread, std::vector<uint8_t>& sampled) const {
   sampled.assign(pixels.size(), 0);
   const int height = width > 0 ? static_cast<int>(pixels.size() / size_t(width)) : 0;
   std::vector<double> ratio;
   if (adaptive()) {
     ratio.resize(pixels.size());
-    for (size_t p = 0; p < pixels.size(); ++p) ratio[p] = target.ratio(pixels[p]);
+    for (size_t p = 0; p < pixels.size(); ++p) ratio[p] = target.ratio(pixels[p], spread);
   }
   int64_t count = 0;
   for (int y = 0; y < height; ++y)
@@ -53,12 +52,11 @@ int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int wid
       const int64_t n = pixels[p].samples();
       bool needs = n < end;
       if (needs && adaptive() && n >= minSpp) {
-        double sum = 0;
-        int neighbours = 0;
+        double worst = 0;
         for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
-          for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx, ++neighbours)
-            sum += ratio[size_t(ny) * size_t(width) + size_t(nx)];
-        needs = std::max(ratio[p], sum / neighbours) > 1;
+          for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx)
+            worst = std::max(worst, ratio[size_t(ny) * size_t(width) + size_t(nx)]);
+        needs = worst > 1;
       }
       sampled[p] = needs;
       count += needs;
@@ -71,18 +69,25 @@ FrameError estimateFrameError(const std::vector<PixelEstimate>& pixels, SamplerK
   if (sampler == SamplerKind::Regular || pixels.empty()) return e;
   double squared = 0, relative = 0;
   for (const PixelEstimate& p : pixels) {
-    double variance[3], value[4];
-    if (!p.varianceOfMean(variance)) return e;
-    p.mean(value);
-    for (int c = 0; c < 3; ++c) {
-      squared += variance[c];
-      relative += variance[c] / (value[c] * value[c] + kRelMseEpsilon);
-    }
+    PixelError pixel;
+    if (!PixelError::of(p, pixel)) return e;
+    squared += pixel.mse;
+    relative += pixel.relmse;
   }
-  const double n = 3.0 * static_cast<double>(pixels.size());
+  const double n = static_cast<double>(pixels.size());
   e.rmse = std::sqrt(squared / n);
   e.relmse = relative / n;
   return e;
+}
+
+ProbeLattice ProbeLattice::of(int width, int height) {
+  const double cells = double(width) * double(height) / kProbesWanted;
+  ProbeLattice lattice;
+  lattice.stride = std::clamp(static_cast<int>(std::sqrt(cells)), 1, kMaxStride);
+  lattice.offset = lattice.stride / 2;
+  lattice.columns = width > lattice.offset ? (width - lattice.offset - 1) / lattice.stride + 1 : 0;
+  lattice.rows = height > lattice.offset ? (height - lattice.offset - 1) / lattice.stride + 1 : 0;
+  return lattice;
 }
 
 }  // namespace glint

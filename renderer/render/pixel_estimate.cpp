@@ -1,6 +1,7 @@
 #include "render/pixel_estimate.h"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 
 #include "film/compare.h"
@@ -28,17 +29,42 @@ bool PixelEstimate::varianceOfMean(double out[3]) const {
   return true;
 }
 
-double ErrorTarget::ratio(const PixelEstimate& pixel) const {
+bool PixelError::of(const PixelEstimate& pixel, PixelError& out) {
   double variance[3], value[4];
-  if (!pixel.varianceOfMean(variance)) return std::numeric_limits<double>::infinity();
-  double worst = 0;
-  if (rmse > 0) worst = (variance[0] + variance[1] + variance[2]) / 3 / (rmse * rmse);
-  if (relmse > 0) {
-    pixel.mean(value);
-    double rel = 0;
-    for (int c = 0; c < 3; ++c) rel += variance[c] / (value[c] * value[c] + kRelMseEpsilon);
-    worst = std::max(worst, rel / 3 / relmse);
+  if (!pixel.varianceOfMean(variance)) return false;
+  pixel.mean(value);
+  out = {};
+  for (int c = 0; c < 3; ++c) {
+    out.mse += variance[c] / 3;
+    out.relmse += variance[c] / (value[c] * value[c] + kRelMseEpsilon) / 3;
   }
+  return true;
+}
+
+FrameSpread FrameSpread::of(const std::vector<PixelEstimate>& probes) {
+  double squared = 0, relative = 0;
+  int64_t count = 0;
+  for (const PixelEstimate& p : probes) {
+    PixelError e;
+    if (!PixelError::of(p, e)) continue;
+    const double n = static_cast<double>(p.samples());
+    squared += n * e.mse;
+    relative += n * e.relmse;
+    ++count;
+  }
+  if (count == 0) return {};
+  return {std::sqrt(squared / double(count)), std::sqrt(relative / double(count))};
+}
+
+double ErrorTarget::ratio(const PixelEstimate& pixel, const FrameSpread& spread) const {
+  PixelError e;
+  if (!PixelError::of(pixel, e)) return std::numeric_limits<double>::infinity();
+  const double n = static_cast<double>(pixel.samples());
+  // sqrt(squared error / n) is the pixel's per-sample deviation over its n samples.
+  double worst = 0;
+  if (rmse > 0) worst = std::sqrt(e.mse / n) * spread.deviation / (rmse * rmse);
+  if (relmse > 0)
+    worst = std::max(worst, std::sqrt(e.relmse / n) * spread.relativeDeviation / relmse);
   return worst;
 }
 

@@ -6,6 +6,7 @@
 // added in index order within a half, so the state is the same bits whatever the passes,
 // threads or tiles that added them.
 #include <cstdint>
+#include <vector>
 
 #include "integrator/radiance.h"
 
@@ -42,16 +43,32 @@ struct PixelEstimate {
   bool varianceOfMean(double out[3]) const;
 };
 
-// The per-pixel errors that adaptive sampling aims at: the RMSE (root of the channels' mean
-// squared error) or the relMSE (squared error over value² + kRelMseEpsilon, as `glint compare`
-// has it, channels' mean).
+// A pixel's estimated squared error, as `glint compare` averages it over channels: its mean's
+// variance (MSE), and that over value² + kRelMseEpsilon (relMSE). False where the pixel has no
+// estimate (PixelEstimate::varianceOfMean).
+struct PixelError {
+  double mse = 0, relmse = 0;
+  static bool of(const PixelEstimate& pixel, PixelError& out);
+};
+
+// How much one sample of the frame spreads, pixel to pixel: the root mean square over a set of
+// pixels (the probes of PassPlan) of each pixel's per-sample deviation, samples · MSE (and the
+// same of relMSE). It turns a target for the frame into each pixel's share (ErrorTarget::ratio).
+struct FrameSpread {
+  double deviation = 0, relativeDeviation = 0;
+  static FrameSpread of(const std::vector<PixelEstimate>& probes);
+};
+
+// What adaptive sampling aims at: the frame's RMSE or relMSE, as `glint compare` measures it.
 struct ErrorTarget {
   double rmse = 0, relmse = 0;  // 0: no target of that kind
   bool any() const { return rmse > 0 || relmse > 0; }
-  // The pixel's estimated error over the target, in squared terms (MSE / rmse², relMSE /
-  // relmse), the larger of the two targets given: at most 1 meets them. Infinity where the
-  // pixel has no estimate.
-  double ratio(const PixelEstimate& pixel) const;
+  // How far a pixel is from its share of the target, at most 1 where it meets it; the larger of
+  // the two targets given; infinity where the pixel has no estimate. The frame's squared error
+  // falls fastest per sample when each pixel's samples grow with its per-sample deviation σ
+  // (Neyman's allocation), that is when a pixel of n samples stops at σ / n ≤ E² / s, s being
+  // the frame's spread: then its squared error is E²·σ/s, and the frame's mean of them is at
+  // most E² (the mean of σ is at most their root mean square s). The ratio is (σ / n)·s / E².
+  double ratio(const PixelEstimate& pixel, const FrameSpread& spread) const;
 };
-
 }  // namespace glint

@@ -36,6 +36,27 @@ constexpr int kMaxLoggedNonfinite = 5;
 // The record of a sample when only the beauty's variance is asked for.
 const AovSample kNoRecord{};
 
+// Which pixels a render samples and where each keeps its state, row-major: every pixel of a
+// window, or a lattice of the full frame (the probes of adaptive sampling, ProbeLattice).
+struct PixelSlots {
+  PixelWindow window;
+  int stride = 1, offset = 0, columns = 0;
+
+  static PixelSlots all(const PixelWindow& w) { return {w, 1, 0, w.width()}; }
+  static PixelSlots probes(const ProbeLattice& l, int width, int height) {
+    return {PixelWindow{0, width, 0, height}, l.stride, l.offset, l.columns};
+  }
+  bool holds(int x, int y) const {
+    if (stride == 1) return true;
+    const int dx = x - window.x0 - offset, dy = y - window.y0 - offset;
+    return dx >= 0 && dy >= 0 && dx % stride == 0 && dy % stride == 0;
+  }
+  size_t slot(int x, int y) const {
+    return size_t((y - window.y0 - offset) / stride) * size_t(columns) +
+           size_t((x - window.x0 - offset) / stride);
+  }
+};
+
 // What every tile of one render shares.
 struct FrameContext {
   const Scene& scene;
@@ -46,22 +67,20 @@ struct FrameContext {
   const Sampler& sampler;
   const AovLayout& aovLayout;
   std::atomic<int>& loggedNonfinite;
-  // The state passes leave, one entry per pixel of the window (row-major), and the AOV sums.
+  // The state passes leave, one entry per pixel of `slots`, and the AOV sums.
   std::vector<PixelEstimate>& estimates;
   Film& aovSums;
   AovTables& aovTables;
+  PixelSlots slots;
 
-  PixelEstimate& estimate(int x, int y) const {
-    const PixelWindow& w = aovSums.window();
-    return estimates[size_t(y - w.y0) * size_t(w.width()) + size_t(x - w.x0)];
-  }
+  PixelEstimate& estimate(int x, int y) const { return estimates[slots.slot(x, y)]; }
 };
 
 // The pass being rendered: the samples per pixel it brings pixels up to, which pixels take
 // part, and when a time limit stops it.
 struct PassContext {
   int end = 0;
-  const std::vector<uint8_t>& sampled;  // per pixel of the window, as FrameContext::estimates
+  const std::vector<uint8_t>& sampled;  // per slot, as FrameContext::estimates
   std::optional<std::chrono::steady_clock::time_point> deadline;
   std::atomic<bool>& deadlinePassed;
 };
@@ -173,11 +192,9 @@ bool renderTilePass(const FrameContext& f, const PassContext& pass, Shading& sha
     count = 0;
     return true;
   };
-  const PixelWindow& window = f.aovSums.window();
   for (int y = tile.y0; y < tile.y1; ++y)
     for (int x = tile.x0; x < tile.x1; ++x) {
-      if (!pass.sampled[size_t(y - window.y0) * size_t(window.width()) + size_t(x - window.x0)])
-        continue;
+      if (!f.slots.holds(x, y) || !pass.sampled[f.slots.slot(x, y)]) continue;
       const int64_t taken = f.estimate(x, y).samples();
       const uint64_t pixelKey = f.sampler.pixelKey(x, y);
       bool first = true;
@@ -237,19 +254,18 @@ void forEachTile(const FrameContext& f, const PassContext& pass, TileWork& work,
 // at 32-pixel tiles and 18 % at 8 (default scene, one thread).
 class ProductionTiles {
  public:
-  ProductionTiles(const FrameContext& f) : f_(f), kernel_(f.scene, f.accel) {}
-  void render(const PassContext& pass, TileWork& work) {
-    forEachTile(f_, pass, work, [&](size_t i, RayCounters& counters) {
+  ProductionTiles(const Scene& scene, const Accelerator& accel) : kernel_(scene, accel) {}
+  void render(const FrameContext& f, const PassContext& pass, TileWork& work) {
+    forEachTile(f, pass, work, [&](size_t i, RayCounters& counters) {
       std::unique_ptr<Scratch>& scratch = scratches_.local();
       if (!scratch) scratch = std::make_unique<Scratch>();
-      ProductionShading shade{kernel_, f_.accel, *scratch, {}};
-      return renderTilePass(f_, pass, shade, work.tiles[i], counters);
+      ProductionShading shade{kernel_, f.accel, *scratch, {}};
+      return renderTilePass(f, pass, shade, work.tiles[i], counters);
     });
   }
 
  private:
   using Scratch = BatchedKernel::Scratch;
-  const FrameContext& f_;
   const BatchedKernel kernel_;  // const: shared by the threads
   tbb::enumerable_thread_specific<std::unique_ptr<Scratch>> scratches_;
 };
@@ -257,16 +273,15 @@ class ProductionTiles {
 // Every tile with the reference integrator (beauty only, no AOVs).
 class ReferenceTiles {
  public:
-  ReferenceTiles(const FrameContext& f) : f_(f), integrator_(f.scene, f.accel) {}
-  void render(const PassContext& pass, TileWork& work) {
-    forEachTile(f_, pass, work, [&](size_t i, RayCounters& counters) {
+  ReferenceTiles(const Scene& scene, const Accelerator& accel) : integrator_(scene, accel) {}
+  void render(const FrameContext& f, const PassContext& pass, TileWork& work) {
+    forEachTile(f, pass, work, [&](size_t i, RayCounters& counters) {
       ReferenceShading shade{integrator_};
-      return renderTilePass(f_, pass, shade, work.tiles[i], counters);
+      return renderTilePass(f, pass, shade, work.tiles[i], counters);
     });
   }
 
  private:
-  const FrameContext& f_;
   const ReferenceIntegrator integrator_;
 };
 
@@ -403,19 +418,56 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   Progress progress(sampledWindow.area() * plan.maxSpp, opt.progress);
   std::atomic<int> loggedNonfinite{0};
   const CameraSampling cameraSampling(scene, camera);
-  const FrameContext frame{scene,     accel,           opt,       camera,  cameraSampling, sampler,
-                           aovLayout, loggedNonfinite, estimates, aovSums, aovTables};
+  const FrameContext frame{scene,          accel,   opt,       camera,
+                           cameraSampling, sampler, aovLayout, loggedNonfinite,
+                           estimates,      aovSums, aovTables, PixelSlots::all(sampledWindow)};
   std::optional<ProductionTiles> production;
   std::optional<ReferenceTiles> reference;
   if (opt.integrator == IntegratorKind::Reference)
-    reference.emplace(frame);
+    reference.emplace(scene, accel);
   else
-    production.emplace(frame);
+    production.emplace(scene, accel);
+  const auto renderPass = [&](const FrameContext& f, const PassContext& pass, TileWork& work) {
+    if (reference)
+      reference->render(f, pass, work);
+    else
+      production->render(f, pass, work);
+  };
+  // The probes' first pass, rendered on their own (beauty only) so that a crop or a resumed
+  // render measures the frame's spread as the full frame does. Absent when a cancel cut it
+  // short.
+  const RenderOptions probeOptions = [&] {
+    RenderOptions o = opt;
+    o.aovs = {};
+    return o;
+  }();
+  std::vector<RayCounters> probeCounters(tiles.size());
+  const auto measureSpread = [&]() -> std::optional<FrameSpread> {
+    const ProbeLattice lattice = ProbeLattice::of(rs.width, rs.height);
+    std::vector<PixelEstimate> probes(size_t(lattice.columns) * size_t(lattice.rows));
+    const FrameContext probeFrame{
+        scene,          accel,   probeOptions, camera,
+        cameraSampling, sampler, aovLayout,    loggedNonfinite,
+        probes,         aovSums, aovTables,    PixelSlots::probes(lattice, rs.width, rs.height)};
+    const std::vector<uint8_t> all(probes.size(), 1);
+    std::atomic<bool> never{false}, stopped{false};
+    const PassContext pass{plan.minSpp, all, std::nullopt, never};
+    Progress silent(0, false);
+    const std::vector<PixelWindow> frameTiles =
+        makeTiles(PixelWindow{0, rs.width, 0, rs.height}, tileSize, opt.tileOrder);
+    probeCounters.assign(frameTiles.size(), {});
+    TileWork work{frameTiles, probeCounters, silent, stopped, threads};
+    renderPass(probeFrame, pass, work);
+    if (stopped) return std::nullopt;
+    return FrameSpread::of(probes);
+  };
+  std::optional<FrameSpread> spread;
 
-  RenderResult result{Film(rs.width, rs.height, window), {}, false, tileSize};
+  RenderResult result{Film(rs.width, rs.height, window), {}, false, tileSize, {}};
   const auto statsSoFar = [&] {
     result.stats.rays = {};
     for (const RayCounters& c : tileCounters) result.stats.rays += c;
+    for (const RayCounters& c : probeCounters) result.stats.rays += c;
     result.stats.integrator = opt.integrator;
     result.stats.seconds = secondsSince(start);
     describeSamples(estimatesIn(frame, window), plan.sampler, result.stats);
@@ -424,7 +476,15 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   std::atomic<bool> deadlinePassed{false};
   for (size_t k = 0; k < plan.ends.size(); ++k) {
     const int end = plan.ends[k];
-    const int64_t pixels = plan.choosePixels(estimates, sampledWindow.width(), end, sampled);
+    if (plan.adaptive() && k > 0 && !spread) {
+      spread = measureSpread();
+      if (!spread) {
+        result.partial = true;
+        break;
+      }
+    }
+    const int64_t pixels = plan.choosePixels(estimates, sampledWindow.width(), end,
+                                             spread.value_or(FrameSpread{}), sampled);
     if (pixels == 0) continue;  // every pixel is past this pass (resumed), or met its target
     // The time limit applies from the second pass on: the first is what makes a frame.
     std::optional<Clock::time_point> deadline;
@@ -434,10 +494,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
     const PassContext pass{end, sampled, deadline, deadlinePassed};
     std::atomic<bool> stopped{false};
     TileWork work{tiles, tileCounters, progress, stopped, threads};
-    if (reference)
-      reference->render(pass, work);
-    else
-      production->render(pass, work);
+    renderPass(frame, pass, work);
     if (stopped) {
       result.stats.timeLimitReached = deadlinePassed.load();
       result.partial = !result.stats.timeLimitReached;

@@ -47,9 +47,18 @@ TEST(PassesCli, ResumeGivesTheStraightRendersPixelsAndRefusesAnotherFrame) {
   ASSERT_EQ(test::runGlint("render " + soft("--resumable --spp 8 -o " + part)).exitCode, 0);
   ASSERT_EQ(test::runGlint("render " + soft("--resumable --spp 32 -o " + straight)).exitCode, 0);
   // -o names the partial itself: it is replaced by the continued frame.
-  const auto run = test::runGlint("render " + soft("--spp 32 --resume " + part + " -o " + part));
+  const std::string stats = tmp("resume.json");
+  const auto run = test::runGlint(
+      "render " + soft("--spp 32 --resume " + part + " -o " + part + " --stats-json " + stats));
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_EQ(readImage(part).pixels, readImage(straight).pixels);
+  // The passes of both renders, 2 to 32 spp, on one time axis: the continued render's start
+  // where the first's ended, so its last pass ends later than its own render time.
+  const nlohmann::json j = nlohmann::json::parse(test::readFile(stats));
+  ASSERT_EQ(j["passes"].size(), 5u);
+  for (size_t i = 1; i < 5; ++i)
+    EXPECT_GE(j["passes"][i]["seconds"].get<double>(), j["passes"][i - 1]["seconds"].get<double>());
+  EXPECT_GT(j["passes"][4]["seconds"].get<double>(), j["seconds"].get<double>());
   // Another seed, another setting, a frame without state: exit 2, the frame named.
   for (const std::string& other : {std::string("--seed 9"), std::string("--max-depth 2")}) {
     const auto r = test::runGlint("render " + soft("--spp 32 " + other + " --resume " + straight +

@@ -81,26 +81,48 @@ TEST(PixelEstimate, OneSampleHasNoEstimate) {
   // A pixel without an estimate never meets a target (it keeps taking samples).
   ErrorTarget t;
   t.rmse = 1e9;
-  EXPECT_EQ(t.ratio(p), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(t.ratio(p, FrameSpread{1, 1}), std::numeric_limits<double>::infinity());
 }
 
-TEST(ErrorTarget, RatioOfTheEstimateToRmseAndRelmseTargets) {
-  const PixelEstimate p = twoHalves();  // variance of the mean 1 per channel, mean 3
+TEST(FrameSpread, RootMeanSquareOfThePixelsPerSampleDeviations) {
+  // twoHalves(): 4 samples, MSE 1, so samples · MSE = 4; a flat pixel: 0; a one-sample pixel
+  // has no estimate and is left out. sqrt((4 + 0) / 2) = √2.
+  PixelEstimate flat, single;
+  for (int h = 0; h < 2; ++h) flat.half[h].add({2, 2, 2}, 1);
+  single.half[0].add({5, 5, 5}, 1);
+  const FrameSpread s = FrameSpread::of({twoHalves(), flat, single});
+  EXPECT_DOUBLE_EQ(s.deviation, std::sqrt(2.0));
+  // Relative: twoHalves() has relMSE 1 / (9 + 0.01), so 4 / 9.01 over the two pixels.
+  EXPECT_DOUBLE_EQ(s.relativeDeviation, std::sqrt(4 / 9.01 / 2));
+  // No estimates at all: no spread (every pixel then meets its share at the first pass).
+  EXPECT_EQ(FrameSpread::of({single}).deviation, 0.0);
+}
+
+TEST(ErrorTarget, RatioOfThePixelsErrorToItsShareOfTheTarget) {
+  // twoHalves(): variance of the mean 1 per channel over n = 4 samples, mean 3; its per-sample
+  // deviation is σ = √(4 · 1) = 2, σ / n = 0.5.
+  const PixelEstimate p = twoHalves();
   ErrorTarget t;
   t.rmse = 0.5;
-  EXPECT_DOUBLE_EQ(t.ratio(p), 4.0);  // 1 / 0.5²
-  // relMSE: 1 / (9 + 0.01); over a target of 0.05.
+  // In a frame of pixels like it (spread 2), its share is the target itself: 1 / 0.5² = 4.
+  EXPECT_DOUBLE_EQ(t.ratio(p, FrameSpread{2, 0}), 4.0);
+  // In a frame that spreads half as much, a pixel this noisy may keep twice the squared error:
+  // 0.5 · 1 / 0.25 = 2.
+  EXPECT_DOUBLE_EQ(t.ratio(p, FrameSpread{1, 0}), 2.0);
+  // relMSE 1 / 9.01 in a frame of pixels like it (spread √(4 / 9.01)): its relMSE over the
+  // target 0.05.
+  const FrameSpread same{2, std::sqrt(4 / 9.01)};
   ErrorTarget rel;
   rel.relmse = 0.05;
-  EXPECT_DOUBLE_EQ(rel.ratio(p), 1 / 9.01 / 0.05);
+  EXPECT_DOUBLE_EQ(rel.ratio(p, same), 1 / 9.01 / 0.05);
   // Both: the larger.
   rel.rmse = 0.5;
-  EXPECT_DOUBLE_EQ(rel.ratio(p), 4.0);
+  EXPECT_DOUBLE_EQ(rel.ratio(p, same), 4.0);
 }
 
-TEST(PassPlan, AdaptiveChoiceWeighsEachPixelAndItsNeighbourhood) {
+TEST(PassPlan, AdaptiveChoiceTakesTheWorstOfEachPixelsNeighbourhood) {
   SamplingRequest r;
-  r.target.rmse = 1.5;  // ratio of twoHalves(): 1 / 2.25 = 0.44
+  r.target.rmse = 1.5;  // ratio of twoHalves() in a frame of its like: 1 / 2.25 = 0.44
   r.minSpp = 4;
   r.maxSpp = 64;
   const PassPlan plan = PassPlan::make(16, SamplerKind::Sobol, r);
@@ -109,22 +131,43 @@ TEST(PassPlan, AdaptiveChoiceWeighsEachPixelAndItsNeighbourhood) {
   std::vector<PixelEstimate> grid(12, twoHalves());
   PixelEstimate noisy;
   for (float v : {0.f, 0.f}) noisy.half[0].add({v, v, v}, 1);
-  for (float v : {20.f, 20.f}) noisy.half[1].add({v, v, v}, 1);  // ratio 100 / 2.25 = 44
+  // Variance of the mean (4/16)·20² = 100, σ / n = √(100 / 4) = 5: ratio 5 · 2 / 2.25 = 4.4.
+  for (float v : {20.f, 20.f}) noisy.half[1].add({v, v, v}, 1);
   grid[5] = noisy;
   PixelEstimate young;
   young.half[0].add({1, 1, 1}, 1);
   young.half[1].add({1, 1, 1}, 1);
   grid[11] = young;
   std::vector<uint8_t> sampled;
-  EXPECT_EQ(plan.choosePixels(grid, 4, 8, sampled), 10);
-  // The noisy pixel and its 8 neighbours (their 3 × 3 means hold its 44 / 9 or / 6 or / 4),
+  const FrameSpread spread{2, 0};  // as if the frame were all like twoHalves()
+  EXPECT_EQ(plan.choosePixels(grid, 4, 8, spread, sampled), 10);
+  // The noisy pixel and its 8 neighbours (their neighbourhoods' worst is its 4.4, though a
+  // neighbourhood's mean, (4.4 + 8 · 0.44) / 9 = 0.89, would not be),
   // and the young pixel; not (3, 0) and (3, 1)... whose neighbourhoods miss (1, 1).
   const std::vector<uint8_t> expected = {1, 1, 1, 0,  //
                                          1, 1, 1, 0,  //
                                          1, 1, 1, 1};
   EXPECT_EQ(sampled, expected);
   // A pass that every pixel has reached samples none.
-  EXPECT_EQ(plan.choosePixels(grid, 4, 2, sampled), 0);
+  EXPECT_EQ(plan.choosePixels(grid, 4, 2, spread, sampled), 0);
+}
+
+TEST(ProbeLattice, AboutTwoHundredFiftySixProbesAtMostOneInSixtyFour) {
+  // 140 × 90: 12600 / 256 = 49.2 pixels per probe, stride 7 from 3: 20 × 13 probes.
+  const ProbeLattice small = ProbeLattice::of(140, 90);
+  EXPECT_EQ(small.stride, 7);
+  EXPECT_EQ(small.offset, 3);
+  EXPECT_EQ(small.columns, 20);  // x = 3, 10, ..., 136
+  EXPECT_EQ(small.rows, 13);     // y = 3, 10, ..., 87
+  // 1920 × 1080: the stride stops at 8, 240 × 135 probes.
+  const ProbeLattice hd = ProbeLattice::of(1920, 1080);
+  EXPECT_EQ(hd.stride, 8);
+  EXPECT_EQ(hd.columns, 240);
+  EXPECT_EQ(hd.rows, 135);
+  // A frame smaller than 256 pixels probes every pixel.
+  const ProbeLattice tiny = ProbeLattice::of(10, 3);
+  EXPECT_EQ(tiny.stride, 1);
+  EXPECT_EQ(tiny.columns * tiny.rows, 30);
 }
 
 TEST(FrameError, AveragesPixelsLikeCompareAndIsAbsentForRegularGrids) {
