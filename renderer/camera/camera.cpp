@@ -7,39 +7,59 @@
 
 namespace glint {
 
+ImageWindow CameraDesc::imageWindow(int width, int height) const {
+  if (window) return *window;
+  const float halfHeight = projection == Projection::Perspective
+                               ? std::tan(0.5f * vfovDegrees * kPi / 180.0f)
+                               : 0.5f * orthoHeight;
+  const float halfWidth = halfHeight * (static_cast<float>(width) / static_cast<float>(height));
+  return {-halfWidth, halfWidth, -halfHeight, halfHeight};
+}
+
 Camera::Camera(const CameraDesc& desc, int width, int height) : desc_(desc) {
   const Vec3f back = desc.eye - desc.lookAt;
   if (!(length(back) > 0)) throw std::invalid_argument("eye and look_at are the same point");
   w_ = normalize(back);
+  view_ = -w_;
+  if (desc.imagePlaneNormal) {
+    // Seed 000 §4.3: the image plane's normal given apart from the view direction d.
+    const Vec3f n = normalize(*desc.imagePlaneNormal);
+    const float cosine = dot(n, view_);
+    // Below this the image plane nearly holds the view direction: a pixel spans thousands of
+    // times its width along it.
+    if (!(std::abs(cosine) >= 1e-3f))
+      throw std::invalid_argument(
+          "image_plane_normal is perpendicular to the view direction: the image plane would "
+          "contain it");
+    w_ = cosine < 0 ? n : -n;
+  }
   const Vec3f right = cross(desc.up, w_);
   if (!(length(right) > 1e-6f * length(desc.up)))
-    throw std::invalid_argument("up is parallel to the viewing direction");
+    throw std::invalid_argument(desc.imagePlaneNormal ? "up is parallel to image_plane_normal"
+                                                      : "up is parallel to the viewing direction");
   u_ = normalize(right);
   v_ = cross(w_, u_);
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  if (desc.projection == Projection::Perspective)
-    halfHeight_ = std::tan(0.5f * desc.vfovDegrees * kPi / 180.0f);
-  else
-    halfHeight_ = 0.5f * desc.orthoHeight;
-  halfWidth_ = halfHeight_ * aspect;
+  window_ = desc.imageWindow(width, height);
   // Per ray, a multiply instead of a division.
-  uPerPixel_ = 2 * halfWidth_ / static_cast<float>(width);
-  vPerPixel_ = 2 * halfHeight_ / static_cast<float>(height);
+  uPerPixel_ = (window_.r - window_.l) / static_cast<float>(width);
+  vPerPixel_ = (window_.t - window_.b) / static_cast<float>(height);
 }
 
 void Camera::generateRay(float x, float y, Vec2f lens, Ray& ray) const {
-  // Seed 000 eq. 4.1 with l = −halfWidth, r = halfWidth, b = −halfHeight, t = halfHeight.
-  const float su = -halfWidth_ + uPerPixel_ * x;
-  const float sv = halfHeight_ - vPerPixel_ * y;
+  // Seed 000 eq. 4.1, with rows counted down from the top edge.
+  const float su = window_.l + uPerPixel_ * x;
+  const float sv = window_.t - vPerPixel_ * y;
   ray.tMin = 0;
   ray.tMax = kInfinity;
   ray.time = 0;
   if (desc_.projection == Projection::Perspective) {
+    // Through s = e + d + u·u + v·v: the image plane at distance 1 along the view direction d,
+    // spanned by u and v (§4.3.2; d = −w unless oblique).
     ray.o = desc_.eye;
-    ray.d = normalize(su * u_ + sv * v_ - w_);
+    ray.d = normalize(su * u_ + sv * v_ + view_);
     if (hasLens()) {
-      // Thin lens: every ray through the lens point meets the pinhole ray on the focus plane,
-      // at distance focus_distance along the view direction −w.
+      // Thin lens, parallel to the image plane: every ray through the lens point meets the
+      // pinhole ray on the focus plane, parallel to the image plane at focus_distance.
       const Vec2f l = desc_.lensShape == LensShape::Disk ? squareToDiskConcentric(lens)
                                                          : Vec2f{2 * lens.x - 1, 2 * lens.y - 1};
       const Vec3f pFocus = ray.o + (desc_.focusDistance / dot(ray.d, -w_)) * ray.d;
@@ -48,7 +68,7 @@ void Camera::generateRay(float x, float y, Vec2f lens, Ray& ray) const {
     }
   } else {
     ray.o = desc_.eye + su * u_ + sv * v_;
-    ray.d = -w_;
+    ray.d = view_;
   }
 }
 
@@ -67,22 +87,32 @@ Mat4 Camera::worldToCamera() const {
 }
 
 Mat4 Camera::worldToNdc() const {
-  // Camera (x, y, z) to NDC: x/(2·halfWidth) + 1/2 and 1/2 − y/(2·halfHeight), divided by the
-  // depth z under perspective (w' = z). z' = 1 makes z'/w' = 1/z, so the matrix stays
+  // A camera-space point (x, y, z) lies on the ray of image-plane point (s_u, s_v) when
+  // perspective: s_u = (c·x − d_u·z) / z, s_v = (c·y − d_v·z) / z; orthographic: s_u = x −
+  // (d_u/c)·z, s_v = y − (d_v/c)·z; with d = (d_u, d_v, c) the view direction in camera space
+  // (0, 0, 1 unless oblique). NDC is then ((s_u − l)/(r − l), (t − s_v)/(t − b)), divided by
+  // the depth z under perspective (w' = z); z' = 1 makes z'/w' = 1/z, so the matrix stays
   // invertible and a tool can turn an NDC point back into a ray.
+  const float du = dot(view_, u_), dv = dot(view_, v_), c = dot(view_, -w_);
+  const ImageWindow& win = window_;
+  const float width = win.r - win.l, height = win.t - win.b;
   Mat4 p;
-  p(0, 0) = 0.5f / halfWidth_;
-  p(1, 1) = -0.5f / halfHeight_;
   if (desc_.projection == Projection::Perspective) {
-    p(0, 2) = 0.5f;
-    p(1, 2) = 0.5f;
+    p(0, 0) = c / width;
+    p(0, 2) = -(du + win.l) / width;
+    p(1, 1) = -c / height;
+    p(1, 2) = (dv + win.t) / height;
     p(2, 2) = 0;
     p(2, 3) = 1;
     p(3, 2) = 1;
     p(3, 3) = 0;
   } else {
-    p(0, 3) = 0.5f;
-    p(1, 3) = 0.5f;
+    p(0, 0) = 1 / width;
+    p(0, 2) = -du / (c * width);
+    p(0, 3) = -win.l / width;
+    p(1, 1) = -1 / height;
+    p(1, 2) = dv / (c * height);
+    p(1, 3) = win.t / height;
   }
   return p * worldToCamera();
 }

@@ -1,7 +1,11 @@
 #pragma once
 // Viewing rays of seed 000 §4.3: perspective (vertical field of view) and orthographic (view
-// height), with the camera frame u, v, w built from eye, look_at and up; and the thin lens of
-// seed 000 §13.4.3 (aperture radius, focus distance; disk or square lens).
+// height), with the camera frame u, v, w built from eye, look_at and up; an off-centre image
+// window (l, r, b, t of eq. 4.1) and an image plane whose normal differs from the view direction
+// (oblique parallel and oblique perspective views); and the thin lens of seed 000 §13.4.3
+// (aperture radius, focus distance; disk or square lens).
+#include <optional>
+
 #include "core/ray.h"
 #include "core/transform.h"
 
@@ -10,21 +14,37 @@ namespace glint {
 enum class Projection { Perspective, Orthographic };
 enum class LensShape { Disk, Square };
 
+// The image's extent on the image plane (seed 000 eq. 4.1): u from l to r, v from b to t, at
+// distance 1 from the eye (perspective) or in scene units from it (orthographic).
+struct ImageWindow {
+  float l = -1, r = 1, b = -1, t = 1;
+};
+
 struct CameraDesc {
   Projection projection = Projection::Perspective;
   Vec3f eye{0, 0, 0}, lookAt{0, 0, -1}, up{0, 1, 0};
   float vfovDegrees = 40;
   float orthoHeight = 2;
+  // An off-centre window in place of the one vfov (or the view height) and the image's aspect
+  // ratio give.
+  std::optional<ImageWindow> window;
+  // The image plane's normal, when it is not the view direction (an oblique view); either
+  // orientation, not perpendicular to the view direction.
+  std::optional<Vec3f> imagePlaneNormal;
   float apertureRadius = 0;  // 0 = pinhole
   float focusDistance = 1;
   LensShape lensShape = LensShape::Disk;
   float shutterOpen = 0, shutterClose = 0;
+
+  // The window, or the centred one of vfov (or the view height) at the image's aspect ratio.
+  ImageWindow imageWindow(int width, int height) const;
 };
 
 class Camera {
  public:
   Camera() = default;
-  // Throws std::invalid_argument when eye == look_at or up is parallel to the view direction.
+  // Throws std::invalid_argument when eye == look_at, up is parallel to the image plane's
+  // normal, or the image plane is (nearly) parallel to the view direction.
   Camera(const CameraDesc& desc, int width, int height);
 
   // A ray through film position (x, y) in pixels, y down from the top edge; `lens` in [0, 1)²
@@ -50,12 +70,17 @@ class Camera {
   Vec3f u() const { return u_; }
   Vec3f v() const { return v_; }
   Vec3f w() const { return w_; }
+  Vec3f viewDirection() const { return view_; }
 
  private:
   CameraDesc desc_;
-  Vec3f u_, v_, w_;                       // right, up, backwards (w = eye − look_at, normalised)
-  float halfWidth_ = 1, halfHeight_ = 1;  // image plane extent at distance 1 (or in units, ortho)
-  float uPerPixel_ = 1, vPerPixel_ = 1;   // 2·halfWidth / width, 2·halfHeight / height
+  // Right, up and backwards: w is the image plane's normal turned towards the eye (without an
+  // oblique plane, eye − look_at normalised), u = up × w, v = w × u.
+  Vec3f u_, v_, w_;
+  Vec3f view_;           // the projection direction (seed 000 §4.3's d), −w unless oblique
+  ImageWindow window_;   // on the image plane at distance 1 (or in units, ortho)
+  float uPerPixel_ = 1;  // (r − l) / width
+  float vPerPixel_ = 1;  // (t − b) / height
 };
 
 }  // namespace glint

@@ -27,10 +27,11 @@ struct PixelCone {
 // pixel then cover it between them instead of each blurring over all of it.
 inline PixelCone pixelCone(const CameraDesc& camera, int height, int spp) {
   const float share = std::max(0.125f, 1.0f / std::sqrt(float(std::max(spp, 1))));
-  if (camera.projection == Projection::Orthographic)
-    return {camera.orthoHeight / float(height) * share, 0};
-  const float halfAngle = camera.vfovDegrees * kPi / 360;
-  return {0, 2 * std::tan(halfAngle) / float(height) * share};
+  // The window's height, as seen square-on (an oblique plane's pixels are a little wider).
+  const ImageWindow window = camera.imageWindow(1, 1);
+  const float pixel = (window.t - window.b) / float(height) * share;
+  if (camera.projection == Projection::Orthographic) return {pixel, 0};
+  return {0, pixel};
 }
 
 }  // namespace glint

@@ -164,13 +164,13 @@ std::string joinPath(const std::string& path, const std::string& key) {
   return path.empty() ? key : path + "." + key;
 }
 
+}  // namespace
+
 std::string formatNumber(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.9g", v);
   return buf;
 }
-
-}  // namespace
 
 JsonDocument::JsonDocument(const std::string& text, std::string fileName)
     : fileName_(std::move(fileName)) {

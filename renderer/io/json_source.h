@@ -91,6 +91,9 @@ class JsonNode {
 };
 
 // Nearest candidate within a small edit distance, for "did you mean" hints; empty if none.
+// A number as error messages show it: the shortest of %.9g (a float read back exactly).
+std::string formatNumber(double v);
+
 std::string nearestName(const std::string& name, const std::vector<std::string>& candidates);
 
 }  // namespace glint

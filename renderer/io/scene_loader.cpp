@@ -44,19 +44,58 @@ void parseRender(const JsonNode& n, RenderSettings& r) {
   if (auto v = n.get("transparent_background")) r.transparentBackground = v->boolean();
 }
 
+// "window": [l, r, b, t] with l < r and b < t (seed 000 eq. 4.1).
+ImageWindow parseWindow(const JsonNode& n) {
+  if (!n.isArray() || n.size() != 4) n.fail("must be [l, r, b, t]");
+  const ImageWindow w{n[0].number(), n[1].number(), n[2].number(), n[3].number()};
+  if (!(w.l < w.r)) n.fail("l must be less than r");
+  if (!(w.b < w.t)) n.fail("b must be less than t");
+  return w;
+}
+
+// The lens: "aperture_radius", or a photographer's "focal_length" F and "f_number" a (seed 002
+// §9.3: the lens diameter is D = F/a, so the radius F/(2a)).
+void parseLens(const JsonNode& n, CameraDesc& c) {
+  const bool byRadius = n.has("aperture_radius");
+  const bool byNumber = n.has("focal_length") || n.has("f_number");
+  if (byRadius && byNumber)
+    n.at("aperture_radius")
+        .fail(
+            "is given with focal_length / f_number: give the lens one way (aperture_radius = "
+            "focal_length / (2 f_number))");
+  if (byRadius) c.apertureRadius = n.at("aperture_radius").number(0, 3.4e38f);
+  if (byNumber) {
+    for (const char* key : {"focal_length", "f_number"})
+      if (!n.has(key))
+        n.fail(std::string("focal_length and f_number go together: ") + key + " is missing");
+    const float focalLength = n.at("focal_length").number(0, 3.4e38f, true);
+    const float fNumber = n.at("f_number").number(0, 3.4e38f, true);
+    c.apertureRadius = focalLength / (2 * fNumber);
+  }
+}
+
 void parseCamera(const JsonNode& n, const std::optional<Animation>& animation, CameraDesc& c,
                  Vec3d& origin) {
   const std::string type =
       n.has("type") ? n.at("type").choice({"perspective", "orthographic"}) : "perspective";
   c.projection = type == "perspective" ? Projection::Perspective : Projection::Orthographic;
+  // The window replaces the extent that vfov (or height) would give.
+  const char* extent = c.projection == Projection::Perspective ? "vfov" : "height";
+  if (n.has("window") && n.has(extent))
+    n.at("window").fail(std::string("is given with ") + extent +
+                        ": the window sets the image's extent itself");
   if (c.projection == Projection::Perspective) {
-    n.checkKeys({"type", "eye", "look_at", "up", "vfov", "aperture_radius", "focus_distance",
-                 "lens", "shutter", "keys"});
+    n.checkKeys({"type", "eye", "look_at", "up", "vfov", "window", "image_plane_normal",
+                 "aperture_radius", "focal_length", "f_number", "focus_distance", "lens", "shutter",
+                 "keys"});
     if (auto v = n.get("vfov")) c.vfovDegrees = v->number(0, 179.9f, true);
   } else {
-    n.checkKeys({"type", "eye", "look_at", "up", "height", "shutter", "keys"});
-    c.orthoHeight = n.at("height").number(0, 3.4e38f, true);
+    n.checkKeys({"type", "eye", "look_at", "up", "height", "window", "image_plane_normal",
+                 "shutter", "keys"});
+    if (!n.has("window")) c.orthoHeight = n.at("height").number(0, 3.4e38f, true);
   }
+  if (auto v = n.get("window")) c.window = parseWindow(*v);
+  if (auto v = n.get("image_plane_normal")) c.imagePlaneNormal = v->direction();
   // Render space puts the eye at the origin (io/placement.h): an animated camera's eye at this
   // frame, so each frame is rendered around its own viewpoint.
   const CameraPose pose = parseCameraPose(n, animation);
@@ -64,11 +103,17 @@ void parseCamera(const JsonNode& n, const std::optional<Animation>& animation, C
   c.eye = {0, 0, 0};
   c.lookAt = toFloat(pose.lookAt - origin);
   c.up = pose.up;
-  if (auto v = n.get("aperture_radius")) c.apertureRadius = v->number(0, 3.4e38f);
+  parseLens(n, c);
   if (auto v = n.get("lens"))
     c.lensShape = v->choice({"disk", "square"}) == "disk" ? LensShape::Disk : LensShape::Square;
   c.focusDistance = length(c.lookAt - c.eye);
   if (auto v = n.get("focus_distance")) c.focusDistance = v->number(0, 3.4e38f, true);
+  // Eq. 9.24: a lens brings to focus on the film only what lies beyond its focal length.
+  if (auto f = n.get("focal_length"); f && !(c.focusDistance > f->number()))
+    (n.has("focus_distance") ? n.at("focus_distance") : n)
+        .fail("the focus distance " + formatNumber(c.focusDistance) +
+              " is not beyond the focal length " + formatNumber(f->number()) +
+              ": a lens focuses only on what lies farther than its focal length");
   if (auto v = n.get("shutter")) {
     if (v->size() != 2) v->fail("must be [open, close]");
     c.shutterOpen = (*v)[0].number(0, 1);

@@ -167,13 +167,17 @@ TEST(AreaLights, PenumbraWidthMatchesGeometry) {
   }
 }
 
+std::string kSquareLens(double halfWidth) {
+  return "\"aperture_radius\": " + std::to_string(halfWidth) + ", \"lens\": \"square\"";
+}
+
 // A white half-plane (x ≥ 0, ambient 1 so it reads exactly 1) at depth z0 on black, seen
 // through a square lens of half-width a focused at f: the edge spreads into a linear ramp
 // 2a·|z0 − f|/z0 wide on the focus plane (seed 000 §13.4.3, similar triangles).
-Film edgeThroughLens(double z0, double aperture) {
+Film edgeThroughLens(double z0, const std::string& lens) {
   return render(load(R"({"render": {"width": 64, "height": 4, "spp": 1024, "ambient": [1,1,1]},
-    "camera": {"eye": [0,0,0], "look_at": [0,0,-1], "vfov": 90, "aperture_radius": )" +
-                     std::to_string(aperture) + R"(, "focus_distance": 2, "lens": "square"},
+    "camera": {"eye": [0,0,0], "look_at": [0,0,-1], "vfov": 90, "focus_distance": 2, )" +
+                     lens + R"(},
     "materials": {"white": {"type": "phong", "ka": [1,1,1], "kd": [0,0,0]}},
     "objects": [{"type": "quad", "corner": [0,-100,)" +
                      std::to_string(-z0) + R"(],
@@ -181,7 +185,7 @@ Film edgeThroughLens(double z0, double aperture) {
 }
 
 TEST(DepthOfField, ApertureZeroIsThePinholeBitForBit) {
-  EXPECT_EQ(edgeThroughLens(4, 0).toFloatRgba(),
+  EXPECT_EQ(edgeThroughLens(4, kSquareLens(0)).toFloatRgba(),
             render(load(R"({"render": {"width": 64, "height": 4, "spp": 1024, "ambient": [1,1,1]},
     "camera": {"eye": [0,0,0], "look_at": [0,0,-1], "vfov": 90},
     "materials": {"white": {"type": "phong", "ka": [1,1,1], "kd": [0,0,0]}},
@@ -192,7 +196,7 @@ TEST(DepthOfField, ApertureZeroIsThePinholeBitForBit) {
 
 TEST(DepthOfField, FocusPlaneStaysSharp) {
   // The edge on the focus plane (z0 = f = 2) falls on the boundary of columns 31 and 32.
-  const Film f = edgeThroughLens(2, 4);
+  const Film f = edgeThroughLens(2, kSquareLens(4));
   EXPECT_EQ(f.pixel(31, 1)[0], 0.0);
   EXPECT_EQ(f.pixel(32, 1)[0], 1.0);
 }
@@ -203,7 +207,7 @@ TEST(DepthOfField, CircleOfConfusionMatchesTheThinLens) {
   // pixels on a linear ramp read its value at their centres: 0.125, 0.375, 0.625, 0.875.
   // 1024 stratified samples per pixel: σ < 0.5/√1024 ≈ 0.016 even unstratified; 0.03 is ~2σ of
   // that bound and far more than the stratified spread.
-  const Film f = edgeThroughLens(4, 4);
+  const Film f = edgeThroughLens(4, kSquareLens(4));
   const double expected[] = {0.125, 0.375, 0.625, 0.875};
   for (int i = 0; i < 4; ++i) EXPECT_NEAR(f.pixel(30 + i, 1)[0], expected[i], 0.03) << 30 + i;
   EXPECT_EQ(f.pixel(27, 1)[0], 0.0);  // outside the ramp: untouched
@@ -236,6 +240,39 @@ TEST(Gloss, GlossyMirrorBlursButKeepsTheMeanOfAUniformBackground) {
   const double lost = 0.5 - std::sin(std::atan2(0.1, 3.0));
   EXPECT_NEAR(pixelAt("1.0", "[3,0.1,0]"), 0.4 * (1 - lost),
               3 * 0.4 * std::sqrt(lost * (1 - lost) / 64));
+}
+
+// Seed 002 §9.3 with a photographer's lens: focal length F = 1, aperture number a = 1/8, so the
+// lens diameter is D = F/a = 8 (eq. 9.23). Focused at P = 2, the film sits at K' = 1/(1/F − 1/P)
+// = 2; the edge at T = 4 comes to focus at K = 1/(1/F − 1/T) = 4/3 (eq. 9.24), so its points
+// spread over circles of radius r = (D/2)·|K − K'|/K = 2 on the film (eq. 9.25 gives D·|K −
+// K'|/K, the circle's diameter). The film is 2K'·tan 45° = 4 high over 4 pixels: r = 2 pixels.
+// A disk blurs the edge into the disk's edge-spread function E(s) = ½ + (s·√(r² − s²)/r² +
+// asin(s/r))/π; a pixel reads its mean over the pixel's width.
+TEST(DepthOfField, APhotographersLensBlursByTheSeedsCircleOfConfusion) {
+  const double F = 1, a = 0.125, P = 2, T = 4;
+  const double D = F / a, filmDistance = 1 / (1 / F - 1 / P), focus = 1 / (1 / F - 1 / T);
+  const double r = D / 2 * std::fabs(focus - filmDistance) / focus;  // on the film
+  const double pixels = 4 / (2 * filmDistance * std::tan(kPi / 4));  // per unit of film
+  const double radius = r * pixels;
+  ASSERT_NEAR(radius, 2.0, 1e-12);
+  const auto spread = [&](double s) {
+    if (s <= -radius) return 0.0;
+    if (s >= radius) return 1.0;
+    const double q = s / radius;
+    return 0.5 + (q * std::sqrt(1 - q * q) + std::asin(q)) / kPi;
+  };
+  const Film f = edgeThroughLens(T, "\"focal_length\": 1, \"f_number\": 0.125");
+  for (int column = 29; column <= 34; ++column) {
+    double mean = 0;  // over the pixel's width, midpoint rule
+    for (int k = 0; k < 1000; ++k) mean += spread(column - 32 + (k + 0.5) / 1000) / 1000;
+    // 1024 samples: as in CircleOfConfusionMatchesTheThinLens, σ < 0.016 even unstratified.
+    EXPECT_NEAR(f.pixel(column, 1)[0], mean, 0.03) << column;
+  }
+  EXPECT_EQ(f.pixel(27, 1)[0], 0.0);  // outside the circle's reach: untouched
+  EXPECT_EQ(f.pixel(36, 1)[0], 1.0);
+  // The same lens given by its radius F/(2a) = 4 is the same camera, bit for bit.
+  EXPECT_EQ(f.toFloatRgba(), edgeThroughLens(T, "\"aperture_radius\": 4").toFloatRgba());
 }
 
 }  // namespace

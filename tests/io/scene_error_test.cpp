@@ -23,6 +23,31 @@ TEST(SceneError, NegativeRadiusNamesLineAndPath) {
   EXPECT_EQ(test::sceneErrorOf(text), "scene.json:8: objects[1].radius: must be > 0, got -1");
 }
 
+TEST(SceneError, CameraWindowPlaneAndLensAreChecked) {
+  const auto camera = [](const std::string& keys) {
+    return test::sceneErrorOf("{\n\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0], " + keys +
+                              "},\n\"objects\": []}");
+  };
+  EXPECT_EQ(camera("\"window\": [1, -1, -1, 1]"),
+            "scene.json:2: camera.window: l must be less than r");
+  EXPECT_EQ(camera("\"window\": [-1, 1, -1, 1], \"vfov\": 30"),
+            "scene.json:2: camera.window: is given with vfov: the window sets the image's extent "
+            "itself");
+  EXPECT_EQ(camera("\"image_plane_normal\": [1, 0, 0]"),
+            "scene.json:2: camera: image_plane_normal is perpendicular to the view direction: the "
+            "image plane would contain it");
+  EXPECT_EQ(camera("\"f_number\": 2"),
+            "scene.json:2: camera: focal_length and f_number go together: focal_length is missing");
+  EXPECT_EQ(camera("\"focal_length\": 0.05, \"f_number\": 0"),
+            "scene.json:2: camera.f_number: must be > 0, got 0");
+  EXPECT_EQ(camera("\"focal_length\": 2, \"f_number\": 2, \"focus_distance\": 1.5"),
+            "scene.json:2: camera.focus_distance: the focus distance 1.5 is not beyond the "
+            "focal length 2: a lens focuses only on what lies farther than its focal length");
+  EXPECT_EQ(camera("\"aperture_radius\": 0.1, \"focal_length\": 0.05, \"f_number\": 2"),
+            "scene.json:2: camera.aperture_radius: is given with focal_length / f_number: give "
+            "the lens one way (aperture_radius = focal_length / (2 f_number))");
+}
+
 TEST(SceneError, UnknownKeySuggestsTheNearest) {
   const std::string text = std::string(kHead) +
                            "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0,0],\n"  // 4

@@ -52,6 +52,21 @@ TEST(SceneParse, BothCameraTypes) {
   EXPECT_EQ(o.cameraDesc.orthoHeight, 3);
 }
 
+TEST(SceneParse, WindowObliquePlaneAndAPhotographersLens) {
+  const Scene p = sceneFromText(R"({"camera": {"eye": [0,1,6], "look_at": [0,0.5,0],
+      "window": [-0.6, 0.4, -0.3, 0.3], "image_plane_normal": [0, 0.2, 1],
+      "focal_length": 0.05, "f_number": 2.0, "focus_distance": 6}, "objects": []})");
+  ASSERT_TRUE(p.cameraDesc.window && p.cameraDesc.imagePlaneNormal);
+  EXPECT_EQ(p.cameraDesc.window->l, -0.6f);
+  EXPECT_EQ(p.cameraDesc.window->t, 0.3f);
+  // Seed 002 §9.3: D = F/a = 0.025, so the radius is F/(2a) = 0.0125, exactly as computed.
+  EXPECT_EQ(p.cameraDesc.apertureRadius, 0.05f / (2 * 2.0f));
+  // An orthographic window needs no height.
+  const Scene o = sceneFromText(R"({"camera": {"type": "orthographic", "eye": [0,0,5],
+      "look_at": [0,0,0], "window": [0, 2, -1, 0]}, "objects": []})");
+  EXPECT_EQ(o.cameraDesc.window->r, 2.0f);
+}
+
 TEST(SceneParse, MaterialsKeepEveryKey) {
   const Scene s = sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
     "materials": {
