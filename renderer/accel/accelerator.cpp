@@ -4,6 +4,7 @@
 #include "accel/cutout_hits.h"
 #include "accel/embree_accel.h"
 #include "accel/reference_bvh.h"
+#include "accel/uniform_grid.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -16,12 +17,14 @@ std::string_view accelName(AccelKind k) {
       return "bvh";
     case AccelKind::BruteForce:
       return "brute";
+    case AccelKind::Grid:
+      return "grid";
   }
   return "?";
 }
 
 bool parseAccelKind(std::string_view name, AccelKind& out) {
-  for (auto k : {AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce})
+  for (auto k : {AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce, AccelKind::Grid})
     if (accelName(k) == name) {
       out = k;
       return true;
@@ -37,6 +40,8 @@ std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene)
       return std::make_unique<ReferenceBvh>(scene);
     case AccelKind::BruteForce:
       return std::make_unique<BruteForce>(scene);
+    case AccelKind::Grid:
+      return std::make_unique<UniformGrid>(scene);
   }
   return nullptr;
 }

@@ -8,7 +8,7 @@
 #include <memory>
 #include <numeric>
 
-#include "accel/cutout_hits.h"
+#include "accel/primitives.h"
 #include "core/check.h"
 #include "scene/scene.h"
 
@@ -50,28 +50,6 @@ class CentroidBins {
 bool contains(const Bounds3f& outer, const Bounds3f& inner) {
   return inner.lo.x >= outer.lo.x && inner.lo.y >= outer.lo.y && inner.lo.z >= outer.lo.z &&
          inner.hi.x <= outer.hi.x && inner.hi.y <= outer.hi.y && inner.hi.z <= outer.hi.z;
-}
-
-// Conservative bounds of a moving instance over the whole shutter. Without a change of
-// rotation every point moves linearly between keys, so the union of the key boxes bounds it.
-// With one, slerp can swing points outside the key boxes; every point stays within
-// max|scale|·|p| of the (linearly moving) translation, which gives a safe box.
-Bounds3f movingInstanceBounds(const Instance& inst, const Bounds3f& object) {
-  Bounds3f out;
-  if (!inst.rotates()) {
-    for (const TrsKey& k : inst.motion) out.extend(transformBox(k.toTransform(), object));
-    return out;
-  }
-  float radius = 0;
-  for (int c = 0; c < 8; ++c) radius = std::max(radius, length(object.corner(c)));
-  float maxScale = 0;
-  for (const TrsKey& k : inst.motion) maxScale = std::max(maxScale, maxComponent(abs(k.scale)));
-  const Vec3f r{radius * maxScale, radius * maxScale, radius * maxScale};
-  for (const TrsKey& k : inst.motion) {
-    out.extend(k.translation - r);
-    out.extend(k.translation + r);
-  }
-  return out;
 }
 
 struct BuildPrim {
@@ -246,52 +224,12 @@ ReferenceBvh::ReferenceBvh(const Scene& scene, BvhSplit split) : scene_(scene) {
   trees_.resize(scene.groups.size());
   // Instanced groups first: an instance's box is its group's root box, transformed.
   for (size_t g = scene.groups.size(); g-- > 0;) {
-    std::vector<BuildPrim> prims;
     const auto& geoms = scene.groups[g].geometries;
-    for (uint32_t gi = 0; gi < geoms.size(); ++gi) {
-      const Geometry& geom = geoms[gi];
-      const auto add = [&](const Bounds3f& b, uint32_t prim) {
-        if (!b.empty()) prims.push_back({b, centroid(b), {gi, prim}});
-      };
-      switch (geom.kind) {
-        case GeomKind::Mesh: {
-          const TriangleMesh& m = scene.meshes[geom.index];
-          for (uint32_t t = 0; t < m.triangleCount(); ++t) {
-            Bounds3f b;
-            for (int c = 0; c < 3; ++c) {
-              b.extend(m.vertex(t, c));
-              for (const auto& key : m.positionKeys) b.extend(key[m.indices[3 * t + uint32_t(c)]]);
-            }
-            add(b, t);
-          }
-          break;
-        }
-        case GeomKind::Sphere: {
-          Bounds3f b = bounds(scene.spheres[geom.index]);
-          for (const Vec3f& c : scene.sphereCenterKeys[geom.index])
-            b.extend(bounds(Sphere{c, scene.spheres[geom.index].radius}));
-          add(b, 0);
-          break;
-        }
-        case GeomKind::Quad:
-          add(bounds(scene.quads[geom.index]), 0);
-          break;
-        case GeomKind::Disk:
-          add(bounds(scene.disks[geom.index]), 0);
-          break;
-        case GeomKind::Plane:
-          break;  // unbounded: the shared plane loop
-        case GeomKind::Instance: {
-          const Instance& inst = scene.instances[geom.index];
-          const Tree& child = trees_[inst.groupId];
-          if (child.nodes.empty()) break;
-          add(inst.motion.empty() ? transformBox(inst.worldFromObject, child.nodes[0].box)
-                                  : movingInstanceBounds(inst, child.nodes[0].box),
-              0);
-          break;
-        }
-      }
-    }
+    std::vector<BuildPrim> prims;
+    for (const PrimitiveBox& p : groupPrimitives(scene, uint32_t(g), [&](uint32_t child) {
+           return trees_[child].nodes.empty() ? Bounds3f{} : trees_[child].nodes[0].box;
+         }))
+      prims.push_back({p.box, centroid(p.box), {p.geom, p.prim}});
     if (prims.empty()) continue;
     Builder builder(prims, split);
     const auto root = builder.build(0, prims.size());
@@ -321,54 +259,23 @@ bool ReferenceBvh::intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray
                                  Hit& hit) const {
   const Tree& tree = trees_[groupId];
   const PrimRef& p = tree.prims[slot];
-  Ray r = ray;
-  r.tMax = std::min(ray.tMax, hit.t);
-  float u = 0, v = 0, t = kInfinity;
   if (tree.staticTriangle[slot]) {
+    Ray r = ray;
+    r.tMax = std::min(ray.tMax, hit.t);
+    float u = 0, v = 0;
     const auto& c = tree.corners[slot];
-    t = intersectTriangle(c[0], c[1], c[2], r, u, v);
+    const float t = intersectTriangle(c[0], c[1], c[2], r, u, v);
     if (!(t < r.tMax)) return false;
     // A triangle meets a ray once: a hit in a cut-out's hole leaves nothing behind it.
     if (scene_.cutAway(scene_.groups[groupId].geometries[p.geom], r, t, p.prim, u, v)) return false;
     hit = Hit{t, u, v, p.geom, p.prim, instId};
     return true;
   }
-  const Geometry& g = scene_.groups[groupId].geometries[p.geom];
-  // The first hit that a cut-out keeps (accel/cutout_hits.h).
-  const auto kept = [&](auto test) { return firstKeptHit(scene_, g, p.prim, r, u, v, test); };
-  switch (g.kind) {
-    case GeomKind::Mesh: {
-      const TriangleMesh& m = scene_.meshes[g.index];
-      t = kept([&](const Ray& q, float& tu, float& tv) {
-        return intersectTriangle(m.vertexAt(p.prim, 0, q.time), m.vertexAt(p.prim, 1, q.time),
-                                 m.vertexAt(p.prim, 2, q.time), q, tu, tv);
-      });
-      break;
-    }
-    case GeomKind::Sphere:
-      t = kept([&](const Ray& q, float&, float&) {
-        return intersectSphere(scene_.sphereAt(g.index, q.time), q);
-      });
-      break;
-    case GeomKind::Quad:
-      t = kept([&](const Ray& q, float& tu, float& tv) {
-        return intersectQuad(scene_.quads[g.index], q, tu, tv);
-      });
-      break;
-    case GeomKind::Disk:
-      t = kept(
-          [&](const Ray& q, float&, float&) { return intersectDisk(scene_.disks[g.index], q); });
-      break;
-    case GeomKind::Plane:
-      return false;
-    case GeomKind::Instance: {
-      const Instance& inst = scene_.instances[g.index];
-      return traverse<false>(inst.groupId, inst.toObject(r), p.geom, hit);
-    }
-  }
-  if (!(t < r.tMax)) return false;
-  hit = Hit{t, u, v, p.geom, p.prim, instId};
-  return true;
+  return intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
+                            [&](const Instance& inst, const Ray& objectRay, uint32_t geom, Hit& h) {
+                              return traverse<false>(inst.groupId, inst.toObject(objectRay), geom,
+                                                     h);
+                            });
 }
 
 template <bool AnyHit>

@@ -302,7 +302,7 @@ CommandRunner addBenchCommand(CLI::App& app) {
                   "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
                   "camera and light; omitted: the default scene")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--accel", args->accels, "Comma-separated backends (embree, bvh, brute)");
+  cmd->add_option("--accel", args->accels, "Comma-separated backends (embree, bvh, brute, grid)");
   // A heightfield beyond 2^28 triangles would not fit this machine's memory (80 B each).
   cmd->add_option("--procedural", args->procedural,
                   "Benchmark a generated heightfield of about this many triangles instead")

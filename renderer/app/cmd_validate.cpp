@@ -1,5 +1,6 @@
 // `glint validate`: renders the scene's own rays (camera, reflection, refraction, shadow) and
-// N random rays through Embree, the reference BVH and (for small scenes) brute force, and
+// N random rays through Embree, the reference BVH, the uniform grid and (for small scenes) brute
+// force, and
 // reports how well they agree, hit by hit.
 #include <cmath>
 #include <cstdio>
@@ -10,6 +11,7 @@
 #include "accel/cross_check.h"
 #include "accel/embree_accel.h"
 #include "accel/reference_bvh.h"
+#include "accel/uniform_grid.h"
 #include "app/commands.h"
 #include "app/scene_source.h"
 #include "core/error.h"
@@ -43,10 +45,11 @@ int runValidate(const ValidateArgs& a) {
   Scene scene = loadSceneOrDefault(a.scenePath);
   const EmbreeAccel embree(scene);
   const ReferenceBvh bvh(scene);
+  const UniformGrid grid(scene);
   std::unique_ptr<BruteForce> brute;
   if (!a.noBrute && primitiveCount(scene) <= kBruteForceLimit)
     brute = std::make_unique<BruteForce>(scene);
-  std::vector<const Accelerator*> others{&bvh};
+  std::vector<const Accelerator*> others{&bvh, &grid};
   if (brute) others.push_back(brute.get());
 
   if (!a.ray.empty()) {  // reproduce one ray from a report line
@@ -55,7 +58,8 @@ int runValidate(const ValidateArgs& a) {
       throw UsageError("--ray: expected 9 numbers: ox oy oz dx dy dz tmin tmax time");
     if (const std::string why = rayProblem(r); !why.empty()) throw UsageError("--ray: " + why);
     std::printf("ray %s\n", formatRay(r).c_str());
-    for (const Accelerator* acc : std::vector<const Accelerator*>{&embree, &bvh, brute.get()})
+    for (const Accelerator* acc :
+         std::vector<const Accelerator*>{&embree, &bvh, &grid, brute.get()})
       if (acc)
         std::printf("  %-7s %s\n", std::string(acc->name()).c_str(),
                     a.occludedRay ? (acc->occluded(r) ? "occluded" : "clear")
@@ -77,7 +81,7 @@ int runValidate(const ValidateArgs& a) {
 
   const CrossCheckStats& st = check.stats();
   const BvhStats& bs = bvh.stats();
-  std::printf("backends       embree, bvh%s\n",
+  std::printf("backends       embree, bvh, grid%s\n",
               brute ? ", brute" : " (brute force skipped: scene too large)");
   std::printf(
       "queries        %llu closest-hit, %llu occlusion (scene rays at %d spp + %d random)\n",
@@ -95,6 +99,11 @@ int runValidate(const ValidateArgs& a) {
       "SAH cost %.2f, %.1f MiB\n",
       bs.buildSeconds, bs.nodes, bs.leaves, bs.primitivesPerLeaf(), bs.maxDepth, bs.sahCost,
       double(bs.bytes) / (1 << 20));
+  const GridStats& gs = grid.stats();
+  std::printf("grid build     %.3f s, %zu cells, %zu references (%.2f per primitive), %.1f MiB\n",
+              gs.buildSeconds, gs.cells, gs.references,
+              gs.primitives ? double(gs.references) / double(gs.primitives) : 0.0,
+              double(gs.bytes) / (1 << 20));
   if (!st.firstDisagreements.empty()) {
     std::printf("first disagreements (reproduce with glint validate SCENE --ray ...):\n");
     for (const auto& line : st.firstDisagreements) std::printf("  %s\n", line.c_str());
@@ -112,6 +121,10 @@ int runValidate(const ValidateArgs& a) {
     j["bvh"] = {
         {"build_seconds", bs.buildSeconds},         {"nodes", bs.nodes},      {"leaves", bs.leaves},
         {"prims_per_leaf", bs.primitivesPerLeaf()}, {"sah_cost", bs.sahCost}, {"bytes", bs.bytes}};
+    j["grid"] = {{"build_seconds", gs.buildSeconds},
+                 {"cells", gs.cells},
+                 {"references", gs.references},
+                 {"bytes", gs.bytes}};
     j["embree"] = {{"build_seconds", embree.buildSeconds()}, {"bytes", embree.bytes()}};
     writeTextFileAtomically(a.json, j.dump(2) + "\n");
   }
@@ -127,7 +140,9 @@ int runValidate(const ValidateArgs& a) {
 CommandRunner addValidateCommand(CLI::App& app) {
   auto args = std::make_shared<ValidateArgs>();
   CLI::App* cmd = app.add_subcommand(
-      "validate", "Cross-check Embree against the reference BVH (and brute force), hit by hit");
+      "validate",
+      "Cross-check Embree against the reference BVH and the uniform grid (and brute force), hit "
+      "by hit");
   cmd->add_option("scene", args->scenePath,
                   "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
                   "camera and light; omitted: the default scene")

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "accel/uniform_grid.h"
 #include "core/hash.h"
 #include "test_util.h"
 
@@ -29,9 +30,8 @@ Scene everyShapeKind() {
     ]})");
 }
 
-TEST(BackendAgreement, EmbreeMatchesBruteForceOnRandomRays) {
-  const Scene s = everyShapeKind();
-  const auto embree = makeAccelerator(AccelKind::Embree, s);
+// `fast` against the brute-force oracle on 4000 random rays through everyShapeKind().
+void expectAgreesWithBruteForce(const Scene& s, const Accelerator& fast) {
   const auto brute = makeAccelerator(AccelKind::BruteForce, s);
   constexpr int kRays = 4000;
   int hits = 0, disagreements = 0;
@@ -41,7 +41,7 @@ TEST(BackendAgreement, EmbreeMatchesBruteForceOnRandomRays) {
     Ray r;
     r.o = {6 * u(0) - 3, 6 * u(1) - 3, 6 * u(2) - 3};
     r.d = Vec3f{3 * u(3) - 1.5f, 3 * u(4) - 1.5f, 3 * u(5) - 1.5f} - r.o;
-    const Hit a = embree->intersect(r), b = brute->intersect(r);
+    const Hit a = fast.intersect(r), b = brute->intersect(r);
     hits += bool(a);
     const bool agree =
         bool(a) == bool(b) && (!a || (a.geomId == b.geomId && a.instId == b.instId &&
@@ -49,10 +49,26 @@ TEST(BackendAgreement, EmbreeMatchesBruteForceOnRandomRays) {
     // Two triangles sharing an edge may both claim a ray through it: accept equal t.
     const bool tie = bool(a) && bool(b) && std::fabs(a.t - b.t) <= 1e-4f * std::max(1.0f, a.t);
     if (!agree && !tie) ++disagreements;
-    EXPECT_EQ(embree->occluded(r), bool(b)) << "ray " << i;
+    EXPECT_EQ(fast.occluded(r), bool(b)) << fast.name() << " ray " << i;
   }
   EXPECT_GT(hits, kRays / 2);  // the test must exercise hits, not only misses
-  EXPECT_EQ(disagreements, 0);
+  EXPECT_EQ(disagreements, 0) << fast.name();
+}
+
+TEST(BackendAgreement, EmbreeMatchesBruteForceOnRandomRays) {
+  const Scene s = everyShapeKind();
+  expectAgreesWithBruteForce(s, *makeAccelerator(AccelKind::Embree, s));
+}
+
+// The grid at its default resolution (⌈∛n⌉: 16 cells per axis for the world's 3 700 triangles),
+// at one cell (a plain loop), and at resolutions that put many cells across every primitive:
+// the 3D-DDA must visit every cell a ray crosses, and mailboxing must skip only repeats.
+TEST(BackendAgreement, UniformGridMatchesBruteForceAtEveryResolution) {
+  const Scene s = everyShapeKind();
+  for (int resolution : {0, 1, 2, 7, 64}) {
+    SCOPED_TRACE(resolution);
+    expectAgreesWithBruteForce(s, UniformGrid(s, resolution));
+  }
 }
 
 // The renderer traces camera rays and shadow rays as coherent streams (packets inside Embree):

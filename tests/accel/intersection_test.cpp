@@ -110,8 +110,8 @@ TEST_P(Backends, OcclusionRespectsTheSegment) {
 }
 
 INSTANTIATE_TEST_SUITE_P(All, Backends,
-                         ::testing::Values(AccelKind::Embree, AccelKind::Bvh,
-                                           AccelKind::BruteForce),
+                         ::testing::Values(AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce,
+                                           AccelKind::Grid),
                          [](const auto& p) { return std::string(accelName(p.param)); });
 
 }  // namespace

@@ -213,13 +213,14 @@ TEST(Cli, EveryBackendRendersTheSameImage) {
   // for every sampled effect too.
   const std::string scene = test::writeTemp("backends.json", kSmallScene);
   const auto path = [](const std::string& n) { return (test::tempDir() / (n + ".exr")).string(); };
-  for (const char* accel : {"embree", "bvh", "brute"})
+  for (const char* accel : {"embree", "bvh", "brute", "grid"})
     ASSERT_EQ(
         runGlint("render " + scene + " --quiet --accel " + accel + " -o " + path(accel)).exitCode,
         0);
   const auto embree = readImage(path("embree")).pixels;
   EXPECT_EQ(readImage(path("bvh")).pixels, embree);
   EXPECT_EQ(readImage(path("brute")).pixels, embree);
+  EXPECT_EQ(readImage(path("grid")).pixels, embree);
 }
 
 TEST(Cli, DefaultSceneRendersWithStats) {

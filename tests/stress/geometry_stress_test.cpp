@@ -4,6 +4,7 @@
 #include "accel/cross_check.h"
 #include "accel/embree_accel.h"
 #include "accel/reference_bvh.h"
+#include "accel/uniform_grid.h"
 #include "core/hash.h"
 #include "film/compare.h"
 #include "film/exr_output.h"
@@ -167,7 +168,8 @@ TEST(DegenerateGeometry, RendersAndCrossChecksCleanly) {
   const Scene s = test::sceneFromText(text);
   const EmbreeAccel embree(s);
   const ReferenceBvh bvh(s);
-  const CrossCheck check(embree, {&bvh});
+  const UniformGrid grid(s);
+  const CrossCheck check(embree, {&bvh, &grid});
   castRandomRays(s, check, 100000, 5);
   EXPECT_EQ(check.stats().hitAgree, check.stats().rays);
   for (const auto& line : check.stats().firstDisagreements) ADD_FAILURE() << line;
@@ -244,9 +246,9 @@ TEST(SpherePrecision, SilhouettesMatchDoublePrecision) {
   }
 }
 
-// 20. Embree against the reference BVH on 10⁷ random rays over a stress scene (triangle soup,
-// needles, instances, spheres): hit/miss and occlusion agreement ≥ 1 − 1e-6.
-TEST(EmbreeVsBvh, TenMillionRandomRays) {
+// A stress scene: a soup of 3000 triangles (every tenth a needle 1e-7 high), instances of a
+// rotated and a sheared group, spheres.
+Scene triangleSoup() {
   std::string pos, idx;
   for (int t = 0; t < 3000; ++t) {
     const auto u = [&](int k) { return toUnitFloat(hashKey(11, t, k)); };
@@ -259,19 +261,20 @@ TEST(EmbreeVsBvh, TenMillionRandomRays) {
     idx += (idx.empty() ? "[" : ",[") + std::to_string(3 * t) + "," + std::to_string(3 * t + 1) +
            "," + std::to_string(3 * t + 2) + "]";
   }
-  const Scene s = test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+  return test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
     "materials": {"m": {"type": "phong"}},
     "groups": {"g": [{"type": "sphere", "center": [0,0,0], "radius": 0.3, "material": "m"},
                      {"type": "box", "min": [-0.2,-0.5,-0.2], "max": [0.2,0.5,0.2], "material": "m"}]},
     "objects": [{"type": "mesh", "material": "m", "positions": [)" +
-                                      pos + "], \"indices\": [" + idx + R"(]},
+                             pos + "], \"indices\": [" + idx + R"(]},
       {"type": "instance", "group": "g", "transform": {"translate": [1,1,1], "rotate": [1,0,1,40]}},
       {"type": "instance", "group": "g", "transform": {"translate": [-1,0.5,-1], "scale": [2,1,0.5]}},
       {"type": "sphere", "center": [0,-1,0], "radius": 0.8, "material": "m"}]})");
-  const EmbreeAccel embree(s);
-  const ReferenceBvh bvh(s);
-  const CrossCheck check(embree, {&bvh});
-  castRandomRays(s, check, 10000000, 21);
+}
+
+// `check`'s agreement over `rays` random rays through the soup.
+void expectAgreementOnRandomRays(const Scene& s, const CrossCheck& check, int rays) {
+  castRandomRays(s, check, rays, 21);
   const CrossCheckStats& st = check.stats();
   // Most rays start inside the soup's bounds: without many hits on both sides the agreement
   // below would say little (1 % of 10⁷ is 10⁵ compared hits).
@@ -279,6 +282,23 @@ TEST(EmbreeVsBvh, TenMillionRandomRays) {
   EXPECT_GE(st.hitAgreement(), 1 - 1e-6);
   EXPECT_GE(st.occlusionAgreement(), 1 - 1e-6);
   for (const auto& line : st.firstDisagreements) std::printf("disagreement: %s\n", line.c_str());
+}
+
+// 20. Embree against the reference BVH on 10⁷ random rays over the soup: hit/miss and occlusion
+// agreement ≥ 1 − 1e-6.
+TEST(EmbreeVsBvh, TenMillionRandomRays) {
+  const Scene s = triangleSoup();
+  const EmbreeAccel embree(s);
+  const ReferenceBvh bvh(s);
+  expectAgreementOnRandomRays(s, CrossCheck(embree, {&bvh}), 10000000);
+}
+
+// 21. The same for the uniform grid on 10⁶ rays (issue 25's bar), the needles spanning cells.
+TEST(EmbreeVsGrid, OneMillionRandomRays) {
+  const Scene s = triangleSoup();
+  const EmbreeAccel embree(s);
+  const UniformGrid grid(s);
+  expectAgreementOnRandomRays(s, CrossCheck(embree, {&grid}), 1000000);
 }
 
 }  // namespace

@@ -1,0 +1,176 @@
+#include "accel/uniform_grid.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+namespace glint {
+
+namespace {
+
+// A primitive goes into every cell its box reaches, and this far (in cells) beyond: the DDA's
+// float steps may place a ray a hair into the neighbouring cell at a boundary.
+constexpr float kCellPad = 1e-4f;
+// Ize 2013, as the reference BVH: the far slab distance times 1 + 2γ₃ keeps the clip
+// conservative.
+constexpr float kSlabPad = 1 + 2 * (3 * 0x1p-24f) / (1 - 3 * 0x1p-24f);
+constexpr int kMaxCellsPerAxis = 1024;
+constexpr uint32_t kMailboxSize = 64;  // a power of two
+
+// The cell along one axis holding coordinate x (clamped into the grid).
+int cellOf(float x, const UniformGrid::Grid& g, int axis, float pad = 0) {
+  if (g.cellsPerUnit[axis] == 0) return 0;
+  const float c = (x - g.box.lo[axis]) * g.cellsPerUnit[axis] + pad;
+  if (!(c > 0)) return 0;  // NaN too
+  return std::min(static_cast<int>(c), g.cells[axis] - 1);
+}
+
+UniformGrid::Grid buildGrid(std::vector<PrimitiveBox> prims, int resolution) {
+  UniformGrid::Grid g;
+  for (const PrimitiveBox& p : prims) g.box.extend(p.box);
+  const int r =
+      resolution > 0 ? resolution : static_cast<int>(std::ceil(std::cbrt(double(prims.size()))));
+  for (int a = 0; a < 3; ++a) {
+    const float extent = g.box.hi[a] - g.box.lo[a];
+    // A flat or unbounded extent (past float's range) gets one cell along that axis.
+    if (!(extent > 0) || !std::isfinite(extent)) continue;
+    g.cells[a] = std::clamp(r, 1, kMaxCellsPerAxis);
+    g.cellSize[a] = extent / float(g.cells[a]);
+    g.cellsPerUnit[a] = float(g.cells[a]) / extent;
+  }
+  const size_t cellCount = size_t(g.cells[0]) * size_t(g.cells[1]) * size_t(g.cells[2]);
+  // Counting sort of the references by cell: count, prefix sum, fill.
+  std::vector<std::array<int, 6>> ranges(prims.size());
+  g.cellStart.assign(cellCount + 1, 0);
+  for (size_t i = 0; i < prims.size(); ++i) {
+    auto& rg = ranges[i];
+    for (int a = 0; a < 3; ++a) {
+      rg[size_t(a)] = cellOf(prims[i].box.lo[a], g, a, -kCellPad);
+      rg[size_t(a) + 3] = cellOf(prims[i].box.hi[a], g, a, kCellPad);
+    }
+    for (int z = rg[2]; z <= rg[5]; ++z)
+      for (int y = rg[1]; y <= rg[4]; ++y)
+        for (int x = rg[0]; x <= rg[3]; ++x)
+          ++g.cellStart[(size_t(z) * size_t(g.cells[1]) + size_t(y)) * size_t(g.cells[0]) +
+                        size_t(x) + 1];
+  }
+  for (size_t c = 0; c < cellCount; ++c) g.cellStart[c + 1] += g.cellStart[c];
+  g.refs.resize(g.cellStart[cellCount]);
+  std::vector<uint32_t> filled(g.cellStart.begin(), g.cellStart.end() - 1);
+  for (size_t i = 0; i < prims.size(); ++i) {
+    const auto& rg = ranges[i];
+    for (int z = rg[2]; z <= rg[5]; ++z)
+      for (int y = rg[1]; y <= rg[4]; ++y)
+        for (int x = rg[0]; x <= rg[3]; ++x)
+          g.refs[filled[(size_t(z) * size_t(g.cells[1]) + size_t(y)) * size_t(g.cells[0]) +
+                        size_t(x)]++] = uint32_t(i);
+  }
+  g.prims = std::move(prims);
+  return g;
+}
+
+}  // namespace
+
+UniformGrid::UniformGrid(const Scene& scene, int resolution) : scene_(scene) {
+  const auto start = std::chrono::steady_clock::now();
+  grids_.resize(scene.groups.size());
+  // Instanced groups first (they follow their parents): an instance's box is its group's box.
+  for (size_t g = scene.groups.size(); g-- > 0;) {
+    std::vector<PrimitiveBox> prims =
+        groupPrimitives(scene, uint32_t(g), [&](uint32_t child) { return grids_[child].box; });
+    if (prims.empty()) continue;
+    Grid& grid = grids_[g] = buildGrid(std::move(prims), resolution);
+    stats_.primitives += grid.prims.size();
+    stats_.references += grid.refs.size();
+    stats_.cells += grid.cellStart.size() - 1;
+    stats_.bytes += grid.cellStart.size() * sizeof(uint32_t) + grid.refs.size() * sizeof(uint32_t) +
+                    grid.prims.size() * sizeof(PrimitiveBox);
+  }
+  stats_.buildSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+template <bool AnyHit>
+bool UniformGrid::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const {
+  const Grid& g = grids_[groupId];
+  if (g.prims.empty()) return false;
+  // Clip the ray to the grid's box (the reference BVH's slab test: ±0 components and NaN from
+  // 0·∞ leave an axis unconstrained).
+  const Vec3f inv{1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z};
+  float tEnter = ray.tMin, tLeave = std::min(ray.tMax, hit.t);
+  for (int a = 0; a < 3; ++a) {
+    const bool negative = std::signbit(inv[a]);
+    const float tn = ((negative ? g.box.hi : g.box.lo)[a] - ray.o[a]) * inv[a];
+    const float tf = ((negative ? g.box.lo : g.box.hi)[a] - ray.o[a]) * inv[a];
+    tEnter = std::max(tEnter, tn);
+    tLeave = std::min(tLeave, tf * kSlabPad);
+  }
+  if (!(tEnter <= tLeave)) return false;
+  // Amanatides and Woo: the cell where the ray enters, and per axis the distance to the next
+  // cell boundary and between boundaries.
+  const Vec3f entry = ray.o + tEnter * ray.d;
+  int cell[3], step[3], end[3];
+  float tNext[3], tDelta[3];
+  for (int a = 0; a < 3; ++a) {
+    cell[a] = cellOf(entry[a], g, a);
+    if (g.cellsPerUnit[a] == 0 || ray.d[a] == 0) {
+      step[a] = 0;
+      tNext[a] = kInfinity;
+      tDelta[a] = kInfinity;
+      end[a] = -1;
+      continue;
+    }
+    const bool up = ray.d[a] > 0;
+    step[a] = up ? 1 : -1;
+    end[a] = up ? g.cells[a] : -1;
+    const float boundary = g.box.lo[a] + float(cell[a] + (up ? 1 : 0)) * g.cellSize[a];
+    tNext[a] = (boundary - ray.o[a]) * inv[a];
+    tDelta[a] = g.cellSize[a] * std::fabs(inv[a]);
+  }
+  uint32_t mailbox[kMailboxSize];
+  std::fill(mailbox, mailbox + kMailboxSize, std::numeric_limits<uint32_t>::max());
+  bool found = false;
+  while (true) {
+    const size_t c = (size_t(cell[2]) * size_t(g.cells[1]) + size_t(cell[1])) * size_t(g.cells[0]) +
+                     size_t(cell[0]);
+    for (uint32_t k = g.cellStart[c]; k < g.cellStart[c + 1]; ++k) {
+      const uint32_t i = g.refs[k];
+      uint32_t& slot = mailbox[i & (kMailboxSize - 1)];
+      if (slot == i) continue;  // tested in an earlier cell: its answer stands
+      slot = i;
+      const PrimitiveBox& p = g.prims[i];
+      if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
+                             [&](const Instance& inst, const Ray& r, uint32_t geom, Hit& h) {
+                               return traverse<false>(inst.groupId, inst.toObject(r), geom, h);
+                             })) {
+        if constexpr (AnyHit) return true;
+        found = true;
+      }
+    }
+    const int axis =
+        tNext[0] < tNext[1] ? (tNext[0] < tNext[2] ? 0 : 2) : (tNext[1] < tNext[2] ? 1 : 2);
+    // The closest hit so far lies before the next cell: no later cell holds a closer one.
+    if (found && hit.t <= tNext[axis]) break;
+    if (tNext[axis] > tLeave) break;
+    cell[axis] += step[axis];
+    if (step[axis] == 0 || cell[axis] == end[axis]) break;
+    tNext[axis] += tDelta[axis];
+  }
+  return found;
+}
+
+Hit UniformGrid::intersect(const Ray& ray) const {
+  Hit hit;
+  traverse<false>(0, ray, kInvalidId, hit);
+  intersectPlanes(scene_, ray, hit);
+  return hit;
+}
+
+bool UniformGrid::occluded(const Ray& ray) const {
+  if (occludedByPlanes(scene_, ray)) return true;
+  Hit hit;
+  return traverse<true>(0, ray, kInvalidId, hit);
+}
+
+}  // namespace glint
