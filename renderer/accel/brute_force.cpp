@@ -1,65 +1,25 @@
 #include "accel/brute_force.h"
 
-#include "accel/cutout_hits.h"
-#include "scene/scene.h"
+#include "accel/primitives.h"
 
 namespace glint {
 
-void BruteForce::intersectGroup(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const {
+bool BruteForce::intersectGroup(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const {
+  const auto intoInstance = [&](const Instance& inst, const Ray& r, uint32_t geom, Hit& h) {
+    return intersectGroup(inst.groupId, inst.toObject(r), geom, h);
+  };
+  bool found = false;
   const auto& geoms = scene_.groups[groupId].geometries;
   for (uint32_t gi = 0; gi < geoms.size(); ++gi) {
     const Geometry& g = geoms[gi];
-    Ray r = ray;
-    r.tMax = std::min(ray.tMax, hit.t);
-    float u = 0, v = 0;
-    auto record = [&](float t, uint32_t prim) {
-      if (t < r.tMax) {
-        hit = Hit{t, u, v, gi, prim, instId};
-        r.tMax = t;
-      }
-    };
-    // The first hit of primitive `prim` that a cut-out keeps (accel/cutout_hits.h).
-    const auto kept = [&](uint32_t prim, auto test) {
-      return firstKeptHit(scene_, g, prim, r, u, v, test);
-    };
-    switch (g.kind) {
-      case GeomKind::Mesh: {
-        const TriangleMesh& m = scene_.meshes[g.index];
-        for (uint32_t tri = 0; tri < m.triangleCount(); ++tri)
-          record(kept(tri,
-                      [&](const Ray& q, float& tu, float& tv) {
-                        return intersectTriangle(m.vertexAt(tri, 0, q.time),
-                                                 m.vertexAt(tri, 1, q.time),
-                                                 m.vertexAt(tri, 2, q.time), q, tu, tv);
-                      }),
-                 tri);
-        break;
-      }
-      case GeomKind::Sphere:
-        record(
-            kept(0, [&](const Ray& q, float&,
-                        float&) { return intersectSphere(scene_.sphereAt(g.index, q.time), q); }),
-            0);
-        break;
-      case GeomKind::Quad:
-        record(kept(0, [&](const Ray& q, float& tu,
-                           float& tv) { return intersectQuad(scene_.quads[g.index], q, tu, tv); }),
-               0);
-        break;
-      case GeomKind::Disk:
-        record(kept(0, [&](const Ray& q, float&,
-                           float&) { return intersectDisk(scene_.disks[g.index], q); }),
-               0);
-        break;
-      case GeomKind::Plane:
-        break;  // shared loop in intersectPlanes
-      case GeomKind::Instance: {
-        const Instance& inst = scene_.instances[g.index];
-        intersectGroup(inst.groupId, inst.toObject(r), gi, hit);
-        break;
-      }
-    }
+    if (g.kind == GeomKind::Plane) continue;  // shared loop in intersectPlanes
+    const uint32_t prims = g.kind == GeomKind::Mesh
+                               ? static_cast<uint32_t>(scene_.meshes[g.index].triangleCount())
+                               : 1;
+    for (uint32_t prim = 0; prim < prims; ++prim)
+      found |= intersectPrimitive(scene_, groupId, gi, prim, ray, instId, hit, intoInstance);
   }
+  return found;
 }
 
 Hit BruteForce::intersect(const Ray& ray) const {

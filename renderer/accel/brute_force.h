@@ -13,8 +13,9 @@ class BruteForce final : public Accelerator {
   std::string_view name() const override { return "brute"; }
 
  private:
-  // Nearest hit of group `groupId` for a ray already in that group's space.
-  void intersectGroup(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const;
+  // Nearest hit of group `groupId` closer than hit.t for a ray already in that group's space;
+  // false when there is none.
+  bool intersectGroup(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const;
   const Scene& scene_;
 };
 

@@ -16,6 +16,11 @@ constexpr float kCellPad = 1e-4f;
 // conservative.
 constexpr float kSlabPad = 1 + 2 * (3 * 0x1p-24f) / (1 - 3 * 0x1p-24f);
 constexpr int kMaxCellsPerAxis = 1024;
+// References a group may hold per primitive (plus a fixed allowance) before its resolution is
+// lowered: n primitives that each span the whole box would otherwise list n·R³ ≈ n² of them
+// (10⁵ long triangles fanned across a scene: 10¹⁰ references). Bundled scenes need 2–9.
+constexpr double kMaxReferencesPerPrimitive = 64;
+constexpr double kReferenceAllowance = 1 << 20;
 constexpr uint32_t kMailboxSize = 64;  // a power of two
 
 // The cell along one axis holding coordinate x (clamped into the grid).
@@ -26,29 +31,47 @@ int cellOf(float x, const UniformGrid::Grid& g, int axis, float pad = 0) {
   return std::min(static_cast<int>(c), g.cells[axis] - 1);
 }
 
-UniformGrid::Grid buildGrid(std::vector<PrimitiveBox> prims, int resolution) {
-  UniformGrid::Grid g;
-  for (const PrimitiveBox& p : prims) g.box.extend(p.box);
-  const int r =
-      resolution > 0 ? resolution : static_cast<int>(std::ceil(std::cbrt(double(prims.size()))));
+// The cells of `g` for `r` cells per axis (one along a flat or unbounded axis).
+void setResolution(UniformGrid::Grid& g, int r) {
   for (int a = 0; a < 3; ++a) {
     const float extent = g.box.hi[a] - g.box.lo[a];
     // A flat or unbounded extent (past float's range) gets one cell along that axis.
-    if (!(extent > 0) || !std::isfinite(extent)) continue;
-    g.cells[a] = std::clamp(r, 1, kMaxCellsPerAxis);
-    g.cellSize[a] = extent / float(g.cells[a]);
-    g.cellsPerUnit[a] = float(g.cells[a]) / extent;
+    const bool cut = extent > 0 && std::isfinite(extent);
+    g.cells[a] = cut ? std::clamp(r, 1, kMaxCellsPerAxis) : 1;
+    g.cellSize[a] = cut ? extent / float(g.cells[a]) : 0;
+    g.cellsPerUnit[a] = cut ? float(g.cells[a]) / extent : 0;
+  }
+}
+
+UniformGrid::Grid buildGrid(std::vector<PrimitiveBox> prims, int resolution) {
+  UniformGrid::Grid g;
+  for (const PrimitiveBox& p : prims) g.box.extend(p.box);
+  int r =
+      resolution > 0 ? resolution : static_cast<int>(std::ceil(std::cbrt(double(prims.size()))));
+  // Each primitive's range of cells, at the finest resolution (from r down by halves) whose
+  // references stay within the bound.
+  std::vector<std::array<int, 6>> ranges(prims.size());
+  const double allowed = kMaxReferencesPerPrimitive * double(prims.size()) + kReferenceAllowance;
+  while (true) {
+    setResolution(g, r);
+    double references = 0;
+    for (size_t i = 0; i < prims.size(); ++i) {
+      auto& rg = ranges[i];
+      for (int a = 0; a < 3; ++a) {
+        rg[size_t(a)] = cellOf(prims[i].box.lo[a], g, a, -kCellPad);
+        rg[size_t(a) + 3] = cellOf(prims[i].box.hi[a], g, a, kCellPad);
+      }
+      references +=
+          double(rg[3] - rg[0] + 1) * double(rg[4] - rg[1] + 1) * double(rg[5] - rg[2] + 1);
+    }
+    if (references <= allowed || r == 1) break;
+    r = std::max(1, r / 2);
   }
   const size_t cellCount = size_t(g.cells[0]) * size_t(g.cells[1]) * size_t(g.cells[2]);
   // Counting sort of the references by cell: count, prefix sum, fill.
-  std::vector<std::array<int, 6>> ranges(prims.size());
   g.cellStart.assign(cellCount + 1, 0);
   for (size_t i = 0; i < prims.size(); ++i) {
-    auto& rg = ranges[i];
-    for (int a = 0; a < 3; ++a) {
-      rg[size_t(a)] = cellOf(prims[i].box.lo[a], g, a, -kCellPad);
-      rg[size_t(a) + 3] = cellOf(prims[i].box.hi[a], g, a, kCellPad);
-    }
+    const auto& rg = ranges[i];
     for (int z = rg[2]; z <= rg[5]; ++z)
       for (int y = rg[1]; y <= rg[4]; ++y)
         for (int x = rg[0]; x <= rg[3]; ++x)

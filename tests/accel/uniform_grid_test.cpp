@@ -1,0 +1,68 @@
+// The uniform grid's resolution rule and its bound on references, on scenes built for them.
+#include "accel/uniform_grid.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/hash.h"
+#include "test_util.h"
+
+namespace glint {
+namespace {
+
+std::string vec(float x, float y, float z) {
+  return "[" + std::to_string(x) + "," + std::to_string(y) + "," + std::to_string(z) + "]";
+}
+
+// n small triangles scattered in the unit cube, or n long ones fanned across it (each from one
+// corner region to the opposite: every box spans the whole cube).
+Scene triangles(int n, bool fan) {
+  std::string pos, idx;
+  for (int t = 0; t < n; ++t) {
+    const auto u = [&](int k) { return toUnitFloat(hashKey(3, t, k)); };
+    const float s = fan ? 1.0f : 0.01f;
+    const float x = fan ? 0.01f * u(0) : u(0), y = fan ? 0.01f * u(1) : u(1), z = u(2);
+    pos += (t ? "," : "") + vec(x, y, z) + "," + vec(x + s, y, z) + "," +
+           vec(x + s, y + s, z + s * u(3));
+    idx += (t ? ",[" : "[") + std::to_string(3 * t) + "," + std::to_string(3 * t + 1) + "," +
+           std::to_string(3 * t + 2) + "]";
+  }
+  // The eye at the origin: render space (world minus the eye) is then world space.
+  return test::sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0.5,0.5,0.5]},
+    "materials": {"m": {"type": "phong"}},
+    "objects": [{"type": "mesh", "material": "m", "positions": [)" +
+                             pos + "], \"indices\": [" + idx + "]}]}");
+}
+
+TEST(UniformGrid, ResolutionIsTheCubeRootOfThePrimitiveCount) {
+  // Seed 002 §9.2.1: R = ⌈∛n⌉ cells per axis; 1000 triangles: 10³ cells.
+  const Scene s = triangles(1000, false);
+  const UniformGrid grid(s);
+  EXPECT_EQ(grid.stats().cells, 1000u);
+  EXPECT_EQ(grid.stats().primitives, 1000u);
+  // Triangles 1/100 of the cube wide in cells 1/10 wide: most fall in one cell, a few straddle.
+  EXPECT_LT(grid.stats().references, 1500u);
+}
+
+TEST(UniformGrid, ReferencesStayBoundedWhenEveryPrimitiveSpansTheScene) {
+  // 20 000 triangles, each spanning the cube: at ⌈∛n⌉ = 28 cells per axis each would be listed
+  // in 28³ = 21 952 cells (4.4·10⁸ references, 1.7 GB). The grid halves its resolution until
+  // they fit in 64 per primitive plus 2²⁰: 28 → 14 → 7 → 3 cells per axis, 27 per triangle.
+  const Scene s = triangles(20000, true);
+  const UniformGrid grid(s);
+  EXPECT_LE(double(grid.stats().references), 64.0 * 20000 + (1 << 20));
+  EXPECT_EQ(grid.stats().cells, 27u);
+  // And it still finds the closest hit: a ray down through the fan (below its diagonal, where
+  // every triangle lies).
+  const auto brute = makeAccelerator(AccelKind::BruteForce, s);
+  Ray r{{0.6f, 0.4f, 5}, {0, 0, -1}};
+  const Hit a = grid.intersect(r), b = brute->intersect(r);
+  ASSERT_TRUE(b);
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a.t, b.t);
+  EXPECT_EQ(a.primId, b.primId);
+}
+
+}  // namespace
+}  // namespace glint
