@@ -25,5 +25,18 @@ start=$SECONDS
 glint_sanitized_build "$GLINT_ROOT/build-asan" address,undefined
 echo "glint: ASan+UBSan build took $((SECONDS - start)) s" >&2
 start=$SECONDS
-(cd "$GLINT_ROOT/build-asan" && ctest --output-on-failure -j "$(nproc)" "$@")
+log="$GLINT_ROOT/build-asan/ctest-output.log"
+status=0  # ctest's (pipefail: tee does not hide it)
+(cd "$GLINT_ROOT/build-asan" && ctest --output-on-failure -j "$(nproc)" "$@") 2>&1 | tee "$log" ||
+  status=$?
+# LeakSanitizer's own tracer thread sometimes crashes while it stops the process at exit ("Tracer
+# caught signal 11 ... LeakSanitizer has encountered a fatal error"): the test itself passed, and
+# nothing was reported. Seen once in 424 tests on a loaded 2-core machine. Only then are the failed
+# tests run once more, and they must pass; any other failure stands as it is.
+if [ "$status" -ne 0 ] && grep -q "LeakSanitizer has encountered a fatal error" "$log"; then
+  echo "glint: LeakSanitizer's tracer crashed; running the failed tests once more" >&2
+  status=0
+  (cd "$GLINT_ROOT/build-asan" && ctest --output-on-failure --rerun-failed) || status=$?
+fi
 echo "glint: ASan+UBSan tests took $((SECONDS - start)) s" >&2
+exit "$status"
