@@ -20,6 +20,9 @@ namespace glint {
 
 // The largest tile edge read; openExr refuses files with larger tiles.
 inline constexpr int kMaxTileEdge = 4096;
+// The coarsest channel sampling a file may declare (chroma channels use 2); openExr refuses
+// others. Channels Glint reads must sample every pixel.
+inline constexpr int kMaxChannelSampling = 16;
 
 // Throws UsageError naming `path` when the checks below fail or OpenEXR cannot open it.
 std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path);
