@@ -16,10 +16,6 @@ namespace glint {
 
 namespace {
 
-constexpr float kMachineEpsilon = 0x1p-24f;
-// Ize 2013: multiplying the far slab distance by 1 + 2γ₃ makes the float slab test conservative.
-constexpr float kSlabPad = 1 + 2 * (3 * kMachineEpsilon) / (1 - 3 * kMachineEpsilon);
-
 float area(const Bounds3f& b) {
   if (b.empty()) return 0;
   const Vec3f d = b.diagonal();
@@ -282,28 +278,15 @@ template <bool AnyHit>
 bool ReferenceBvh::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const {
   const Tree& tree = trees_[groupId];
   if (tree.nodes.empty()) return false;
-  // Williams et al. 2005: 1/±0 = ±∞ by IEEE, and the slab planes are taken in the order the ray
-  // meets them (by the sign of its direction), so the near distance only ever raises tNear and
-  // the far one only lowers tFar. An origin exactly on a slab plane of a ray parallel to it
-  // gives 0·∞ = NaN; std::max(tNear, NaN) and std::min(tFar, NaN) keep their first argument, so
-  // that slab simply does not constrain the ray.
-  const Vec3f inv{1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z};
-  const int negative[3] = {std::signbit(inv.x), std::signbit(inv.y), std::signbit(inv.z)};
+  const RaySlabs slabs(ray);
   uint32_t stack[kMaxDepth];
   int sp = 0;
   uint32_t index = 0;
   bool found = false;
   while (true) {
     const Node& node = tree.nodes[index];
-    const Vec3f* planes = &node.box.lo;  // planes[0] = lo, planes[1] = hi
     float tNear = ray.tMin, tFar = std::min(ray.tMax, hit.t);
-    for (int a = 0; a < 3; ++a) {
-      const float tn = (planes[negative[a]][a] - ray.o[a]) * inv[a];
-      const float tf = (planes[1 - negative[a]][a] - ray.o[a]) * inv[a];
-      tNear = std::max(tNear, tn);
-      tFar = std::min(tFar, tf * kSlabPad);  // Ize 2013: conservative by 2 ulps
-    }
-    if (tNear <= tFar) {
+    if (slabTest(node.box, ray, slabs, tNear, tFar)) {
       if (node.count > 0) {
         for (uint32_t i = node.first; i < node.first + node.count; ++i)
           if (intersectPrim(groupId, i, ray, instId, hit)) {
@@ -313,7 +296,7 @@ bool ReferenceBvh::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, H
       } else {
         // Near child first: the one on the side the ray comes from along the split axis.
         const uint32_t first = index + 1, second = node.first;
-        const bool swap = negative[node.axis] != 0;
+        const bool swap = slabs.negative[node.axis] != 0;
         stack[sp++] = swap ? first : second;
         index = swap ? second : first;
         continue;

@@ -12,9 +12,6 @@ namespace {
 // A primitive goes into every cell its box reaches, and this far (in cells) beyond: the DDA's
 // float steps may place a ray a hair into the neighbouring cell at a boundary.
 constexpr float kCellPad = 1e-4f;
-// Ize 2013, as the reference BVH: the far slab distance times 1 + 2γ₃ keeps the clip
-// conservative.
-constexpr float kSlabPad = 1 + 2 * (3 * 0x1p-24f) / (1 - 3 * 0x1p-24f);
 constexpr int kMaxCellsPerAxis = 1024;
 // References a group may hold per primitive (plus a fixed allowance) before its resolution is
 // lowered: n primitives that each span the whole box would otherwise list n·R³ ≈ n² of them
@@ -118,18 +115,11 @@ template <bool AnyHit>
 bool UniformGrid::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const {
   const Grid& g = grids_[groupId];
   if (g.prims.empty()) return false;
-  // Clip the ray to the grid's box (the reference BVH's slab test: ±0 components and NaN from
-  // 0·∞ leave an axis unconstrained).
-  const Vec3f inv{1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z};
+  // The part of the ray inside the grid's box.
+  const RaySlabs slabs(ray);
+  const Vec3f& inv = slabs.inv;
   float tEnter = ray.tMin, tLeave = std::min(ray.tMax, hit.t);
-  for (int a = 0; a < 3; ++a) {
-    const bool negative = std::signbit(inv[a]);
-    const float tn = ((negative ? g.box.hi : g.box.lo)[a] - ray.o[a]) * inv[a];
-    const float tf = ((negative ? g.box.lo : g.box.hi)[a] - ray.o[a]) * inv[a];
-    tEnter = std::max(tEnter, tn);
-    tLeave = std::min(tLeave, tf * kSlabPad);
-  }
-  if (!(tEnter <= tLeave)) return false;
+  if (!slabTest(g.box, ray, slabs, tEnter, tLeave)) return false;
   // Amanatides and Woo: the cell where the ray enters, and per axis the distance to the next
   // cell boundary and between boundaries.
   const Vec3f entry = ray.o + tEnter * ray.d;
