@@ -69,7 +69,7 @@ std::string embreeVersionString() {
 struct EmbreeAccel::UserShape {
   GeomKind kind;
   const Scene* scene = nullptr;
-  uint32_t index = 0;  // into scene->spheres, quads, disks or meshes
+  uint32_t index = 0;  // into scene->spheres, quads, disks, csgs or meshes
   bool lanes = false;  // a quad or a sphere that does not move: packets test it lane-parallel
                        // (disks, which only visible lights make, are tested one ray at a time)
   const Geometry* cutout = nullptr;  // the entry, when its material has a cut-out
@@ -133,6 +133,8 @@ void userBounds(const RTCBoundsFunctionArguments* args) {
     b = bounds(keys.empty() ? sphere : Sphere{keys[args->timeStep], sphere.radius});
   } else if (s.kind == GeomKind::Disk) {
     b = bounds(s.scene->disks[s.index]);
+  } else if (s.kind == GeomKind::Csg) {
+    b = s.scene->csgs[s.index].box();
   } else {
     b = bounds(s.scene->quads[s.index]);
   }
@@ -199,6 +201,28 @@ void userOccluded(const RTCOccludedFunctionNArguments* args) {
     const Ray r = toRay(args->ray, args->N, i);
     float u = 0, v = 0;
     if (intersectUser(s, r, u, v) < r.tMax) RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
+  }
+}
+
+// A CSG solid: its first boundary, on the surface (primitive id) of the operand it lies on.
+void csgIntersect(const RTCIntersectFunctionNArguments* args) {
+  const auto& s = *static_cast<const EmbreeAccel::UserShape*>(args->geometryUserPtr);
+  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    CsgBoundary b;
+    if (!args->valid[i] || !s.scene->csgs[s.index].intersect(toRay(rays, args->N, i), b)) continue;
+    recordHit(args, rays, hits, i, b.t, b.u, b.v);
+    RTCHitN_primID(hits, args->N, i) = b.surface;
+  }
+}
+
+void csgOccluded(const RTCOccludedFunctionNArguments* args) {
+  const auto& s = *static_cast<const EmbreeAccel::UserShape*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    CsgBoundary b;
+    if (args->valid[i] && s.scene->csgs[s.index].intersect(toRay(args->ray, args->N, i), b))
+      RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
   }
 }
 
@@ -290,6 +314,17 @@ void EmbreeAccel::addGeometries(RTCScene rtcScene, uint32_t groupId) {
         rtcSetGeometryBoundsFunction(geom, userBounds, nullptr);
         rtcSetGeometryIntersectFunction(geom, userIntersect);
         rtcSetGeometryOccludedFunction(geom, userOccluded);
+        userShapes_.push_back(std::move(shape));
+        break;
+      }
+      case GeomKind::Csg: {
+        auto shape = std::make_unique<UserShape>(UserShape{g.kind, &scene_, g.index});
+        geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(geom, 1);
+        rtcSetGeometryUserData(geom, shape.get());
+        rtcSetGeometryBoundsFunction(geom, userBounds, nullptr);
+        rtcSetGeometryIntersectFunction(geom, csgIntersect);
+        rtcSetGeometryOccludedFunction(geom, csgOccluded);
         userShapes_.push_back(std::move(shape));
         break;
       }

@@ -63,6 +63,9 @@ std::vector<PrimitiveBox> groupPrimitives(const Scene& scene, uint32_t groupId,
       case GeomKind::Disk:
         add(bounds(scene.disks[geom.index]), 0);
         break;
+      case GeomKind::Csg:
+        add(scene.csgs[geom.index].box(), 0);
+        break;
       case GeomKind::Plane:
         break;  // unbounded: the shared plane loop
       case GeomKind::Instance: {

@@ -11,46 +11,18 @@
 
 #include "accel/cutout_hits.h"
 #include "core/bounds.h"
+#include "core/slab_test.h"
 #include "scene/scene.h"
 
 namespace glint {
 
-// One primitive of a group: a triangle of a mesh, or a whole sphere, quad, disk or instance.
+// One primitive of a group: a triangle of a mesh, or a whole sphere, quad, disk, CSG solid or
+// instance.
 struct PrimitiveBox {
   Bounds3f box;
   uint32_t geom = 0;  // index in the group
   uint32_t prim = 0;  // triangle index, or 0
 };
-
-// The reciprocal of a ray's direction and the signs of its components, for slabTest.
-struct RaySlabs {
-  Vec3f inv;
-  int negative[3];
-  explicit RaySlabs(const Ray& ray)
-      : inv{1.0f / ray.d.x, 1.0f / ray.d.y, 1.0f / ray.d.z},
-        negative{std::signbit(inv.x), std::signbit(inv.y), std::signbit(inv.z)} {}
-};
-
-// Narrows [tNear, tFar] to the part of `ray` inside `box`; true when some of it is left.
-// Williams et al. 2005: 1/±0 = ±∞ by IEEE, and the slab planes are taken in the order the ray
-// meets them (by the sign of its direction), so the near distance only ever raises tNear and the
-// far one only lowers tFar. An origin exactly on a slab plane of a ray parallel to it gives 0·∞ =
-// NaN; std::max(tNear, NaN) and std::min(tFar, NaN) keep their first argument, so that slab simply
-// does not constrain the ray. Ize 2013: the far distance times 1 + 2γ₃ makes the float test
-// conservative (2 ulps).
-inline bool slabTest(const Bounds3f& box, const Ray& ray, const RaySlabs& s, float& tNear,
-                     float& tFar) {
-  constexpr float kMachineEpsilon = 0x1p-24f;
-  constexpr float kSlabPad = 1 + 2 * (3 * kMachineEpsilon) / (1 - 3 * kMachineEpsilon);
-  const Vec3f* planes = &box.lo;  // planes[0] = lo, planes[1] = hi
-  for (int a = 0; a < 3; ++a) {
-    const float tn = (planes[s.negative[a]][a] - ray.o[a]) * s.inv[a];
-    const float tf = (planes[1 - s.negative[a]][a] - ray.o[a]) * s.inv[a];
-    tNear = std::max(tNear, tn);
-    tFar = std::min(tFar, tf * kSlabPad);
-  }
-  return tNear <= tFar;
-}
 
 // The bounded primitives of group `groupId` (planes, unbounded, are left to intersectPlanes),
 // each boxed over every motion key; an instance's box comes from `groupBox` of the group it
@@ -93,6 +65,13 @@ bool intersectPrimitive(const Scene& scene, uint32_t groupId, uint32_t geom, uin
       t = kept(
           [&](const Ray& q, float&, float&) { return intersectDisk(scene.disks[g.index], q); });
       break;
+    case GeomKind::Csg: {
+      // The solid's first boundary: its surface id and (u, v) name the operand's surface.
+      CsgBoundary b;
+      if (!scene.csgs[g.index].intersect(r, b)) return false;
+      hit = Hit{b.t, b.u, b.v, geom, b.surface, instId};
+      return true;
+    }
     case GeomKind::Plane:
       return false;
     case GeomKind::Instance:

@@ -6,7 +6,7 @@
 
 namespace glint {
 
-float intersectSphere(const Sphere& s, const Ray& ray) {
+bool sphereRoots(const Sphere& s, const Ray& ray, float& t0, float& t1) {
   // Ray Tracing Gems ch. 7 (Haines et al.): the discriminant from the distance of the centre to
   // the ray line, and the near root from c/q, avoid the cancellation of the textbook formula.
   const Vec3f f = ray.o - s.center;
@@ -15,12 +15,18 @@ float intersectSphere(const Sphere& s, const Ray& ray) {
   const Vec3f l = f + (b / a) * ray.d;
   const float r2 = s.radius * s.radius;
   const float disc = a * (r2 - dot(l, l));
-  if (disc < 0) return kInfinity;
+  if (disc < 0) return false;
   const float c = dot(f, f) - r2;
   const float q = b + std::copysign(std::sqrt(disc), b);
-  float t0 = c / q, t1 = q / a;
+  t0 = c / q, t1 = q / a;
   if (q == 0) t0 = t1 = 0;  // ray through the centre with the origin on the surface
   if (t0 > t1) std::swap(t0, t1);
+  return true;
+}
+
+float intersectSphere(const Sphere& s, const Ray& ray) {
+  float t0, t1;
+  if (!sphereRoots(s, ray, t0, t1)) return kInfinity;
   if (t0 > ray.tMin && t0 < ray.tMax) return t0;
   if (t1 > ray.tMin && t1 < ray.tMax) return t1;
   return kInfinity;

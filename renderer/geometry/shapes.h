@@ -30,6 +30,9 @@ struct Plane {
 // Each returns the nearest t in (ray.tMin, ray.tMax) or a value ≥ ray.tMax (kInfinity) on a
 // miss; (u, v) are written only on a hit.
 float intersectSphere(const Sphere& s, const Ray& ray);
+// Where the ray's whole line meets the sphere, t0 ≤ t1, whatever tMin and tMax say; false when
+// it misses (CSG needs both ends of the inside interval, wherever the ray starts).
+bool sphereRoots(const Sphere& s, const Ray& ray, float& t0, float& t1);
 float intersectQuad(const Quad& q, const Ray& ray, float& u, float& v);
 float intersectPlane(const Plane& p, const Ray& ray);
 float intersectDisk(const Disk& d, const Ray& ray);

@@ -96,7 +96,7 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
       sum.childEnd = gen.children;
       continue;
     }
-    const Material& m = scene_.materials[scene_.geometry(hit).materialId];
+    const Material& m = scene_.materials[scene_.materialId(hit)];
     AovSample* aov = aovs ? aovs[i] : nullptr;
     const Vec3f wo = normalize(-ray.d);
     const float distance = distanceAt(ray, hit, branch);
@@ -259,7 +259,7 @@ void BatchedKernel::recordAov(const Ray& ray, const Hit& hit, const Material& m,
   const Geometry& top =
       scene_.groups[0].geometries[hit.instId != kInvalidId ? hit.instId : hit.geomId];
   aov.objectId = top.objectId + 1;
-  aov.materialId = scene_.geometry(hit).materialId;
+  aov.materialId = scene_.materialId(hit);
   aov.albedo = albedo(m, at);
 }
 

@@ -11,12 +11,11 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "geometry/triangulate.h"
+#include "io/local_mesh.h"
 #include "io/mesh_io.h"
 #include "io/scene_builder.h"
 
 namespace glint {
-
-namespace {
 
 uint32_t materialOf(SceneBuilder& b, const JsonNode& obj) {
   const JsonNode n = obj.at("material");
@@ -37,15 +36,7 @@ uint32_t push(Scene& s, uint32_t groupId, GeomKind kind, uint32_t index, uint32_
   return static_cast<uint32_t>(geoms.size() - 1);
 }
 
-// A mesh in the object's local coordinates, kept in double until it is placed.
-struct LocalMesh {
-  std::vector<Vec3d> positions;
-  std::vector<Vec3d> normals;                    // per vertex, for smooth shading; empty: flat
-  std::vector<Vec2f> uvs;                        // per vertex texture coordinates; may be empty
-  std::vector<Rgb> colors;                       // per vertex colours; may be empty
-  std::vector<std::vector<Vec3d>> positionKeys;  // a deforming mesh's vertices per motion key
-  std::vector<uint32_t> indices;
-};
+namespace {
 
 void addMesh(SceneBuilder& b, const LocalMesh& local, const Placement& place, const JsonNode& where,
              uint32_t groupId, uint32_t material, uint32_t objectId) {
@@ -89,6 +80,8 @@ void addMesh(SceneBuilder& b, const LocalMesh& local, const Placement& place, co
   push(b.scene, groupId, GeomKind::Mesh, static_cast<uint32_t>(b.scene.meshes.size() - 1), material,
        objectId);
 }
+
+}  // namespace
 
 std::vector<Vec3d> parsePoints(const JsonNode& n, size_t minCount) {
   if (!n.isArray() || n.size() < minCount)
@@ -143,11 +136,7 @@ LocalMesh inlineMesh(const JsonNode& obj) {
   return m;
 }
 
-// A mesh file's parts (one per material its triangles use) and their materials.
-struct FileMesh {
-  std::vector<LocalMesh> parts;
-  std::vector<Material> materials;
-};
+namespace {
 
 // The bytes of the image files a mesh file's materials read join the scene hash, as the mesh
 // file's own do (an image embedded in it is part of those already), so crops rendered after a
@@ -168,6 +157,8 @@ void hashTextureFiles(SceneBuilder& b, const std::vector<Material>& materials) {
         b.scene.sourceHash, hashBytes(std::string(std::istreambuf_iterator<char>(in), {})));
   }
 }
+
+}  // namespace
 
 FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
   const std::filesystem::path rel(fileNode.string());
@@ -202,8 +193,6 @@ FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
     fileNode.fail(e.what());
   }
 }
-
-}  // namespace
 
 Affine parseTransform(const JsonNode& n) {
   n.checkKeys({"translate", "rotate", "scale", "matrix"});
@@ -365,6 +354,7 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     motion->at("center").fail("only spheres have centre keys; use \"transform\" keys");
   if (motion && motion->has("positions") && type != "mesh")
     motion->at("positions").fail("only meshes have position keys; use \"transform\" keys");
+  if (type == "csg") return addCsg(b, obj, groupId, objectId, place);
   // A mesh file without a "material" keeps the file's own materials.
   const bool fileMaterials = type == "mesh" && obj.has("file") && !obj.has("material");
   const uint32_t material = fileMaterials ? 0 : materialOf(b, obj);
@@ -494,7 +484,7 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
 void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t objectId) {
   Scene& s = b.scene;
   const std::string type = obj.at("type").choice(
-      {"sphere", "plane", "quad", "box", "triangle", "polygon", "mesh", "instance"});
+      {"sphere", "plane", "quad", "box", "triangle", "polygon", "mesh", "csg", "instance"});
   const std::optional<JsonNode> motion = obj.get("motion");
   if (motion) motion->checkKeys({"center", "transform", "positions"});
   std::vector<TrsKey> transformKeys;

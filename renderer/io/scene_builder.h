@@ -48,6 +48,9 @@ struct SceneBuilder {
 
 // Adds one entry of `objects` (groupId 0) or of a group to the scene (object_loader.cpp).
 void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t objectId);
+// Adds a "csg" entry placed by `place` (its own transform included) as one solid (csg_loader.cpp).
+void addCsg(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t objectId,
+            const Placement& place);
 // In double; validated as a float transform (non-singular, affine).
 Affine parseTransform(const JsonNode& node);
 

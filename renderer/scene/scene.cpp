@@ -21,6 +21,39 @@ namespace {
   pError = gamma(6) * (abs(onRay) + abs(point) + abs(rel));
 }
 
+// A sphere hit re-projected onto the sphere, which removes the error of o + t·d along the ray;
+// n is the outward normal (not unit).
+[[gnu::always_inline]] inline void spherePoint(const Sphere& s, const Vec3f& onRay, Vec3f& p,
+                                               Vec3f& pError, Vec3f& n) {
+  n = onRay - s.center;
+  const Vec3f q = n * (s.radius / length(n));
+  p = s.center + q;
+  pError = gamma(5) * abs(q) + gamma(1) * abs(p);
+}
+
+// A triangle hit from its barycentrics; n is the winding's normal (not unit).
+[[gnu::always_inline]] inline void trianglePoint(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2,
+                                                 float u, float v, Vec3f& p, Vec3f& pError,
+                                                 Vec3f& n) {
+  const float b0 = 1 - u - v;
+  p = b0 * p0 + u * p1 + v * p2;
+  pError = gamma(7) * (abs(b0 * p0) + abs(u * p1) + abs(v * p2));
+  n = cross(p1 - p0, p2 - p0);
+}
+
+// Latitude and longitude about the y axis: u = φ/2π around it, v = 1 − θ/π from the north pole,
+// so that images stand upright; tu, tv are dp/du and dp/dv.
+Vec2f sphereUv(const Sphere& s, const Vec3f& p, Vec3f& tu, Vec3f& tv) {
+  const Vec3f q = (p - s.center) / s.radius;
+  const float phi = std::atan2(q.z, q.x), theta = std::acos(std::clamp(q.y, -1.0f, 1.0f));
+  tu = 2 * kPi * s.radius * Vec3f{-q.z, 0, q.x};
+  const float sinTheta = std::sqrt(std::max(0.0f, 1 - q.y * q.y));
+  const float cosPhi = sinTheta > 0 ? q.x / sinTheta : 1,
+              sinPhi = sinTheta > 0 ? q.z / sinTheta : 0;
+  tv = -kPi * s.radius * Vec3f{q.y * cosPhi, -sinTheta, q.y * sinPhi};
+  return {(phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi), 1 - theta / kPi};
+}
+
 }  // namespace
 
 const Geometry& Scene::geometry(const Hit& hit) const {
@@ -91,23 +124,28 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
       const Vec3f p0 = m.vertexAt(hit.primId, 0, ray.time),
                   p1 = m.vertexAt(hit.primId, 1, ray.time),
                   p2 = m.vertexAt(hit.primId, 2, ray.time);
-      const float b0 = 1 - hit.u - hit.v;
-      p = b0 * p0 + hit.u * p1 + hit.v * p2;
-      pError = gamma(7) * (abs(b0 * p0) + abs(hit.u * p1) + abs(hit.v * p2));
+      trianglePoint(p0, p1, p2, hit.u, hit.v, p, pError, n);
       // Embree interpolates deforming vertices in its own order of operations: allow for the
       // difference to our vertexAt.
       if (m.deforming()) pError += gamma(4) * (abs(p0) + abs(p1) + abs(p2));
-      n = cross(p1 - p0, p2 - p0);
       if (m.smooth()) smoothMesh = &m;
       break;
     }
-    case GeomKind::Sphere: {
-      // Re-project onto the sphere: removes the error of o + t·d along the ray.
-      const Sphere s = sphereAt(g.index, ray.time);
-      n = oObj + hit.t * dObj - s.center;
-      const Vec3f q = n * (s.radius / length(n));
-      p = s.center + q;
-      pError = gamma(5) * abs(q) + gamma(1) * abs(p);
+    case GeomKind::Sphere:
+      spherePoint(sphereAt(g.index, ray.time), oObj + hit.t * dObj, p, pError, n);
+      break;
+    case GeomKind::Csg: {
+      const CsgSolid& solid = csgs[g.index];
+      const CsgSurface on = solid.surface(hit.primId);
+      const CsgLeaf& leaf = solid.leaves[on.leaf];
+      sp.materialId = leaf.materialId;
+      if (on.triangle == kInvalidId) {
+        spherePoint(leaf.sphere, oObj + hit.t * dObj, p, pError, n);
+      } else {
+        const auto& tri = solid.triangles[on.triangle];
+        trianglePoint(tri[0], tri[1], tri[2], hit.u, hit.v, p, pError, n);
+      }
+      if (leaf.flipped) n = -n;  // a subtracted operand bounds the solid from its inside
       break;
     }
     case GeomKind::Quad: {
@@ -205,18 +243,21 @@ Vec2f Scene::uvAt(const Geometry& g, const Hit& hit, const Vec3f& p, float time,
       }
       break;
     }
-    case GeomKind::Sphere: {
-      // Latitude and longitude about the y axis: u = φ/2π around it, v = 1 − θ/π from the
-      // north pole, so that images stand upright.
-      const Sphere s = sphereAt(g.index, time);
-      const Vec3f q = (p - s.center) / s.radius;
-      const float phi = std::atan2(q.z, q.x), theta = std::acos(std::clamp(q.y, -1.0f, 1.0f));
-      uv = {(phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi), 1 - theta / kPi};
-      tu = 2 * kPi * s.radius * Vec3f{-q.z, 0, q.x};
-      const float sinTheta = std::sqrt(std::max(0.0f, 1 - q.y * q.y));
-      const float cosPhi = sinTheta > 0 ? q.x / sinTheta : 1,
-                  sinPhi = sinTheta > 0 ? q.z / sinTheta : 0;
-      tv = -kPi * s.radius * Vec3f{q.y * cosPhi, -sinTheta, q.y * sinPhi};
+    case GeomKind::Sphere:
+      uv = sphereUv(sphereAt(g.index, time), p, tu, tv);
+      break;
+    case GeomKind::Csg: {
+      // A sphere operand as a sphere; a mesh operand's triangle by its barycentrics.
+      const CsgSolid& solid = csgs[g.index];
+      const CsgSurface on = solid.surface(hit.primId);
+      if (on.triangle == kInvalidId) {
+        uv = sphereUv(solid.leaves[on.leaf].sphere, p, tu, tv);
+      } else {
+        const auto& tri = solid.triangles[on.triangle];
+        uv = {hit.u, hit.v};
+        tu = tri[1] - tri[0];
+        tv = tri[2] - tri[0];
+      }
       break;
     }
     case GeomKind::Quad:
@@ -292,6 +333,9 @@ Bounds3f Scene::groupBounds(uint32_t groupId) const {
         break;
       case GeomKind::Disk:
         b.extend(bounds(disks[g.index]));
+        break;
+      case GeomKind::Csg:
+        b.extend(csgs[g.index].box());
         break;
       case GeomKind::Plane:
         break;

@@ -12,6 +12,7 @@
 #include "core/motion.h"
 #include "core/sampler.h"
 #include "core/transform.h"
+#include "geometry/csg.h"
 #include "geometry/shading_point.h"
 #include "geometry/shapes.h"
 #include "geometry/triangle_mesh.h"
@@ -21,14 +22,14 @@
 
 namespace glint {
 
-enum class GeomKind : uint8_t { Mesh, Sphere, Quad, Disk, Plane, Instance };
+enum class GeomKind : uint8_t { Mesh, Sphere, Quad, Disk, Plane, Csg, Instance };
 
 // One entry of a group. A hit's geomId is this entry's index in its group, so every backend
 // reports the same ids.
 struct Geometry {
   GeomKind kind = GeomKind::Mesh;
   uint32_t index = 0;       // into the scene's array for `kind`
-  uint32_t materialId = 0;  // unused for instances
+  uint32_t materialId = 0;  // unused for instances; a CSG solid's surfaces carry their own
   uint32_t objectId = 0;    // the `objects[i]` (or `groups.NAME[i]`) entry it came from
 };
 
@@ -104,6 +105,7 @@ class Scene {
   std::vector<Quad> quads;
   std::vector<Disk> disks;  // the surfaces of visible disk lights
   std::vector<Plane> planes;
+  std::vector<CsgSolid> csgs;  // one primitive each: a ray meets the solid, not its operands
   // Per plane, its entry in groups[0] (planes live only there): every ray tests every plane
   // (accel/accelerator.h), and must not walk the whole world to find them.
   std::vector<uint32_t> planeGeometries;
@@ -139,6 +141,14 @@ class Scene {
   }
 
   const Geometry& geometry(const Hit& hit) const;
+  // The material of the surface hit: the geometry's, or on a CSG solid its operand's.
+  uint32_t materialId(const Hit& hit) const {
+    const Geometry& g = geometry(hit);
+    if (g.kind != GeomKind::Csg) [[likely]]
+      return g.materialId;
+    const CsgSolid& solid = csgs[g.index];
+    return solid.leaves[solid.surface(hit.primId).leaf].materialId;
+  }
   Sphere sphereAt(uint32_t index, float time) const;
   // Time steps the accelerators need for a geometry entry: 1 when static.
   size_t timeSteps(const Geometry& g) const;

@@ -14,15 +14,20 @@ namespace glint {
 namespace {
 
 // Every shape kind Embree holds for Glint: a plane (outside Embree), user spheres and quads,
-// a triangle mesh, and instances of a group.
+// a triangle mesh, CSG solids (in the world and in instances), and instances of a group.
 Scene everyShapeKind() {
   return test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
     "materials": {"m": {"type": "phong"}},
     "groups": {"g": [{"type": "box", "min": [-0.5,-0.5,-0.5], "max": [0.5,0.5,0.5], "material": "m"},
-                     {"type": "sphere", "center": [0,1,0], "radius": 0.4, "material": "m"}]},
+                     {"type": "sphere", "center": [0,1,0], "radius": 0.4, "material": "m"},
+                     {"type": "csg", "op": "difference", "material": "m", "operands": [
+                       {"type": "box", "min": [-0.4,-1.4,-0.4], "max": [0.4,-0.6,0.4]},
+                       {"type": "sphere", "center": [0,-1,0.4], "radius": 0.3}]}]},
     "objects": [
       {"type": "plane", "point": [0,-3,0], "normal": [0,1,0], "material": "m"},
       {"type": "sphere", "center": [1,0,0], "radius": 0.7, "material": "m"},
+      {"type": "csg", "op": "intersection", "material": "m", "operands": [
+        {"type": "sphere", "center": [-0.5,-1.5,0], "radius": 1}, {"type": "sphere", "center": [0.5,-1.5,0], "radius": 1}]},
       {"type": "quad", "corner": [-2,-2,-1], "edge1": [1,0,0], "edge2": [0,1,0.5], "material": "m"},
       {"type": "mesh", "file": "meshes/wuson.obj", "material": "m", "transform": {"scale": [2,2,2]}},
       {"type": "instance", "group": "g", "transform": {"translate": [-1.5,1,0], "rotate": [1,1,0,30]}},

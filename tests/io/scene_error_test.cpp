@@ -48,6 +48,52 @@ TEST(SceneError, CameraWindowPlaneAndLensAreChecked) {
             "the lens one way (aperture_radius = focal_length / (2 f_number))");
 }
 
+TEST(SceneError, CsgOperandsMustBeClosedSolidsWithMaterials) {
+  const auto csg = [](const std::string& node) {
+    return test::sceneErrorOf(
+        "{\n\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0]},\n"
+        "\"materials\": {\"red\": {\"type\": \"phong\"}, \"holes\": {\"type\": \"phong\", "
+        "\"opacity\": 0.2}},\n\"objects\": [" +
+        node + "]}");
+  };
+  const std::string ball = R"({"type": "sphere", "center": [0,0,0], "radius": 1})";
+  EXPECT_EQ(csg(R"({"type": "csg", "op": "xor", "operands": []})"),
+            "scene.json:4: objects[0].op: must be one of \"union\", \"intersection\", "
+            "\"difference\", got \"xor\"");
+  EXPECT_EQ(csg(R"({"type": "csg", "op": "union", "material": "red", "operands": [)" + ball + "]}"),
+            "scene.json:4: objects[0].operands: must list at least two operands (spheres, boxes, "
+            "closed meshes or csg nodes)");
+  EXPECT_EQ(csg(R"({"type": "csg", "op": "union", "operands": [)" + ball + "," + ball + "]}"),
+            "scene.json:4: objects[0].operands[0]: needs a \"material\" (or the csg node above it "
+            "one): a mesh file's own materials are not used in CSG");
+  EXPECT_EQ(csg(R"({"type": "csg", "op": "union", "material": "holes", "operands": [)" + ball +
+                "," + ball + "]}"),
+            "scene.json:4: objects[0].material: has an opacity cut-out, which would open the "
+            "solid; CSG operands need materials without one");
+  EXPECT_EQ(csg(R"({"type": "csg", "op": "intersection", "material": "red", "operands": [)" + ball +
+                R"(, {"type": "sphere", "center": [5,0,0], "radius": 1}]})"),
+            "scene.json:4: objects[0]: the intersection is empty: its operands' bounding boxes "
+            "do not overlap");
+  EXPECT_EQ(csg(R"({"type": "csg", "op": "union", "material": "red", "operands": [)" + ball +
+                R"(, {"type": "sphere", "center": [0,0,0], "radius": 1,
+                      "transform": {"scale": [1,2,1]}}]})"),
+            "scene.json:5: objects[0].operands[1].transform: places a CSG sphere by a non-uniform "
+            "scale; CSG spheres take rotation, translation and uniform scale (an ellipsoid can be "
+            "a closed mesh)");
+  // A tetrahedron missing one face, and one with a face wound the wrong way.
+  const std::string tetra =
+      R"([0,0,0],[1,0,0],[0,1,0],[0,0,1]], "indices": [[0,2,1],[0,1,3],[0,3,2])";
+  EXPECT_EQ(csg(R"({"type": "csg", "op": "union", "material": "red", "operands": [)" + ball +
+                R"(, {"type": "mesh", "positions": [)" + tetra + "]}]}"),
+            "scene.json:4: objects[0].operands[1]: is not a closed surface: the edge from (0, 1, "
+            "0) to (1, 0, 0) borders one triangle; CSG needs closed meshes");
+  EXPECT_EQ(csg(R"({"type": "csg", "op": "union", "material": "red", "operands": [)" + ball +
+                R"(, {"type": "mesh", "positions": [)" + tetra + ",[1,3,2]]}]}"),
+            "scene.json:4: objects[0].operands[1]: is not consistently wound: the triangles along "
+            "the edge from (0, 1, 0) to (1, 0, 0) cross it 2 times that way and 0 times the "
+            "other; CSG needs a closed mesh whose triangles all wind alike");
+}
+
 TEST(SceneError, UnknownKeySuggestsTheNearest) {
   const std::string text = std::string(kHead) +
                            "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0,0],\n"  // 4
@@ -122,8 +168,8 @@ TEST(SceneError, UnknownMaterialAndEnumSuggest) {
             "scene.json:5: objects[0].material: no material named \"rde\" (did you mean \"red\"?)");
   EXPECT_EQ(test::sceneErrorOf(std::string(kHead) + "\"objects\": [{\"type\": \"spher\"}]}"),
             "scene.json:4: objects[0].type: must be one of \"sphere\", \"plane\", \"quad\", "
-            "\"box\", \"triangle\", \"polygon\", \"mesh\", \"instance\", got \"spher\" (did you "
-            "mean \"sphere\"?)");
+            "\"box\", \"triangle\", \"polygon\", \"mesh\", \"csg\", \"instance\", got "
+            "\"spher\" (did you mean \"sphere\"?)");
 }
 
 TEST(SceneError, NonFiniteNumbersAreRejected) {

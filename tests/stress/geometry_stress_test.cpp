@@ -272,6 +272,46 @@ Scene triangleSoup() {
       {"type": "sphere", "center": [0,-1,0], "radius": 0.8, "material": "m"}]})");
 }
 
+// A stress scene for CSG: 60 solids of every kind scattered through [−2, 2]³ (dice with
+// dimples, lenses, shells cut open, a nested difference of a union), some inside a group placed
+// by a shearing and a non-uniformly scaling instance.
+Scene csgSoup() {
+  const std::vector<std::string> kinds = {
+      R"({"type": "csg", "op": "difference", "material": "m", "operands": [
+          {"type": "box", "min": [-0.2,-0.2,-0.2], "max": [0.2,0.2,0.2]},
+          {"type": "sphere", "center": [0,0,0.25], "radius": 0.1},
+          {"type": "sphere", "center": [0.25,0,0], "radius": 0.12}])",
+      R"({"type": "csg", "op": "intersection", "material": "m", "operands": [
+          {"type": "sphere", "center": [0,0,-0.2], "radius": 0.3},
+          {"type": "sphere", "center": [0,0,0.2], "radius": 0.3}])",
+      R"({"type": "csg", "op": "difference", "material": "m", "operands": [
+          {"type": "sphere", "center": [0,0,0], "radius": 0.3},
+          {"type": "sphere", "center": [0,0,0], "radius": 0.25},
+          {"type": "box", "min": [-0.1,-0.1,0], "max": [0.1,0.1,0.4]}])",
+      R"({"type": "csg", "op": "difference", "material": "m", "operands": [
+          {"type": "csg", "op": "union", "operands": [
+            {"type": "box", "min": [-0.3,-0.05,-0.05], "max": [0.3,0.05,0.05]},
+            {"type": "sphere", "center": [0.3,0,0], "radius": 0.1}]},
+          {"type": "box", "min": [-0.1,-0.1,-0.1], "max": [0.1,0.1,0.1]}])"};
+  std::string objects;
+  for (int i = 0; i < 60; ++i) {
+    const auto u = [&](int k) { return toUnitFloat(hashKey(13, i, k)); };
+    std::string solid = kinds[size_t(i) % kinds.size()];
+    solid += R"(, "transform": {"rotate": [)" + num(u(0)) + "," + num(u(1)) + "," +
+             num(u(2) + 0.1) + "," + num(360 * u(3)) + R"(], "translate": )" +
+             vec(4 * u(4) - 2, 4 * u(5) - 2, 4 * u(6) - 2) + "}}";
+    objects += (objects.empty() ? "" : ",") + solid;
+  }
+  return test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+    "materials": {"m": {"type": "phong"}},
+    "groups": {"g": [)" + kinds[0] +
+                             "}," + kinds[2] + R"(}]},
+    "objects": [)" + objects +
+                             R"(,
+      {"type": "instance", "group": "g", "transform": {"translate": [1,1,1], "scale": [3,1,0.5]}},
+      {"type": "instance", "group": "g", "transform": {"matrix": [1,0.4,0,-1, 0,1,0,-1, 0,0,2,0, 0,0,0,1]}}]})");
+}
+
 // `check`'s agreement over `rays` random rays through the soup.
 void expectAgreementOnRandomRays(const Scene& s, const CrossCheck& check, int rays) {
   castRandomRays(s, check, rays, 21);
@@ -299,6 +339,16 @@ TEST(EmbreeVsGrid, OneMillionRandomRays) {
   const EmbreeAccel embree(s);
   const UniformGrid grid(s);
   expectAgreementOnRandomRays(s, CrossCheck(embree, {&grid}), 1000000);
+}
+
+// 22. CSG solids: Embree (user geometry), the reference BVH and the grid reach them differently
+// but must agree on 10⁶ random rays, as for the triangle soup.
+TEST(CsgSolids, EmbreeBvhAndGridAgreeOnOneMillionRandomRays) {
+  const Scene s = csgSoup();
+  const EmbreeAccel embree(s);
+  const ReferenceBvh bvh(s);
+  const UniformGrid grid(s);
+  expectAgreementOnRandomRays(s, CrossCheck(embree, {&bvh, &grid}), 1000000);
 }
 
 }  // namespace
