@@ -3,6 +3,8 @@
 #include "accel/brute_force.h"
 #include "accel/cutout_hits.h"
 #include "accel/embree_accel.h"
+#include "accel/kd_tree.h"
+#include "accel/octree.h"
 #include "accel/reference_bvh.h"
 #include "accel/uniform_grid.h"
 #include "scene/scene.h"
@@ -19,12 +21,17 @@ std::string_view accelName(AccelKind k) {
       return "brute";
     case AccelKind::Grid:
       return "grid";
+    case AccelKind::Octree:
+      return "octree";
+    case AccelKind::KdTree:
+      return "kdtree";
   }
   return "?";
 }
 
 bool parseAccelKind(std::string_view name, AccelKind& out) {
-  for (auto k : {AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce, AccelKind::Grid})
+  for (auto k : {AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce, AccelKind::Grid,
+                 AccelKind::Octree, AccelKind::KdTree})
     if (accelName(k) == name) {
       out = k;
       return true;
@@ -42,6 +49,10 @@ std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene)
       return std::make_unique<BruteForce>(scene);
     case AccelKind::Grid:
       return std::make_unique<UniformGrid>(scene);
+    case AccelKind::Octree:
+      return std::make_unique<Octree>(scene);
+    case AccelKind::KdTree:
+      return std::make_unique<KdTree>(scene);
   }
   return nullptr;
 }

@@ -24,6 +24,22 @@ struct PrimitiveBox {
   uint32_t prim = 0;  // triangle index, or 0
 };
 
+// What `glint validate` and the study of docs/performance.md report of a spatial subdivision
+// (the octree and the k-d tree).
+struct SubdivisionStats {
+  double buildSeconds = 0;
+  size_t nodes = 0, leaves = 0, references = 0, primitives = 0, maxDepth = 0, bytes = 0;
+  double referencesPerPrimitive() const {
+    return primitives ? double(references) / double(primitives) : 0;
+  }
+};
+
+// How many primitive references a spatial subdivision of n primitives may hold (64 per primitive
+// plus 2^20) before it stops refining: n primitives that each span the whole box would
+// otherwise be listed in every cell (10⁵ long triangles fanned across a scene: 10¹⁰
+// references). Bundled scenes need 2–9 per primitive.
+inline double referenceBudget(size_t primitives) { return 64.0 * double(primitives) + (1 << 20); }
+
 // The bounded primitives of group `groupId` (planes, unbounded, are left to intersectPlanes),
 // each boxed over every motion key; an instance's box comes from `groupBox` of the group it
 // instances (empty: the instance is left out). Empty boxes are left out.

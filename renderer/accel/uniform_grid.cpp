@@ -13,11 +13,6 @@ namespace {
 // float steps may place a ray a hair into the neighbouring cell at a boundary.
 constexpr float kCellPad = 1e-4f;
 constexpr int kMaxCellsPerAxis = 1024;
-// References a group may hold per primitive (plus a fixed allowance) before its resolution is
-// lowered: n primitives that each span the whole box would otherwise list n·R³ ≈ n² of them
-// (10⁵ long triangles fanned across a scene: 10¹⁰ references). Bundled scenes need 2–9.
-constexpr double kMaxReferencesPerPrimitive = 64;
-constexpr double kReferenceAllowance = 1 << 20;
 constexpr uint32_t kMailboxSize = 64;  // a power of two
 
 // The cell along one axis holding coordinate x (clamped into the grid).
@@ -46,9 +41,9 @@ UniformGrid::Grid buildGrid(std::vector<PrimitiveBox> prims, int resolution) {
   int r =
       resolution > 0 ? resolution : static_cast<int>(std::ceil(std::cbrt(double(prims.size()))));
   // Each primitive's range of cells, at the finest resolution (from r down by halves) whose
-  // references stay within the bound.
+  // references stay within referenceBudget (n·R³ ≈ n² for primitives spanning the box).
   std::vector<std::array<int, 6>> ranges(prims.size());
-  const double allowed = kMaxReferencesPerPrimitive * double(prims.size()) + kReferenceAllowance;
+  const double allowed = referenceBudget(prims.size());
   while (true) {
     setResolution(g, r);
     double references = 0;

@@ -22,6 +22,7 @@
 #include "app/procedural_scene.h"
 #include "app/render_bench.h"
 #include "app/scene_source.h"
+#include "app/structure_study.h"
 #include "camera/camera.h"
 #include "core/error.h"
 #include "core/fp_env.h"
@@ -42,6 +43,7 @@ struct BenchArgs {
   int randomRays = 1 << 20;
   double minSeconds = 0.5;
   int renderRuns = 3;
+  bool structures = false;
   std::string json;
 };
 
@@ -50,15 +52,16 @@ struct RaySets {
 };
 
 // Camera rays through every pixel centre; shadow rays from their hits towards the first light
-// (or straight up when there is none); random rays as in `glint validate`.
-RaySets makeRays(const Scene& scene, const Accelerator& accel, int randomCount) {
+// (or straight up when there is none; none without `accel`); random rays as in `glint validate`.
+RaySets makeRays(const Scene& scene, const Accelerator* accel, int randomCount) {
   RaySets sets;
   const Camera cam(scene.cameraDesc, scene.render.width, scene.render.height);
   for (int y = 0; y < scene.render.height; ++y)
     for (int x = 0; x < scene.render.width; ++x)
       sets.camera.push_back(cam.generateRay(float(x) + 0.5f, float(y) + 0.5f));
-  for (const Ray& r : sets.camera) {
-    const Hit h = accel.intersect(r);
+  for (size_t i = 0; accel && i < sets.camera.size(); ++i) {
+    const Ray& r = sets.camera[i];
+    const Hit h = accel->intersect(r);
     if (!h) continue;
     const ShadingPoint sp = scene.shadingPoint(r, h);
     const Vec3f target = scene.lights.empty()
@@ -103,6 +106,14 @@ int runBench(const BenchArgs& a) {
     kinds.push_back(k);
   }
   if (kinds.empty()) throw UsageError("--accel: name at least one backend");
+  if (a.structures) {
+    const RaySets rays = makeRays(scene, nullptr, a.randomRays);
+    nlohmann::json j = studyStructures(scene, kinds, rays.camera, rays.random);
+    j["scene"] = scene.sourcePath;
+    j["load_seconds"] = loadSeconds;
+    if (!a.json.empty()) writeTextFileAtomically(a.json, j.dump(2) + "\n");
+    return kExitOk;
+  }
   const int allThreads = a.threads > 0 ? a.threads : defaultThreadCount();
   std::printf("scene          %s, %zu triangles\n", scene.sourcePath.c_str(),
               scene.triangleCount());
@@ -129,7 +140,7 @@ int runBench(const BenchArgs& a) {
     if (k != AccelKind::Embree) owned.push_back(makeAccelerator(k, scene));
     accels.push_back(k == AccelKind::Embree ? &embree : owned.back().get());
   }
-  const RaySets rays = makeRays(scene, *accels[0], a.randomRays);
+  const RaySets rays = makeRays(scene, accels[0], a.randomRays);
   struct Set {
     const char* name;
     const std::vector<Ray>* rays;
@@ -302,7 +313,8 @@ CommandRunner addBenchCommand(CLI::App& app) {
                   "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
                   "camera and light; omitted: the default scene")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--accel", args->accels, "Comma-separated backends (embree, bvh, brute, grid)");
+  cmd->add_option("--accel", args->accels,
+                  "Comma-separated backends (embree, bvh, brute, grid, octree, kdtree)");
   // A heightfield beyond 2^28 triangles would not fit this machine's memory (80 B each).
   cmd->add_option("--procedural", args->procedural,
                   "Benchmark a generated heightfield of about this many triangles instead")
@@ -314,6 +326,9 @@ CommandRunner addBenchCommand(CLI::App& app) {
   cmd->add_option("--render-runs", args->renderRuns,
                   "Whole renders per configuration for efficiency and tile sizes (0: skip)")
       ->check(CLI::Range(0, 100));
+  cmd->add_flag("--structures", args->structures,
+                "Only the study of the acceleration structures: build time, memory and one "
+                "thread's time per camera and random ray for each --accel (docs/performance.md)");
   cmd->add_option("--json", args->json, "Write the figures as JSON");
   return [args] { return runBench(*args); };
 }

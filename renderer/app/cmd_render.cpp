@@ -549,7 +549,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--height", args->height, "Image height")->check(CLI::Range(1, 1 << 15));
   cmd->add_option("--max-depth", args->maxDepth, "Recursion limit")->check(CLI::Range(0, 1000));
   cmd->add_option("--accel", args->accel, "Intersection backend")
-      ->check(CLI::IsMember({"embree", "bvh", "brute", "grid"}));
+      ->check(CLI::IsMember({"embree", "bvh", "brute", "grid", "octree", "kdtree"}));
   cmd->add_option("--integrator", args->integrator,
                   "production (default), or reference: seed 002's depth-first Trace, the oracle "
                   "the production kernel is tested against (beauty only)")

@@ -10,6 +10,8 @@
 #include "accel/brute_force.h"
 #include "accel/cross_check.h"
 #include "accel/embree_accel.h"
+#include "accel/kd_tree.h"
+#include "accel/octree.h"
 #include "accel/reference_bvh.h"
 #include "accel/uniform_grid.h"
 #include "app/commands.h"
@@ -37,19 +39,17 @@ struct ValidateArgs {
 // Brute force is O(N) per ray: used when the scene has at most this many primitives.
 constexpr size_t kBruteForceLimit = 5000;
 
-size_t primitiveCount(const Scene& s) {
-  return s.triangleCount() + s.spheres.size() + s.quads.size() + s.planes.size();
-}
-
 int runValidate(const ValidateArgs& a) {
   Scene scene = loadSceneOrDefault(a.scenePath);
   const EmbreeAccel embree(scene);
   const ReferenceBvh bvh(scene);
   const UniformGrid grid(scene);
+  const Octree octree(scene);
+  const KdTree kdtree(scene);
   std::unique_ptr<BruteForce> brute;
-  if (!a.noBrute && primitiveCount(scene) <= kBruteForceLimit)
+  if (!a.noBrute && scene.primitiveCount() <= kBruteForceLimit)
     brute = std::make_unique<BruteForce>(scene);
-  std::vector<const Accelerator*> others{&bvh, &grid};
+  std::vector<const Accelerator*> others{&bvh, &grid, &octree, &kdtree};
   if (brute) others.push_back(brute.get());
 
   if (!a.ray.empty()) {  // reproduce one ray from a report line
@@ -59,7 +59,7 @@ int runValidate(const ValidateArgs& a) {
     if (const std::string why = rayProblem(r); !why.empty()) throw UsageError("--ray: " + why);
     std::printf("ray %s\n", formatRay(r).c_str());
     for (const Accelerator* acc :
-         std::vector<const Accelerator*>{&embree, &bvh, &grid, brute.get()})
+         std::vector<const Accelerator*>{&embree, &bvh, &grid, &octree, &kdtree, brute.get()})
       if (acc)
         std::printf("  %-7s %s\n", std::string(acc->name()).c_str(),
                     a.occludedRay ? (acc->occluded(r) ? "occluded" : "clear")
@@ -81,7 +81,7 @@ int runValidate(const ValidateArgs& a) {
 
   const CrossCheckStats& st = check.stats();
   const BvhStats& bs = bvh.stats();
-  std::printf("backends       embree, bvh, grid%s\n",
+  std::printf("backends       embree, bvh, grid, octree, kdtree%s\n",
               brute ? ", brute" : " (brute force skipped: scene too large)");
   std::printf(
       "queries        %llu closest-hit, %llu occlusion (scene rays at %d spp + %d random)\n",
@@ -104,6 +104,13 @@ int runValidate(const ValidateArgs& a) {
               gs.buildSeconds, gs.cells, gs.references,
               gs.primitives ? double(gs.references) / double(gs.primitives) : 0.0,
               double(gs.bytes) / (1 << 20));
+  for (const auto& [label, ts] :
+       {std::pair{"octree build ", &octree.stats()}, std::pair{"kdtree build ", &kdtree.stats()}})
+    std::printf(
+        "%s  %.3f s, %zu nodes, %zu leaves, depth %zu, %zu references (%.2f per "
+        "primitive), %.1f MiB\n",
+        label, ts->buildSeconds, ts->nodes, ts->leaves, ts->maxDepth, ts->references,
+        ts->referencesPerPrimitive(), double(ts->bytes) / (1 << 20));
   if (!st.firstDisagreements.empty()) {
     std::printf("first disagreements (reproduce with glint validate SCENE --ray ...):\n");
     for (const auto& line : st.firstDisagreements) std::printf("  %s\n", line.c_str());
@@ -125,6 +132,14 @@ int runValidate(const ValidateArgs& a) {
                  {"cells", gs.cells},
                  {"references", gs.references},
                  {"bytes", gs.bytes}};
+    for (const auto& [key, ts] :
+         {std::pair{"octree", &octree.stats()}, std::pair{"kdtree", &kdtree.stats()}})
+      j[key] = {{"build_seconds", ts->buildSeconds},
+                {"nodes", ts->nodes},
+                {"leaves", ts->leaves},
+                {"max_depth", ts->maxDepth},
+                {"references", ts->references},
+                {"bytes", ts->bytes}};
     j["embree"] = {{"build_seconds", embree.buildSeconds()}, {"bytes", embree.bytes()}};
     writeTextFileAtomically(a.json, j.dump(2) + "\n");
   }

@@ -126,6 +126,11 @@ class Scene {
   Bounds3f worldBounds() const;
   Bounds3f groupBounds(uint32_t groupId) const;
   size_t triangleCount() const;
+  // Triangles, spheres, quads, disks, planes and CSG solids (instances not counted).
+  size_t primitiveCount() const {
+    return triangleCount() + spheres.size() + quads.size() + disks.size() + planes.size() +
+           csgs.size();
+  }
 
   // Whether a candidate hit at distance t along `ray` (in the space of g's group), on primitive
   // `prim` at (u, v) (Hit's conventions), falls in a hole of its material's cut-out

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "accel/kd_tree.h"
+#include "accel/octree.h"
 #include "accel/uniform_grid.h"
 #include "core/hash.h"
 #include "test_util.h"
@@ -74,6 +76,17 @@ TEST(BackendAgreement, UniformGridMatchesBruteForceAtEveryResolution) {
     SCOPED_TRACE(resolution);
     expectAgreesWithBruteForce(s, UniformGrid(s, resolution));
   }
+}
+
+// The octree at its default depth (⌈log₂(n)/3⌉ = 4 levels here), at none (one leaf), and one
+// and seven levels deep; the k-d tree as built by its SAH.
+TEST(BackendAgreement, OctreeAndKdTreeMatchBruteForce) {
+  const Scene s = everyShapeKind();
+  for (int levels : {0, 1, 7}) {
+    SCOPED_TRACE(levels);
+    expectAgreesWithBruteForce(s, Octree(s, levels));
+  }
+  expectAgreesWithBruteForce(s, KdTree(s));
 }
 
 // The renderer traces camera rays and shadow rays as coherent streams (packets inside Embree):

@@ -213,7 +213,7 @@ TEST(Cli, EveryBackendRendersTheSameImage) {
   // for every sampled effect too.
   const std::string scene = test::writeTemp("backends.json", kSmallScene);
   const auto path = [](const std::string& n) { return (test::tempDir() / (n + ".exr")).string(); };
-  for (const char* accel : {"embree", "bvh", "brute", "grid"})
+  for (const char* accel : {"embree", "bvh", "brute", "grid", "octree", "kdtree"})
     ASSERT_EQ(
         runGlint("render " + scene + " --quiet --accel " + accel + " -o " + path(accel)).exitCode,
         0);
@@ -221,6 +221,8 @@ TEST(Cli, EveryBackendRendersTheSameImage) {
   EXPECT_EQ(readImage(path("bvh")).pixels, embree);
   EXPECT_EQ(readImage(path("brute")).pixels, embree);
   EXPECT_EQ(readImage(path("grid")).pixels, embree);
+  EXPECT_EQ(readImage(path("octree")).pixels, embree);
+  EXPECT_EQ(readImage(path("kdtree")).pixels, embree);
 }
 
 TEST(Cli, DefaultSceneRendersWithStats) {

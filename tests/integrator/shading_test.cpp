@@ -126,6 +126,28 @@ TEST(Shading, GlassSlabAtNormalIncidence) {
   EXPECT_NEAR(test::load(slabScene("[1,1,1]", 2)).trace(ray, 0).r, 1 - R, 1e-6);
 }
 
+TEST(Shading, AHollowCsgShellAbsorbsOnlyInItsGlassAndHoldsAnotherMedium) {
+  // A CSG shell (a sphere of radius 1 minus one of 0.8, attenuation a = (0.5, 0.5, 1)) with a
+  // separate glass ball of radius 0.5 (a = (0.8, 1, 1)) in its cavity, all index-matched (η = 1:
+  // no reflection, no bending). The ray through the centre crosses 0.2 + 0.2 of shell glass, the
+  // cavity's air twice (0.3 each: the shell's inner surface is left, not entered), and 1.0 of
+  // the ball inside the shell's cavity: L = 0.5^0.4 · 0.8 in red, 0.5^0.4 in green, 1 in blue.
+  // Counting the cavity as shell glass would give 0.5^1.0 in green.
+  const auto t = load(R"("render": {"background": [1,1,1], "max_depth": 12},
+    "materials": {"shell": {"type": "dielectric", "ior": 1, "attenuation": [0.5,0.5,1]},
+                  "ball": {"type": "dielectric", "ior": 1, "attenuation": [0.8,1,1]}},
+    "objects": [{"type": "csg", "op": "difference", "material": "shell", "operands": [
+                   {"type": "sphere", "center": [0,0,-5], "radius": 1},
+                   {"type": "sphere", "center": [0,0,-5], "radius": 0.8}]},
+                {"type": "sphere", "center": [0,0,-5], "radius": 0.5, "material": "ball"}])");
+  const Rgb L = t.trace({{0, 0, 0}, {0, 0, -1}});
+  // Six entries, each a few ulps of 5 short (spawnOffset): Beer's factor errs by |ln a| times it.
+  const double tol = 6 * std::fabs(std::log(0.5)) * spawnOffset(6.0f);
+  EXPECT_NEAR(L.r, std::pow(0.5, 0.4) * 0.8, tol);
+  EXPECT_NEAR(L.g, std::pow(0.5, 0.4), tol);
+  EXPECT_NEAR(L.b, 1.0, 1e-6);
+}
+
 TEST(Shading, ThroughputCutoffChangesNoPixelByMoreThanItsBound) {
   // The cutoff drops branches whose weight is below 1/1024; behind them is radiance ≤ 1 here,
   // so the pixel moves by less than 1/1024 — on the slab it drops the rays of depth ≥ 4

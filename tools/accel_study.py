@@ -1,0 +1,143 @@
+#!/usr/bin/env python3
+"""Cost per ray against the number of primitives n for every acceleration structure
+(docs/performance.md, "The documents' acceleration structures").
+
+Two families of scenes, n from 10^2 to 10^6 (--max-n):
+  spheres  n spheres scattered uniformly in [-1, 1]^3, radius 0.25 n^(-1/3) (the same share of
+           the volume at every n), seen by a camera 4 units away;
+  stadium  "a teapot in a stadium": n/2 spheres packed into a ball of radius 0.5 at the centre
+           (the teapot) and n/2 spheres spread over a ring 100 units across and 10 high (the
+           stadium), seen from 3 units off the teapot.
+For each scene `glint bench --structures` builds every structure and times one thread on the
+camera rays (160 x 120) and on --rays random rays (origins in the scene's box, directions
+uniform on the sphere), the best of three passes. Prints a markdown table; writes the plots and
+the figures (JSON) to --out. Needs python3-matplotlib (Debian's /usr/bin/python3).
+"""
+
+import argparse
+import json
+import math
+import random
+import subprocess
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+STRUCTURES = ["embree", "bvh", "kdtree", "octree", "grid"]
+
+
+def spheres_scene(n, rng):
+    r = 0.25 * n ** (-1 / 3)
+    objects = [{"type": "sphere", "center": [round(rng.uniform(-1, 1), 6) for _ in range(3)],
+                "radius": r, "material": "m"} for _ in range(n)]
+    camera = {"eye": [0, 0, 4], "look_at": [0, 0, 0], "vfov": 40}
+    return camera, objects
+
+
+def stadium_scene(n, rng):
+    objects = []
+    teapot = n // 2
+    r_teapot = 0.25 * 0.5 * teapot ** (-1 / 3)
+    while len(objects) < teapot:  # uniform in a ball of radius 0.5
+        p = [round(rng.uniform(-0.5, 0.5), 6) for _ in range(3)]
+        if sum(c * c for c in p) <= 0.25:
+            objects.append({"type": "sphere", "center": p, "radius": r_teapot, "material": "m"})
+    stands = n - teapot
+    for _ in range(stands):
+        a = rng.uniform(0, 2 * math.pi)
+        radius = rng.uniform(40, 50)
+        objects.append({"type": "sphere", "radius": 0.2, "material": "m",
+                        "center": [round(radius * math.cos(a), 4), round(rng.uniform(0, 10), 4),
+                                   round(radius * math.sin(a), 4)]})
+    camera = {"eye": [0, 0.5, 3], "look_at": [0, 0, 0], "vfov": 40}
+    return camera, objects
+
+
+def write_scene(path, family, n):
+    rng = random.Random(n * 7 + (0 if family == "spheres" else 1))
+    camera, objects = (spheres_scene if family == "spheres" else stadium_scene)(n, rng)
+    scene = {"render": {"width": 160, "height": 120}, "camera": camera,
+             "materials": {"m": {"type": "phong"}},
+             "lights": [{"type": "point", "position": [0, 20, 10], "intensity": [1, 1, 1]}],
+             "objects": objects}
+    path.write_text(json.dumps(scene, separators=(",", ":")))
+
+
+def plot(results, out):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    figures = [("random_ns_per_ray", "ns per random ray (1 thread)"),
+               ("camera_ns_per_ray", "ns per camera ray (1 thread)"),
+               ("build_seconds", "build seconds"), ("bytes", "bytes of the structure")]
+    for family in ("spheres", "stadium"):
+        fig, axes = plt.subplots(1, 4, figsize=(18, 4.2))
+        for ax, (key, label) in zip(axes, figures):
+            for s in STRUCTURES:
+                pts = [(r["n"], r["structures"][s][key]) for r in results
+                       if r["family"] == family and s in r.get("structures", {})]
+                pts = [(n, v) for n, v in pts if v > 0]
+                if pts:
+                    ax.loglog(*zip(*pts), marker="o", label=s)
+            ns = sorted({r["n"] for r in results if r["family"] == family})
+            if key.endswith("per_ray") and ns:
+                # The seeds' claims, scaled to the grid's and the BVH's first points.
+                first = [r for r in results if r["family"] == family and r["n"] == ns[0]][0]
+                g0, b0 = first["structures"]["grid"][key], first["structures"]["bvh"][key]
+                ax.loglog(ns, [g0 * (n / ns[0]) ** (1 / 3) for n in ns], "k:", label="∝ ∛n")
+                ax.loglog(ns, [b0 * math.log2(n) / math.log2(ns[0]) for n in ns], "k--",
+                          label="∝ log n")
+            ax.set_xlabel("primitives n")
+            ax.set_title(label)
+            ax.grid(True, which="both", alpha=0.3)
+        axes[0].legend(fontsize=8)
+        fig.suptitle(f"{family}: cost against n")
+        fig.tight_layout()
+        fig.savefig(out / f"accel_study_{family}.png", dpi=72)
+        plt.close(fig)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
+    ap.add_argument("--glint", default=str(ROOT / "build/bin/glint"))
+    ap.add_argument("--out", default=str(ROOT / "docs/img"))
+    ap.add_argument("--work", default="/tmp/glint-accel-study")
+    ap.add_argument("--max-n", type=int, default=1000000)
+    ap.add_argument("--rays", type=int, default=100000)
+    ap.add_argument("--plot-only", metavar="JSON", help="re-plot the figures a run wrote")
+    args = ap.parse_args()
+    out, work = Path(args.out), Path(args.work)
+    out.mkdir(parents=True, exist_ok=True)
+    work.mkdir(parents=True, exist_ok=True)
+    if args.plot_only:
+        plot(json.loads(Path(args.plot_only).read_text()), out)
+        return
+    results = []
+    for family in ("spheres", "stadium"):
+        n = 100
+        while n <= args.max_n:
+            scene, figures = work / f"{family}_{n}.json", work / f"{family}_{n}.out.json"
+            write_scene(scene, family, n)
+            subprocess.run([args.glint, "bench", str(scene), "--structures", "--accel",
+                            ",".join(STRUCTURES), "--random-rays", str(args.rays), "--json",
+                            str(figures)], check=True, stdout=subprocess.DEVNULL)
+            r = json.loads(figures.read_text())
+            r.update(family=family, n=n)
+            results.append(r)
+            scene.unlink()
+            n *= 10
+    (out / "accel_study.json").write_text(json.dumps(results, indent=1))
+    plot(results, out)
+    for key, label in (("random_ns_per_ray", "ns per random ray"),
+                       ("camera_ns_per_ray", "ns per camera ray"),
+                       ("build_seconds", "build s"), ("bytes", "MiB")):
+        print(f"\n{label}\n\n| scene | n | " + " | ".join(STRUCTURES) + " |")
+        print("|---|---|" + "---|" * len(STRUCTURES))
+        for r in results:
+            vals = [r["structures"][s][key] for s in STRUCTURES]
+            fmt = (lambda v: f"{v / 2**20:.2f}") if key == "bytes" else (
+                (lambda v: f"{v:.3g}") if key == "build_seconds" else (lambda v: f"{v:.0f}"))
+            print(f"| {r['family']} | {r['n']:.0e} | " + " | ".join(fmt(v) for v in vals) + " |")
+
+
+if __name__ == "__main__":
+    main()
