@@ -155,5 +155,42 @@ TEST(AssimpModels, AMeshFileRendersAsASceneFramedAndLit) {
   EXPECT_GT(c.meanLuminance, 0.025);
 }
 
+TEST(AssimpModels, ClosedModelsAreCsgOperandsAndOpenOnesAreRefused) {
+  // Assimp's cube.ply ([0, 1]³, quads), box.obj ([−0.5, 0.5]³) and cube_uv.ply ([−1, 1]³, its
+  // vertices split per face by Blender's export) placed as the unit cube around z = −5, minus a
+  // sphere of radius 0.3 there: a ray from the origin down −z is inside the solid over
+  // [4.5, 4.7] and [5.3, 5.5]. The Wuson model has holes, and CSG refuses it, naming an edge.
+  if (!fs::exists(kModels / "PLY/cube.ply")) GTEST_SKIP() << "assimp-testmodels is not installed";
+  const auto solid = [](const std::string& file, const std::string& transform) {
+    return test::sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-1]},
+      "materials": {"m": {"type": "phong"}},
+      "objects": [{"type": "csg", "op": "difference", "material": "m", "operands": [
+        {"type": "mesh", "file": ")" + (kModels / file).string() +
+                               R"(", "transform": )" + transform + R"(},
+        {"type": "sphere", "center": [0,0,-5], "radius": 0.3}]}]})");
+  };
+  for (const auto& [file, transform] :
+       {std::pair{"PLY/cube.ply", R"({"translate": [-0.5,-0.5,-5.5]})"},
+        std::pair{"OBJ/box.obj", R"({"translate": [0,0,-5]})"},
+        std::pair{"PLY/cube_uv.ply", R"({"scale": [0.5,0.5,0.5], "translate": [0,0,-5]})"}}) {
+    SCOPED_TRACE(file);
+    const Scene s = solid(file, transform);
+    const std::vector<CsgSpan> spans = s.csgs[0].spans({{0, 0, 0}, {0, 0, -1}});
+    ASSERT_EQ(spans.size(), 2u);
+    EXPECT_NEAR(spans[0].in.t, 4.5, 1e-5);
+    EXPECT_NEAR(spans[0].out.t, 4.7, 1e-5);
+    EXPECT_NEAR(spans[1].in.t, 5.3, 1e-5);
+    EXPECT_NEAR(spans[1].out.t, 5.5, 1e-5);
+  }
+  try {
+    solid("OBJ/WusonOBJ.obj", R"({"translate": [0,0,-5]})");
+    ADD_FAILURE() << "an open mesh was accepted as a CSG operand";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a closed surface: the edge from"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace glint
