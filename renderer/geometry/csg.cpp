@@ -53,6 +53,42 @@ void tidy(std::vector<CsgSpan>& spans, float thin) {
   std::erase_if(spans, [&](const CsgSpan& s) { return !(s.out.t - s.in.t > thin); });
 }
 
+// Leaves of a mesh operand's hierarchy hold at most this many triangles; median splits keep
+// the depth within log₂ of the count, far below the traversal stack's bound.
+constexpr uint32_t kMeshLeafTriangles = 4;
+constexpr int kMaxMeshDepth = 64;
+
+// A hierarchy over triangles [first, first + count) of `s`, reordered in place: split at the
+// median centroid along the widest axis of the centroids. Node boxes are padded by a relative
+// 2^-20 (and 2^-20 of the coordinates' size), so that a crossing on a box face, which the slab
+// test and the triangle test may round to different sides, is never culled.
+uint32_t buildMeshNode(CsgSolid& s, uint32_t first, uint32_t count) {
+  const auto index = static_cast<uint32_t>(s.meshNodes.size());
+  s.meshNodes.emplace_back();
+  Bounds3f box, centroids;
+  for (uint32_t i = first; i < first + count; ++i) {
+    for (const Vec3f& p : s.triangles[i]) box.extend(p);
+    centroids.extend((s.triangles[i][0] + s.triangles[i][1] + s.triangles[i][2]) / 3.0f);
+  }
+  const Vec3f pad = 0x1p-20f * (box.diagonal() + max(abs(box.lo), abs(box.hi)));
+  box = {box.lo - pad, box.hi + pad};
+  const Vec3f spread = centroids.diagonal();
+  const int axis =
+      spread.x > spread.y ? (spread.x > spread.z ? 0 : 2) : (spread.y > spread.z ? 1 : 2);
+  if (count <= kMeshLeafTriangles || !(spread[axis] > 0)) {
+    s.meshNodes[index] = {box, first, count, 0};
+    return index;
+  }
+  const auto begin = s.triangles.begin() + first;
+  std::nth_element(begin, begin + count / 2, begin + count, [axis](const auto& a, const auto& b) {
+    return a[0][axis] + a[1][axis] + a[2][axis] < b[0][axis] + b[1][axis] + b[2][axis];
+  });
+  buildMeshNode(s, first, count / 2);  // index + 1
+  const uint32_t second = buildMeshNode(s, first + count / 2, count - count / 2);
+  s.meshNodes[index] = {box, 0, 0, second};
+  return index;
+}
+
 // Everything a ray's evaluation needs besides the node.
 struct LineQuery {
   const CsgSolid& solid;
@@ -72,15 +108,28 @@ void meshSpans(const LineQuery& q, const CsgLeaf& leaf, uint32_t leafIndex, floa
   r.tMin = tNear - q.thin;
   r.tMax = tFar + q.thin;
   crossings.clear();
-  for (uint32_t i = 0; i < leaf.triangleCount; ++i) {
-    const uint32_t tri = leaf.firstTriangle + i;
-    const auto& p = q.solid.triangles[tri];
-    float u = 0, v = 0;
-    const float t = intersectTriangle(p[0], p[1], p[2], r, u, v);
-    if (!(t < r.tMax)) continue;
-    const float facing = dot(q.ray.d, cross(p[1] - p[0], p[2] - p[0]));
-    if (facing == 0) continue;
-    crossings.push_back({{t, q.solid.surfaceId(leafIndex, tri), u, v}, facing < 0});
+  // Every triangle of every hierarchy node the line segment reaches.
+  uint32_t stack[kMaxMeshDepth + 1];
+  int top = 0;
+  stack[top++] = leaf.hierarchy;
+  while (top > 0) {
+    const CsgMeshNode& node = q.solid.meshNodes[stack[--top]];
+    float t0 = r.tMin, t1 = r.tMax;
+    if (!slabTest(node.box, r, q.slabs, t0, t1)) continue;
+    if (node.count == 0) {
+      stack[top++] = node.second;
+      stack[top++] = uint32_t(&node - q.solid.meshNodes.data()) + 1;
+      continue;
+    }
+    for (uint32_t tri = node.first; tri < node.first + node.count; ++tri) {
+      const auto& p = q.solid.triangles[tri];
+      float u = 0, v = 0;
+      const float t = intersectTriangle(p[0], p[1], p[2], r, u, v);
+      if (!(t < r.tMax)) continue;
+      const float facing = dot(q.ray.d, cross(p[1] - p[0], p[2] - p[0]));
+      if (facing == 0) continue;
+      crossings.push_back({{t, q.solid.surfaceId(leafIndex, tri), u, v}, facing < 0});
+    }
   }
   std::sort(crossings.begin(), crossings.end(),
             [](const MeshCrossing& a, const MeshCrossing& b) { return a.at.t < b.at.t; });
@@ -173,6 +222,13 @@ void combineSpans(CsgOp op, const std::vector<CsgSpan>& a, const std::vector<Csg
     }
   }
   tidy(out, thin);
+}
+
+void CsgSolid::buildMeshHierarchies() {
+  meshNodes.clear();
+  for (CsgLeaf& leaf : leaves)
+    if (!leaf.isSphere)
+      leaf.hierarchy = buildMeshNode(*this, leaf.firstTriangle, leaf.triangleCount);
 }
 
 CsgSurface CsgSolid::surface(uint32_t id) const {

@@ -82,6 +82,7 @@ class CsgReader {
     const Bounds3f& box = solid_.box();
     const Vec3f reach = max(abs(box.lo), abs(box.hi));
     solid_.thinness = kThinShare * (length(box.diagonal()) + maxComponent(reach));
+    solid_.buildMeshHierarchies();
     return std::move(solid_);
   }
 

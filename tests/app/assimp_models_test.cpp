@@ -165,8 +165,8 @@ TEST(AssimpModels, ClosedModelsAreCsgOperandsAndOpenOnesAreRefused) {
     return test::sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-1]},
       "materials": {"m": {"type": "phong"}},
       "objects": [{"type": "csg", "op": "difference", "material": "m", "operands": [
-        {"type": "mesh", "file": ")" + (kModels / file).string() +
-                               R"(", "transform": )" + transform + R"(},
+        {"type": "mesh", "file": ")" +
+                               (kModels / file).string() + R"(", "transform": )" + transform + R"(},
         {"type": "sphere", "center": [0,0,-5], "radius": 0.3}]}]})");
   };
   for (const auto& [file, transform] :

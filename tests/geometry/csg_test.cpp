@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <string>
 #include <utility>
 
 #include "accel/accelerator.h"
@@ -96,13 +97,51 @@ TEST(Csg, IntersectionOfSpheresIsTheOverlapOfTheirIntervals) {
   EXPECT_GT(crossed, 400);  // the test must cross the lens often, not only miss it
 }
 
-TEST(Csg, BoxMinusSphereLeavesTheCornersAndTurnsTheDimplesOver) {
-  // A cube [−1, 1]³ (a mesh operand) minus a sphere of radius 1.2 at its centre: the line is
-  // inside the box but outside the sphere over at most two pieces.
+// The cube [−1, 1]² × [−6, −4] as an inline mesh of 6·2·n² triangles, each face an n × n grid of
+// quads wound outward (the faces' edge vertices repeat; CSG matches them by position).
+std::string tessellatedCube(int n) {
+  std::string positions, indices;
+  int base = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side : {-1, 1}) {
+      for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) {
+          double p[3];
+          p[axis] = side;
+          p[(axis + 1) % 3] = -1 + 2.0 * i / n;
+          p[(axis + 2) % 3] = -1 + 2.0 * j / n;
+          positions += (positions.empty() ? "[" : ",[") + std::to_string(p[0]) + "," +
+                       std::to_string(p[1]) + "," + std::to_string(p[2] - 5) + "]";
+        }
+      const auto at = [&](int i, int j) { return std::to_string(base + i * (n + 1) + j); };
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          // (i, j) → (i+1, j) → (i+1, j+1) turns about +axis; the face at −1 turns the other way.
+          const std::string a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
+          indices += std::string(indices.empty() ? "" : ",") +
+                     (side > 0 ? "[" + a + "," + b + "," + c + "],[" + a + "," + c + "," + d + "]"
+                               : "[" + a + "," + c + "," + b + "],[" + a + "," + d + "," + c + "]");
+        }
+      base += (n + 1) * (n + 1);
+    }
+  return R"({"type": "mesh", "positions": [)" + positions + "], \"indices\": [" + indices + "]}";
+}
+
+class BoxMinusSphere : public ::testing::TestWithParam<int> {};
+
+TEST_P(BoxMinusSphere, LeavesTheCornersAndTurnsTheDimplesOver) {
+  // A cube [−1, 1]³ (a mesh operand: the 12-triangle box, or the cube tessellated into 20 × 20
+  // quads a face, which the operand's hierarchy must search without losing a crossing at any of
+  // its shared edges) minus a sphere of radius 1.2 at its centre: the line is inside the box but
+  // outside the sphere over at most two pieces.
+  const std::string cube = GetParam() == 1
+                               ? R"({"type": "box", "min": [-1,-1,-6], "max": [1,1,-4]})"
+                               : tessellatedCube(GetParam());
   const Scene s = csgScene(R"({"type": "csg", "op": "difference", "material": "m",
-      "operands": [{"type": "box", "min": [-1,-1,-6], "max": [1,1,-4]},
-                   {"type": "sphere", "center": [0,0,-5], "radius": 1.2}]})");
+      "operands": [)" + cube +
+                           R"(, {"type": "sphere", "center": [0,0,-5], "radius": 1.2}]})");
   const CsgSolid& solid = s.csgs[0];
+  EXPECT_EQ(solid.triangles.size(), size_t(12 * GetParam() * GetParam()));
   int twoPieces = 0;
   for (int i = 0; i < 2000; ++i) {
     const Ray r = randomRay(i, {0, 0, -5}, 1.5f);
@@ -134,6 +173,9 @@ TEST(Csg, BoxMinusSphereLeavesTheCornersAndTurnsTheDimplesOver) {
   }
   EXPECT_GT(twoPieces, 50);
 }
+
+INSTANTIATE_TEST_SUITE_P(Csg, BoxMinusSphere, ::testing::Values(1, 20),
+                         [](const auto& p) { return p.param == 1 ? "Box" : "TessellatedCube"; });
 
 TEST(Csg, AbuttingOperandsLeaveNoSeamAndNoSliver) {
   // Two unit cubes sharing the face x = 0: their union is one interval along x (no surface at
