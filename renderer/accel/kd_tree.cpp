@@ -120,7 +120,7 @@ class Builder {
 
 }  // namespace
 
-KdTree::KdTree(const Scene& scene) : scene_(scene) {
+KdTree::KdTree(const Scene& scene) : TwoLevelAccelerator(scene) {
   const auto start = std::chrono::steady_clock::now();
   trees_.resize(scene.groups.size());
   // Instanced groups first (they follow their parents): an instance's box is its group's box.
@@ -187,10 +187,7 @@ bool KdTree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hi
     }
     for (uint32_t k = n.first; k < n.first + n.count; ++k) {
       const PrimitiveBox& p = t.prims[t.refs[k]];
-      if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
-                             [&](const Instance& inst, const Ray& r, uint32_t geom, Hit& sub) {
-                               return traverse<false>(inst.groupId, inst.toObject(r), geom, sub);
-                             })) {
+      if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit, intoInstance())) {
         if constexpr (AnyHit) return true;
         found = true;
       }
@@ -202,19 +199,6 @@ bool KdTree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hi
     t1 = stack[top].t1;
   }
   return found;
-}
-
-Hit KdTree::intersect(const Ray& ray) const {
-  Hit hit;
-  traverse<false>(0, ray, kInvalidId, hit);
-  intersectPlanes(scene_, ray, hit);
-  return hit;
-}
-
-bool KdTree::occluded(const Ray& ray) const {
-  if (occludedByPlanes(scene_, ray)) return true;
-  Hit hit;
-  return traverse<true>(0, ray, kInvalidId, hit);
 }
 
 }  // namespace glint

@@ -10,16 +10,14 @@
 #include <cstdint>
 #include <vector>
 
-#include "accel/accelerator.h"
 #include "accel/primitives.h"
+#include "accel/two_level.h"
 
 namespace glint {
 
-class KdTree final : public Accelerator {
+class KdTree final : public TwoLevelAccelerator<KdTree> {
  public:
   explicit KdTree(const Scene& scene);
-  Hit intersect(const Ray& ray) const override;
-  bool occluded(const Ray& ray) const override;
   std::string_view name() const override { return "kdtree"; }
   const SubdivisionStats& stats() const { return stats_; }
 
@@ -39,10 +37,10 @@ class KdTree final : public Accelerator {
   };
 
  private:
+  friend class TwoLevelAccelerator<KdTree>;
   template <bool AnyHit>
   bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const;
 
-  const Scene& scene_;
   std::vector<Tree> trees_;  // one per group
   SubdivisionStats stats_;
 };

@@ -94,7 +94,7 @@ Octree::Tree buildTree(std::vector<PrimitiveBox> prims, int levels, size_t& maxD
 
 }  // namespace
 
-Octree::Octree(const Scene& scene, int levels) : scene_(scene) {
+Octree::Octree(const Scene& scene, int levels) : TwoLevelAccelerator(scene) {
   const auto start = std::chrono::steady_clock::now();
   trees_.resize(scene.groups.size());
   // Instanced groups first (they follow their parents): an instance's box is its group's box.
@@ -141,10 +141,7 @@ bool Octree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hi
     if (n.firstChild == kInvalidId) {
       for (uint32_t k = n.refStart; k < n.refStart + n.refCount; ++k) {
         const PrimitiveBox& p = t.prims[t.refs[k]];
-        if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
-                               [&](const Instance& inst, const Ray& r, uint32_t geom, Hit& sub) {
-                                 return traverse<false>(inst.groupId, inst.toObject(r), geom, sub);
-                               })) {
+        if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit, intoInstance())) {
           if constexpr (AnyHit) return true;
           found = true;
         }
@@ -191,19 +188,6 @@ bool Octree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hi
     }
   }
   return found;
-}
-
-Hit Octree::intersect(const Ray& ray) const {
-  Hit hit;
-  traverse<false>(0, ray, kInvalidId, hit);
-  intersectPlanes(scene_, ray, hit);
-  return hit;
-}
-
-bool Octree::occluded(const Ray& ray) const {
-  if (occludedByPlanes(scene_, ray)) return true;
-  Hit hit;
-  return traverse<true>(0, ray, kInvalidId, hit);
 }
 
 }  // namespace glint

@@ -11,17 +11,15 @@
 #include <cstdint>
 #include <vector>
 
-#include "accel/accelerator.h"
 #include "accel/primitives.h"
+#include "accel/two_level.h"
 
 namespace glint {
 
-class Octree final : public Accelerator {
+class Octree final : public TwoLevelAccelerator<Octree> {
  public:
   // `levels` of subdivision for every group; 0: K = ⌈log₂(n)/3⌉ for a group of n primitives.
   explicit Octree(const Scene& scene, int levels = 0);
-  Hit intersect(const Ray& ray) const override;
-  bool occluded(const Ray& ray) const override;
   std::string_view name() const override { return "octree"; }
   const SubdivisionStats& stats() const { return stats_; }
 
@@ -39,10 +37,10 @@ class Octree final : public Accelerator {
   };
 
  private:
+  friend class TwoLevelAccelerator<Octree>;
   template <bool AnyHit>
   bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const;
 
-  const Scene& scene_;
   std::vector<Tree> trees_;  // one per group
   SubdivisionStats stats_;
 };

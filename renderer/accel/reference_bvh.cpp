@@ -215,7 +215,7 @@ std::string_view bvhSplitName(BvhSplit s) {
   return "?";
 }
 
-ReferenceBvh::ReferenceBvh(const Scene& scene, BvhSplit split) : scene_(scene) {
+ReferenceBvh::ReferenceBvh(const Scene& scene, BvhSplit split) : TwoLevelAccelerator(scene) {
   const auto start = std::chrono::steady_clock::now();
   trees_.resize(scene.groups.size());
   // Instanced groups first: an instance's box is its group's root box, transformed.
@@ -267,11 +267,7 @@ bool ReferenceBvh::intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray
     hit = Hit{t, u, v, p.geom, p.prim, instId};
     return true;
   }
-  return intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
-                            [&](const Instance& inst, const Ray& objectRay, uint32_t geom, Hit& h) {
-                              return traverse<false>(inst.groupId, inst.toObject(objectRay), geom,
-                                                     h);
-                            });
+  return intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit, intoInstance());
 }
 
 template <bool AnyHit>
@@ -306,19 +302,6 @@ bool ReferenceBvh::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, H
     index = stack[--sp];
   }
   return found;
-}
-
-Hit ReferenceBvh::intersect(const Ray& ray) const {
-  Hit hit;
-  traverse<false>(0, ray, kInvalidId, hit);
-  intersectPlanes(scene_, ray, hit);
-  return hit;
-}
-
-bool ReferenceBvh::occluded(const Ray& ray) const {
-  if (occludedByPlanes(scene_, ray)) return true;
-  Hit hit;
-  return traverse<true>(0, ray, kInvalidId, hit);
 }
 
 std::string ReferenceBvh::checkInvariants() const {

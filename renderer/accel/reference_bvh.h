@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "accel/accelerator.h"
+#include "accel/two_level.h"
 #include "core/bounds.h"
 
 namespace glint {
@@ -26,15 +26,13 @@ struct BvhStats {
   double primitivesPerLeaf() const { return leaves ? double(primitives) / double(leaves) : 0; }
 };
 
-class ReferenceBvh final : public Accelerator {
+class ReferenceBvh final : public TwoLevelAccelerator<ReferenceBvh> {
  public:
   static constexpr int kMaxLeafSize = 4;
   static constexpr int kBins = 16;
   static constexpr size_t kMaxDepth = 128;
 
   ReferenceBvh(const Scene& scene, BvhSplit split = BvhSplit::Sah);
-  Hit intersect(const Ray& ray) const override;
-  bool occluded(const Ray& ray) const override;
   std::string_view name() const override { return "bvh"; }
 
   const BvhStats& stats() const { return stats_; }
@@ -64,12 +62,12 @@ class ReferenceBvh final : public Accelerator {
   };
 
  private:
+  friend class TwoLevelAccelerator<ReferenceBvh>;
   template <bool AnyHit>
   bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const;
   bool intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray, uint32_t instId,
                      Hit& hit) const;
 
-  const Scene& scene_;
   std::vector<Tree> trees_;  // one per group
   BvhStats stats_;
 };

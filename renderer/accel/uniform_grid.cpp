@@ -87,7 +87,7 @@ UniformGrid::Grid buildGrid(std::vector<PrimitiveBox> prims, int resolution) {
 
 }  // namespace
 
-UniformGrid::UniformGrid(const Scene& scene, int resolution) : scene_(scene) {
+UniformGrid::UniformGrid(const Scene& scene, int resolution) : TwoLevelAccelerator(scene) {
   const auto start = std::chrono::steady_clock::now();
   grids_.resize(scene.groups.size());
   // Instanced groups first (they follow their parents): an instance's box is its group's box.
@@ -148,10 +148,7 @@ bool UniformGrid::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hi
       if (slot == i) continue;  // tested in an earlier cell: its answer stands
       slot = i;
       const PrimitiveBox& p = g.prims[i];
-      if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
-                             [&](const Instance& inst, const Ray& r, uint32_t geom, Hit& h) {
-                               return traverse<false>(inst.groupId, inst.toObject(r), geom, h);
-                             })) {
+      if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit, intoInstance())) {
         if constexpr (AnyHit) return true;
         found = true;
       }
@@ -166,19 +163,6 @@ bool UniformGrid::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hi
     tNext[axis] += tDelta[axis];
   }
   return found;
-}
-
-Hit UniformGrid::intersect(const Ray& ray) const {
-  Hit hit;
-  traverse<false>(0, ray, kInvalidId, hit);
-  intersectPlanes(scene_, ray, hit);
-  return hit;
-}
-
-bool UniformGrid::occluded(const Ray& ray) const {
-  if (occludedByPlanes(scene_, ray)) return true;
-  Hit hit;
-  return traverse<true>(0, ray, kInvalidId, hit);
 }
 
 }  // namespace glint

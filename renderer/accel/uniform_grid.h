@@ -9,8 +9,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "accel/accelerator.h"
 #include "accel/primitives.h"
+#include "accel/two_level.h"
 #include "core/bounds.h"
 
 namespace glint {
@@ -21,12 +21,10 @@ struct GridStats {
   size_t bytes = 0;
 };
 
-class UniformGrid final : public Accelerator {
+class UniformGrid final : public TwoLevelAccelerator<UniformGrid> {
  public:
   // `resolution` cells per axis for every group; 0: ⌈∛n⌉ for a group of n primitives.
   explicit UniformGrid(const Scene& scene, int resolution = 0);
-  Hit intersect(const Ray& ray) const override;
-  bool occluded(const Ray& ray) const override;
   std::string_view name() const override { return "grid"; }
   const GridStats& stats() const { return stats_; }
 
@@ -40,10 +38,10 @@ class UniformGrid final : public Accelerator {
   };
 
  private:
+  friend class TwoLevelAccelerator<UniformGrid>;
   template <bool AnyHit>
   bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const;
 
-  const Scene& scene_;
   std::vector<Grid> grids_;  // one per group
   GridStats stats_;
 };

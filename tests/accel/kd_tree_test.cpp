@@ -30,13 +30,7 @@ TEST(KdTree, ReferencesStayBoundedWhenEveryPrimitiveSpansTheScene) {
   const Scene s = triangles(20000, true);
   const KdTree tree(s);
   EXPECT_LE(double(tree.stats().references), 64.0 * 20000 + (1 << 20));
-  const auto brute = makeAccelerator(AccelKind::BruteForce, s);
-  const Ray r{{0.6f, 0.4f, 5}, {0, 0, -1}};
-  const Hit a = tree.intersect(r), b = brute->intersect(r);
-  ASSERT_TRUE(b);
-  ASSERT_TRUE(a);
-  EXPECT_EQ(a.t, b.t);
-  EXPECT_EQ(a.primId, b.primId);
+  test::expectFindsTheFansClosestHit(s, tree);
 }
 
 }  // namespace

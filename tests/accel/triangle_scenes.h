@@ -1,7 +1,10 @@
 #pragma once
 // Triangle scenes built for the spatial subdivisions' rules and bounds (grid, octree, k-d tree).
+#include <gtest/gtest.h>
+
 #include <string>
 
+#include "accel/accelerator.h"
 #include "core/hash.h"
 #include "test_util.h"
 
@@ -29,6 +32,18 @@ inline Scene triangles(int n, bool fan) {
     "materials": {"m": {"type": "phong"}},
     "objects": [{"type": "mesh", "material": "m", "positions": [)" +
                        pos + "], \"indices\": [" + idx + "]}]}");
+}
+
+// `accel` finds brute force's closest hit on a ray down through triangles(n, true)'s fan, below
+// its diagonal where every triangle lies.
+inline void expectFindsTheFansClosestHit(const Scene& fan, const Accelerator& accel) {
+  const auto brute = makeAccelerator(AccelKind::BruteForce, fan);
+  const Ray r{{0.6f, 0.4f, 5}, {0, 0, -1}};
+  const Hit a = accel.intersect(r), b = brute->intersect(r);
+  ASSERT_TRUE(b);
+  ASSERT_TRUE(a);
+  EXPECT_EQ(a.t, b.t);
+  EXPECT_EQ(a.primId, b.primId);
 }
 
 }  // namespace glint::test
