@@ -1,6 +1,7 @@
 #include "geometry/csg.h"
 
 #include <algorithm>
+#include <cmath>
 #include <deque>
 
 #include "core/slab_test.h"
@@ -254,15 +255,37 @@ Vec3f CsgSolid::normal(const CsgSurface& s, const Vec3f& p) const {
   return leaves[s.leaf].flipped ? -n : n;
 }
 
+namespace {
+
+// The solid's spans along the ray's line into s.result, with t measured from where the line
+// enters the solid's box (the returned shift): the intervals are computed from there, so their
+// rounding scales with the solid's size, not with the distance of the ray's origin, which the
+// tolerance `thinness` knows nothing of (a ray reflected from a wall 50 units away onto a
+// small die). Empty when the line misses the box.
+float lineSpans(const CsgSolid& solid, const Ray& ray, Scratch& s) {
+  s.result.clear();
+  const RaySlabs slabs(ray);
+  float tEnter = -kInfinity, tLeave = kInfinity;
+  if (!slabTest(solid.box(), ray, slabs, tEnter, tLeave)) return 0;
+  const float shift = std::isfinite(tEnter) ? tEnter : 0;
+  Ray local = ray;
+  local.o = ray.o + shift * ray.d;
+  evaluate({solid, local, slabs, solid.thinness / length(ray.d)}, 0, 0, s, s.result);
+  return shift;
+}
+
+}  // namespace
+
 bool CsgSolid::intersect(const Ray& ray, CsgBoundary& hit) const {
   Scratch& s = scratch();
-  const LineQuery q{*this, ray, RaySlabs(ray), thinness / length(ray.d)};
-  evaluate(q, 0, 0, s, s.result);
+  const float shift = lineSpans(*this, ray, s);
   for (const CsgSpan& span : s.result)
     for (const CsgBoundary* end : {&span.in, &span.out}) {
-      if (!(end->t < ray.tMax)) return false;
-      if (end->t > ray.tMin) {
+      const float t = shift + end->t;
+      if (!(t < ray.tMax)) return false;
+      if (t > ray.tMin) {
         hit = *end;
+        hit.t = t;
         return true;
       }
     }
@@ -271,9 +294,10 @@ bool CsgSolid::intersect(const Ray& ray, CsgBoundary& hit) const {
 
 std::vector<CsgSpan> CsgSolid::spans(const Ray& ray) const {
   Scratch& s = scratch();
-  const LineQuery q{*this, ray, RaySlabs(ray), thinness / length(ray.d)};
-  evaluate(q, 0, 0, s, s.result);
-  return s.result;
+  const float shift = lineSpans(*this, ray, s);
+  std::vector<CsgSpan> out = s.result;
+  for (CsgSpan& span : out) span.in.t += shift, span.out.t += shift;
+  return out;
 }
 
 }  // namespace glint

@@ -31,6 +31,13 @@ class MediumStack {
 
   bool empty() const { return size_ == 0; }
   uint32_t innermostMaterial() const { return entries_[size_ - 1].materialId; }
+  // The material object `objectKey` was entered with, or `otherwise` when it is not in the list.
+  // (A CSG solid's surfaces may name different materials: the one it was entered by fills it.)
+  uint32_t materialInside(uint64_t objectKey, uint32_t otherwise) const {
+    for (int i = size_; i-- > 0;)
+      if (entries_[i].objectKey == objectKey) return entries_[i].materialId;
+    return otherwise;
+  }
   // This list with the object entered, or left, written into `out` (not returned: a returned
   // stack was zeroed whole before it was filled, a 150-byte store per dielectric crossing).
   void enterInto(MediumStack& out, uint64_t objectKey, uint32_t materialId) const {
@@ -57,8 +64,9 @@ class MediumStack {
 // A ray meeting a dielectric's surface at a hit: which way it crosses, and the indices of
 // refraction on its side and across, from the interior list. Entering or leaving is decided by
 // the geometric normal ng and the ray's direction d, never the shading normal. Entering object
-// O: η_i is the current medium's, η_t O's. Leaving O: η_i is O's, η_t that of the medium that
-// remains once O is removed (1, the outside world, when none).
+// O: η_i is the current medium's, η_t O's. Leaving O: η_i is O's (the material O was entered
+// with, as Beer's law inside used), η_t that of the medium that remains once O is removed (1, the
+// outside world, when none).
 struct Crossing {
   bool entering = false;
   float etaI = 1, etaT = 1;
@@ -74,9 +82,10 @@ inline float iorOf(const MediumStack& media, const std::vector<Material>& materi
                                                   const Vec3f& ng,
                                                   const std::vector<Material>& materials) {
   const uint64_t key = objectKey(hit);
-  const float ior = materials[materialId].dielectric.ior;
   Crossing c;
   c.entering = dot(d, ng) < 0;
+  const float ior =
+      materials[c.entering ? materialId : media.materialInside(key, materialId)].dielectric.ior;
   if (c.entering)
     media.enterInto(c.across, key, materialId);
   else

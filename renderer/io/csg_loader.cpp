@@ -50,7 +50,11 @@ class CsgReader {
 
     if (depth > 0) obj.checkKeys({"type", "op", "operands", "material", "transform"});
     const std::string op = obj.at("op").choice({"union", "intersection", "difference"});
-    if (!imposed && obj.has("material")) imposed = solidMaterial(obj);
+    // Checked even where a node above imposes its own: a misspelt name must not load silently.
+    if (obj.has("material")) {
+      const uint32_t named = solidMaterial(obj);
+      if (!imposed) imposed = named;
+    }
     const JsonNode operands = obj.at("operands");
     if (!operands.isArray() || operands.size() < 2)
       operands.fail("must list at least two operands (spheres, boxes, closed meshes or csg nodes)");
@@ -135,10 +139,12 @@ class CsgReader {
       closedTriangles(obj, mesh, place, box);
       l.triangleCount = static_cast<uint32_t>(solid_.triangles.size()) - l.firstTriangle;
     }
+    const std::optional<uint32_t> named =
+        obj.has("material") ? std::optional(solidMaterial(obj)) : std::nullopt;
     if (imposed) {
       l.materialId = *imposed;
-    } else if (obj.has("material")) {
-      l.materialId = solidMaterial(obj);
+    } else if (named) {
+      l.materialId = *named;
     } else {
       obj.fail(
           "needs a \"material\" (or the csg node above it one): a mesh file's own materials "

@@ -66,6 +66,11 @@ TEST(SceneError, CsgOperandsMustBeClosedSolidsWithMaterials) {
   EXPECT_EQ(csg(R"({"type": "csg", "op": "union", "operands": [)" + ball + "," + ball + "]}"),
             "scene.json:4: objects[0].operands[0]: needs a \"material\" (or the csg node above it "
             "one): a mesh file's own materials are not used in CSG");
+  // A name under a node that imposes its own material is still checked.
+  EXPECT_EQ(csg(R"({"type": "csg", "op": "union", "material": "red", "operands": [)" + ball +
+                R"(, {"type": "sphere", "center": [0,0,0], "radius": 1, "material": "rde"}]})"),
+            "scene.json:4: objects[0].operands[1].material: no material named \"rde\" (did you "
+            "mean \"red\"?)");
   EXPECT_EQ(csg(R"({"type": "csg", "op": "union", "material": "holes", "operands": [)" + ball +
                 "," + ball + "]}"),
             "scene.json:4: objects[0].material: has an opacity cut-out, which would open the "
