@@ -31,12 +31,16 @@ status=0  # ctest's (pipefail: tee does not hide it)
   status=$?
 # LeakSanitizer's own tracer thread sometimes crashes while it stops the process at exit ("Tracer
 # caught signal 11 ... LeakSanitizer has encountered a fatal error"): the test itself passed, and
-# nothing was reported. Seen once in 424 tests on a loaded 2-core machine. Only then are the failed
-# tests run once more, and they must pass; any other failure stands as it is.
-if [ "$status" -ne 0 ] && grep -q "LeakSanitizer has encountered a fatal error" "$log"; then
-  echo "glint: LeakSanitizer's tracer crashed; running the failed tests once more" >&2
+# nothing was reported. First seen once in 424 tests; with 462 tests on this loaded 2-core machine
+# two tests crashed it again on a second run. Only when the log holds that crash and no sanitizer
+# report, failed assertion or timeout are the failed tests run once more, with leak checking off
+# (ASan and UBSan still check them), and they must pass; any other failure stands as it is.
+if [ "$status" -ne 0 ] && grep -q "LeakSanitizer has encountered a fatal error" "$log" &&
+  ! grep -qE "ERROR: (LeakSanitizer: detected|AddressSanitizer)|runtime error:|\[  FAILED  \]|\*\*\*Timeout" "$log"; then
+  echo "glint: LeakSanitizer's tracer crashed; running the failed tests once more without leak checks" >&2
   status=0
-  (cd "$GLINT_ROOT/build-asan" && ctest --output-on-failure --rerun-failed) || status=$?
+  (cd "$GLINT_ROOT/build-asan" &&
+    ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" ctest --output-on-failure --rerun-failed) || status=$?
 fi
 echo "glint: ASan+UBSan tests took $((SECONDS - start)) s" >&2
 exit "$status"
