@@ -16,7 +16,11 @@ glint_sanitized_build() {
 }
 
 export ASAN_SYMBOLIZER_PATH=/usr/lib/llvm-14/bin/llvm-symbolizer
-export ASAN_OPTIONS=strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1
+# intercept_tls_get_addr=0: clang 14's runtime misreads glibc 2.36's dynamic TLS vectors, and
+# LeakSanitizer's tracer then crashes at exit on a bogus block ("DTLS 38 at 0x4174-0x900005276",
+# "Tracer caught signal 11"), after the test passed; with it off, blocks in dynamic TLS are
+# still found through the heap that holds them (docs/hardening.md).
+export ASAN_OPTIONS=strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1:intercept_tls_get_addr=0
 export UBSAN_OPTIONS=print_stacktrace=1
 # Leaks inside Debian's uninstrumented Assimp and OpenImageIO are not Glint's (the file says which).
 export LSAN_OPTIONS="suppressions=$GLINT_ROOT/tests/fuzz/lsan.supp:print_suppressions=0"
@@ -29,18 +33,5 @@ log="$GLINT_ROOT/build-asan/ctest-output.log"
 status=0  # ctest's (pipefail: tee does not hide it)
 (cd "$GLINT_ROOT/build-asan" && ctest --output-on-failure -j "$(nproc)" "$@") 2>&1 | tee "$log" ||
   status=$?
-# LeakSanitizer's own tracer thread sometimes crashes while it stops the process at exit ("Tracer
-# caught signal 11 ... LeakSanitizer has encountered a fatal error"): the test itself passed, and
-# nothing was reported. First seen once in 424 tests; with 462 tests on this loaded 2-core machine
-# two tests crashed it again on a second run. Only when the log holds that crash and no sanitizer
-# report, failed assertion or timeout are the failed tests run once more, with leak checking off
-# (ASan and UBSan still check them), and they must pass; any other failure stands as it is.
-if [ "$status" -ne 0 ] && grep -q "LeakSanitizer has encountered a fatal error" "$log" &&
-  ! grep -qE "ERROR: (LeakSanitizer: detected|AddressSanitizer)|runtime error:|\[  FAILED  \]|\*\*\*Timeout" "$log"; then
-  echo "glint: LeakSanitizer's tracer crashed; running the failed tests once more without leak checks" >&2
-  status=0
-  (cd "$GLINT_ROOT/build-asan" &&
-    ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" ctest --output-on-failure --rerun-failed) || status=$?
-fi
 echo "glint: ASan+UBSan tests took $((SECONDS - start)) s" >&2
 exit "$status"

@@ -1,17 +1,22 @@
 #pragma once
 // The oracle of glint_fuzz_exr, shared with its regression test
 // (tests/io/input_fuzz_regression_test.cpp): an EXR file goes to readImage (glint compare,
-// convert, converge) and to mergeCrops (glint merge) as the one crop of a frame.
+// convert, converge), to mergeCrops (glint merge) as the one crop of a frame, and to
+// readResumeState (glint render --resume) for the window it declares.
+#include <cstdint>
 #include <string>
 
 #include "core/error.h"
+#include "film/exr_input.h"
 #include "film/exr_output.h"
 #include "film/merge.h"
+#include "render/resume_state.h"
 
 namespace glint::fuzz {
 
-// "" when both readers give an acceptable outcome (an image whose pixel array matches its size,
-// a merged frame, or a GlintError naming the file), else what is wrong. `mergedPath` receives
+// "" when every reader gives an acceptable outcome (an image whose pixel array matches its size,
+// a merged frame, one resume state per pixel, or a GlintError naming the file), else what is
+// wrong. `mergedPath` receives
 // the merge's output. Any other exception propagates: that is a bug too.
 inline std::string exrReadProblem(const std::string& path, const std::string& mergedPath) {
   const auto namesFile = [&](const GlintError& e) {
@@ -30,6 +35,18 @@ inline std::string exrReadProblem(const std::string& path, const std::string& me
   }
   try {
     (void)mergeCrops(mergedPath, {path}, "glint merge (fuzz)");
+  } catch (const GlintError& e) {
+    if (const std::string p = namesFile(e); !p.empty()) return p;
+  }
+  try {
+    // The window the file declares, so that the reader goes on to its channels and pixels; at
+    // most 2^20 samples a pixel, as a --spp that large would allow.
+    const ExrWindow w = exrWindow(path, openExr(path)->header(0));
+    const PixelWindow window{w.x, w.x + w.width, w.y, w.y + w.height};
+    const auto state = readResumeState(path, window, w.fullWidth, w.fullHeight, int64_t{1} << 20);
+    if (state.size() != size_t(window.area()))
+      return "readResumeState: " + std::to_string(state.size()) + " pixels for " +
+             std::to_string(w.width) + "x" + std::to_string(w.height);
   } catch (const GlintError& e) {
     return namesFile(e);
   }

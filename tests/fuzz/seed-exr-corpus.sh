@@ -30,6 +30,8 @@ render multipart --multipart --aov depth,normal
 render crop-left --crop 0 3 0 4
 render crop-right --crop 3 6 0 4
 render crop-inner --crop 1 5 1 3 --half
+render resumable --resumable --spp 4 --aov variance
+render resumable-crop --resumable --spp 2 --crop 2 5 1 3
 for c in none rle zips piz pxr24 b44 b44a dwaa; do
   render "compression-$c" --compression "$c"
 done
