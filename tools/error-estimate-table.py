@@ -10,7 +10,8 @@ ratio. The reference's own variance adds 1/64 of the render's at the largest cou
 
 adaptive: for each scene, uniform renders at a ladder of sample counts and adaptive renders at a
 ladder of --target-rmse, each against one reference; the time each needs to reach a given true
-RMSE (interpolated in log-log between the ladder's points) and their ratio.
+RMSE (interpolated in log-log between the ladder's points) and their ratio, and the same ratio
+of mean samples per pixel ("samples saved": what the allocation buys, free of timing noise).
 
 Prints markdown tables; writes images and JSON under --out.
 """
@@ -77,17 +78,20 @@ def time_to(points, target):
 
 
 def adaptive_table(args):
-    print("| scene | true RMSE | uniform s | adaptive s | speed-up |")
-    print("|---|---:|---:|---:|---:|")
+    print("| scene | true RMSE | uniform s | adaptive s | speed-up | samples saved |")
+    print("|---|---:|---:|---:|---:|---:|")
     for scene in scenes(args.scenes):
         ref = args.out / f"{scene.stem}-aref.exr"
         render(args.glint, scene, ref, args.size, 7919, args.reference_spp)
-        uniform, adaptive = [], []
+        # (seconds, rmse) and (mean samples per pixel, rmse) of each render
+        uniform, adaptive, uniform_spp, adaptive_spp = [], [], [], []
         for spp in args.ladder:
             for _ in range(args.runs):
                 img = args.out / f"{scene.stem}-u{spp}.exr"
                 st = render(args.glint, scene, img, args.size, 1, spp)
-                uniform.append((st["seconds"], compare(args.glint, img, ref)["rmse"]))
+                e = compare(args.glint, img, ref)["rmse"]
+                uniform.append((st["seconds"], e))
+                uniform_spp.append((spp, e))
         # The target is met with slack (ErrorTarget::ratio: the frame's error reaches the mean
         # of the pixels' deviations over their root mean square times it): targets from 4x the
         # largest uniform error down past an eighth of the smallest, in steps of sqrt(2), so the
@@ -97,16 +101,21 @@ def adaptive_table(args):
             img = args.out / f"{scene.stem}-a{target:.3g}.exr"
             st = render(args.glint, scene, img, args.size, 1, args.max_spp,
                         ["--target-rmse", f"{target:.6g}", "--min-spp", str(args.min_spp)])
-            adaptive.append((st["seconds"], compare(args.glint, img, ref)["rmse"]))
+            e = compare(args.glint, img, ref)["rmse"]
+            adaptive.append((st["seconds"], e))
+            adaptive_spp.append((st["passes"][-1]["mean_spp"], e))
             target /= math.sqrt(2)
         for spp in args.ladder[1:-1]:
             goal = next(e for (t, e), s in zip(uniform[:: args.runs], args.ladder) if s == spp)
             tu, ta = time_to(uniform, goal), time_to(adaptive, goal)
+            nu, na = time_to(uniform_spp, goal), time_to(adaptive_spp, goal)
+            saved = f"{nu / na:.2f}" if nu and na else "not reached"
             if tu and ta:
-                print(f"| {scene.stem} | {goal:.3g} | {tu:.3f} | {ta:.3f} | {tu / ta:.2f} |",
+                print(f"| {scene.stem} | {goal:.3g} | {tu:.3f} | {ta:.3f} | {tu / ta:.2f} | {saved} |",
                       flush=True)
             else:
-                print(f"| {scene.stem} | {goal:.3g} | {tu} | {ta} | not reached |", flush=True)
+                print(f"| {scene.stem} | {goal:.3g} | {tu} | {ta} | not reached | {saved} |",
+                      flush=True)
 
 
 def main():

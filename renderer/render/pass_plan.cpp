@@ -40,10 +40,36 @@ int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int wid
                                const FrameSpread& spread, std::vector<uint8_t>& sampled) const {
   sampled.assign(pixels.size(), 0);
   const int height = width > 0 ? static_cast<int>(pixels.size() / size_t(width)) : 0;
-  std::vector<double> ratio;
+  // Each pixel's ratio by the halves' estimate, and by the edge floor its 4-neighbours' means
+  // set (PixelError::edgeFloor).
+  std::vector<double> ratio, edgeRatio, means;
   if (adaptive()) {
     ratio.resize(pixels.size());
-    for (size_t p = 0; p < pixels.size(); ++p) ratio[p] = target.ratio(pixels[p], spread);
+    edgeRatio.resize(pixels.size());
+    means.resize(3 * pixels.size());
+    for (size_t p = 0; p < pixels.size(); ++p) {
+      ratio[p] = target.ratio(pixels[p], spread);
+      double value[4];
+      pixels[p].mean(value);
+      std::copy(value, value + 3, &means[3 * p]);
+    }
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const size_t p = size_t(y) * size_t(width) + size_t(x);
+        double contrast[3] = {0, 0, 0};
+        const auto against = [&](int nx, int ny) {
+          if (nx < 0 || ny < 0 || nx >= width || ny >= height) return;
+          const size_t q = size_t(ny) * size_t(width) + size_t(nx);
+          for (int c = 0; c < 3; ++c)
+            contrast[c] = std::max(contrast[c], std::abs(means[3 * p + c] - means[3 * q + c]));
+        };
+        against(x - 1, y);
+        against(x + 1, y);
+        against(x, y - 1);
+        against(x, y + 1);
+        edgeRatio[p] =
+            target.ratio(PixelError::edgeFloor(pixels[p], contrast), pixels[p].samples(), spread);
+      }
   }
   int64_t count = 0;
   for (int y = 0; y < height; ++y)
@@ -56,7 +82,7 @@ int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int wid
         for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
           for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx)
             worst = std::max(worst, ratio[size_t(ny) * size_t(width) + size_t(nx)]);
-        needs = worst > 1;
+        needs = std::max(worst, edgeRatio[p]) > 1;
       }
       sampled[p] = needs;
       count += needs;

@@ -48,11 +48,14 @@ struct PassPlan {
   // that ends at `end` samples, and returns how many: those below `end` that, under adaptive
   // sampling, have fewer than minSpp samples, or where a pixel of their 3 × 3 neighbourhood
   // (themselves included) is above its share of the target (ErrorTarget::ratio, with the
-  // frame's `spread`). One pixel's estimate has a degree of freedom per channel, and a pixel on
-  // an edge often reads zero when both halves saw the same side of it; its neighbours on the
-  // same edge rarely all do, so the neighbourhood's worst keeps the edge sampling (with its
-  // mean instead, whitted's frame missed a target of 0.002 at 0.00201, and its time to a given
-  // error was 0.68-0.96x uniform's against 0.87-1.18x; docs/performance.md).
+  // frame's `spread`), or that are above it by the edge floor their 4-neighbours' means set
+  // (PixelError::edgeFloor). One pixel's estimate has a degree of freedom per channel, and a
+  // pixel on an edge often reads zero when both halves saw the same side of it; its neighbours
+  // on the same edge rarely all do, so the neighbourhood's worst keeps the edge sampling (with
+  // its mean instead, whitted's frame missed a target of 0.002 at 0.00201). Where they do (a
+  // checker of 2-pixel squares seen face on), the floor keeps it: without it whitted needed
+  // 2.7x uniform's samples to reach uniform's 128-spp error, with it 0.51x
+  // (docs/performance.md, Adaptive sampling). Every input lies within one pixel.
   int64_t choosePixels(const std::vector<PixelEstimate>& pixels, int width, int end,
                        const FrameSpread& spread, std::vector<uint8_t>& sampled) const;
   // How far a pixel's samples depend on other pixels': one pixel per adaptive decision, one

@@ -41,6 +41,20 @@ bool PixelError::of(const PixelEstimate& pixel, PixelError& out) {
   return true;
 }
 
+PixelError PixelError::edgeFloor(const PixelEstimate& pixel, const double contrast[3]) {
+  const double n = static_cast<double>(pixel.samples());
+  PixelError out;
+  if (n == 0) return out;
+  double value[4];
+  pixel.mean(value);
+  for (int c = 0; c < 3; ++c) {
+    const double variance = contrast[c] * contrast[c] / (4 * n * std::sqrt(n));
+    out.mse += variance / 3;
+    out.relmse += variance / (value[c] * value[c] + kRelMseEpsilon) / 3;
+  }
+  return out;
+}
+
 FrameSpread FrameSpread::of(const std::vector<PixelEstimate>& probes) {
   double squared = 0, relative = 0;
   int64_t count = 0;
@@ -59,7 +73,11 @@ FrameSpread FrameSpread::of(const std::vector<PixelEstimate>& probes) {
 double ErrorTarget::ratio(const PixelEstimate& pixel, const FrameSpread& spread) const {
   PixelError e;
   if (!PixelError::of(pixel, e)) return std::numeric_limits<double>::infinity();
-  const double n = static_cast<double>(pixel.samples());
+  return ratio(e, pixel.samples(), spread);
+}
+
+double ErrorTarget::ratio(const PixelError& e, int64_t samples, const FrameSpread& spread) const {
+  const double n = static_cast<double>(samples);
   // sqrt(squared error / n) is the pixel's per-sample deviation over its n samples.
   double worst = 0;
   if (rmse > 0) worst = std::sqrt(e.mse / n) * spread.deviation / (rmse * rmse);

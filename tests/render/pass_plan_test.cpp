@@ -152,6 +152,51 @@ TEST(PassPlan, AdaptiveChoiceTakesTheWorstOfEachPixelsNeighbourhood) {
   EXPECT_EQ(plan.choosePixels(grid, 4, 2, spread, sampled), 0);
 }
 
+// n samples of one value in each half: the halves agree, so the estimate reads zero.
+PixelEstimate flatPixel(float value, int n) {
+  PixelEstimate p;
+  for (int h = 0; h < 2; ++h)
+    for (int i = 0; i < n / 2; ++i) p.half[h].add({value, value, value}, 1);
+  return p;
+}
+
+TEST(PixelError, EdgeFloorIsTheStratifiedBoundForTheContrastTheNeighboursShow) {
+  // 16 samples, contrast 0.8 on every channel: Var ≤ 0.8² / (4 · 16^{3/2}) = 0.64 / 256 = 0.0025;
+  // relMSE over value 0.5: 0.0025 / (0.25 + 0.01). (1e-12: the rounding of 0.8².)
+  const double contrast[3] = {0.8, 0.8, 0.8};
+  const PixelError e = PixelError::edgeFloor(flatPixel(0.5f, 16), contrast);
+  EXPECT_NEAR(e.mse, 0.0025, 1e-12);
+  EXPECT_NEAR(e.relmse, 0.0025 / 0.26, 1e-12);
+  // Four times the samples: an eighth of the variance (n^{3/2}).
+  EXPECT_NEAR(PixelError::edgeFloor(flatPixel(0.5f, 64), contrast).mse, 0.0025 / 8, 1e-12);
+  // A channel without contrast adds nothing: the mean over channels is a third.
+  const double red[3] = {0.8, 0, 0};
+  EXPECT_NEAR(PixelError::edgeFloor(flatPixel(0.5f, 16), red).mse, 0.0025 / 3, 1e-12);
+}
+
+TEST(PassPlan, AnEdgeWhoseHalvesAgreeKeepsSamplingByItsFloor) {
+  // A 4 × 3 frame, columns 0-1 at 0.1 and 2-3 at 0.9, 16 samples each, both halves alike: the
+  // halves read zero everywhere. The edge between columns 1 and 2 (contrast 0.8) gives those
+  // columns a floor of mse 0.0025 (above); with spread 1, ratio √(0.0025 / 16) / E².
+  std::vector<PixelEstimate> grid;
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 4; ++x) grid.push_back(flatPixel(x < 2 ? 0.1f : 0.9f, 16));
+  SamplingRequest r;
+  r.minSpp = 16;
+  r.maxSpp = 64;
+  r.target.rmse = 0.1;  // ratio 0.0125 / 0.01 = 1.25: the edge's columns sample on
+  std::vector<uint8_t> sampled;
+  EXPECT_EQ(PassPlan::make(64, SamplerKind::Sobol, r).choosePixels(grid, 4, 32, {1, 0}, sampled),
+            6);
+  const std::vector<uint8_t> edge = {0, 1, 1, 0,  //
+                                     0, 1, 1, 0,  //
+                                     0, 1, 1, 0};
+  EXPECT_EQ(sampled, edge);
+  r.target.rmse = 0.2;  // ratio 0.0125 / 0.04 = 0.31: met
+  EXPECT_EQ(PassPlan::make(64, SamplerKind::Sobol, r).choosePixels(grid, 4, 32, {1, 0}, sampled),
+            0);
+}
+
 TEST(ProbeLattice, AboutTwoHundredFiftySixProbesAtMostOneInSixtyFour) {
   // 140 × 90: 12600 / 256 = 49.2 pixels per probe, stride 7 from 3: 20 × 13 probes.
   const ProbeLattice small = ProbeLattice::of(140, 90);
