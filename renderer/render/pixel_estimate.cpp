@@ -77,6 +77,7 @@ double ErrorTarget::ratio(const PixelEstimate& pixel, const FrameSpread& spread)
 }
 
 double ErrorTarget::ratio(const PixelError& e, int64_t samples, const FrameSpread& spread) const {
+  if (samples <= 0) return std::numeric_limits<double>::infinity();
   const double n = static_cast<double>(samples);
   // sqrt(squared error / n) is the pixel's per-sample deviation over its n samples.
   double worst = 0;

@@ -53,9 +53,11 @@ struct PixelError {
   // The error a pixel's mean keeps when an edge crosses it, which the halves cannot see: each
   // half's stratified samples fall on either side in nearly fixed proportions, so the halves
   // often agree and read zero (whitted at uniform's 128-spp error took 2.7x uniform's samples).
-  // A straight edge of contrast C crossing a pixel of n stratified samples (jittered, or an
-  // Owen-scrambled net) passes through about √n of its strata, each adding a one-sample
-  // variance of at most C²/4 in n² to the mean's: Var ≤ C² / (4·n^{3/2}). `contrast` is, per
+  // A straight edge of contrast C crossing a pixel whose halves each stratify n/2 samples
+  // (jittered, or an Owen-scrambled net) passes through about 1.2·√(n/2) strata of each, and
+  // each adds a one-sample variance of C²/6 on average (at most C²/4) in (n/2)² to its half's
+  // mean: the pooled mean's variance is about 0.28·C²/n^{3/2}, and 2√2·C²/(4·n^{3/2}) for the
+  // worst-placed edge. The floor is C²/(4·n^{3/2}), the typical case. `contrast` is, per
   // channel, the largest difference between the pixel's mean and a 4-neighbour's, the least
   // contrast an edge there can have.
   static PixelError edgeFloor(const PixelEstimate& pixel, const double contrast[3]);
@@ -80,7 +82,7 @@ struct ErrorTarget {
   // the frame's spread: then its squared error is E²·σ/s, and the frame's mean of them is at
   // most E² (the mean of σ is at most their root mean square s). The ratio is (σ / n)·s / E².
   double ratio(const PixelEstimate& pixel, const FrameSpread& spread) const;
-  // The same for an error of a pixel of `samples` samples.
+  // The same for an error of a pixel of `samples` samples (infinity for none).
   double ratio(const PixelError& error, int64_t samples, const FrameSpread& spread) const;
 };
 }  // namespace glint

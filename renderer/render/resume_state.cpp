@@ -102,6 +102,9 @@ std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelW
             "more samples than the --spp asked)");
       half.count = static_cast<int32_t>(count);
     }
+    if (out[p].samples() > maxSamples)
+      throw UsageError(path + ": a pixel's resume state holds " + std::to_string(out[p].samples()) +
+                       " samples, more than the " + std::to_string(maxSamples) + " asked");
     if (halfSampleCount(out[p].samples(), 0) != out[p].half[0].count)
       throw UsageError(path +
                        ": the halves of a pixel's resume state do not split its samples "

@@ -3,10 +3,12 @@
 // (tests/io/input_fuzz_regression_test.cpp): an EXR file goes to readImage (glint compare,
 // convert, converge), to mergeCrops (glint merge) as the one crop of a frame, and to
 // readResumeState (glint render --resume) for the window it declares.
+#include <cmath>
 #include <cstdint>
 #include <string>
 
 #include "core/error.h"
+#include "core/sampler.h"
 #include "film/exr_input.h"
 #include "film/exr_output.h"
 #include "film/merge.h"
@@ -40,13 +42,24 @@ inline std::string exrReadProblem(const std::string& path, const std::string& me
   }
   try {
     // The window the file declares, so that the reader goes on to its channels and pixels; at
-    // most 2^20 samples a pixel, as a --spp that large would allow.
+    // most 2^20 samples a pixel, as a --spp that large would allow. What it accepts must be a
+    // state a render could leave (resume_state.h): finite means, coverage within [0, count],
+    // counts within the limit and split between the halves as a render splits them.
+    constexpr int64_t kMaxSamples = int64_t{1} << 20;
     const ExrWindow w = exrWindow(path, openExr(path)->header(0));
     const PixelWindow window{w.x, w.x + w.width, w.y, w.y + w.height};
-    const auto state = readResumeState(path, window, w.fullWidth, w.fullHeight, int64_t{1} << 20);
+    const auto state = readResumeState(path, window, w.fullWidth, w.fullHeight, kMaxSamples);
     if (state.size() != size_t(window.area()))
       return "readResumeState: " + std::to_string(state.size()) + " pixels for " +
              std::to_string(w.width) + "x" + std::to_string(w.height);
+    for (const PixelEstimate& p : state) {
+      bool valid = p.samples() <= kMaxSamples && halfSampleCount(p.samples(), 0) == p.half[0].count;
+      for (const HalfEstimate& h : p.half) {
+        valid = valid && h.count >= 0 && h.alpha >= 0 && h.alpha <= h.count;
+        for (double m : h.mean) valid = valid && std::isfinite(m);
+      }
+      if (!valid) return "readResumeState accepted a state no render leaves";
+    }
   } catch (const GlintError& e) {
     return namesFile(e);
   }

@@ -1,10 +1,10 @@
 // libFuzzer target over Glint's EXR readers (docs/hardening.md): the input, written to a file in
-// a private temporary directory, goes to readImage and mergeCrops (exr_fuzz_input.h). The only
-// acceptable outcomes are an image whose pixel array matches its size, a merged frame, or a
-// GlintError naming the file. Crashes, sanitizer reports, other exceptions, hangs and
-// allocations over the fuzzer's limit (as the 6.4 GB of a 50 MB EXR declaring a huge data
-// window) are bugs. OpenEXR is not instrumented: coverage guides the fuzzer
-// through Glint's code only.
+// a private temporary directory, goes to readImage, mergeCrops and readResumeState
+// (exr_fuzz_input.h). The only acceptable outcomes are an image whose pixel array matches its
+// size, a merged frame, a resume state a render could have left, or a GlintError naming the
+// file. Crashes, sanitizer reports, other exceptions, hangs and allocations over the fuzzer's
+// limit (as the 6.4 GB of a 50 MB EXR declaring a huge data window) are bugs. OpenEXR is not
+// instrumented: coverage guides the fuzzer through Glint's code only.
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>

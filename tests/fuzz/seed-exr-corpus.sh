@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Makes tests/fuzz/corpus-exr/ from tiny frames rendered by Glint (GLINT=path/to/glint, default
-# build/bin/glint): float and half beauty, layered and multi-part AOVs, crops, and each
-# compression. Run once; the output is checked in.
+# build/bin/glint): float and half beauty, layered and multi-part AOVs, crops, resumable frames
+# (the resume state's channels), and each compression. Run once; the output is checked in.
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 glint="${GLINT:-$root/build/bin/glint}"
