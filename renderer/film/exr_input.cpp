@@ -29,19 +29,24 @@ void checkExrHeaders(const std::string& path) {
       start[2] != 0x31 || start[3] != 0x01)
     fail("not an OpenEXR file");
   const bool multipart = (start[5] & 0x10) != 0;  // version flags, byte 1 of the flags
-  // A null-terminated name of at most 255 characters (long names), "" at the end of a header.
-  const auto readName = [&]() {
+  // OpenEXR reads attribute and type names of at most 31 characters, 255 with the long-names
+  // flag, and takes what follows a longer one as the next field: a 90-character name in a file
+  // without the flag made it size a string to 640 MB (found by glint_fuzz_exr).
+  const size_t attributeNameLimit = (start[5] & 0x04) != 0 ? 255 : 31;
+  // A null-terminated name of at most `limit` characters, "" at the end of a header.
+  const auto readName = [&](size_t limit) {
     std::string name;
     for (char c; in.get(c);) {
       if (c == '\0') return name;
-      if (name.size() == 255) fail("a header name is longer than 255 characters");
+      if (name.size() == limit)
+        fail("a header name is longer than " + std::to_string(limit) + " characters");
       name.push_back(c);
     }
     fail("the header is cut short");
     return name;
   };
   for (int part = 0;; ++part) {
-    std::string name = readName();
+    std::string name = readName(attributeNameLimit);
     if (name.empty()) {
       // The end of the headers: after one for a single-part file, after an empty one (read as
       // an empty first name) for a multi-part file.
@@ -49,7 +54,7 @@ void checkExrHeaders(const std::string& path) {
       fail("a multi-part file without parts");
     }
     while (!name.empty()) {
-      const std::string type = readName();
+      const std::string type = readName(attributeNameLimit);
       int32_t size = 0;
       if (!in.read(reinterpret_cast<char*>(&size), 4)) fail("the header is cut short");
       const uint64_t at = uint64_t(in.tellg());
@@ -62,7 +67,7 @@ void checkExrHeaders(const std::string& path) {
         // it declares, and reads the next attribute from there: so must this check, or a
         // list longer than its size hides the next attribute's true size from it (found by
         // glint_fuzz_exr: a string OpenEXR then sized to 1.8 GB).
-        for (std::string channel = readName(); !channel.empty(); channel = readName()) {
+        for (std::string channel = readName(255); !channel.empty(); channel = readName(255)) {
           char record[16];  // pixel type, pLinear and 3 reserved bytes, x and y sampling
           if (!in.read(record, sizeof record)) fail("the header is cut short");
           int32_t pixelType = 0, sampling[2] = {};
@@ -95,7 +100,7 @@ void checkExrHeaders(const std::string& path) {
       } else {
         in.seekg(size, std::ios::cur);
       }
-      name = readName();
+      name = readName(attributeNameLimit);
     }
     if (!multipart) return;
   }

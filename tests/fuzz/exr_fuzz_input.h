@@ -17,9 +17,9 @@
 namespace glint::fuzz {
 
 // "" when every reader gives an acceptable outcome (an image whose pixel array matches its size,
-// a merged frame, one resume state per pixel, or a GlintError naming the file), else what is
-// wrong. `mergedPath` receives
-// the merge's output. Any other exception propagates: that is a bug too.
+// a merged frame, a resume state a render could leave, or a GlintError naming the file), else
+// what is wrong. `mergedPath` receives the merge's output. Any other exception propagates: that
+// is a bug too.
 inline std::string exrReadProblem(const std::string& path, const std::string& mergedPath) {
   const auto namesFile = [&](const GlintError& e) {
     return std::string(e.what()).find(path) != std::string::npos

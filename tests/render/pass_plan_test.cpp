@@ -160,8 +160,8 @@ PixelEstimate flatPixel(float value, int n) {
   return p;
 }
 
-TEST(PixelError, EdgeFloorIsTheStratifiedBoundForTheContrastTheNeighboursShow) {
-  // 16 samples, contrast 0.8 on every channel: Var ≤ 0.8² / (4 · 16^{3/2}) = 0.64 / 256 = 0.0025;
+TEST(PixelError, EdgeFloorIsTheTypicalStratifiedVarianceForTheContrastTheNeighboursShow) {
+  // 16 samples, contrast 0.8 on every channel: 0.8² / (4 · 16^{3/2}) = 0.64 / 256 = 0.0025;
   // relMSE over value 0.5: 0.0025 / (0.25 + 0.01). (1e-12: the rounding of 0.8².)
   const double contrast[3] = {0.8, 0.8, 0.8};
   const PixelError e = PixelError::edgeFloor(flatPixel(0.5f, 16), contrast);
