@@ -10,7 +10,8 @@ Two families of scenes, n from 10^2 to 10^6 (--max-n):
            stadium), seen from 3 units off the teapot.
 For each scene `glint bench --structures` builds every structure and times one thread on the
 camera rays (160 x 120) and on --rays random rays (origins in the scene's box, directions
-uniform on the sphere), the best of three passes. Prints a markdown table; writes the plots and
+uniform on the sphere), the best of three passes, and counts the nodes or cells each camera ray
+visits and the primitives it tests (Glint's own structures; Embree's traversal is not counted). Prints a markdown table; writes the plots and
 the figures (JSON) to --out. Needs python3-matplotlib (Debian's /usr/bin/python3).
 """
 
@@ -66,21 +67,31 @@ def plot(results, out):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
-    figures = [("random_ns_per_ray", "ns per random ray (1 thread)"),
+    figures = [("camera_steps_per_ray", "nodes or cells visited per camera ray"),
+               ("camera_tests_per_ray", "primitives tested per camera ray"),
                ("camera_ns_per_ray", "ns per camera ray (1 thread)"),
+               ("random_ns_per_ray", "ns per random ray (1 thread)"),
                ("build_seconds", "build seconds"), ("bytes", "bytes of the structure")]
     for family in ("spheres", "stadium"):
-        fig, axes = plt.subplots(1, 4, figsize=(18, 4.2))
+        fig, axes = plt.subplots(2, 3, figsize=(16, 8.4))
+        axes = axes.ravel()
         for ax, (key, label) in zip(axes, figures):
             for s in STRUCTURES:
-                pts = [(r["n"], r["structures"][s][key]) for r in results
+                pts = [(r["n"], r["structures"][s].get(key)) for r in results
                        if r["family"] == family and s in r.get("structures", {})]
-                pts = [(n, v) for n, v in pts if v > 0]
-                if pts:
-                    ax.loglog(*zip(*pts), marker="o", label=s)
+                pts = [(n, v) for n, v in pts if v]
+                if pts:  # one colour per structure in every panel (Embree has no counts)
+                    ax.loglog(*zip(*pts), marker="o", label=s, color=f"C{STRUCTURES.index(s)}")
             ns = sorted({r["n"] for r in results if r["family"] == family})
-            if key.endswith("per_ray") and ns:
-                # The seeds' claims, scaled to the grid's and the BVH's first points.
+            if key == "camera_steps_per_ray" and ns:
+                # The seeds' claims as they stand: a ray crosses at most 3R - 2 of the grid's
+                # R = ceil(cbrt n) cells per axis; a balanced hierarchy is log2 n levels deep.
+                ax.loglog(ns, [3 * math.ceil(n ** (1 / 3) - 1e-9) - 2 for n in ns], "k:",
+                          label="3⌈∛n⌉ − 2")
+                ax.loglog(ns, [math.log2(n) for n in ns], "k--", label="log₂ n")
+                ax.legend(fontsize=8)
+            elif key.endswith("ns_per_ray") and ns:
+                # The same claims for time, scaled to the grid's and the BVH's first points.
                 first = [r for r in results if r["family"] == family and r["n"] == ns[0]][0]
                 g0, b0 = first["structures"]["grid"][key], first["structures"]["bvh"][key]
                 ax.loglog(ns, [g0 * (n / ns[0]) ** (1 / 3) for n in ns], "k:", label="∝ ∛n")
@@ -89,7 +100,7 @@ def plot(results, out):
             ax.set_xlabel("primitives n")
             ax.set_title(label)
             ax.grid(True, which="both", alpha=0.3)
-        axes[0].legend(fontsize=8)
+        axes[2].legend(fontsize=8)
         fig.suptitle(f"{family}: cost against n")
         fig.tight_layout()
         fig.savefig(out / f"accel_study_{family}.png", dpi=72)
@@ -127,15 +138,20 @@ def main():
             n *= 10
     (out / "accel_study.json").write_text(json.dumps(results, indent=1))
     plot(results, out)
-    for key, label in (("random_ns_per_ray", "ns per random ray"),
+    for key, label in (("camera_steps_per_ray", "nodes or cells visited per camera ray"),
+                       ("camera_tests_per_ray", "primitives tested per camera ray"),
+                       ("random_ns_per_ray", "ns per random ray"),
                        ("camera_ns_per_ray", "ns per camera ray"),
                        ("build_seconds", "build s"), ("bytes", "MiB")):
         print(f"\n{label}\n\n| scene | n | " + " | ".join(STRUCTURES) + " |")
         print("|---|---|" + "---|" * len(STRUCTURES))
         for r in results:
-            vals = [r["structures"][s][key] for s in STRUCTURES]
+            vals = [r["structures"][s].get(key) for s in STRUCTURES]
             fmt = (lambda v: f"{v / 2**20:.2f}") if key == "bytes" else (
-                (lambda v: f"{v:.3g}") if key == "build_seconds" else (lambda v: f"{v:.0f}"))
+                (lambda v: f"{v:.3g}") if key == "build_seconds" else (
+                    (lambda v: f"{v:.1f}") if "steps" in key or "tests" in key else (
+                        lambda v: f"{v:.0f}")))
+            fmt = (lambda f: lambda v: "–" if v is None else f(v))(fmt)
             print(f"| {r['family']} | {r['n']:.0e} | " + " | ".join(fmt(v) for v in vals) + " |")
 
 

@@ -29,7 +29,10 @@ class CrossCheck final : public Accelerator {
  public:
   static constexpr size_t kKeptDisagreements = 10;
   // Two hits on different primitives whose t agree this closely are a tie (a shared edge or a
-  // coincident face), not a disagreement.
+  // coincident face), not a disagreement. So is a hit this close to the ray's origin (relative
+  // to the origin's largest coordinate, at least 1) against a miss: a ray that starts on a
+  // surface hits it at t = 0 ± rounding, and Embree's and Glint's triangle tests round
+  // differently (random rays start on the plane of a flat scene once in ~4000).
   static constexpr float kTieTolerance = 1e-5f;
 
   CrossCheck(const Accelerator& primary, std::vector<const Accelerator*> others)
@@ -43,6 +46,8 @@ class CrossCheck final : public Accelerator {
 
  private:
   void record(const std::string& line) const;
+  // Whether `hit` lies at `ray`'s origin, within kTieTolerance.
+  static bool atOrigin(const Ray& ray, const Hit& hit);
 
   const Accelerator& primary_;
   std::vector<const Accelerator*> others_;

@@ -145,8 +145,9 @@ KdTree::KdTree(const Scene& scene) : TwoLevelAccelerator(scene) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-template <bool AnyHit>
-bool KdTree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const {
+template <bool AnyHit, class Counter>
+bool KdTree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit,
+                      Counter count) const {
   const Tree& t = trees_[groupId];
   if (t.prims.empty()) return false;
   const RaySlabs slabs(ray);
@@ -164,6 +165,7 @@ bool KdTree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hi
     // What is left of the ray starts beyond the closest hit: nothing there is closer.
     if (found && hit.t < t0) break;
     const Node& n = t.nodes[node];
+    count.step();
     if (!n.leaf()) {
       // Seed 000 §12.3.4's four cases: the ray meets only the near side (the plane lies beyond
       // the segment or behind the origin), only the far side (the plane lies before the
@@ -187,7 +189,9 @@ bool KdTree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hi
     }
     for (uint32_t k = n.first; k < n.first + n.count; ++k) {
       const PrimitiveBox& p = t.prims[t.refs[k]];
-      if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit, intoInstance())) {
+      count.test();
+      if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
+                             intoInstance(count))) {
         if constexpr (AnyHit) return true;
         found = true;
       }

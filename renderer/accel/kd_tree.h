@@ -38,8 +38,8 @@ class KdTree final : public TwoLevelAccelerator<KdTree> {
 
  private:
   friend class TwoLevelAccelerator<KdTree>;
-  template <bool AnyHit>
-  bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const;
+  template <bool AnyHit, class Counter>
+  bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit, Counter count) const;
 
   std::vector<Tree> trees_;  // one per group
   SubdivisionStats stats_;

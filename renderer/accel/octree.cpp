@@ -114,8 +114,9 @@ Octree::Octree(const Scene& scene, int levels) : TwoLevelAccelerator(scene) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-template <bool AnyHit>
-bool Octree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const {
+template <bool AnyHit, class Counter>
+bool Octree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit,
+                      Counter count) const {
   const Tree& t = trees_[groupId];
   if (t.prims.empty()) return false;
   const RaySlabs slabs(ray);
@@ -138,10 +139,13 @@ bool Octree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hi
     // Every cell left starts beyond the closest hit: none holds a closer one.
     if (found && hit.t < c.t0) break;
     const Node& n = t.nodes[c.node];
+    count.step();
     if (n.firstChild == kInvalidId) {
       for (uint32_t k = n.refStart; k < n.refStart + n.refCount; ++k) {
         const PrimitiveBox& p = t.prims[t.refs[k]];
-        if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit, intoInstance())) {
+        count.test();
+        if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
+                               intoInstance(count))) {
           if constexpr (AnyHit) return true;
           found = true;
         }
@@ -166,18 +170,18 @@ bool Octree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hi
               [&](int a, int b) { return tMid[size_t(a)] < tMid[size_t(b)]; });
     // The octants along the ray, each crossing of a mid-plane flipping that axis's bit.
     Cell along[4];
-    int count = 0;
+    int octants = 0;
     float from = c.t0;
     for (int a : order) {
       const float cross = tMid[size_t(a)];
       if (!(cross > c.t0 && cross < c.t1)) continue;
-      along[count++] = {uint32_t(octant), {}, 0, from, cross};
+      along[octants++] = {uint32_t(octant), {}, 0, from, cross};
       from = cross;
       octant ^= 1 << a;
     }
-    along[count++] = {uint32_t(octant), {}, 0, from, c.t1};
+    along[octants++] = {uint32_t(octant), {}, 0, from, c.t1};
     const float quarter = c.half / 2;
-    for (int i = count; i-- > 0;) {
+    for (int i = octants; i-- > 0;) {
       const uint32_t k = along[i].node;
       const uint32_t child = n.firstChild + k;
       const Node& cn = t.nodes[child];

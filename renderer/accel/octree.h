@@ -38,8 +38,8 @@ class Octree final : public TwoLevelAccelerator<Octree> {
 
  private:
   friend class TwoLevelAccelerator<Octree>;
-  template <bool AnyHit>
-  bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const;
+  template <bool AnyHit, class Counter>
+  bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit, Counter count) const;
 
   std::vector<Tree> trees_;  // one per group
   SubdivisionStats stats_;

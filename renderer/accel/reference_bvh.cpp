@@ -251,8 +251,10 @@ ReferenceBvh::ReferenceBvh(const Scene& scene, BvhSplit split) : TwoLevelAcceler
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+template <class Counter>
 bool ReferenceBvh::intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray, uint32_t instId,
-                                 Hit& hit) const {
+                                 Hit& hit, Counter count) const {
+  count.test();
   const Tree& tree = trees_[groupId];
   const PrimRef& p = tree.prims[slot];
   if (tree.staticTriangle[slot]) {
@@ -267,11 +269,12 @@ bool ReferenceBvh::intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray
     hit = Hit{t, u, v, p.geom, p.prim, instId};
     return true;
   }
-  return intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit, intoInstance());
+  return intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit, intoInstance(count));
 }
 
-template <bool AnyHit>
-bool ReferenceBvh::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const {
+template <bool AnyHit, class Counter>
+bool ReferenceBvh::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit,
+                            Counter count) const {
   const Tree& tree = trees_[groupId];
   if (tree.nodes.empty()) return false;
   const RaySlabs slabs(ray);
@@ -281,11 +284,12 @@ bool ReferenceBvh::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, H
   bool found = false;
   while (true) {
     const Node& node = tree.nodes[index];
+    count.step();
     float tNear = ray.tMin, tFar = std::min(ray.tMax, hit.t);
     if (slabTest(node.box, ray, slabs, tNear, tFar)) {
       if (node.count > 0) {
         for (uint32_t i = node.first; i < node.first + node.count; ++i)
-          if (intersectPrim(groupId, i, ray, instId, hit)) {
+          if (intersectPrim(groupId, i, ray, instId, hit, count)) {
             if constexpr (AnyHit) return true;
             found = true;
           }

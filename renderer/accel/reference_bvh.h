@@ -63,10 +63,11 @@ class ReferenceBvh final : public TwoLevelAccelerator<ReferenceBvh> {
 
  private:
   friend class TwoLevelAccelerator<ReferenceBvh>;
-  template <bool AnyHit>
-  bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const;
-  bool intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray, uint32_t instId,
-                     Hit& hit) const;
+  template <bool AnyHit, class Counter>
+  bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit, Counter count) const;
+  template <class Counter>
+  bool intersectPrim(uint32_t groupId, uint32_t slot, const Ray& ray, uint32_t instId, Hit& hit,
+                     Counter count) const;
 
   std::vector<Tree> trees_;  // one per group
   BvhStats stats_;

@@ -23,6 +23,14 @@ int cellOf(float x, const UniformGrid::Grid& g, int axis, float pad = 0) {
   return std::min(static_cast<int>(c), g.cells[axis] - 1);
 }
 
+// ⌈∛n⌉ exactly: std::ceil(std::cbrt(27.0)) is 4, cbrt rounding 3 up to 3.0000000000000004.
+int cubeRootRoundedUp(size_t n) {
+  int64_t r = std::llround(std::cbrt(double(n)));
+  while (r * r * r < int64_t(n)) ++r;
+  while (r > 1 && (r - 1) * (r - 1) * (r - 1) >= int64_t(n)) --r;
+  return static_cast<int>(std::min<int64_t>(r, kMaxCellsPerAxis));
+}
+
 // The cells of `g` for `r` cells per axis (one along a flat or unbounded axis).
 void setResolution(UniformGrid::Grid& g, int r) {
   for (int a = 0; a < 3; ++a) {
@@ -38,8 +46,7 @@ void setResolution(UniformGrid::Grid& g, int r) {
 UniformGrid::Grid buildGrid(std::vector<PrimitiveBox> prims, int resolution) {
   UniformGrid::Grid g;
   for (const PrimitiveBox& p : prims) g.box.extend(p.box);
-  int r =
-      resolution > 0 ? resolution : static_cast<int>(std::ceil(std::cbrt(double(prims.size()))));
+  int r = resolution > 0 ? resolution : cubeRootRoundedUp(prims.size());
   // Each primitive's range of cells, at the finest resolution (from r down by halves) whose
   // references stay within referenceBudget (n·R³ ≈ n² for primitives spanning the box).
   std::vector<std::array<int, 6>> ranges(prims.size());
@@ -106,8 +113,9 @@ UniformGrid::UniformGrid(const Scene& scene, int resolution) : TwoLevelAccelerat
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-template <bool AnyHit>
-bool UniformGrid::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const {
+template <bool AnyHit, class Counter>
+bool UniformGrid::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit,
+                           Counter count) const {
   const Grid& g = grids_[groupId];
   if (g.prims.empty()) return false;
   // The part of the ray inside the grid's box.
@@ -140,6 +148,7 @@ bool UniformGrid::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hi
   std::fill(mailbox, mailbox + kMailboxSize, std::numeric_limits<uint32_t>::max());
   bool found = false;
   while (true) {
+    count.step();
     const size_t c = (size_t(cell[2]) * size_t(g.cells[1]) + size_t(cell[1])) * size_t(g.cells[0]) +
                      size_t(cell[0]);
     for (uint32_t k = g.cellStart[c]; k < g.cellStart[c + 1]; ++k) {
@@ -147,8 +156,10 @@ bool UniformGrid::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hi
       uint32_t& slot = mailbox[i & (kMailboxSize - 1)];
       if (slot == i) continue;  // tested in an earlier cell: its answer stands
       slot = i;
+      count.test();
       const PrimitiveBox& p = g.prims[i];
-      if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit, intoInstance())) {
+      if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
+                             intoInstance(count))) {
         if constexpr (AnyHit) return true;
         found = true;
       }

@@ -39,8 +39,8 @@ class UniformGrid final : public TwoLevelAccelerator<UniformGrid> {
 
  private:
   friend class TwoLevelAccelerator<UniformGrid>;
-  template <bool AnyHit>
-  bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit) const;
+  template <bool AnyHit, class Counter>
+  bool traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit, Counter count) const;
 
   std::vector<Grid> grids_;  // one per group
   GridStats stats_;

@@ -1,7 +1,6 @@
 // `glint validate`: renders the scene's own rays (camera, reflection, refraction, shadow) and
-// N random rays through Embree, the reference BVH, the uniform grid and (for small scenes) brute
-// force, and
-// reports how well they agree, hit by hit.
+// N random rays through Embree, the reference BVH, the uniform grid, the octree, the k-d tree
+// and (for small scenes) brute force, and reports how well they agree, hit by hit.
 #include <cmath>
 #include <cstdio>
 #include <fstream>

@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <string>
 
 #include "accel/embree_accel.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
 #include "accel/reference_bvh.h"
+#include "accel/two_level.h"
 #include "accel/uniform_grid.h"
 #include "core/fp_env.h"
 
@@ -49,6 +51,24 @@ double nanosecondsPerRay(const Accelerator& accel, const std::vector<Ray>& rays)
   return best / double(rays.size()) * 1e9;
 }
 
+// Mean nodes or cells visited and primitives tested per closest-hit query, for a structure whose
+// traversal Glint can count (accel/two_level.h); null for Embree.
+nlohmann::json countsPerRay(const Accelerator& accel, const std::vector<Ray>& rays) {
+  const auto* counting = dynamic_cast<const CountingTraversal*>(&accel);
+  if (!counting || rays.empty()) return {{"steps", nullptr}, {"tests", nullptr}};
+  TraversalCounts counts;
+  for (const Ray& r : rays) counting->intersectCounting(r, counts);
+  const double n = double(rays.size());
+  return {{"steps", double(counts.steps) / n}, {"tests", double(counts.tests) / n}};
+}
+
+std::string oneDecimal(const nlohmann::json& value) {
+  if (value.is_null()) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", value.get<double>());
+  return text;
+}
+
 }  // namespace
 
 nlohmann::json studyStructures(const Scene& scene, const std::vector<AccelKind>& kinds,
@@ -56,8 +76,8 @@ nlohmann::json studyStructures(const Scene& scene, const std::vector<AccelKind>&
                                const std::vector<Ray>& randomRays) {
   nlohmann::json j;
   j["primitives"] = scene.primitiveCount();
-  std::printf("%-8s %12s %12s %16s %16s\n", "backend", "build s", "MiB", "camera ns/ray",
-              "random ns/ray");
+  std::printf("%-8s %10s %10s %14s %14s %22s %22s\n", "backend", "build s", "MiB", "camera ns/ray",
+              "random ns/ray", "camera steps/tests", "random steps/tests");
   for (AccelKind kind : kinds) {
     const auto start = std::chrono::steady_clock::now();
     const std::unique_ptr<Accelerator> accel = makeAccelerator(kind, scene);
@@ -65,13 +85,23 @@ nlohmann::json studyStructures(const Scene& scene, const std::vector<AccelKind>&
     const size_t bytes = structureBytes(*accel);
     const double camera = nanosecondsPerRay(*accel, cameraRays);
     const double random = nanosecondsPerRay(*accel, randomRays);
-    std::printf("%-8s %12.4f %12.2f %16.1f %16.1f\n", std::string(accel->name()).c_str(), build,
-                double(bytes) / (1 << 20), camera, random);
+    const nlohmann::json cameraCounts = countsPerRay(*accel, cameraRays);
+    const nlohmann::json randomCounts = countsPerRay(*accel, randomRays);
+    const auto pair = [](const nlohmann::json& c) {
+      return oneDecimal(c["steps"]) + " / " + oneDecimal(c["tests"]);
+    };
+    std::printf("%-8s %10.4f %10.2f %14.1f %14.1f %22s %22s\n", std::string(accel->name()).c_str(),
+                build, double(bytes) / (1 << 20), camera, random, pair(cameraCounts).c_str(),
+                pair(randomCounts).c_str());
     std::fflush(stdout);
     j["structures"][std::string(accel->name())] = {{"build_seconds", build},
                                                    {"bytes", bytes},
                                                    {"camera_ns_per_ray", camera},
-                                                   {"random_ns_per_ray", random}};
+                                                   {"random_ns_per_ray", random},
+                                                   {"camera_steps_per_ray", cameraCounts["steps"]},
+                                                   {"camera_tests_per_ray", cameraCounts["tests"]},
+                                                   {"random_steps_per_ray", randomCounts["steps"]},
+                                                   {"random_tests_per_ray", randomCounts["tests"]}};
   }
   return j;
 }

@@ -1,8 +1,10 @@
 #pragma once
 // `glint bench --structures`: the study seed 000 §12.3 and seed 002 §9.2 invite. For each
 // acceleration structure, its build time and memory, and its single-thread time per ray on the
-// scene's camera rays and on random rays, so a series of scenes of growing n shows how each
-// structure's cost grows (tools/accel_study.py runs the series and plots it).
+// scene's camera rays and on random rays, and for Glint's own structures the nodes or cells
+// each ray visits and the primitives it tests (the quantities the seeds' claims are about), so a
+// series of scenes of growing n shows how each structure's cost grows (tools/accel_study.py
+// runs the series and plots it).
 #include <nlohmann/json.hpp>
 #include <vector>
 

@@ -4,8 +4,8 @@
 // the line; a node combines its operands' intervals by its set operation; the combined solid's
 // surface is where its intervals begin and end. Intervals thinner than a tolerance are dropped
 // and gaps thinner than it closed, as the seed advises, so abutting operands leave no sliver
-// and no seam. Shared by every backend (Embree user geometry, the reference BVH, the grid,
-// brute force): they differ only in how they reach the solid.
+// and no seam. Shared by every backend (Embree user geometry, the reference BVH, the grid, the
+// octree, the k-d tree, brute force): they differ only in how they reach the solid.
 #include <array>
 #include <cstdint>
 #include <vector>

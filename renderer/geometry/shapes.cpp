@@ -101,7 +101,7 @@ float intersectTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const
 
 Bounds3f bounds(const Sphere& s) {
   const Vec3f r{s.radius, s.radius, s.radius};
-  return {s.center - r, s.center + r};
+  return roundedOutward({s.center - r, s.center + r});
 }
 
 Bounds3f bounds(const Quad& q) {
@@ -110,7 +110,7 @@ Bounds3f bounds(const Quad& q) {
   b.extend(q.corner + q.edge1);
   b.extend(q.corner + q.edge2);
   b.extend(q.corner + q.edge1 + q.edge2);
-  return b;
+  return roundedOutward(b);
 }
 
 Bounds3f bounds(const Disk& d) {
@@ -121,7 +121,7 @@ Bounds3f bounds(const Disk& d) {
     return d.radius * std::sqrt(std::max(0.0f, 1 - ni2)) * (1 + 0x1p-20f);
   };
   const Vec3f e{reach(n2.x), reach(n2.y), reach(n2.z)};
-  return {d.center - e, d.center + e};
+  return roundedOutward({d.center - e, d.center + e});
 }
 
 }  // namespace glint

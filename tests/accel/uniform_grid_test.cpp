@@ -18,6 +18,9 @@ TEST(UniformGrid, ResolutionIsTheCubeRootOfThePrimitiveCount) {
   EXPECT_EQ(grid.stats().primitives, 1000u);
   // Triangles 1/100 of the cube wide in cells 1/10 wide: most fall in one cell, a few straddle.
   EXPECT_LT(grid.stats().references, 1500u);
+  // Exactly ⌈∛n⌉ where ∛n is a whole number: cbrt(27.0) is 3.0000000000000004 in double.
+  EXPECT_EQ(UniformGrid(triangles(27, false)).stats().cells, 27u);
+  EXPECT_EQ(UniformGrid(triangles(28, false)).stats().cells, 64u);
 }
 
 TEST(UniformGrid, ReferencesStayBoundedWhenEveryPrimitiveSpansTheScene) {

@@ -152,6 +152,7 @@ TEST(GrazingRays, NeverReHitTheirSourceSurface) {
     rehits += h && h.geomId == geom;
   }
   EXPECT_EQ(rehits, 0);
+  stress::expectStructuresAgreeWithEmbree(s);
 }
 
 // 5. Degenerate geometry: zero-area, collinear and needle (area 1e-20) triangles render without
@@ -169,10 +170,14 @@ TEST(DegenerateGeometry, RendersAndCrossChecksCleanly) {
   const RenderResult r = stress::renderText(text);
   EXPECT_EQ(r.stats.rays.nonfiniteSamples, 0u);
   const Scene s = test::sceneFromText(text);
+  // Exact agreement here, beyond renderText's 1 − 10⁻⁶: these few triangles are the cases a
+  // watertight test exists for.
   const EmbreeAccel embree(s);
   const ReferenceBvh bvh(s);
   const UniformGrid grid(s);
-  const CrossCheck check(embree, {&bvh, &grid});
+  const Octree octree(s);
+  const KdTree kdtree(s);
+  const CrossCheck check(embree, {&bvh, &grid, &octree, &kdtree});
   castRandomRays(s, check, 100000, 5);
   EXPECT_EQ(check.stats().hitAgree, check.stats().rays);
   for (const auto& line : check.stats().firstDisagreements) ADD_FAILURE() << line;
@@ -366,20 +371,6 @@ TEST(CsgSolids, EveryBackendAgreesOnOneMillionRandomRays) {
   expectAgreementOnRandomRays(s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree}), 1000000);
 }
 
-// Under AddressSanitizer the bundled-scene sweep below takes 10× longer (455 s of the sanitized
-// stage's 921): there it casts a tenth of the rays, enough to catch a traversal fault.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kBundledSceneRays = 100000;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr int kBundledSceneRays = 100000;
-#else
-constexpr int kBundledSceneRays = 1000000;
-#endif
-#else
-constexpr int kBundledSceneRays = 1000000;
-#endif
-
 // 24. Every bundled scene: Embree against each of Glint's structures on 10⁶ random rays (issue
 // 25's bar), as `glint validate --no-brute` checks them. real_assets reads 1 − 7.7·10⁻⁷: one ray
 // that Embree misses and all four of Glint's structures hit (docs/validation.md).
@@ -387,16 +378,8 @@ TEST(BundledScenes, EveryStructureAgreesWithEmbreeOnOneMillionRandomRays) {
   for (const std::string& name : test::fileNamesIn(GLINT_SCENES_DIR)) {
     if (!name.ends_with(".json")) continue;
     SCOPED_TRACE(name);
-    const Scene s = loadSceneFile(std::string(GLINT_SCENES_DIR) + "/" + name);
-    const EmbreeAccel embree(s);
-    const ReferenceBvh bvh(s);
-    const UniformGrid grid(s);
-    const Octree octree(s);
-    const KdTree kdtree(s);
-    const CrossCheck check(embree, {&bvh, &grid, &octree, &kdtree});
-    castRandomRays(s, check, kBundledSceneRays, 21);
-    EXPECT_GE(check.stats().hitAgreement(), 1 - 1e-6);
-    EXPECT_GE(check.stats().occlusionAgreement(), 1 - 1e-6);
+    stress::expectStructuresAgreeWithEmbree(
+        loadSceneFile(std::string(GLINT_SCENES_DIR) + "/" + name));
   }
 }
 

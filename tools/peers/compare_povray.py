@@ -10,7 +10,11 @@
    Glint, ...) so that load from other processes hits both alike; the table gives median wall
    and CPU seconds (user + system of the process: the steadier figure on a shared machine).
 2. Extra rows: POV-Ray with its adaptive shortcuts on (area light `adaptive 0`, focal blur
-   `variance 1/128`), Glint with the plain random sampler (what the stratified sampler costs).
+   `variance 1/128`), Glint with the plain random sampler (what the stratified sampler costs),
+   Glint alone at more camera sample counts, and Glint with adaptive sampling to a ladder of
+   `--target-rmse` values. Then, for each POV-Ray row, Glint's wall time to reach that row's
+   error against its own reference: log-log interpolation along each Glint series (uniform at
+   one light sample count, or adaptive), never extrapolated, the best series taken.
 3. Embree's `pathtracer` on its cornell_box, and Glint on the same mesh and camera
    (scenes/peers/cornell_box.json): wall time and rays, counted with an LD_PRELOAD shim
    (tools/peers/count_embree_rays.c) around rtcIntersect1 / rtcOccluded1 and their streams
@@ -22,6 +26,7 @@ Needs: povray (Debian package povray), and for part 3 embree-tools and a C compi
 
 import argparse
 import json
+import math
 import os
 import re
 import resource
@@ -97,7 +102,7 @@ class Peers:
         path.write_text(text)
         return path
 
-    def render_glint(self, spp, light, tag, sampler=None):
+    def render_glint(self, spp, light, tag, sampler=None, target=None):
         exr = self.out / f"{tag}.exr"
         stats = self.out / f"{tag}.stats.json"
         cmd = [self.glint, "render", str(self.glint_scene(light)), "-o", str(exr),
@@ -105,10 +110,13 @@ class Peers:
                "--height", str(self.a.height), "--quiet", "--stats-json", str(stats)]
         if sampler:
             cmd += ["--sampler", sampler]
+        if target:
+            cmd += ["--target-rmse", f"{target:g}"]
         wall, _ = run(cmd)
         s = json.loads(stats.read_text())
+        passes = s.get("passes") or []
         return {"exr": str(exr), "wall": wall, "cpu": LAST_CPU[0], "inner": s["seconds"],
-                "rays": s["rays_total"]}
+                "rays": s["rays_total"], "mean_spp": passes[-1]["mean_spp"] if passes else spp}
 
     def render_pov(self, spp, light, tag, adaptive=False):
         exr = f"{tag}.exr"
@@ -162,6 +170,11 @@ class Peers:
         for spp, light in a.extra:
             jobs.append(("povray adaptive", spp, light, {"adaptive": True}))
             jobs.append(("glint random sampler", spp, light, {"sampler": "random"}))
+        for spp, light in a.glint_only:
+            jobs.append(("glint", spp, light, {}))
+        for target in a.adaptive_targets:
+            jobs.append((f"glint adaptive {target:g}", a.adaptive_max_spp, a.adaptive_light,
+                         {"target": target}))
         # Fixed costs: process start, parse, build, write; an 8x6 image with one sample.
         tiny = {"glint": [self.glint, "render", str(self.glint_scene(4)), "-o",
                           str(self.out / "glint_tiny.exr"), "--threads", str(a.threads), "--spp",
@@ -238,6 +251,56 @@ class Peers:
                       str(a.threads), "--render-runs", "0"])
         self.results["embree"] = {"rows": rows, "glint_bench": log}
 
+    # ---- time to POV-Ray's error -----------------------------------------------------------
+    @staticmethod
+    def time_to_error(points, goal):
+        """The wall time at which a series of (wall s, RMSE) points reaches RMSE `goal`: log-log
+        interpolation between the first two consecutive points (by time) that bracket it; None
+        where the series does not bracket it (never extrapolated)."""
+        pts = sorted(points)
+        for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
+            if e0 >= goal >= e1 and e0 > e1:
+                f = math.log(e0 / goal) / math.log(e0 / e1)
+                return math.exp(math.log(t0) + f * math.log(t1 / t0))
+        return None
+
+    def time_to_povray_error(self, groups):
+        """For each POV-Ray row, Glint's wall time (medians over the repetitions) to reach its
+        RMSE along each Glint series: uniform at each light sample count, and adaptive."""
+        series = {}
+        for (renderer, spp, light), rs in groups.items():
+            if renderer == "glint":
+                name = f"uniform, light {light}"
+            elif renderer.startswith("glint adaptive"):
+                name = "adaptive"
+            else:
+                continue
+            series.setdefault(name, []).append(
+                (statistics.median(r["wall"] for r in rs), rs[0]["rmse"]))
+        names = sorted(series)
+        lines = ["", "Time to POV-Ray's error: Glint's wall time (median) to reach each POV-Ray "
+                 "row's RMSE against its own reference, interpolated log-log along each Glint "
+                 "series (— where the series does not reach or bracket it)", "",
+                 "| POV-Ray row | its RMSE | its wall s | " +
+                 " | ".join(f"Glint {n} s" for n in names) + " | POV-Ray s / best Glint s |",
+                 "|---|---|---|" + "---|" * len(names) + "---|"]
+        rows = []
+        for (renderer, spp, light), rs in groups.items():
+            if not renderer.startswith("povray"):
+                continue
+            goal, wall = rs[0]["rmse"], statistics.median(r["wall"] for r in rs)
+            times = {n: self.time_to_error(series[n], goal) for n in names}
+            known = [t for t in times.values() if t]
+            best = min(known) if known else None
+            rows.append({"povray": f"{renderer} {spp}x{light}", "rmse": goal, "wall": wall,
+                         "glint": times, "ratio": wall / best if best else None})
+            cells = " | ".join(f"{times[n]:.2f}" if times[n] else "—" for n in names)
+            ratio = f"{wall / best:.1f}" if best else "—"
+            lines.append(f"| {renderer} {spp} x {light} | {goal:.5f} | {wall:.2f} | {cells} | "
+                         f"{ratio} |")
+        self.results["time_to_povray_error"] = rows
+        return lines
+
     # ---- report ----------------------------------------------------------------------------
     def report(self):
         res, lines = self.results, []
@@ -269,6 +332,7 @@ class Peers:
                          f"{self.a.reference[0] * self.a.reference[1]} | {r['wall']:.2f} | | "
                          f"{r['cpu']:.2f} | {r['inner'] or 0:.2f} | {r['rays'] / 1e6:.0f} M | "
                          f"{r['rays'] / r['wall'] / 1e6:.1f} | | |")
+        lines += self.time_to_povray_error(groups)
         st = res["startup"]
         lines.append("")
         lines.append(f"Fixed cost (8x6 pixels, 1 sample, median of 3): Glint {st['glint']['wall']:.2f} "
@@ -330,6 +394,16 @@ def main():
                    help="camera x light samples to compare (4x4,4x16,16x4,16x16,64x4)")
     p.add_argument("--extra", type=configs, default=configs("16x16,64x4"),
                    help="where to add POV-Ray adaptive and Glint random-sampler rows")
+    p.add_argument("--glint-only", type=configs, default=configs("1x4,2x4,8x4,32x4"),
+                   help="more uniform Glint runs, so that its series bracket POV-Ray's errors "
+                        "(1x4,2x4,8x4,32x4)")
+    p.add_argument("--adaptive-targets", type=lambda t: [float(x) for x in t.split(",") if x],
+                   default=[0.028, 0.02, 0.014, 0.01],
+                   help="--target-rmse values of Glint's adaptive runs (0.028,0.02,0.014,0.01; none: '')")
+    p.add_argument("--adaptive-light", type=int, default=4,
+                   help="light samples of the adaptive runs (4)")
+    p.add_argument("--adaptive-max-spp", type=int, default=1024,
+                   help="--spp (the most a pixel may take) of the adaptive runs (1024)")
     p.add_argument("--reference", type=parse_config, default=parse_config("1024x4"),
                    help="the converged references (1024x4)")
     p.add_argument("--reps", type=int, default=3, help="repetitions of each timed run (3)")
