@@ -136,6 +136,47 @@ TEST(Csg, IntersectionOfSpheresIsTheOverlapOfTheirIntervals) {
   EXPECT_GT(crossed, 400);  // the test must cross the lens often, not only miss it
 }
 
+TEST(Csg, DifferenceOfSpheresIsTheFirstIntervalLessTheSecond) {
+  // A (radius 1 at x = −0.3) less B (radius 0.6 at x = 0.4, poking out of A's side): along a
+  // line, A's interval with B's removed — none, one or two pieces.
+  const Scene s = csgScene(R"({"type": "csg", "op": "difference", "material": "m",
+      "operands": [{"type": "sphere", "center": [-0.3,0,-5], "radius": 1},
+                   {"type": "sphere", "center": [0.4,0,-5], "radius": 0.6}]})");
+  int twoPieces = 0, bitten = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Ray r = randomRay(i, {0, 0, -5}, 1.2f);
+    const Vec3d o = toDouble(r.o), d = toDouble(r.d);
+    const auto a = sphereInterval(o, d, {-0.3, 0, -5}, 1),
+               b = sphereInterval(o, d, {0.4, 0, -5}, 0.6);
+    std::vector<Interval> want;
+    if (a) {
+      if (!b || b->second <= a->first || b->first >= a->second) {
+        want.push_back(*a);
+      } else {
+        if (a->first < b->first) want.push_back({a->first, b->first});
+        if (b->second < a->second) want.push_back({b->second, a->second});
+      }
+    }
+    // Rays within rounding of a sliver (grazing a sphere, or B's and A's surfaces crossing) are
+    // not judged.
+    const auto sliver = [&](const std::optional<Interval>& x) {
+      return x && x->second - x->first < 1e-3;
+    };
+    bool near = sliver(a) || sliver(b);
+    for (const Interval& w : want) near |= w.second - w.first < 1e-3;
+    if (a && b)
+      for (double ea : {a->first, a->second})
+        for (double eb : {b->first, b->second}) near |= std::abs(ea - eb) < 1e-3;
+    if (near) continue;
+    twoPieces += want.size() == 2;
+    bitten += a && b && b->first < a->second && b->second > a->first;  // B removed some of A
+    expectSpans(s.csgs[0], r, want, i);
+  }
+  // The rays must cross the bite often, through it (two pieces) too.
+  EXPECT_GT(twoPieces, 50);
+  EXPECT_GT(bitten, 200);
+}
+
 // The cube [−1, 1]² × [−6, −4] as an inline mesh of 6·2·n² triangles, each face an n × n grid of
 // quads wound outward (the faces' edge vertices repeat; CSG matches them by position).
 std::string tessellatedCube(int n) {
