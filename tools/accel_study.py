@@ -11,7 +11,8 @@ Two families of scenes, n from 10^2 to 10^6 (--max-n):
 For each scene `glint bench --structures` builds every structure and times one thread on the
 camera rays (160 x 120) and on --rays random rays (origins in the scene's box, directions
 uniform on the sphere), the best of three passes, and counts the nodes or cells each camera ray
-visits and the primitives it tests (Glint's own structures; Embree's traversal is not counted). Prints a markdown table; writes the plots and
+visits and the primitives it tests (Glint's own structures; Embree's traversal is not
+counted). Prints a markdown table; writes the plots and
 the figures (JSON) to --out. Needs python3-matplotlib (Debian's /usr/bin/python3).
 """
 

@@ -83,7 +83,7 @@ void CrossCheck::record(const std::string& line) const {
 
 bool CrossCheck::atOrigin(const Ray& ray, const Hit& hit) {
   const float scale = std::max({1.0f, std::fabs(ray.o.x), std::fabs(ray.o.y), std::fabs(ray.o.z)});
-  return hit && hit.t <= kTieTolerance * scale;
+  return hit && hit.t <= kOriginTolerance * scale;
 }
 
 Hit CrossCheck::intersect(const Ray& ray) const {
@@ -91,15 +91,18 @@ Hit CrossCheck::intersect(const Ray& ray) const {
   for (const Accelerator* other : others_) {
     const Hit b = other->intersect(ray);
     ++stats_.rays;
-    const bool hitAgree = bool(a) == bool(b) || atOrigin(ray, a) || atOrigin(ray, b);
-    stats_.hitAgree += hitAgree;
-    bool primAgree = hitAgree;
-    if (a && b) {
-      const float rel = std::fabs(a.t - b.t) / std::max(1.0f, a.t);
-      stats_.relDt.push_back(rel);
+    bool hitAgree = bool(a) == bool(b), primAgree = hitAgree;
+    const float rel = a && b ? std::fabs(a.t - b.t) / std::max(1.0f, a.t) : 0.0f;
+    if (a && b)
       primAgree = (a.geomId == b.geomId && a.primId == b.primId && a.instId == b.instId) ||
-                  rel <= kTieTolerance || atOrigin(ray, a) || atOrigin(ray, b);
+                  rel <= kTieTolerance;
+    if (!primAgree && (atOrigin(ray, a) || atOrigin(ray, b))) {
+      hitAgree = primAgree = true;
+      ++stats_.originTies;  // not a |Δt| of one surface: left out of relDt
+    } else if (a && b) {
+      stats_.relDt.push_back(rel);
     }
+    stats_.hitAgree += hitAgree;
     stats_.primAgree += primAgree;
     if (!primAgree)
       record("--ray \"" + formatRay(ray) + "\"  # " + std::string(primary_.name()) + ": " +
@@ -114,8 +117,10 @@ bool CrossCheck::occluded(const Ray& ray) const {
     const bool b = other->occluded(ray);
     ++stats_.occlusionRays;
     // The backend that says occluded: is its closest hit at the origin (a tie, as above)?
-    const bool agree = a == b || atOrigin(ray, (a ? primary_ : *other).intersect(ray));
+    const bool tie = a != b && atOrigin(ray, (a ? primary_ : *other).intersect(ray));
+    const bool agree = a == b || tie;
     stats_.occlusionAgree += agree;
+    stats_.originTies += tie;
     if (!agree)
       record("--ray \"" + formatRay(ray) + "\" --occluded  # " + std::string(primary_.name()) +
              ": " + (a ? "occluded" : "clear") + "; " + std::string(other->name()) + ": " +

@@ -13,8 +13,9 @@ namespace glint {
 struct CrossCheckStats {
   uint64_t rays = 0, hitAgree = 0, primAgree = 0;  // closest-hit queries
   uint64_t occlusionRays = 0, occlusionAgree = 0;  // any-hit queries
-  std::vector<float> relDt;                        // |Δt|/max(1, t) where both hit
-  std::vector<std::string> firstDisagreements;     // reproducible one-liners
+  uint64_t originTies = 0;   // queries that agree only as a hit at the origin (kOriginTolerance)
+  std::vector<float> relDt;  // |Δt|/max(1, t) where both hit
+  std::vector<std::string> firstDisagreements;  // reproducible one-liners
 
   double hitAgreement() const { return rays ? double(hitAgree) / double(rays) : 1; }
   double primAgreement() const { return rays ? double(primAgree) / double(rays) : 1; }
@@ -29,11 +30,15 @@ class CrossCheck final : public Accelerator {
  public:
   static constexpr size_t kKeptDisagreements = 10;
   // Two hits on different primitives whose t agree this closely are a tie (a shared edge or a
-  // coincident face), not a disagreement. So is a hit this close to the ray's origin (relative
-  // to the origin's largest coordinate, at least 1) against a miss: a ray that starts on a
-  // surface hits it at t = 0 ± rounding, and Embree's and Glint's triangle tests round
-  // differently (random rays start on the plane of a flat scene once in ~4000).
+  // coincident face), not a disagreement.
   static constexpr float kTieTolerance = 1e-5f;
+  // A hit this close to the ray's origin, relative to the origin's largest coordinate (at least
+  // 1), against a miss or a farther hit is a tie too, counted apart (originTies): a ray that
+  // starts on a surface hits it at t = 0 ± rounding, and Embree's and Glint's triangle tests
+  // round differently (random rays start on the plane of a flat scene once in ~4000). 2⁻²⁰ is
+  // eight float steps of that coordinate; far from the origin, where every hit on a small
+  // shape is that close, callers bound how many ties they accept.
+  static constexpr float kOriginTolerance = 0x1p-20f;
 
   CrossCheck(const Accelerator& primary, std::vector<const Accelerator*> others)
       : primary_(primary), others_(std::move(others)) {}
@@ -46,7 +51,7 @@ class CrossCheck final : public Accelerator {
 
  private:
   void record(const std::string& line) const;
-  // Whether `hit` lies at `ray`'s origin, within kTieTolerance.
+  // Whether `hit` lies at `ray`'s origin, within kOriginTolerance.
   static bool atOrigin(const Ray& ray, const Hit& hit);
 
   const Accelerator& primary_;

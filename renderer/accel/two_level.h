@@ -16,10 +16,11 @@
 namespace glint {
 
 // What a traversal did for one ray, instanced groups included (planes, tested by the shared
-// loop beside every structure, are not counted): the nodes or cells it visited and the
-// primitives it tested. The seeds' claims are about these (seed 002 §9.2.1: at most about
-// R = ⌈∛n⌉ cells per ray for the grid; about log n nodes for the hierarchies), and
-// `glint bench --structures` reports them beside the time per ray.
+// loop beside every structure, are not counted): the nodes or cells it visited — for the BVH
+// every node whose box it tests, a box the ray misses included; for the grid, the octree and
+// the k-d tree the cells or nodes it enters — and the primitives it tested. The seeds' claims are
+// about these (seed 002 §9.2.1: at most about R = ⌈∛n⌉ cells per ray for the grid; about log n
+// nodes for the hierarchies), and `glint bench --structures` reports them beside the time per ray.
 struct TraversalCounts {
   uint64_t steps = 0, tests = 0;
 };

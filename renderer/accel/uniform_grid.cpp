@@ -25,6 +25,8 @@ int cellOf(float x, const UniformGrid::Grid& g, int axis, float pad = 0) {
 
 // ⌈∛n⌉ exactly: std::ceil(std::cbrt(27.0)) is 4, cbrt rounding 3 up to 3.0000000000000004.
 int cubeRootRoundedUp(size_t n) {
+  // Past kMaxCellsPerAxis³ the answer is clamped anyway (and r³ stays far inside int64_t).
+  n = std::min(n, size_t(kMaxCellsPerAxis) * kMaxCellsPerAxis * kMaxCellsPerAxis);
   int64_t r = std::llround(std::cbrt(double(n)));
   while (r * r * r < int64_t(n)) ++r;
   while (r > 1 && (r - 1) * (r - 1) * (r - 1) >= int64_t(n)) --r;

@@ -89,6 +89,8 @@ int runValidate(const ValidateArgs& a) {
   std::printf("primitive      %.9f agreement (ties within %.0e count as agreement)\n",
               st.primAgreement(), double(CrossCheck::kTieTolerance));
   std::printf("occlusion      %.9f agreement\n", st.occlusionAgreement());
+  std::printf("origin ties    %llu (a hit within %.0e of the ray's origin against a miss)\n",
+              (unsigned long long)st.originTies, double(CrossCheck::kOriginTolerance));
   std::printf("|dt|/max(1,t)  max %.3g, 99.9th percentile %.3g\n", double(st.maxRelDt()),
               double(st.quantileRelDt(0.999)));
   std::printf("embree build   %.3f s, %.1f MiB\n", embree.buildSeconds(),
@@ -121,6 +123,7 @@ int runValidate(const ValidateArgs& a) {
     j["hit_agreement"] = st.hitAgreement();
     j["prim_agreement"] = st.primAgreement();
     j["occlusion_agreement"] = st.occlusionAgreement();
+    j["origin_ties"] = st.originTies;
     j["max_rel_dt"] = st.maxRelDt();
     j["p999_rel_dt"] = st.quantileRelDt(0.999);
     j["disagreements"] = st.firstDisagreements;

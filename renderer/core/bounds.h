@@ -1,5 +1,6 @@
 #pragma once
 // Axis-aligned bounding box in whatever space its points live in.
+#include <algorithm>
 #include <cmath>
 
 #include "core/vec.h"
@@ -26,16 +27,19 @@ struct Bounds3f {
   Vec3f diagonal() const { return hi - lo; }
 };
 
-// `b` grown by a relative 2⁻²² (at least two float steps) on every side. A shape's box computed
-// in float (a centre ± a radius, a corner + edges) rounds to the nearest float, which may lie
-// inside the shape's true extent: a sphere of radius 10⁻³ centred 10⁵ from the origin, where
-// floats are 0.008 apart, got a box of zero depth, and rays from beside it missed a sphere
-// that Embree (traversing more conservatively) hit.
+// `b` grown on both sides of each axis by 2⁻²² of the axis's largest coordinate (two float
+// steps of it or more). A shape's box computed in float (a centre ± a radius, a corner + edges)
+// rounds to the nearest float, which may lie inside the shape's true extent: a sphere of radius
+// 10⁻³ centred 10⁵ from the origin, where floats are 0.008 apart, got a box of zero depth, and
+// rays from beside it missed a sphere that Embree (traversing more conservatively) hit. The
+// largest coordinate, not each side's own, bounds the rounding: a quad's far corner (c + e₁) +
+// e₂ = 0.3 from c = −10⁵ carries the rounding of 10⁵, and c is a corner of the box too.
 inline Bounds3f roundedOutward(const Bounds3f& b) {
   Bounds3f out = b;
   for (int a = 0; a < 3; ++a) {
-    out.lo[a] -= std::abs(b.lo[a]) * 0x1p-22f;
-    out.hi[a] += std::abs(b.hi[a]) * 0x1p-22f;
+    const float pad = std::max(std::abs(b.lo[a]), std::abs(b.hi[a])) * 0x1p-22f;
+    out.lo[a] -= pad;
+    out.hi[a] += pad;
   }
   return out;
 }

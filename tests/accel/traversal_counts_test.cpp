@@ -70,8 +70,9 @@ TEST(TraversalCounts, AGridRayAlongARowVisitsItsThreeCellsAndTestsEachSphereOnce
 
 TEST(TraversalCounts, NoGridRayVisitsMoreThanTheSeedsBoundOfCells) {
   // Seed 002 §9.2.1: a ray crosses at most about R cells per axis, 3R - 2 in all for R = 3 (a
-  // step leaves one cell for the next along one axis; R - 1 steps per axis). The 3D-DDA must
-  // never revisit a cell: 10⁴ rays from around the lattice in every direction.
+  // step leaves one cell for the next along one axis; R - 1 steps per axis), which a 3D-DDA that
+  // revisited or skipped back a cell would exceed: 10⁴ rays from around the lattice in every
+  // direction.
   const Scene s = lattice();
   const auto grid = makeAccelerator(AccelKind::Grid, s);
   uint64_t most = 0;

@@ -28,6 +28,10 @@ TEST(ShapeBounds, AQuadAndADiskFarFromTheOriginAreInsideTheirBoxes) {
   // A quad whose far corner, 10⁵ + 10⁻³ in exact arithmetic, rounds to 10⁵ in float.
   const Quad q{{1e5f, 0, 0}, {1e-3f, 0, 0}, {0, 1, 0}};
   expectHolds(bounds(q), 0, 1e5, 1e5 + 1e-3);
+  // One whose far corner (c + e₁) + e₂ is 0.3 exactly but 0.296875 in float: the sum c + e₁
+  // rounded at 10⁵'s float spacing, far above 0.3's.
+  const Quad far{{-1e5f, 0, 0}, {0.3f, 0, 0}, {1e5f, 1, 0}};
+  expectHolds(bounds(far), 0, -1e5, double(0.3f));
   // A disk facing x: it reaches its radius along y and z, and nothing along x.
   const Disk d{{0, 1e5f, 0}, {1, 0, 0}, 1e-3f};
   expectHolds(bounds(d), 1, 1e5 - 1e-3, 1e5 + 1e-3);

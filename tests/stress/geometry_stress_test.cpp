@@ -320,17 +320,9 @@ Scene csgSoup() {
       {"type": "instance", "group": "g", "transform": {"matrix": [1,0.4,0,-1, 0,1,0,-1, 0,0,2,0, 0,0,0,1]}}]})");
 }
 
-// `check`'s agreement over `rays` random rays through the soup.
-void expectAgreementOnRandomRays(const Scene& s, const CrossCheck& check, int rays) {
-  castRandomRays(s, check, rays, 21);
-  const CrossCheckStats& st = check.stats();
-  // Most rays start inside the soup's bounds: without many hits on both sides the agreement
-  // below would say little (1 % of 10⁷ is 10⁵ compared hits).
-  EXPECT_GE(st.relDt.size(), st.rays / 100);
-  EXPECT_GE(st.hitAgreement(), 1 - 1e-6);
-  EXPECT_GE(st.occlusionAgreement(), 1 - 1e-6);
-  for (const auto& line : st.firstDisagreements) std::printf("disagreement: %s\n", line.c_str());
-}
+// Most rays start inside the soups' bounds: without many hits on both sides the agreement would
+// say little (1 % of 10⁷ is 10⁵ compared hits).
+constexpr double kSoupComparedHits = 0.01;
 
 // 20. Embree against the reference BVH on 10⁷ random rays over the soup: hit/miss and occlusion
 // agreement ≥ 1 − 1e-6.
@@ -338,7 +330,7 @@ TEST(EmbreeVsBvh, TenMillionRandomRays) {
   const Scene s = triangleSoup();
   const EmbreeAccel embree(s);
   const ReferenceBvh bvh(s);
-  expectAgreementOnRandomRays(s, CrossCheck(embree, {&bvh}), 10000000);
+  stress::expectAgreementOnRandomRays(s, CrossCheck(embree, {&bvh}), 10000000, kSoupComparedHits);
 }
 
 // 21. The same for the uniform grid on 10⁶ rays (issue 25's bar), the needles spanning cells.
@@ -346,7 +338,7 @@ TEST(EmbreeVsGrid, OneMillionRandomRays) {
   const Scene s = triangleSoup();
   const EmbreeAccel embree(s);
   const UniformGrid grid(s);
-  expectAgreementOnRandomRays(s, CrossCheck(embree, {&grid}), 1000000);
+  stress::expectAgreementOnRandomRays(s, CrossCheck(embree, {&grid}), 1000000, kSoupComparedHits);
 }
 
 // 22. The octree and the k-d tree on the same 10⁶ rays over the soup, the needles crossing
@@ -356,7 +348,8 @@ TEST(EmbreeVsOctreeAndKdTree, OneMillionRandomRays) {
   const EmbreeAccel embree(s);
   const Octree octree(s);
   const KdTree kdtree(s);
-  expectAgreementOnRandomRays(s, CrossCheck(embree, {&octree, &kdtree}), 1000000);
+  stress::expectAgreementOnRandomRays(s, CrossCheck(embree, {&octree, &kdtree}), 1000000,
+                                      kSoupComparedHits);
 }
 
 // 23. CSG solids: Embree (user geometry) and every structure of Glint's reach them differently
@@ -368,7 +361,8 @@ TEST(CsgSolids, EveryBackendAgreesOnOneMillionRandomRays) {
   const UniformGrid grid(s);
   const Octree octree(s);
   const KdTree kdtree(s);
-  expectAgreementOnRandomRays(s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree}), 1000000);
+  stress::expectAgreementOnRandomRays(s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree}),
+                                      1000000, kSoupComparedHits);
 }
 
 // 24. Every bundled scene: Embree against each of Glint's structures on 10⁶ random rays (issue

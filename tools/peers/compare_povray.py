@@ -114,9 +114,8 @@ class Peers:
             cmd += ["--target-rmse", f"{target:g}"]
         wall, _ = run(cmd)
         s = json.loads(stats.read_text())
-        passes = s.get("passes") or []
         return {"exr": str(exr), "wall": wall, "cpu": LAST_CPU[0], "inner": s["seconds"],
-                "rays": s["rays_total"], "mean_spp": passes[-1]["mean_spp"] if passes else spp}
+                "rays": s["rays_total"]}
 
     def render_pov(self, spp, light, tag, adaptive=False):
         exr = f"{tag}.exr"
@@ -203,7 +202,8 @@ class Peers:
                 if rep == 0:  # the images are the same in every repetition
                     e = self.compare(r["exr"], own, tag)
                     r.update(rmse=e["rmse"], relmse=e["relmse"])
-                r.update(renderer=renderer, spp=spp, light=light, rep=rep)
+                r.update(renderer=renderer, spp=spp, light=light, rep=rep,
+                         target=kw.get("target"))
                 self.results["runs"].append(r)
         self.results["load_average"]["end"] = os.getloadavg()
 
@@ -254,12 +254,20 @@ class Peers:
     # ---- time to POV-Ray's error -----------------------------------------------------------
     @staticmethod
     def time_to_error(points, goal):
-        """The wall time at which a series of (wall s, RMSE) points reaches RMSE `goal`: log-log
-        interpolation between the first two consecutive points (by time) that bracket it; None
-        where the series does not bracket it (never extrapolated)."""
+        """The wall time at which a series of (work, wall s, RMSE) points, in order of the work
+        asked for (samples, or a falling target), first reaches RMSE `goal`: log-log
+        interpolation between that point and the one before it; None where the first point
+        already reaches it or none does (never extrapolated). A series whose times or errors do
+        not fall and rise in step with the work is reported, not smoothed over."""
         pts = sorted(points)
-        for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
-            if e0 >= goal >= e1 and e0 > e1:
+        if any(b[1] < a[1] or b[2] > a[2] for a, b in zip(pts, pts[1:])):
+            print(f"warning: a Glint series is not monotone in time and error: {pts}",
+                  file=sys.stderr)
+        for k, (_, t1, e1) in enumerate(pts):
+            if e1 <= goal:
+                if k == 0:
+                    return None
+                _, t0, e0 = pts[k - 1]
                 f = math.log(e0 / goal) / math.log(e0 / e1)
                 return math.exp(math.log(t0) + f * math.log(t1 / t0))
         return None
@@ -270,13 +278,13 @@ class Peers:
         series = {}
         for (renderer, spp, light), rs in groups.items():
             if renderer == "glint":
-                name = f"uniform, light {light}"
+                name, work = f"uniform, light {light}", spp
             elif renderer.startswith("glint adaptive"):
-                name = "adaptive"
+                name, work = "adaptive", 1 / rs[0]["target"]
             else:
                 continue
             series.setdefault(name, []).append(
-                (statistics.median(r["wall"] for r in rs), rs[0]["rmse"]))
+                (work, statistics.median(r["wall"] for r in rs), rs[0]["rmse"]))
         names = sorted(series)
         lines = ["", "Time to POV-Ray's error: Glint's wall time (median) to reach each POV-Ray "
                  "row's RMSE against its own reference, interpolated log-log along each Glint "
