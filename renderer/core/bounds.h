@@ -2,6 +2,7 @@
 // Axis-aligned bounding box in whatever space its points live in.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/vec.h"
 
@@ -35,11 +36,14 @@ struct Bounds3f {
 // largest coordinate, not each side's own, bounds the rounding: a quad's far corner (c + e₁) +
 // e₂ = 0.3 from c = −10⁵ carries the rounding of 10⁵, and c is a corner of the box too.
 inline Bounds3f roundedOutward(const Bounds3f& b) {
+  constexpr float kMax = std::numeric_limits<float>::max();
   Bounds3f out = b;
   for (int a = 0; a < 3; ++a) {
-    const float pad = std::max(std::abs(b.lo[a]), std::abs(b.hi[a])) * 0x1p-22f;
-    out.lo[a] -= pad;
-    out.hi[a] += pad;
+    const float pad = std::min(std::max(std::abs(b.lo[a]), std::abs(b.hi[a])), kMax) * 0x1p-22f;
+    // A finite side stays finite: the structures take a box's centre, which ±∞ on both sides
+    // makes NaN (tests/fuzz/regressions/bvh-centroid-overflow.json: a sphere reaching +∞).
+    if (std::isfinite(b.lo[a])) out.lo[a] = std::max(b.lo[a] - pad, -kMax);
+    if (std::isfinite(b.hi[a])) out.hi[a] = std::min(b.hi[a] + pad, kMax);
   }
   return out;
 }

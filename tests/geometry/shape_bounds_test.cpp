@@ -1,6 +1,9 @@
 // A shape's box holds the whole shape, though its corners are computed in float.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "geometry/shapes.h"
 
 namespace glint {
@@ -36,6 +39,20 @@ TEST(ShapeBounds, AQuadAndADiskFarFromTheOriginAreInsideTheirBoxes) {
   const Disk d{{0, 1e5f, 0}, {1, 0, 0}, 1e-3f};
   expectHolds(bounds(d), 1, 1e5 - 1e-3, 1e5 + 1e-3);
   expectHolds(bounds(d), 2, -1e-3, 1e-3);
+}
+
+TEST(ShapeBounds, AShapeReachingInfinityKeepsItsFiniteSidesFinite) {
+  // A sphere at 3.4·10³⁸ of that radius reaches past the largest float: its box's far side is
+  // +∞, and growing the near side by the axis's largest coordinate must not make it −∞ (a box
+  // of ±∞ has a NaN centre, which crashed the BVH's binning).
+  const Bounds3f box = bounds(Sphere{{3.4e38f, 0, -3.4e38f}, 3.4e38f});
+  EXPECT_EQ(box.hi.x, kInfinity);
+  EXPECT_TRUE(std::isfinite(box.lo.x));
+  EXPECT_TRUE(std::isfinite(box.hi.z));
+  EXPECT_EQ(box.lo.z, -kInfinity);
+  // One of radius FLT_MAX at the origin stays within ±FLT_MAX.
+  const Bounds3f widest = bounds(Sphere{{0, 0, 0}, std::numeric_limits<float>::max()});
+  EXPECT_TRUE(std::isfinite(widest.lo.y) && std::isfinite(widest.hi.y));
 }
 
 }  // namespace
