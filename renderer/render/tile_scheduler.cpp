@@ -59,7 +59,9 @@ void runTiles(const std::vector<PixelWindow>& tiles, int threads,
   arena.execute([&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1),
                       [&](const tbb::blocked_range<size_t>& r) {
-                        enableFlushToZero();  // cheap, and TBB workers are not ours to set up
+                        // Cheap, and TBB workers are not ours to set up; restored after, since
+                        // the calling thread runs ranges too.
+                        const FlushToZeroScope flushToZero;
                         for (size_t i = r.begin(); i != r.end(); ++i) renderTile(i);
                       });
   });
