@@ -11,7 +11,8 @@ ratio. The reference's own variance adds 1/64 of the render's at the largest cou
 adaptive: for each scene, uniform renders at a ladder of sample counts and adaptive renders at a
 ladder of --target-rmse, each against one reference; the time each needs to reach a given true
 RMSE (interpolated in log-log between the ladder's points) and their ratio, and the same ratio
-of mean samples per pixel ("samples saved": what the allocation buys, free of timing noise).
+of mean samples per pixel ("samples saved": what the allocation buys) and of rays traced ("rays
+saved": the work it buys), both free of timing noise.
 
 Prints markdown tables; writes images and JSON under --out.
 """
@@ -78,13 +79,13 @@ def time_to(points, target):
 
 
 def adaptive_table(args):
-    print("| scene | true RMSE | uniform s | adaptive s | speed-up | samples saved |")
-    print("|---|---:|---:|---:|---:|---:|")
+    print("| scene | true RMSE | uniform s | adaptive s | speed-up | samples saved | rays saved |")
+    print("|---|---:|---:|---:|---:|---:|---:|")
     for scene in scenes(args.scenes):
         ref = args.out / f"{scene.stem}-aref.exr"
         render(args.glint, scene, ref, args.size, 7919, args.reference_spp)
-        # (seconds, rmse) and (mean samples per pixel, rmse) of each render
-        uniform, adaptive, uniform_spp, adaptive_spp = [], [], [], []
+        # (seconds, rmse), (mean samples per pixel, rmse) and (rays traced, rmse) of each render
+        uniform, adaptive, uniform_spp, adaptive_spp, uniform_rays, adaptive_rays = ([] for _ in range(6))
         for spp in args.ladder:
             for _ in range(args.runs):
                 img = args.out / f"{scene.stem}-u{spp}.exr"
@@ -92,6 +93,7 @@ def adaptive_table(args):
                 e = compare(args.glint, img, ref)["rmse"]
                 uniform.append((st["seconds"], e))
                 uniform_spp.append((spp, e))
+                uniform_rays.append((st["rays_total"], e))
         # The target is met with slack (ErrorTarget::ratio: the frame's error reaches the mean
         # of the pixels' deviations over their root mean square times it): targets from 4x the
         # largest uniform error down past an eighth of the smallest, in steps of sqrt(2), so the
@@ -104,12 +106,15 @@ def adaptive_table(args):
             e = compare(args.glint, img, ref)["rmse"]
             adaptive.append((st["seconds"], e))
             adaptive_spp.append((st["passes"][-1]["mean_spp"], e))
+            adaptive_rays.append((st["rays_total"], e))
             target /= math.sqrt(2)
         for spp in args.ladder[1:-1]:
             goal = next(e for (t, e), s in zip(uniform[:: args.runs], args.ladder) if s == spp)
             tu, ta = time_to(uniform, goal), time_to(adaptive, goal)
             nu, na = time_to(uniform_spp, goal), time_to(adaptive_spp, goal)
+            ru, ra = time_to(uniform_rays, goal), time_to(adaptive_rays, goal)
             saved = f"{nu / na:.2f}" if nu and na else "not reached"
+            saved += f" | {ru / ra:.2f}" if ru and ra else " | not reached"
             if tu and ta:
                 print(f"| {scene.stem} | {goal:.3g} | {tu:.3f} | {ta:.3f} | {tu / ta:.2f} | {saved} |",
                       flush=True)

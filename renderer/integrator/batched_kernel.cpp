@@ -45,6 +45,8 @@ void BatchedKernel::traceCameraHits(const Ray* rays, const Hit* hits, const Samp
     const int n = std::min(kChunk, count - begin);
     for (int i = 0; i < n; ++i) scratch.roots[i].key = &keys[begin + i];  // the rest never changes
     scratch.lightPointsDrawn = false;
+    scratch.rootKeys = keys + begin;
+    std::fill_n(scratch.raysOf, n, uint64_t{0});
     shadeChunk(rays + begin, hits + begin, scratch.roots, n, scratch.cameraRadiance,
                aovs ? aovs + begin : nullptr, keys + begin, counters, scratch);
     for (int i = 0; i < n; ++i) {
@@ -52,6 +54,7 @@ void BatchedKernel::traceCameraHits(const Ray* rays, const Hit* hits, const Samp
       r.L = scratch.cameraRadiance[i];
       r.alpha = hits[begin + i] ? 1.0f : 0.0f;
       r.valid = true;
+      r.rays = 1 + scratch.raysOf[i];
     }
   }
 }
@@ -111,7 +114,8 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
       if (aov) recordAov(ray, hit, m, sp, at, *aov);
       local = ambientAndEmission(m.surface, at, sp, scene_.render.ambient, scene_.worldOrigin);
       if (aov) aov->direct = local;
-      spawnCoherent(hit, m, sp, at, ray, -wo, branch, distance, gen, counters);
+      spawnCoherent(hit, m, sp, at, ray, -wo, branch, distance, gen, counters,
+                    scratch.raysOfRoot(branch));
       sum.childEnd = gen.children;
       continue;
     }
@@ -131,7 +135,7 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
     if (aov) recordAov(ray, hit, m, pt.sp, pt.at, *aov);
     local = ambientAndEmission(m.surface, pt.at, pt.sp, scene_.render.ambient, scene_.worldOrigin);
     if (alone) {
-      lightAlone(pt, local, counters, aov ? aov->perLight : nullptr);
+      scratch.raysOfRoot(branch) += lightAlone(pt, local, counters, aov ? aov->perLight : nullptr);
       if (aov) aov->direct = local;
     } else {
       if (areaLights_ && cameraKeys && !scratch.lightPointsDrawn) {
@@ -141,7 +145,8 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
       p.ray = i;
       ++scratch.pendingCount;
     }
-    spawnCoherent(hit, m, pt.sp, pt.at, ray, -wo, branch, distance, gen, counters);
+    spawnCoherent(hit, m, pt.sp, pt.at, ray, -wo, branch, distance, gen, counters,
+                  scratch.raysOfRoot(branch));
     sum.childEnd = gen.children;
   }
   lightPendingPoints(scratch, gen.sums, aovs, cameraKeys != nullptr, counters);
@@ -175,7 +180,7 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
 void BatchedKernel::spawnCoherent(const Hit& hit, const Material& m, const ShadingPoint& sp,
                                   const SurfacePoint& at, const Ray& ray, const Vec3f& d,
                                   const Branch& branch, float distance, Generation& gen,
-                                  RayCounters& counters) const {
+                                  RayCounters& counters, uint64_t& sampleRays) const {
   if (!m.refracts() && !m.surface.reflectsCoherently()) return;
   const bool traced = branch.depth + 1 <= scene_.render.maxDepth;
   // Spawns each ray that its throughput keeps; `across`: the interior list beyond the surface.
@@ -183,7 +188,10 @@ void BatchedKernel::spawnCoherent(const Hit& hit, const Material& m, const Shadi
     return [&](const Vec3f& direction, const Rgb& weight, bool crosses) {
       const Rgb throughput = branch.throughput * weight;
       if (throughput.maxChannel() < minThroughput_) return;
-      if (traced) ++(crosses ? counters.refraction : counters.reflection);
+      if (traced) {
+        ++(crosses ? counters.refraction : counters.reflection);
+        ++sampleRays;
+      }
       spawnRayInto(gen.add(branch, weight, throughput, crosses ? across : branch.media, distance),
                    sp, false, direction, ray.time);
     };
@@ -236,11 +244,14 @@ void BatchedKernel::lightPendingPoints(Scratch& scratch, Generation::Sum* sums,
     const auto& p = scratch.pending[k];
     AovSample* aov = aovs ? aovs[p.ray] : nullptr;
     Rgb L = sums[p.ray].local;
+    uint64_t rays = 0;
     for (size_t li = 0; li < lights; ++li) {
       const size_t slot = li * kChunk + static_cast<size_t>(k);
       const int begin = k > 0 ? rayEnd[slot - 1] : li > 0 ? rayEnd[slot - kChunk + pending - 1] : 0;
       addContribution(sumVisible(queue, begin, rayEnd[slot]), li, L, aov ? aov->perLight : nullptr);
+      rays += tracedIn(queue, begin, rayEnd[slot]);
     }
+    scratch.raysOfRoot(*p.pt.branch) += rays;
     if (aov) aov->direct = L;
     sums[p.ray].local = L;
   }
@@ -317,9 +328,13 @@ void BatchedKernel::traceShadows(Queue& queue, RayCounters& counters) const {
   const auto n = static_cast<size_t>(queue.size);
   // Shadows are see-through only where there are dielectrics to see through.
   if (transparentShadows()) {
-    for (size_t i = 0; i < n; ++i)
+    for (size_t i = 0; i < n; ++i) {
+      const uint64_t before = counters.shadow;
       queue.visible[i] = transparentShadow(scene_, accel_, queue.rays[i], queue.atInfinity[i],
                                            *queue.media[i], minThroughput_, counters);
+      queue.traced[i] =
+          static_cast<uint32_t>(counters.shadow - before);  // at most kMaxShadowInterfaces + 1
+    }
     return;
   }
   counters.shadow += n;
@@ -333,9 +348,10 @@ void BatchedKernel::traceShadows(Queue& queue, RayCounters& counters) const {
   accel_.occludedCoherent(queue.rays.data(), queue.blocked, n);
 }
 
-void BatchedKernel::lightAlone(const LitPoint& pt, Rgb& L, RayCounters& counters,
-                               Rgb* perLight) const {
+uint64_t BatchedKernel::lightAlone(const LitPoint& pt, Rgb& L, RayCounters& counters,
+                                   Rgb* perLight) const {
   ShadowQueue<8> queue;
+  uint64_t rays = 0;
   for (size_t li = 0; li < scene_.lights.size(); ++li) {
     const int count = lights_[li].samples;
     const SamplePattern pattern = lightPattern(pt, li);
@@ -348,9 +364,11 @@ void BatchedKernel::lightAlone(const LitPoint& pt, Rgb& L, RayCounters& counters
         queueLight(pt, li, pattern, first, std::min(queue.kCapacity, count - first), count, queue);
       traceShadows(queue, counters);
       sum = sumVisible(queue, 0, queue.size, sum);
+      rays += tracedIn(queue, 0, queue.size);
     }
     addContribution(sum, li, L, perLight);
   }
+  return rays;
 }
 
 }  // namespace glint

@@ -109,10 +109,11 @@ class BatchedKernel {
   Generation& generation(Scratch& scratch, int depth) const;
   // Spawns into `gen` the rays the material at a hit sends on (materials' forEachCoherentRay),
   // each that its throughput keeps, for `ray` arriving along unit d: the interior list goes
-  // with a refracted ray across the surface.
+  // with a refracted ray across the surface. Counts the traced ones in `sampleRays`.
   void spawnCoherent(const Hit& hit, const Material& m, const ShadingPoint& sp,
                      const SurfacePoint& at, const Ray& ray, const Vec3f& d, const Branch& branch,
-                     float distance, Generation& gen, RayCounters& counters) const;
+                     float distance, Generation& gen, RayCounters& counters,
+                     uint64_t& sampleRays) const;
   // How far a ray's pixel cone has come at its hit (image textures only; else 0).
   float distanceAt(const Ray& ray, const Hit& hit, const Branch& branch) const {
     return scene_.features.surfaceCoordinates ? branch.distance + hit.t * length(ray.d) : 0;
@@ -142,7 +143,18 @@ class BatchedKernel {
     // ones (transparentShadows()) the fraction of the light arriving.
     bool blocked[Capacity];
     UninitializedArray<Rgb, Capacity> visible;
+    // With transparent shadows, the rays each one took (one per stretch between interfaces);
+    // an opaque shadow is one ray.
+    UninitializedArray<uint32_t, Capacity> traced;
   };
+  // The rays queued samples [begin, end) traced (Radiance::rays).
+  template <class Queue>
+  uint64_t tracedIn(const Queue& queue, int begin, int end) const {
+    if (!transparentShadows()) return static_cast<uint64_t>(end - begin);
+    uint64_t n = 0;
+    for (int q = begin; q < end; ++q) n += queue.traced[q];
+    return n;
+  }
   bool transparentShadows() const { return scene_.render.transparentShadows; }
   // Queues the shadow ray of one sample of `light` at the point, u its point on the light
   // (ignored by a delta light), unless the light is behind the surface or black: the shadow
@@ -208,8 +220,8 @@ class BatchedKernel {
   SamplePattern lightPattern(const LitPoint& pt, size_t li) const;
   // Direct light at a point whose shadow rays outnumber the shared queue: its lights traced on
   // their own, a few samples at a time, added to L. `perLight`, when given, receives each
-  // light's contribution (AOVs of the camera hit).
-  void lightAlone(const LitPoint& pt, Rgb& L, RayCounters& counters, Rgb* perLight) const;
+  // light's contribution (AOVs of the camera hit). Returns the shadow rays it traced.
+  uint64_t lightAlone(const LitPoint& pt, Rgb& L, RayCounters& counters, Rgb* perLight) const;
   void recordAov(const Ray& ray, const Hit& hit, const Material& m, const ShadingPoint& sp,
                  const SurfacePoint& at, AovSample& aov) const;
 
@@ -239,6 +251,11 @@ class BatchedKernel {
     bool lightPointsDrawn = false;
     Branch roots[kChunk];
     Rgb cameraRadiance[kChunk];
+    // The rays each camera sample of the chunk being shaded has traced beyond its camera ray
+    // (Radiance::rays), by the index of its branches' key in rootKeys.
+    uint64_t raysOf[kChunk];
+    const SampleKey* rootKeys = nullptr;
+    uint64_t& raysOfRoot(const Branch& b) { return raysOf[b.key - rootKeys]; }
     // generations[d]: the rays of depth d + 1, spawned by a chunk of depth d.
     std::vector<std::unique_ptr<Generation>> generations;
   };

@@ -1,6 +1,8 @@
 #pragma once
 // What both integrators (reference.h, batched_kernel.h) return for a camera sample, and the one
 // rule they share for where a branch of the ray tree stops.
+#include <cstdint>
+
 #include "core/rgb.h"
 
 namespace glint {
@@ -14,6 +16,9 @@ struct Radiance {
   Rgb L;
   float alpha = 0;    // 1 when the camera ray hit geometry
   bool valid = true;  // false for a non-finite sample, which the film counts as black
+  // The rays the sample traced, its camera ray included: what it cost, which adaptive sampling
+  // weighs against its noise (render/pixel_estimate.h). Both integrators count the same rays.
+  uint64_t rays = 0;
 };
 
 }  // namespace glint

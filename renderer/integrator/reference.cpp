@@ -6,6 +6,7 @@ namespace glint {
 
 Radiance ReferenceIntegrator::radiance(const Ray& cameraRay, const SampleKey& key,
                                        RayCounters& counters) const {
+  const uint64_t before = counters.total();
   ++counters.camera;
   Branch root;
   root.key = &key;
@@ -13,6 +14,7 @@ Radiance ReferenceIntegrator::radiance(const Ray& cameraRay, const SampleKey& ke
   Radiance out;
   out.L = trace(cameraRay, hit, root, counters);
   out.alpha = hit ? 1.0f : 0.0f;
+  out.rays = counters.total() - before;
   return out;
 }
 

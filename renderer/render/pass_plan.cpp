@@ -67,8 +67,8 @@ int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int wid
         against(x + 1, y);
         against(x, y - 1);
         against(x, y + 1);
-        edgeRatio[p] =
-            target.ratio(PixelError::edgeFloor(pixels[p], contrast), pixels[p].samples(), spread);
+        edgeRatio[p] = target.ratio(PixelError::edgeFloor(pixels[p], contrast), pixels[p].samples(),
+                                    pixels[p].raysPerSample(), spread);
       }
   }
   int64_t count = 0;

@@ -18,6 +18,12 @@ void PixelEstimate::mean(double out[4]) const {
   out[3] = (half[0].alpha + half[1].alpha) / n;
 }
 
+double PixelEstimate::raysPerSample() const {
+  const int64_t n = samples();
+  if (n == 0) return 1;
+  return std::max(1.0, double(half[0].rays + half[1].rays) / double(n));
+}
+
 bool PixelEstimate::varianceOfMean(double out[3]) const {
   const double n0 = half[0].count, n1 = half[1].count, n = n0 + n1;
   if (n0 == 0 || n1 == 0) return false;
@@ -61,9 +67,9 @@ FrameSpread FrameSpread::of(const std::vector<PixelEstimate>& probes) {
   for (const PixelEstimate& p : probes) {
     PixelError e;
     if (!PixelError::of(p, e)) continue;
-    const double n = static_cast<double>(p.samples());
-    squared += n * e.mse;
-    relative += n * e.relmse;
+    const double n = static_cast<double>(p.samples()), cost = p.raysPerSample();
+    squared += n * e.mse * cost;
+    relative += n * e.relmse * cost;
     ++count;
   }
   if (count == 0) return {};
@@ -73,17 +79,18 @@ FrameSpread FrameSpread::of(const std::vector<PixelEstimate>& probes) {
 double ErrorTarget::ratio(const PixelEstimate& pixel, const FrameSpread& spread) const {
   PixelError e;
   if (!PixelError::of(pixel, e)) return std::numeric_limits<double>::infinity();
-  return ratio(e, pixel.samples(), spread);
+  return ratio(e, pixel.samples(), pixel.raysPerSample(), spread);
 }
 
-double ErrorTarget::ratio(const PixelError& e, int64_t samples, const FrameSpread& spread) const {
+double ErrorTarget::ratio(const PixelError& e, int64_t samples, double raysPerSample,
+                          const FrameSpread& spread) const {
   if (samples <= 0) return std::numeric_limits<double>::infinity();
-  const double n = static_cast<double>(samples);
-  // sqrt(squared error / n) is the pixel's per-sample deviation over its n samples.
+  // sqrt(squared error / (n·c)) is the pixel's per-sample deviation over n·√c.
+  const double nc = static_cast<double>(samples) * raysPerSample;
   double worst = 0;
-  if (rmse > 0) worst = std::sqrt(e.mse / n) * spread.deviation / (rmse * rmse);
+  if (rmse > 0) worst = std::sqrt(e.mse / nc) * spread.deviation / (rmse * rmse);
   if (relmse > 0)
-    worst = std::max(worst, std::sqrt(e.relmse / n) * spread.relativeDeviation / relmse);
+    worst = std::max(worst, std::sqrt(e.relmse / nc) * spread.relativeDeviation / relmse);
   return worst;
 }
 

@@ -1,10 +1,10 @@
 #pragma once
 // What a render keeps of each pixel between passes: for each of its two independently sampled
-// halves (core/sampler.h), the running mean of its samples and their summed coverage. From them
-// come the pixel's mean and an unbiased estimate of that mean's variance that stays valid under
-// stratification: the halves' difference (docs/validation.md, Error estimate). Samples are
-// added in index order within a half, so the state is the same bits whatever the passes,
-// threads or tiles that added them.
+// halves (core/sampler.h), the running mean of its samples, their summed coverage and the rays
+// they traced. From them come the pixel's mean, an unbiased estimate of that mean's variance
+// that stays valid under stratification (the halves' difference, docs/validation.md, Error
+// estimate) and what a sample of the pixel costs. Samples are added in index order within a
+// half, so the state is the same bits whatever the passes, threads or tiles that added them.
 #include <cstdint>
 #include <vector>
 
@@ -15,10 +15,12 @@ namespace glint {
 struct HalfEstimate {
   double mean[3] = {0, 0, 0};  // a running mean (not a sum: no loss of small late samples)
   double alpha = 0;            // summed coverage
+  uint64_t rays = 0;           // summed Radiance::rays
   int32_t count = 0;
 
-  void add(const Rgb& L, double coverage) {
+  void add(const Rgb& L, double coverage, uint64_t traced) {
     ++count;
+    rays += traced;
     const double inv = 1.0 / count;
     mean[0] += (double(L.r) - mean[0]) * inv;
     mean[1] += (double(L.g) - mean[1]) * inv;
@@ -31,6 +33,9 @@ struct PixelEstimate {
   HalfEstimate half[2];
 
   int64_t samples() const { return int64_t{half[0].count} + half[1].count; }
+  // What a sample costs: the rays it traced on average, at least its camera ray (1 with no
+  // samples).
+  double raysPerSample() const;
 
   // The pixel's RGBA: the mean of all its samples.
   void mean(double out[4]) const;
@@ -64,8 +69,9 @@ struct PixelError {
 };
 
 // How much one sample of the frame spreads, pixel to pixel: the root mean square over a set of
-// pixels (the probes of PassPlan) of each pixel's per-sample deviation, samples · MSE (and the
-// same of relMSE). It turns a target for the frame into each pixel's share (ErrorTarget::ratio).
+// pixels (the probes of PassPlan) of each pixel's per-sample deviation σ = √(samples · MSE) (and
+// the same of relMSE) times the square root of its cost c (rays a sample). It turns a target for
+// the frame into each pixel's share (ErrorTarget::ratio).
 struct FrameSpread {
   double deviation = 0, relativeDeviation = 0;
   static FrameSpread of(const std::vector<PixelEstimate>& probes);
@@ -77,12 +83,18 @@ struct ErrorTarget {
   bool any() const { return rmse > 0 || relmse > 0; }
   // How far a pixel is from its share of the target, at most 1 where it meets it; the larger of
   // the two targets given; infinity where the pixel has no estimate. The frame's squared error
-  // falls fastest per sample when each pixel's samples grow with its per-sample deviation σ
-  // (Neyman's allocation), that is when a pixel of n samples stops at σ / n ≤ E² / s, s being
-  // the frame's spread: then its squared error is E²·σ/s, and the frame's mean of them is at
-  // most E² (the mean of σ is at most their root mean square s). The ratio is (σ / n)·s / E².
+  // falls fastest per ray traced when each pixel's samples grow with its per-sample deviation σ
+  // over the square root of its cost c (Neyman's allocation with costs: minimising Σ c·n under
+  // Σ σ²/n fixed gives n ∝ σ/√c), that is when a pixel of n samples stops at
+  // σ / (n·√c) ≤ E² / s, s being the frame's spread: then its squared error is E²·σ√c/s, and the
+  // frame's mean of them is at most E² (the mean of σ√c is at most their root mean square s).
+  // The ratio is σ / (n·√c) · s / E². Without the cost, the pixels that stop first are the cheap
+  // ones and a sample of those left costs more: on brushed_metal 1.86x fewer samples than
+  // uniform sampling were only 1.17x fewer rays (docs/performance.md, Adaptive sampling).
   double ratio(const PixelEstimate& pixel, const FrameSpread& spread) const;
-  // The same for an error of a pixel of `samples` samples (infinity for none).
-  double ratio(const PixelError& error, int64_t samples, const FrameSpread& spread) const;
+  // The same for an error of a pixel of `samples` samples of `raysPerSample` rays each
+  // (infinity for none).
+  double ratio(const PixelError& error, int64_t samples, double raysPerSample,
+               const FrameSpread& spread) const;
 };
 }  // namespace glint

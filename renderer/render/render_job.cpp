@@ -183,7 +183,7 @@ bool renderTilePass(const FrameContext& f, const PassContext& pass, Shading& sha
                        std::to_string(key.py) + ") sample " + std::to_string(key.index) +
                        " of half " + std::to_string(key.half));
       }
-      pixel.half[key.half].add(r.L, r.alpha);
+      pixel.half[key.half].add(r.L, r.alpha, r.rays);
       if (lastOfPixel[i]) {
         f.estimate(key.px, key.py) = pixel;
         if (aovs) pixelAovs.commit(f.aovSums, f.aovTables, key.px, key.py);

@@ -18,9 +18,18 @@ namespace glint {
 
 namespace {
 
-constexpr int kDoublesPerHalf = 4;                         // mean ×3, alpha
-constexpr int kChannelsPerHalf = 2 * kDoublesPerHalf + 1;  // + the count
+constexpr int kDoublesPerHalf = 4;                  // mean ×3, alpha
+constexpr int kCountChannel = 2 * kDoublesPerHalf;  // after their words
+constexpr int kRaysChannel = kCountChannel + 1;     // 64 bits in two words
+constexpr int kChannelsPerHalf = kRaysChannel + 2;
 constexpr int kChannels = 2 * kChannelsPerHalf;
+
+void splitWords(uint64_t bits, double* out) {
+  out[0] = double(bits >> 32);
+  out[1] = double(bits & 0xffffffffu);
+}
+
+uint64_t joinWords(const uint32_t* in) { return uint64_t{in[0]} << 32 | in[1]; }
 
 std::string channelName(int i) {
   char name[32];
@@ -44,12 +53,10 @@ void addResumeState(Film& film, const std::vector<PixelEstimate>& estimates) {
       double v[kChannels];
       for (int h = 0; h < 2; ++h) {
         double* out = v + h * kChannelsPerHalf;
-        for (int k = 0; k < kDoublesPerHalf; ++k) {
-          const auto bits = std::bit_cast<uint64_t>(*doublesOf(e.half[h], k));
-          out[2 * k] = double(bits >> 32);
-          out[2 * k + 1] = double(bits & 0xffffffffu);
-        }
-        out[2 * kDoublesPerHalf] = double(e.half[h].count);
+        for (int k = 0; k < kDoublesPerHalf; ++k)
+          splitWords(std::bit_cast<uint64_t>(*doublesOf(e.half[h], k)), out + 2 * k);
+        out[kCountChannel] = double(e.half[h].count);
+        splitWords(e.half[h].rays, out + kRaysChannel);
       }
       film.setPlanePixel(plane, x, y, v);
     }
@@ -75,7 +82,8 @@ std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelW
     if (!c || c->type != Imf::UINT)
       throw UsageError(path + " holds no resume state (" + channelName(i) +
                        "): only a frame Glint wrote with --resumable, or a partial, preview "
-                       "or time-limited one, can be resumed");
+                       "or time-limited one, can be resumed" +
+                       (i > 0 ? " (a Glint before the rays channels wrote fewer)" : ""));
     slices.push_back({channelName(i), Imf::UINT, sizeof(uint32_t) * size_t(i)});
   }
   const size_t pixelBytes = sizeof(uint32_t) * kChannels;
@@ -89,17 +97,20 @@ std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelW
       HalfEstimate& half = out[p].half[h];
       const uint32_t* hw = in + h * kChannelsPerHalf;
       for (int k = 0; k < kDoublesPerHalf; ++k)
-        *doublesOf(half, k) = std::bit_cast<double>(uint64_t{hw[2 * k]} << 32 | hw[2 * k + 1]);
-      const uint32_t count = hw[2 * kDoublesPerHalf];
-      bool valid = count <= uint64_t(maxSamples) && half.alpha >= 0 && half.alpha <= count;
+        *doublesOf(half, k) = std::bit_cast<double>(joinWords(hw + 2 * k));
+      const uint32_t count = hw[kCountChannel];
+      half.rays = joinWords(hw + kRaysChannel);
+      // Every sample traces its camera ray.
+      bool valid = count <= uint64_t(maxSamples) && half.alpha >= 0 && half.alpha <= count &&
+                   half.rays >= count && (count > 0 || half.rays == 0);
       for (int k = 0; k < kDoublesPerHalf; ++k) valid = valid && std::isfinite(*doublesOf(half, k));
       if (!valid)
         throw UsageError(
             path + ": the resume state of pixel (" +
             std::to_string(window.x0 + int(p % size_t(window.width()))) + ", " +
             std::to_string(window.y0 + int(p / size_t(window.width()))) +
-            ") is not one a render leaves (a non-finite value, a negative coverage, or " +
-            "more samples than the --spp asked)");
+            ") is not one a render leaves (a non-finite value, a negative coverage, fewer " +
+            "rays than samples, or more samples than the --spp asked)");
       half.count = static_cast<int32_t>(count);
     }
     if (out[p].samples() > maxSamples)

@@ -5,6 +5,8 @@
 #include <OpenImageIO/imageio.h>
 
 #include <nlohmann/json.hpp>
+#include <utility>
+#include <vector>
 
 #include "film/exr_output.h"
 #include "test_util.h"
@@ -73,11 +75,10 @@ TEST(PassesCli, ResumeGivesTheStraightRendersPixelsAndRefusesAnotherFrame) {
   EXPECT_EQ(r.exitCode, 2) << r.output;
 }
 
-TEST(PassesCli, AResumeStateThatNoRenderLeavesIsRefused) {
-  // A resumable frame whose first pixel's half-0 mean R is rewritten to NaN's bits, all else
-  // (the resume hash included) kept: the state is refused, naming the file and the pixel.
-  const std::string good = tmp("state-good.exr"), bad = tmp("state-bad.exr");
-  ASSERT_EQ(test::runGlint("render " + soft("--resumable --spp 4 -o " + good)).exitCode, 0);
+// Writes `bad`: the frame `good` with the words of pixel 0's resume channels named in `words`
+// replaced, all else (the resume hash included) kept.
+void rewriteResumeWords(const std::string& good, const std::string& bad,
+                        const std::vector<std::pair<std::string, uint32_t>>& words) {
   auto in = OIIO::ImageInput::open(good);
   ASSERT_TRUE(in);
   OIIO::ImageSpec spec = in->spec();
@@ -86,16 +87,17 @@ TEST(PassesCli, AResumeStateThatNoRenderLeavesIsRefused) {
   in->close();
   // Every channel as float keeps the beauty; the UINT state channels are rewritten as UINT.
   std::vector<OIIO::TypeDesc> formats(size_t(spec.nchannels), OIIO::TypeDesc::FLOAT);
-  const int hi = spec.channelindex("glint_resume.00"), lo = spec.channelindex("glint_resume.01");
-  ASSERT_GE(hi, 0);
   auto raw = OIIO::ImageInput::open(good);
-  std::vector<uint32_t> words(pixels.size());
-  ASSERT_TRUE(raw->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT, words.data()));
+  std::vector<uint32_t> state(pixels.size());
+  ASSERT_TRUE(raw->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT, state.data()));
   for (int c = 0; c < spec.nchannels; ++c)
     if (spec.channelformat(c) == OIIO::TypeDesc::UINT) formats[size_t(c)] = OIIO::TypeDesc::UINT;
   spec.channelformats = formats;
-  words[size_t(hi)] = 0x7ff80000u;  // pixel 0: NaN
-  words[size_t(lo)] = 0;
+  for (const auto& [name, word] : words) {
+    const int c = spec.channelindex(name);
+    ASSERT_GE(c, 0) << name;
+    state[size_t(c)] = word;
+  }
   auto outFile = OIIO::ImageOutput::create(bad);
   ASSERT_TRUE(outFile && outFile->open(bad, spec));
   // Per channel, from the buffer its type was read into.
@@ -104,16 +106,32 @@ TEST(PassesCli, AResumeStateThatNoRenderLeavesIsRefused) {
     for (int c = 0; c < spec.nchannels; ++c) {
       const size_t i = p * size_t(spec.nchannels) + size_t(c);
       const auto* bytes = formats[size_t(c)] == OIIO::TypeDesc::UINT
-                              ? reinterpret_cast<const unsigned char*>(&words[i])
+                              ? reinterpret_cast<const unsigned char*>(&state[i])
                               : reinterpret_cast<const unsigned char*>(&pixels[i]);
       mixed.insert(mixed.end(), bytes, bytes + 4);
     }
   ASSERT_TRUE(outFile->write_image(OIIO::TypeDesc::UNKNOWN, mixed.data()));
   outFile->close();
-  const auto r =
-      test::runGlint("render " + soft("--spp 8 --resume " + bad + " -o " + tmp("z.exr")));
-  EXPECT_EQ(r.exitCode, 2) << r.output;
-  EXPECT_NE(r.output.find("pixel (0, 0)"), std::string::npos) << r.output;
+}
+
+TEST(PassesCli, AResumeStateThatNoRenderLeavesIsRefused) {
+  // A resumable frame whose first pixel's state is rewritten to what no render leaves: the
+  // state is refused, naming the file and the pixel.
+  const std::string good = tmp("state-good.exr");
+  ASSERT_EQ(test::runGlint("render " + soft("--resumable --spp 4 -o " + good)).exitCode, 0);
+  // Half 0's mean R as NaN's bits (channels 00, 01: its high and low words); half 0's rays as
+  // none (channels 09, 10), though its 2 samples traced at least their camera rays.
+  const std::vector<std::vector<std::pair<std::string, uint32_t>>> lies = {
+      {{"glint_resume.00", 0x7ff80000u}, {"glint_resume.01", 0}},
+      {{"glint_resume.09", 0}, {"glint_resume.10", 0}}};
+  for (size_t i = 0; i < lies.size(); ++i) {
+    const std::string bad = tmp("state-bad-" + std::to_string(i) + ".exr");
+    rewriteResumeWords(good, bad, lies[i]);
+    const auto r =
+        test::runGlint("render " + soft("--spp 8 --resume " + bad + " -o " + tmp("z.exr")));
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("pixel (0, 0)"), std::string::npos) << r.output;
+  }
 }
 
 TEST(PassesCli, PreviewsAreWrittenAndTheFinalFrameIsComplete) {

@@ -21,12 +21,18 @@ struct Traced {
             uint64_t seed = 0) const {
     const Sampler sampler(SamplerKind::Stratified, 1, seed);
     const SampleKey key(&sampler, px, 0, 0);
-    RayCounters counters;
-    const Rgb production = BatchedKernel(scene, *accel, minThroughput).trace(ray, key, counters).L;
-    const Rgb reference =
-        ReferenceIntegrator(scene, *accel, minThroughput).radiance(ray, key, counters).L;
-    EXPECT_EQ(production, reference) << "the production kernel and its oracle disagree";
-    return production;
+    RayCounters productionCounters, referenceCounters;
+    const Radiance production =
+        BatchedKernel(scene, *accel, minThroughput).trace(ray, key, productionCounters);
+    const Radiance reference =
+        ReferenceIntegrator(scene, *accel, minThroughput).radiance(ray, key, referenceCounters);
+    EXPECT_EQ(production.L, reference.L) << "the production kernel and its oracle disagree";
+    // They trace the same rays, and each says so for the sample (Radiance::rays, the cost
+    // adaptive sampling weighs).
+    EXPECT_EQ(production.rays, reference.rays);
+    EXPECT_EQ(production.rays, productionCounters.total());
+    EXPECT_EQ(reference.rays, referenceCounters.total());
+    return production.L;
   }
 };
 

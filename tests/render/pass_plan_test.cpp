@@ -48,11 +48,11 @@ TEST(PassPlan, ContradictoryBoundsAreRefused) {
   EXPECT_THROW(PassPlan::make(16, SamplerKind::Stratified, one), UsageError);
 }
 
-// A pixel with half 0 = {1, 3} and half 1 = {2, 6} in every channel.
-PixelEstimate twoHalves() {
+// A pixel with half 0 = {1, 3} and half 1 = {2, 6} in every channel, each sample `rays` rays.
+PixelEstimate twoHalves(uint64_t rays = 1) {
   PixelEstimate p;
-  for (float v : {1.f, 3.f}) p.half[0].add({v, v, v}, 1);
-  for (float v : {2.f, 6.f}) p.half[1].add({v, v, v}, 1);
+  for (float v : {1.f, 3.f}) p.half[0].add({v, v, v}, 1, rays);
+  for (float v : {2.f, 6.f}) p.half[1].add({v, v, v}, 1, rays);
   return p;
 }
 
@@ -67,15 +67,15 @@ TEST(PixelEstimate, MeanAndVarianceOfTheMeanFromTheHalves) {
   EXPECT_DOUBLE_EQ(v[0], 1.0);
   // Unequal halves, 3 and 1 samples: means 2 and 6, weight 3·1/16: (3/16)·16 = 3.
   PixelEstimate q;
-  for (float x : {1.f, 2.f, 3.f}) q.half[0].add({x, x, x}, 1);
-  q.half[1].add({6, 6, 6}, 1);
+  for (float x : {1.f, 2.f, 3.f}) q.half[0].add({x, x, x}, 1, 1);
+  q.half[1].add({6, 6, 6}, 1, 1);
   ASSERT_TRUE(q.varianceOfMean(v));
   EXPECT_DOUBLE_EQ(v[2], 3.0);
 }
 
 TEST(PixelEstimate, OneSampleHasNoEstimate) {
   PixelEstimate p;
-  p.half[0].add({1, 1, 1}, 1);
+  p.half[0].add({1, 1, 1}, 1, 1);
   double v[3];
   EXPECT_FALSE(p.varianceOfMean(v));
   // A pixel without an estimate never meets a target (it keeps taking samples).
@@ -88,8 +88,8 @@ TEST(FrameSpread, RootMeanSquareOfThePixelsPerSampleDeviations) {
   // twoHalves(): 4 samples, MSE 1, so samples · MSE = 4; a flat pixel: 0; a one-sample pixel
   // has no estimate and is left out. sqrt((4 + 0) / 2) = √2.
   PixelEstimate flat, single;
-  for (int h = 0; h < 2; ++h) flat.half[h].add({2, 2, 2}, 1);
-  single.half[0].add({5, 5, 5}, 1);
+  for (int h = 0; h < 2; ++h) flat.half[h].add({2, 2, 2}, 1, 1);
+  single.half[0].add({5, 5, 5}, 1, 1);
   const FrameSpread s = FrameSpread::of({twoHalves(), flat, single});
   EXPECT_DOUBLE_EQ(s.deviation, std::sqrt(2.0));
   // Relative: twoHalves() has relMSE 1 / (9 + 0.01), so 4 / 9.01 over the two pixels.
@@ -120,6 +120,29 @@ TEST(ErrorTarget, RatioOfThePixelsErrorToItsShareOfTheTarget) {
   EXPECT_DOUBLE_EQ(rel.ratio(p, same), 4.0);
 }
 
+TEST(PixelEstimate, RaysPerSampleIsWhatASampleCostOnAverage) {
+  PixelEstimate p;
+  p.half[0].add({1, 1, 1}, 1, 1);  // a camera ray that missed
+  p.half[0].add({1, 1, 1}, 1, 7);  // one that hit, lit by 4 shadow rays, reflected twice
+  p.half[1].add({1, 1, 1}, 1, 4);
+  EXPECT_DOUBLE_EQ(p.raysPerSample(), 4.0);                // 12 rays over 3 samples
+  EXPECT_DOUBLE_EQ(PixelEstimate{}.raysPerSample(), 1.0);  // no samples: the camera ray's
+}
+
+TEST(ErrorTarget, ACostlyPixelsShareWeighsItsNoiseAgainstItsCost) {
+  // Neyman's allocation with costs: n ∝ σ/√c. twoHalves() at 4 rays a sample is as noisy as at
+  // one ray (σ / n = 0.5) but stops at half the samples for the same noise: ratio
+  // 0.5 / √4 · s / E² = 2 where one ray a sample gives 4 (in a frame of spread 2).
+  ErrorTarget t;
+  t.rmse = 0.5;
+  EXPECT_DOUBLE_EQ(t.ratio(twoHalves(4), FrameSpread{2, 0}), 2.0);
+  // The spread weighs each probe by its cost the same way: √(4 · 1 · 4) over one pixel = 4.
+  EXPECT_DOUBLE_EQ(FrameSpread::of({twoHalves(4)}).deviation, 4.0);
+  // So in a frame of pixels like it (spread 4), its share is the target itself, as at one ray:
+  // 0.5 / 2 · 4 / 0.25.
+  EXPECT_DOUBLE_EQ(t.ratio(twoHalves(4), FrameSpread::of({twoHalves(4)})), 4.0);
+}
+
 TEST(PassPlan, AdaptiveChoiceTakesTheWorstOfEachPixelsNeighbourhood) {
   SamplingRequest r;
   r.target.rmse = 1.5;  // ratio of twoHalves() in a frame of its like: 1 / 2.25 = 0.44
@@ -130,13 +153,13 @@ TEST(PassPlan, AdaptiveChoiceTakesTheWorstOfEachPixelsNeighbourhood) {
   // with 2 samples (below --min-spp).
   std::vector<PixelEstimate> grid(12, twoHalves());
   PixelEstimate noisy;
-  for (float v : {0.f, 0.f}) noisy.half[0].add({v, v, v}, 1);
+  for (float v : {0.f, 0.f}) noisy.half[0].add({v, v, v}, 1, 1);
   // Variance of the mean (4/16)·20² = 100, σ / n = √(100 / 4) = 5: ratio 5 · 2 / 2.25 = 4.4.
-  for (float v : {20.f, 20.f}) noisy.half[1].add({v, v, v}, 1);
+  for (float v : {20.f, 20.f}) noisy.half[1].add({v, v, v}, 1, 1);
   grid[5] = noisy;
   PixelEstimate young;
-  young.half[0].add({1, 1, 1}, 1);
-  young.half[1].add({1, 1, 1}, 1);
+  young.half[0].add({1, 1, 1}, 1, 1);
+  young.half[1].add({1, 1, 1}, 1, 1);
   grid[11] = young;
   std::vector<uint8_t> sampled;
   const FrameSpread spread{2, 0};  // as if the frame were all like twoHalves()
@@ -156,7 +179,7 @@ TEST(PassPlan, AdaptiveChoiceTakesTheWorstOfEachPixelsNeighbourhood) {
 PixelEstimate flatPixel(float value, int n) {
   PixelEstimate p;
   for (int h = 0; h < 2; ++h)
-    for (int i = 0; i < n / 2; ++i) p.half[h].add({value, value, value}, 1);
+    for (int i = 0; i < n / 2; ++i) p.half[h].add({value, value, value}, 1, 1);
   return p;
 }
 
