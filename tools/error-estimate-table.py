@@ -95,7 +95,7 @@ def adaptive_table(args):
                 uniform_spp.append((spp, e))
                 uniform_rays.append((st["rays_total"], e))
         # The target is met with slack (ErrorTarget::ratio: the frame's error reaches the mean
-        # of the pixels' deviations over their root mean square times it): targets from 4x the
+        # of the pixels' sigma*sqrt(c) over their root mean square times it): targets from 4x the
         # largest uniform error down past an eighth of the smallest, in steps of sqrt(2), so the
         # two ladders overlap.
         target = 4 * max(e for _, e in uniform)

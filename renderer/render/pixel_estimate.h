@@ -89,8 +89,8 @@ struct ErrorTarget {
   // σ / (n·√c) ≤ E² / s, s being the frame's spread: then its squared error is E²·σ√c/s, and the
   // frame's mean of them is at most E² (the mean of σ√c is at most their root mean square s).
   // The ratio is σ / (n·√c) · s / E². Without the cost, the pixels that stop first are the cheap
-  // ones and a sample of those left costs more: on brushed_metal 1.78x fewer samples than
-  // uniform sampling were only 1.15x fewer rays (docs/performance.md, Adaptive sampling).
+  // ones and a sample of those left costs more, so samples saved turned into far fewer rays
+  // saved (docs/performance.md, Adaptive sampling).
   double ratio(const PixelEstimate& pixel, const FrameSpread& spread) const;
   // The same for an error of a pixel of `samples` samples of `raysPerSample` rays each
   // (infinity for none).
