@@ -21,15 +21,29 @@ namespace glint::test {
 
 inline constexpr double kOracleMotionTolerance = 1e-5;
 
-// Renders `scene` with the reference integrator and expects the image `production` (rendered
-// with `opt`, AOVs aside) to match it. Returns the number of pixels that differed at all.
+// Renders `scene` with the reference integrator and expects the image of `production` (rendered
+// with `opt`, AOVs aside) to match it, and each pixel's rays (Radiance::rays, which adaptive
+// sampling weighs) to be the same in number: a ray that one integrator leaves out of its count,
+// a transparent shadow's or a light's seen alone for instance, shows here. Returns the number of
+// values that differed at all.
 inline int expectReferenceAgrees(const Scene& scene, const Accelerator& accel, RenderOptions opt,
-                                 const Film& production, const std::string& what) {
+                                 const RenderResult& production, const std::string& what) {
   opt.integrator = IntegratorKind::Reference;
   opt.aovs = {};
   opt.sampleHook = nullptr;
-  const Film reference = renderScene(scene, accel, opt).film;
-  const std::vector<float> a = production.toFloatRgba(), b = reference.toFloatRgba();
+  const RenderResult reference = renderScene(scene, accel, opt);
+  EXPECT_EQ(production.estimates.size(), reference.estimates.size()) << what;
+  int miscounted = 0;
+  for (size_t p = 0; p < std::min(production.estimates.size(), reference.estimates.size()); ++p)
+    for (int h = 0; h < 2; ++h) {
+      const uint64_t mine = production.estimates[p].half[h].rays;
+      const uint64_t oracle = reference.estimates[p].half[h].rays;
+      if (mine != oracle && ++miscounted <= 3)
+        ADD_FAILURE() << what << ": pixel " << p << "'s half " << h << " traced " << mine
+                      << " rays by the production kernel's count, " << oracle
+                      << " by the reference integrator's";
+    }
+  const std::vector<float> a = production.film.toFloatRgba(), b = reference.film.toFloatRgba();
   EXPECT_EQ(a.size(), b.size()) << what;
   const bool exact = !scene.features.motion || accel.name() != "embree";
   int differing = 0, reported = 0;
@@ -42,7 +56,7 @@ inline int expectReferenceAgrees(const Scene& scene, const Accelerator& accel, R
                     << ") is " << a[i] << " from the production kernel, " << b[i]
                     << " from the reference integrator";
   }
-  return differing;
+  return differing + miscounted;
 }
 
 }  // namespace glint::test

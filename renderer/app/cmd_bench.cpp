@@ -165,7 +165,7 @@ int runBench(const BenchArgs& a) {
                   hits += tbb::parallel_reduce(
                       tbb::blocked_range<size_t>(0, set.rays->size(), 4096), size_t(0),
                       [&](const tbb::blocked_range<size_t>& r, size_t n) {
-                        enableFlushToZero();
+                        const FlushToZeroScope flushToZero;
                         for (size_t i = r.begin(); i != r.end(); ++i)
                           n += set.occlusion ? acc->occluded((*set.rays)[i])
                                              : bool(acc->intersect((*set.rays)[i]));
@@ -200,7 +200,7 @@ int runBench(const BenchArgs& a) {
               arena.execute([&] {
                 tbb::parallel_for(tbb::blocked_range<size_t>(0, set->size(), 4096),
                                   [&](const tbb::blocked_range<size_t>& r) {
-                                    enableFlushToZero();
+                                    const FlushToZeroScope flushToZero;
                                     if (shadow)
                                       acc->occludedCoherent(set->data() + r.begin(),
                                                             blocked.get() + r.begin(), r.size());

@@ -65,7 +65,7 @@ double replaySeconds(const Accelerator& embree, const std::vector<RecordedRay>& 
       hits += tbb::parallel_reduce(
           tbb::blocked_range<size_t>(0, queries.size(), asTraced ? 1024 : 4096), size_t(0),
           [&](const tbb::blocked_range<size_t>& r, size_t n) {
-            enableFlushToZero();
+            const FlushToZeroScope flushToZero;
             std::vector<Ray> batch(largest);
             std::vector<Hit> found(largest);
             std::unique_ptr<bool[]> blocked(new bool[largest]);

@@ -37,7 +37,7 @@ size_t structureBytes(const Accelerator& accel) {
 // shared), or of one when a pass takes more than 10 s.
 double nanosecondsPerRay(const Accelerator& accel, const std::vector<Ray>& rays) {
   if (rays.empty()) return 0;
-  enableFlushToZero();
+  const FlushToZeroScope flushToZero;
   double best = kInfinity;
   for (int pass = 0; pass < 3; ++pass) {
     const auto start = std::chrono::steady_clock::now();

@@ -6,11 +6,6 @@
 
 namespace glint {
 
-inline void enableFlushToZero() {
-  _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-  _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-}
-
 // Flush-to-zero for a scope, the thread's previous modes restored at its end: the thread that
 // calls a render joins its task arena and traces too, and its caller's arithmetic after the
 // render must not lose denormals (std::nextafter(0, 1) read 0 in a test that ran after one).
@@ -18,7 +13,8 @@ class FlushToZeroScope {
  public:
   FlushToZeroScope()
       : flushZero_(_MM_GET_FLUSH_ZERO_MODE()), denormalsZero_(_MM_GET_DENORMALS_ZERO_MODE()) {
-    enableFlushToZero();
+    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
   }
   ~FlushToZeroScope() {
     _MM_SET_FLUSH_ZERO_MODE(flushZero_);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "accel/accelerator.h"
+#include "core/check.h"
 #include "core/rgb.h"
 #include "core/sampler.h"
 #include "core/uninitialized_array.h"
@@ -255,7 +256,12 @@ class BatchedKernel {
     // (Radiance::rays), by the index of its branches' key in rootKeys.
     uint64_t raysOf[kChunk];
     const SampleKey* rootKeys = nullptr;
-    uint64_t& raysOfRoot(const Branch& b) { return raysOf[b.key - rootKeys]; }
+    uint64_t& raysOfRoot(const Branch& b) {
+      // Every branch descends from a camera sample of the chunk being shaded (a compare per
+      // branch: nothing beside the rays it stands for).
+      GLINT_CHECK(b.key >= rootKeys && b.key < rootKeys + kChunk);
+      return raysOf[b.key - rootKeys];
+    }
     // generations[d]: the rays of depth d + 1, spawned by a chunk of depth d.
     std::vector<std::unique_ptr<Generation>> generations;
   };

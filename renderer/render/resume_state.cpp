@@ -23,6 +23,12 @@ constexpr int kCountChannel = 2 * kDoublesPerHalf;  // after their words
 constexpr int kRaysChannel = kCountChannel + 1;     // 64 bits in two words
 constexpr int kChannelsPerHalf = kRaysChannel + 2;
 constexpr int kChannels = 2 * kChannelsPerHalf;
+// A Glint before the rays channels wrote .00 to .17 (its halves without them): a file that has
+// those and lacks the next was likely written by it.
+constexpr int kChannelsOfOlderGlint = 2 * kCountChannel + 2;
+// The most rays a half may have traced: their sum over both halves must fit in 64 bits, and no
+// render traces 2^62 rays in one pixel.
+constexpr uint64_t kMaxRaysOfHalf = uint64_t{1} << 62;
 
 void splitWords(uint64_t bits, double* out) {
   out[0] = double(bits >> 32);
@@ -80,10 +86,11 @@ std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelW
   for (int i = 0; i < kChannels; ++i) {
     const Imf::Channel* c = header.channels().findChannel(channelName(i));
     if (!c || c->type != Imf::UINT)
-      throw UsageError(path + " holds no resume state (" + channelName(i) +
-                       "): only a frame Glint wrote with --resumable, or a partial, preview "
-                       "or time-limited one, can be resumed" +
-                       (i > 0 ? " (a Glint before the rays channels wrote fewer)" : ""));
+      throw UsageError(
+          path + " holds no resume state (" + channelName(i) +
+          "): only a frame Glint wrote with --resumable, or a partial, preview "
+          "or time-limited one, can be resumed" +
+          (i == kChannelsOfOlderGlint ? " (a Glint before the rays channels wrote fewer)" : ""));
     slices.push_back({channelName(i), Imf::UINT, sizeof(uint32_t) * size_t(i)});
   }
   const size_t pixelBytes = sizeof(uint32_t) * kChannels;
@@ -102,7 +109,8 @@ std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelW
       half.rays = joinWords(hw + kRaysChannel);
       // Every sample traces its camera ray.
       bool valid = count <= uint64_t(maxSamples) && half.alpha >= 0 && half.alpha <= count &&
-                   half.rays >= count && (count > 0 || half.rays == 0);
+                   half.rays >= count && half.rays <= kMaxRaysOfHalf &&
+                   (count > 0 || half.rays == 0);
       for (int k = 0; k < kDoublesPerHalf; ++k) valid = valid && std::isfinite(*doublesOf(half, k));
       if (!valid)
         throw UsageError(
@@ -110,7 +118,7 @@ std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelW
             std::to_string(window.x0 + int(p % size_t(window.width()))) + ", " +
             std::to_string(window.y0 + int(p / size_t(window.width()))) +
             ") is not one a render leaves (a non-finite value, a negative coverage, fewer " +
-            "rays than samples, or more samples than the --spp asked)");
+            "rays than samples or more than 2^62, or more samples than the --spp asked)");
       half.count = static_cast<int32_t>(count);
     }
     if (out[p].samples() > maxSamples)

@@ -71,13 +71,14 @@ TEST(Cutouts, ShadowsFallThroughTheHoles) {
               "cut_shadow.json");
   for (AccelKind kind : {AccelKind::Embree, AccelKind::Bvh}) {
     const auto accel = makeAccelerator(kind, scene);
-    const Film film = renderScene(scene, *accel, quiet()).film;
+    const RenderResult result = renderScene(scene, *accel, quiet());
+    const Film& film = result.film;
     for (int y = 0; y < 4; ++y) {
       for (int x = 2; x <= 5; ++x)
         EXPECT_NEAR(red(film, x, y), 0.5 * std::sqrt(0.5), 1e-6) << accel->name() << " lit " << x;
       for (int x = 10; x <= 13; ++x) EXPECT_EQ(red(film, x, y), 0) << accel->name() << " " << x;
     }
-    EXPECT_EQ(test::expectReferenceAgrees(scene, *accel, quiet(), film, "cut shadow"), 0);
+    EXPECT_EQ(test::expectReferenceAgrees(scene, *accel, quiet(), result, "cut shadow"), 0);
   }
 }
 

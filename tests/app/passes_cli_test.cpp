@@ -76,9 +76,11 @@ TEST(PassesCli, ResumeGivesTheStraightRendersPixelsAndRefusesAnotherFrame) {
 }
 
 // Writes `bad`: the frame `good` with the words of pixel 0's resume channels named in `words`
-// replaced, all else (the resume hash included) kept.
+// replaced and the resume channels from glint_resume.`dropFrom` on left out, all else (the resume
+// hash included) kept.
 void rewriteResumeWords(const std::string& good, const std::string& bad,
-                        const std::vector<std::pair<std::string, uint32_t>>& words) {
+                        const std::vector<std::pair<std::string, uint32_t>>& words,
+                        int dropFrom = 100) {
   auto in = OIIO::ImageInput::open(good);
   ASSERT_TRUE(in);
   OIIO::ImageSpec spec = in->spec();
@@ -98,12 +100,25 @@ void rewriteResumeWords(const std::string& good, const std::string& bad,
     ASSERT_GE(c, 0) << name;
     state[size_t(c)] = word;
   }
+  std::vector<int> kept;
+  OIIO::ImageSpec written = spec;
+  written.channelnames.clear();
+  written.channelformats.clear();
+  for (int c = 0; c < spec.nchannels; ++c) {
+    const std::string& name = spec.channelnames[size_t(c)];
+    if (name.rfind("glint_resume.", 0) == 0 && std::stoi(name.substr(13)) >= dropFrom) continue;
+    kept.push_back(c);
+    written.channelnames.push_back(name);
+    written.channelformats.push_back(formats[size_t(c)]);
+  }
+  written.nchannels = int(kept.size());
+  written.alpha_channel = written.channelindex("A");
   auto outFile = OIIO::ImageOutput::create(bad);
-  ASSERT_TRUE(outFile && outFile->open(bad, spec));
+  ASSERT_TRUE(outFile && outFile->open(bad, written));
   // Per channel, from the buffer its type was read into.
   std::vector<unsigned char> mixed;
   for (size_t p = 0; p < size_t(spec.image_pixels()); ++p)
-    for (int c = 0; c < spec.nchannels; ++c) {
+    for (const int c : kept) {
       const size_t i = p * size_t(spec.nchannels) + size_t(c);
       const auto* bytes = formats[size_t(c)] == OIIO::TypeDesc::UINT
                               ? reinterpret_cast<const unsigned char*>(&state[i])
@@ -120,10 +135,12 @@ TEST(PassesCli, AResumeStateThatNoRenderLeavesIsRefused) {
   const std::string good = tmp("state-good.exr");
   ASSERT_EQ(test::runGlint("render " + soft("--resumable --spp 4 -o " + good)).exitCode, 0);
   // Half 0's mean R as NaN's bits (channels 00, 01: its high and low words); half 0's rays as
-  // none (channels 09, 10), though its 2 samples traced at least their camera rays.
+  // none (channels 09, 10), though its 2 samples traced at least their camera rays; and as
+  // 2^62 + 1, more than the two halves' sum may hold.
   const std::vector<std::vector<std::pair<std::string, uint32_t>>> lies = {
       {{"glint_resume.00", 0x7ff80000u}, {"glint_resume.01", 0}},
-      {{"glint_resume.09", 0}, {"glint_resume.10", 0}}};
+      {{"glint_resume.09", 0}, {"glint_resume.10", 0}},
+      {{"glint_resume.09", 0x40000000u}, {"glint_resume.10", 1}}};
   for (size_t i = 0; i < lies.size(); ++i) {
     const std::string bad = tmp("state-bad-" + std::to_string(i) + ".exr");
     rewriteResumeWords(good, bad, lies[i]);
@@ -131,6 +148,25 @@ TEST(PassesCli, AResumeStateThatNoRenderLeavesIsRefused) {
         test::runGlint("render " + soft("--spp 8 --resume " + bad + " -o " + tmp("z.exr")));
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("pixel (0, 0)"), std::string::npos) << r.output;
+  }
+}
+
+TEST(PassesCli, AResumeStateWithoutTheRaysChannelsNamesTheGlintThatWroteIt) {
+  // An older Glint wrote glint_resume.00 to .17, without the rays traced: the refusal says so.
+  // A state that lacks an earlier channel is no such file, and is not said to be.
+  const std::string good = tmp("state-whole.exr");
+  ASSERT_EQ(test::runGlint("render " + soft("--resumable --spp 4 -o " + good)).exitCode, 0);
+  for (const int dropFrom : {18, 5}) {
+    const std::string bad = tmp("state-from-" + std::to_string(dropFrom) + ".exr");
+    rewriteResumeWords(good, bad, {}, dropFrom);
+    const auto r =
+        test::runGlint("render " + soft("--spp 8 --resume " + bad + " -o " + tmp("w.exr")));
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    const std::string missing = dropFrom == 18 ? "glint_resume.18" : "glint_resume.05";
+    EXPECT_NE(r.output.find("holds no resume state (" + missing + ")"), std::string::npos)
+        << r.output;
+    EXPECT_EQ(r.output.find("before the rays channels") != std::string::npos, dropFrom == 18)
+        << r.output;
   }
 }
 

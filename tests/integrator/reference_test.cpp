@@ -54,7 +54,7 @@ TEST(ReferenceIntegrator, AgreesWithTheProductionKernelOnEveryBundledScene) {
   for (const Bundled& b : scenes) {
     const auto accel = makeAccelerator(AccelKind::Embree, b.scene);
     const RenderResult production = renderScene(b.scene, *accel, quiet());
-    test::expectReferenceAgrees(b.scene, *accel, quiet(), production.film, b.name);
+    test::expectReferenceAgrees(b.scene, *accel, quiet(), production, b.name);
   }
 }
 
@@ -65,8 +65,7 @@ TEST(ReferenceIntegrator, AgreesBitForBitWhereOneKernelTracesEveryRay) {
     const Scene scene = small(std::string(GLINT_SCENES_DIR) + "/" + name, 40, 30, 2);
     const auto accel = makeAccelerator(AccelKind::Bvh, scene);
     const RenderResult production = renderScene(scene, *accel, quiet());
-    EXPECT_EQ(test::expectReferenceAgrees(scene, *accel, quiet(), production.film, name), 0)
-        << name;
+    EXPECT_EQ(test::expectReferenceAgrees(scene, *accel, quiet(), production, name), 0) << name;
   }
 }
 

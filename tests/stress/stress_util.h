@@ -78,7 +78,7 @@ inline RenderResult renderText(const std::string& text, AccelKind kind = AccelKi
     return renderScene(s, *accel, withHook);
   }();
   // A hook alters samples on their way to the film (a forced NaN): not the optics.
-  if (!hook) test::expectReferenceAgrees(s, *accel, opt, production.film, "stress scene");
+  if (!hook) test::expectReferenceAgrees(s, *accel, opt, production, "stress scene");
   return production;
 }
 
