@@ -14,6 +14,13 @@ RMSE (interpolated in log-log between the ladder's points) and their ratio, and 
 of mean samples per pixel ("samples saved": what the allocation buys) and of rays traced ("rays
 saved": the work it buys), both free of timing noise.
 
+With --paired-runs R, each level is then also timed head to head: the --target-rmse at which
+adaptive sampling's true RMSE reaches uniform's (interpolated log-log on the adaptive ladder's
+targets and true errors) is rendered once to measure that error, and then R times alternately
+with the uniform render, so that both see the same machine; the table gives the ratio of their
+fastest and the median of the pairs' ratios, with adaptive's time scaled to uniform's error along
+the adaptive ladder's rays (a local slope, free of timing noise).
+
 Prints markdown tables; writes images and JSON under --out.
 """
 
@@ -78,14 +85,52 @@ def time_to(points, target):
     return None
 
 
+def log_interpolate(points, x):
+    """y at x on the (x, y) polyline through `points`, log-log, extrapolated from the nearest
+    segment at either end."""
+    points = sorted(points)
+    for (x0, y0), (x1, y1) in zip(points, points[1:]):
+        if x <= x1 or (x1, y1) == points[-1]:
+            f = (math.log(x) - math.log(x0)) / (math.log(x1) - math.log(x0))
+            return math.exp(math.log(y0) + f * (math.log(y1) - math.log(y0)))
+    return None
+
+
+def paired_times(args, scene, ref, levels, adaptive_targets, adaptive_rays):
+    """For each (spp, uniform true RMSE) level: the fastest and median time of the uniform
+    render and of the adaptive one at the target that reaches the same error, run alternately."""
+    rows = []
+    for spp, goal in levels:
+        # Targets and errors both fall along the ladder: the target whose error is the goal.
+        target = log_interpolate([(e, t) for t, e in adaptive_targets], goal)
+        extra = ["--target-rmse", f"{target:.6g}", "--min-spp", str(args.min_spp)]
+        uimg, aimg = args.out / f"{scene.stem}-pu{spp}.exr", args.out / f"{scene.stem}-pa{spp}.exr"
+        render(args.glint, scene, aimg, args.size, 1, args.max_spp, extra)
+        reached = compare(args.glint, aimg, ref)["rmse"]
+        # Rays needed for an error fall as a power of it; its local exponent along the ladder.
+        rays_at = lambda e: log_interpolate([(err, r) for r, err in adaptive_rays], e)
+        scale = rays_at(goal) / rays_at(reached)
+        tu, ta = [], []
+        for _ in range(args.paired_runs):
+            tu.append(render(args.glint, scene, uimg, args.size, 1, spp)["seconds"])
+            ta.append(render(args.glint, scene, aimg, args.size, 1, args.max_spp, extra)["seconds"]
+                      * scale)
+        pairs = sorted(u / a for u, a in zip(tu, ta))
+        rows.append((spp, goal, reached / goal, min(tu), min(ta), min(tu) / min(ta),
+                     pairs[len(pairs) // 2]))
+    return rows
+
+
 def adaptive_table(args):
     print("| scene | true RMSE | uniform s | adaptive s | speed-up | samples saved | rays saved |")
     print("|---|---:|---:|---:|---:|---:|---:|")
+    paired = []
     for scene in scenes(args.scenes):
         ref = args.out / f"{scene.stem}-aref.exr"
         render(args.glint, scene, ref, args.size, 7919, args.reference_spp)
         # (seconds, rmse), (mean samples per pixel, rmse) and (rays traced, rmse) of each render
         uniform, adaptive, uniform_spp, adaptive_spp, uniform_rays, adaptive_rays = ([] for _ in range(6))
+        adaptive_targets = []  # (target, true RMSE)
         for spp in args.ladder:
             for _ in range(args.runs):
                 img = args.out / f"{scene.stem}-u{spp}.exr"
@@ -105,6 +150,7 @@ def adaptive_table(args):
                         ["--target-rmse", f"{target:.6g}", "--min-spp", str(args.min_spp)])
             e = compare(args.glint, img, ref)["rmse"]
             adaptive.append((st["seconds"], e))
+            adaptive_targets.append((target, e))
             adaptive_spp.append((st["passes"][-1]["mean_spp"], e))
             adaptive_rays.append((st["rays_total"], e))
             target /= math.sqrt(2)
@@ -121,6 +167,18 @@ def adaptive_table(args):
             else:
                 print(f"| {scene.stem} | {goal:.3g} | {tu} | {ta} | not reached | {saved} |",
                       flush=True)
+        if args.paired_runs:
+            levels = [(spp, e) for (spp, e) in uniform_spp[:: args.runs] if spp in args.ladder[1:-1]]
+            paired += [(scene.stem, *row) for row in
+                       paired_times(args, scene, ref, levels, adaptive_targets, adaptive_rays)]
+    if paired:
+        print(f"\nPaired, {args.paired_runs} runs each (> 1: adaptive is faster):\n")
+        print("| scene | spp | true RMSE | adaptive RMSE / it | uniform s, fastest | adaptive s, fastest"
+              " | ratio of fastest | median of pairs |")
+        print("|---|---:|---:|---:|---:|---:|---:|---:|")
+        for name, spp, goal, off, tu, ta, fastest, median in paired:
+            print(f"| {name} | {spp} | {goal:.3g} | {off:.3f} | {tu:.3f} | {ta:.3f} | {fastest:.2f} "
+                  f"| {median:.2f} |")
 
 
 def main():
@@ -136,6 +194,7 @@ def main():
     p.add_argument("--max-spp", type=int, default=1024)
     p.add_argument("--min-spp", type=int, default=8)
     p.add_argument("--runs", type=int, default=1)
+    p.add_argument("--paired-runs", type=int, default=0)
     args = p.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
     (estimate_table if args.table == "estimate" else adaptive_table)(args)

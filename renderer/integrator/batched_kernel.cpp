@@ -15,11 +15,13 @@ constexpr size_t kMinShadowStream = 8;
 
 }  // namespace
 
-BatchedKernel::BatchedKernel(const Scene& scene, const Accelerator& accel, float minThroughput)
+BatchedKernel::BatchedKernel(const Scene& scene, const Accelerator& accel, float minThroughput,
+                             int footprintSpp)
     : scene_(scene),
       accel_(accel),
       minThroughput_(minThroughput),
-      cone_(pixelCone(scene.cameraDesc, scene.render.height, scene.render.spp)) {
+      cone_(pixelCone(scene.cameraDesc, scene.render.height,
+                      footprintSpp > 0 ? footprintSpp : scene.render.spp)) {
   for (const Light& light : scene.lights) {
     const bool delta = isDeltaLight(light);
     lights_.push_back({lightSampleCount(light), delta});

@@ -22,11 +22,15 @@ struct PixelCone {
   float widthAt(float distance) const { return widthAtEye + spread * distance; }
 };
 
+// The samples a pixel's footprint is shared among at the most: from this many on, each sample's
+// footprint is 1/8 of the pixel's.
+inline constexpr int kFinestFootprintSpp = 64;
+
 // One camera sample's share of a pixel: the pixel's angle (or, orthographic, its width) divided
 // by √spp, and no less than 1/8 of it, as pbrt scales its ray differentials: the samples of a
 // pixel then cover it between them instead of each blurring over all of it.
 inline PixelCone pixelCone(const CameraDesc& camera, int height, int spp) {
-  const float share = std::max(0.125f, 1.0f / std::sqrt(float(std::max(spp, 1))));
+  const float share = 1.0f / std::sqrt(float(std::clamp(spp, 1, kFinestFootprintSpp)));
   // The window's height, as seen square-on (an oblique plane's pixels are a little wider).
   const ImageWindow window = camera.imageWindow(1, 1);
   const float pixel = (window.t - window.b) / float(height) * share;

@@ -19,12 +19,14 @@ namespace glint {
 
 class ReferenceIntegrator {
  public:
+  // `footprintSpp`: as BatchedKernel's.
   ReferenceIntegrator(const Scene& scene, const Accelerator& accel,
-                      float minThroughput = kDefaultMinThroughput)
+                      float minThroughput = kDefaultMinThroughput, int footprintSpp = 0)
       : scene_(scene),
         accel_(accel),
         minThroughput_(minThroughput),
-        cone_(pixelCone(scene.cameraDesc, scene.render.height, scene.render.spp)) {}
+        cone_(pixelCone(scene.cameraDesc, scene.render.height,
+                        footprintSpp > 0 ? footprintSpp : scene.render.spp)) {}
 
   // The radiance along a camera ray, sample `key`.
   Radiance radiance(const Ray& cameraRay, const SampleKey& key, RayCounters& counters) const;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/sampler.h"
+#include "integrator/footprint.h"
 #include "render/pixel_estimate.h"
 
 namespace glint {
@@ -43,6 +44,12 @@ struct PassPlan {
   bool progressive() const {
     return sampler == SamplerKind::Sobol || sampler == SamplerKind::Random;
   }
+  // The samples each pixel's texture footprint is shared among (integrator/footprint.h): the
+  // total where the sets are laid out for it; for a progressive render the most there can be,
+  // since it may stop or be continued at any spp, and a sample must filter alike in all of
+  // them (a resumed render filtered its first samples for their spp and wrote other pixels
+  // than a straight one on a textured scene).
+  int footprintSpp() const { return progressive() ? kFinestFootprintSpp : maxSpp; }
 
   // Marks in `sampled` the pixels of a `width`-wide row-major grid that take part in the pass
   // that ends at `end` samples, and returns how many: those below `end` that, under adaptive

@@ -254,7 +254,8 @@ void forEachTile(const FrameContext& f, const PassContext& pass, TileWork& work,
 // at 32-pixel tiles and 18 % at 8 (default scene, one thread).
 class ProductionTiles {
  public:
-  ProductionTiles(const Scene& scene, const Accelerator& accel) : kernel_(scene, accel) {}
+  ProductionTiles(const Scene& scene, const Accelerator& accel, int footprintSpp)
+      : kernel_(scene, accel, kDefaultMinThroughput, footprintSpp) {}
   void render(const FrameContext& f, const PassContext& pass, TileWork& work) {
     forEachTile(f, pass, work, [&](size_t i, RayCounters& counters) {
       std::unique_ptr<Scratch>& scratch = scratches_.local();
@@ -273,7 +274,8 @@ class ProductionTiles {
 // Every tile with the reference integrator (beauty only, no AOVs).
 class ReferenceTiles {
  public:
-  ReferenceTiles(const Scene& scene, const Accelerator& accel) : integrator_(scene, accel) {}
+  ReferenceTiles(const Scene& scene, const Accelerator& accel, int footprintSpp)
+      : integrator_(scene, accel, kDefaultMinThroughput, footprintSpp) {}
   void render(const FrameContext& f, const PassContext& pass, TileWork& work) {
     forEachTile(f, pass, work, [&](size_t i, RayCounters& counters) {
       ReferenceShading shade{integrator_};
@@ -424,9 +426,9 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   std::optional<ProductionTiles> production;
   std::optional<ReferenceTiles> reference;
   if (opt.integrator == IntegratorKind::Reference)
-    reference.emplace(scene, accel);
+    reference.emplace(scene, accel, plan.footprintSpp());
   else
-    production.emplace(scene, accel);
+    production.emplace(scene, accel, plan.footprintSpp());
   const auto renderPass = [&](const FrameContext& f, const PassContext& pass, TileWork& work) {
     if (reference)
       reference->render(f, pass, work);

@@ -37,6 +37,20 @@ TEST(PassPlan, AdaptiveRenderStartsAtMinSppAndUsesAProgressiveSampler) {
   EXPECT_EQ(PassPlan::make(64, SamplerKind::Regular, timed).sampler, SamplerKind::Sobol);
 }
 
+TEST(PassPlan, TexturesAreFilteredForTheTotalOnlyWhereItIsFixed) {
+  // A stratified render of 16 samples shares each pixel's footprint among its 16; a render that
+  // may stop or be continued at any spp filters every sample for the most there can be, 64 or
+  // more (integrator/footprint.h), whatever its spp.
+  EXPECT_EQ(PassPlan::make(16, SamplerKind::Stratified, {}).footprintSpp(), 16);
+  SamplingRequest resumable;
+  resumable.progressive = true;
+  for (const int spp : {4, 16, 1024}) {
+    EXPECT_EQ(PassPlan::make(spp, SamplerKind::Stratified, resumable).footprintSpp(),
+              kFinestFootprintSpp);
+    EXPECT_EQ(PassPlan::make(spp, SamplerKind::Sobol, {}).footprintSpp(), kFinestFootprintSpp);
+  }
+}
+
 TEST(PassPlan, ContradictoryBoundsAreRefused) {
   SamplingRequest r;
   r.minSpp = 64;
