@@ -259,8 +259,8 @@ class BatchedKernel {
     uint64_t raysOf[kChunk];
     const SampleKey* rootKeys = nullptr;
     uint64_t& raysOfRoot(const Branch& b) {
-      // Every branch descends from a camera sample of the chunk being shaded (a compare per
-      // branch: nothing beside the rays it stands for).
+      // Every branch descends from a camera sample of the chunk being shaded; one compare per
+      // branch, negligible next to tracing its rays.
       GLINT_CHECK(b.key >= rootKeys && b.key < rootKeys + kChunk);
       return raysOf[b.key - rootKeys];
     }
