@@ -27,6 +27,7 @@ Prints markdown tables; writes images and JSON under --out.
 import argparse
 import json
 import math
+import statistics
 import subprocess
 import sys
 from pathlib import Path
@@ -87,13 +88,19 @@ def time_to(points, target):
 
 def log_interpolate(points, x):
     """y at x on the (x, y) polyline through `points`, log-log, extrapolated from the nearest
-    segment at either end."""
-    points = sorted(points)
+    segment at either end. Points of an x already seen are dropped (targets loose enough that
+    every pixel stops at --min-spp give the same render, hence the same error)."""
+    distinct = {}
+    for px, py in sorted(points):
+        distinct.setdefault(px, py)
+    points = sorted(distinct.items())
+    if len(points) < 2:
+        sys.exit(f"error-estimate-table: {len(points)} distinct point(s) to interpolate at {x:.3g}: "
+                 "widen the ladder")
     for (x0, y0), (x1, y1) in zip(points, points[1:]):
         if x <= x1 or (x1, y1) == points[-1]:
             f = (math.log(x) - math.log(x0)) / (math.log(x1) - math.log(x0))
             return math.exp(math.log(y0) + f * (math.log(y1) - math.log(y0)))
-    return None
 
 
 def paired_times(args, scene, ref, levels, adaptive_targets, adaptive_rays):
@@ -115,9 +122,8 @@ def paired_times(args, scene, ref, levels, adaptive_targets, adaptive_rays):
             tu.append(render(args.glint, scene, uimg, args.size, 1, spp)["seconds"])
             ta.append(render(args.glint, scene, aimg, args.size, 1, args.max_spp, extra)["seconds"]
                       * scale)
-        pairs = sorted(u / a for u, a in zip(tu, ta))
         rows.append((spp, goal, reached / goal, min(tu), min(ta), min(tu) / min(ta),
-                     pairs[len(pairs) // 2]))
+                     statistics.median(u / a for u, a in zip(tu, ta))))
     return rows
 
 

@@ -191,9 +191,14 @@ std::string samplingSettings(const SamplingRequest& r) {
   return s;
 }
 
+// Raised whenever a Glint draws or shades a sample of the same settings differently, so that a
+// frame an older one left is refused rather than continued with other samples: 2, progressive
+// renders filter textures at the finest footprint (PassPlan::footprintSpp).
+constexpr uint64_t kSampleRevision = 2;
+
 // What must match for --resume to continue a frame: the settings hash without the sample
-// counts and time limit, the sampler actually used, and, for a sampler whose sets are laid out
-// for one total (stratified), that total.
+// counts and time limit, the sampler actually used, for a sampler whose sets are laid out for
+// one total (stratified) that total, and the Glint's kSampleRevision.
 std::string resumeHash(const RenderArgs& a, const Scene& scene, const PassPlan& plan) {
   Scene withoutSpp = scene;
   withoutSpp.render.spp = 0;
@@ -203,7 +208,8 @@ std::string resumeHash(const RenderArgs& a, const Scene& scene, const PassPlan& 
   return hex(hashKey(settingsHash(withoutSpp, a.accel,
                                   a.aovs + (a.half ? " half" : "") + " " + a.integrator +
                                       samplingSettings(targets)),
-                     uint64_t(plan.sampler), uint64_t(plan.progressive() ? 0 : plan.maxSpp)));
+                     uint64_t(plan.sampler), uint64_t(plan.progressive() ? 0 : plan.maxSpp),
+                     kSampleRevision));
 }
 
 ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const PassPlan& plan,

@@ -48,6 +48,7 @@ void BatchedKernel::traceCameraHits(const Ray* rays, const Hit* hits, const Samp
     for (int i = 0; i < n; ++i) scratch.roots[i].key = &keys[begin + i];  // the rest never changes
     scratch.lightPointsDrawn = false;
     scratch.rootKeys = keys + begin;
+    scratch.rootCount = n;
     std::fill_n(scratch.raysOf, n, uint64_t{0});
     shadeChunk(rays + begin, hits + begin, scratch.roots, n, scratch.cameraRadiance,
                aovs ? aovs + begin : nullptr, keys + begin, counters, scratch);

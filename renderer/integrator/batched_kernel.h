@@ -10,6 +10,7 @@
 //  - The direct light of a chunk's lit points is queued light by light and the shadow rays
 //    traced together, as coherent streams (lightPendingPoints, traceShadows).
 //  - The camera hits' reflections and refractions leave as one coherent stream.
+#include <cstddef>
 #include <memory>
 #include <vector>
 
@@ -258,11 +259,13 @@ class BatchedKernel {
     // (Radiance::rays), by the index of its branches' key in rootKeys.
     uint64_t raysOf[kChunk];
     const SampleKey* rootKeys = nullptr;
+    int rootCount = 0;
     uint64_t& raysOfRoot(const Branch& b) {
-      // Every branch descends from a camera sample of the chunk being shaded; one compare per
-      // branch, negligible next to tracing its rays.
-      GLINT_CHECK(b.key >= rootKeys && b.key < rootKeys + kChunk);
-      return raysOf[b.key - rootKeys];
+      // Every branch descends from one of the rootCount camera samples of the chunk being
+      // shaded; one compare per branch, negligible next to tracing its rays.
+      const std::ptrdiff_t root = b.key - rootKeys;
+      GLINT_CHECK(root >= 0 && root < rootCount);
+      return raysOf[root];
     }
     // generations[d]: the rays of depth d + 1, spawned by a chunk of depth d.
     std::vector<std::unique_ptr<Generation>> generations;
