@@ -44,8 +44,8 @@ inline std::string exrReadProblem(const std::string& path, const std::string& me
     // The window the file declares, so that the reader goes on to its channels and pixels; at
     // most 2^20 samples a pixel, as a --spp that large would allow. What it accepts must be a
     // state a render could leave (resume_state.h): finite means, coverage within [0, count],
-    // at least a ray a sample, counts within the limit and split between the halves as a
-    // render splits them.
+    // at least a ray a sample and at most 2^62 a half (none without samples), counts within the
+    // limit and split between the halves as a render splits them.
     constexpr int64_t kMaxSamples = int64_t{1} << 20;
     const ExrWindow w = exrWindow(path, openExr(path)->header(0));
     const PixelWindow window{w.x, w.x + w.width, w.y, w.y + w.height};
@@ -57,7 +57,8 @@ inline std::string exrReadProblem(const std::string& path, const std::string& me
       bool valid = p.samples() <= kMaxSamples && halfSampleCount(p.samples(), 0) == p.half[0].count;
       for (const HalfEstimate& h : p.half) {
         valid = valid && h.count >= 0 && h.alpha >= 0 && h.alpha <= h.count &&
-                h.rays >= uint64_t(h.count);
+                h.rays >= uint64_t(h.count) && h.rays <= uint64_t{1} << 62 &&
+                (h.count > 0 || h.rays == 0);
         for (double m : h.mean) valid = valid && std::isfinite(m);
       }
       if (!valid) return "readResumeState accepted a state no render leaves";
