@@ -23,6 +23,7 @@
 #include "film/exr_input.h"
 #include "film/exr_output.h"
 #include "io/scene_loader.h"
+#include "render/pass_plan.h"
 #include "render/render_job.h"
 #include "render/resume_state.h"
 
@@ -523,7 +524,8 @@ CommandRunner addRenderCommand(CLI::App& app) {
       ->check(CLI::PositiveNumber & notNaN());
   cmd->add_option("--min-spp", args->sampling.minSpp,
                   "Samples every pixel takes before adaptive sampling may stop it (default "
-                  "min(16, --max-spp))")
+                  "min(" +
+                      std::to_string(kDefaultFirstPassSpp) + ", --max-spp))")
       ->check(CLI::Range(1, static_cast<int>(kMaxSampleSet)));
   cmd->add_option("--max-spp", args->sampling.maxSpp,
                   "The most samples a pixel may take (default: the spp)")

@@ -15,7 +15,7 @@ PassPlan PassPlan::make(int spp, SamplerKind sceneSampler, const SamplingRequest
   const bool open = plan.adaptive() || plan.timeLimitSeconds > 0;
   plan.maxSpp = request.maxSpp > 0 ? request.maxSpp : spp;
   plan.minSpp = request.minSpp > 0 ? request.minSpp
-                : open             ? std::min(16, plan.maxSpp)
+                : open             ? std::min(kDefaultFirstPassSpp, plan.maxSpp)
                                    : std::min(2, plan.maxSpp);
   if (plan.minSpp > plan.maxSpp)
     throw UsageError("--min-spp " + std::to_string(plan.minSpp) +
