@@ -21,14 +21,13 @@ struct SamplingRequest {
   bool progressive = false;     // to be continued to more samples later (--resumable)
 };
 
-// The first pass of an adaptive or time-limited render unless --min-spp says otherwise. 8, not
-// 16: a first pass that every pixel takes bounds what adaptive sampling can save (at uniform's
-// 32-spp error on depth_of_field, even an allocation told each pixel's true error saves at most
-// 1.38x the rays after 16 samples, 1.64x after 8: tools/adaptive-oracle.py), and with the
-// neighbourhood rule, the edge floor and the cost weighting an estimate from 4 samples a half
-// stops no more pixels wrongly: 8 saves as many rays or more on every bundled scene but one
-// cell (docs/performance.md, Adaptive sampling).
-inline constexpr int kDefaultFirstPassSpp = 8;
+// The first pass of an adaptive or time-limited render unless --min-spp says otherwise. Every
+// pixel takes it, so it bounds what adaptive sampling can save (depth_of_field at uniform's
+// 32-spp error: at most 1.38x the rays after 16 samples, 1.64x after 8, tools/adaptive-oracle.py).
+// A first pass of 8 saves more rays in 48 of the 51 cells of docs/performance.md's table, but
+// its extra pass made two scenes' fastest renders 5-6 % slower than uniform at the 32-spp level
+// (objects 0.94, real_assets 0.95), where 16 keeps every scene within 1 %.
+inline constexpr int kDefaultFirstPassSpp = 16;
 
 struct PassPlan {
   // The samples per pixel at the end of each pass: doubling from the first to the last.
