@@ -20,8 +20,7 @@ BatchedKernel::BatchedKernel(const Scene& scene, const Accelerator& accel, float
     : scene_(scene),
       accel_(accel),
       minThroughput_(minThroughput),
-      cone_(pixelCone(scene.cameraDesc, scene.render.height,
-                      footprintSpp > 0 ? footprintSpp : scene.render.spp)) {
+      cone_(pixelCone(scene.cameraDesc, scene.render.height, footprintSpp)) {
   for (const Light& light : scene.lights) {
     const bool delta = isDeltaLight(light);
     lights_.push_back({lightSampleCount(light), delta});

@@ -30,10 +30,10 @@ namespace glint {
 
 class BatchedKernel {
  public:
-  // `footprintSpp`: the samples each pixel's footprint is shared among (pixelCone), 0 for the
-  // scene's spp.
-  BatchedKernel(const Scene& scene, const Accelerator& accel,
-                float minThroughput = kDefaultMinThroughput, int footprintSpp = 0);
+  // `footprintSpp`: the samples each pixel's footprint is shared among (pixelCone); a render
+  // chooses it (PassPlan::footprintSpp).
+  BatchedKernel(const Scene& scene, const Accelerator& accel, float minThroughput,
+                int footprintSpp);
 
   // Where a thread keeps a chunk's pending lit points, their shadow rays, the area lights'
   // points, and the rays each generation spawns: one per thread, reused for every chunk.

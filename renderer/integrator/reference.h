@@ -20,13 +20,12 @@ namespace glint {
 class ReferenceIntegrator {
  public:
   // `footprintSpp`: as BatchedKernel's.
-  ReferenceIntegrator(const Scene& scene, const Accelerator& accel,
-                      float minThroughput = kDefaultMinThroughput, int footprintSpp = 0)
+  ReferenceIntegrator(const Scene& scene, const Accelerator& accel, float minThroughput,
+                      int footprintSpp)
       : scene_(scene),
         accel_(accel),
         minThroughput_(minThroughput),
-        cone_(pixelCone(scene.cameraDesc, scene.render.height,
-                        footprintSpp > 0 ? footprintSpp : scene.render.spp)) {}
+        cone_(pixelCone(scene.cameraDesc, scene.render.height, footprintSpp)) {}
 
   // The radiance along a camera ray, sample `key`.
   Radiance radiance(const Ray& cameraRay, const SampleKey& key, RayCounters& counters) const;

@@ -39,7 +39,7 @@ std::string floorUnder(const std::string& light, int samples) {
 float irradianceAtOrigin(const LoadedScene& s, int px) {
   const Sampler sampler(SamplerKind::Stratified, 1, 11);
   RayCounters counters;
-  return BatchedKernel(s.scene, *s.accel)
+  return BatchedKernel(s.scene, *s.accel, kDefaultMinThroughput, s.scene.render.spp)
       .trace({{0, 1, 0}, {0, -1, 0}}, SampleKey{&sampler, px, 0, 0}, counters)
       .L.r;
 }

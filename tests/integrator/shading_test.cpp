@@ -342,7 +342,7 @@ TEST(Shading, GlassSphereConservesEnergy) {
     "materials": {"g": {"type": "dielectric", "ior": 1.5}},
     "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "g"}]})");
   const auto accel = makeAccelerator(AccelKind::Embree, s);
-  const BatchedKernel integrator(s, *accel, 0);
+  const BatchedKernel integrator(s, *accel, 0, s.render.spp);
   RayCounters counters;
   const Sampler sampler(SamplerKind::Stratified, 1, 0);
   float maxL = 0;

@@ -22,10 +22,10 @@ struct Traced {
     const Sampler sampler(SamplerKind::Stratified, 1, seed);
     const SampleKey key(&sampler, px, 0, 0);
     RayCounters productionCounters, referenceCounters;
-    const Radiance production =
-        BatchedKernel(scene, *accel, minThroughput).trace(ray, key, productionCounters);
-    const Radiance reference =
-        ReferenceIntegrator(scene, *accel, minThroughput).radiance(ray, key, referenceCounters);
+    const Radiance production = BatchedKernel(scene, *accel, minThroughput, scene.render.spp)
+                                    .trace(ray, key, productionCounters);
+    const Radiance reference = ReferenceIntegrator(scene, *accel, minThroughput, scene.render.spp)
+                                   .radiance(ray, key, referenceCounters);
     EXPECT_EQ(production.L, reference.L) << "the production kernel and its oracle disagree";
     // They trace the same rays, and each says so for the sample (Radiance::rays, the cost
     // adaptive sampling weighs).
