@@ -37,40 +37,11 @@ PassPlan PassPlan::make(int spp, SamplerKind sceneSampler, const SamplingRequest
 }
 
 int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int width, int end,
-                               const FrameSpread& spread, std::vector<uint8_t>& sampled) const {
+                               const FrameSpread& spread, ChoiceCache& kept,
+                               std::vector<uint8_t>& sampled) const {
   sampled.assign(pixels.size(), 0);
   const int height = width > 0 ? static_cast<int>(pixels.size() / size_t(width)) : 0;
-  // Each pixel's ratio by the halves' estimate, and by the edge floor its 4-neighbours' means
-  // set (PixelError::edgeFloor).
-  std::vector<double> ratio, edgeRatio, means;
-  if (adaptive()) {
-    ratio.resize(pixels.size());
-    edgeRatio.resize(pixels.size());
-    means.resize(3 * pixels.size());
-    for (size_t p = 0; p < pixels.size(); ++p) {
-      ratio[p] = target.ratio(pixels[p], spread);
-      double value[4];
-      pixels[p].mean(value);
-      std::copy(value, value + 3, &means[3 * p]);
-    }
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; ++x) {
-        const size_t p = size_t(y) * size_t(width) + size_t(x);
-        double contrast[3] = {0, 0, 0};
-        const auto against = [&](int nx, int ny) {
-          if (nx < 0 || ny < 0 || nx >= width || ny >= height) return;
-          const size_t q = size_t(ny) * size_t(width) + size_t(nx);
-          for (int c = 0; c < 3; ++c)
-            contrast[c] = std::max(contrast[c], std::abs(means[3 * p + c] - means[3 * q + c]));
-        };
-        against(x - 1, y);
-        against(x + 1, y);
-        against(x, y - 1);
-        against(x, y + 1);
-        edgeRatio[p] = target.ratio(PixelError::edgeFloor(pixels[p], contrast), pixels[p].samples(),
-                                    pixels[p].raysPerSample(), spread);
-      }
-  }
+  if (adaptive()) refreshRatios(pixels, width, height, spread, kept);
   int64_t count = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
@@ -81,13 +52,60 @@ int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int wid
         double worst = 0;
         for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
           for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx)
-            worst = std::max(worst, ratio[size_t(ny) * size_t(width) + size_t(nx)]);
-        needs = std::max(worst, edgeRatio[p]) > 1;
+            worst = std::max(worst, kept.ratio[size_t(ny) * size_t(width) + size_t(nx)]);
+        needs = std::max(worst, kept.edgeRatio[p]) > 1;
       }
       sampled[p] = needs;
       count += needs;
     }
   return count;
+}
+
+void PassPlan::refreshRatios(const std::vector<PixelEstimate>& pixels, int width, int height,
+                             const FrameSpread& spread, ChoiceCache& kept) const {
+  const size_t size = pixels.size();
+  if (kept.samples.size() != size || kept.width != width || !(kept.spread == spread)) {
+    kept.ratio.assign(size, 0);
+    kept.edgeRatio.assign(size, 0);
+    kept.means.assign(3 * size, 0);
+    kept.samples.assign(size, -1);
+    kept.spread = spread;
+    kept.width = width;
+  }
+  // Each pixel's ratio by its halves' estimate, where its samples moved.
+  std::vector<uint8_t> moved(size, 0);
+  for (size_t p = 0; p < size; ++p) {
+    if (pixels[p].samples() == kept.samples[p]) continue;
+    moved[p] = 1;
+    kept.samples[p] = pixels[p].samples();
+    kept.ratio[p] = target.ratio(pixels[p], spread);
+    double value[4];
+    pixels[p].mean(value);
+    std::copy(value, value + 3, &kept.means[3 * p]);
+  }
+  // Its ratio by the edge floor its 4-neighbours' means set (PixelError::edgeFloor), where it
+  // or one of them moved.
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const size_t p = size_t(y) * size_t(width) + size_t(x);
+      const bool left = x > 0, right = x + 1 < width, up = y > 0, down = y + 1 < height;
+      if (!moved[p] && !(left && moved[p - 1]) && !(right && moved[p + 1]) &&
+          !(up && moved[p - size_t(width)]) && !(down && moved[p + size_t(width)]))
+        continue;
+      double contrast[3] = {0, 0, 0};
+      const auto against = [&](bool inside, size_t q) {
+        if (!inside) return;
+        for (int c = 0; c < 3; ++c)
+          contrast[c] =
+              std::max(contrast[c], std::abs(kept.means[3 * p + c] - kept.means[3 * q + c]));
+      };
+      against(left, p - 1);
+      against(right, p + 1);
+      against(up, p - size_t(width));
+      against(down, p + size_t(width));
+      kept.edgeRatio[p] = target.ratio(PixelError::edgeFloor(pixels[p], contrast),
+                                       pixels[p].samples(), pixels[p].raysPerSample(), spread);
+    }
 }
 
 FrameError estimateFrameError(const std::vector<PixelEstimate>& pixels, SamplerKind sampler) {

@@ -75,6 +75,7 @@ struct PixelError {
 struct FrameSpread {
   double deviation = 0, relativeDeviation = 0;
   static FrameSpread of(const std::vector<PixelEstimate>& probes);
+  bool operator==(const FrameSpread&) const = default;
 };
 
 // What adaptive sampling aims at: the frame's RMSE or relMSE, as `glint compare` measures it.

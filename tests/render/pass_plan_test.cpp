@@ -3,8 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 
 #include "core/error.h"
 
@@ -177,7 +179,8 @@ TEST(PassPlan, AdaptiveChoiceTakesTheWorstOfEachPixelsNeighbourhood) {
   grid[11] = young;
   std::vector<uint8_t> sampled;
   const FrameSpread spread{2, 0};  // as if the frame were all like twoHalves()
-  EXPECT_EQ(plan.choosePixels(grid, 4, 8, spread, sampled), 10);
+  ChoiceCache fresh;
+  EXPECT_EQ(plan.choosePixels(grid, 4, 8, spread, fresh, sampled), 10);
   // The noisy pixel and its 8 neighbours (their neighbourhoods' worst is its 4.4, though a
   // neighbourhood's mean, (4.4 + 8 · 0.44) / 9 = 0.89, would not be),
   // and the young pixel; not (3, 0) and (3, 1)... whose neighbourhoods miss (1, 1).
@@ -186,7 +189,7 @@ TEST(PassPlan, AdaptiveChoiceTakesTheWorstOfEachPixelsNeighbourhood) {
                                          1, 1, 1, 1};
   EXPECT_EQ(sampled, expected);
   // A pass that every pixel has reached samples none.
-  EXPECT_EQ(plan.choosePixels(grid, 4, 2, spread, sampled), 0);
+  EXPECT_EQ(plan.choosePixels(grid, 4, 2, spread, fresh, sampled), 0);
 }
 
 // n samples of one value in each half: the halves agree, so the estimate reads zero.
@@ -223,15 +226,67 @@ TEST(PassPlan, AnEdgeWhoseHalvesAgreeKeepsSamplingByItsFloor) {
   r.maxSpp = 64;
   r.target.rmse = 0.1;  // ratio 0.0125 / 0.01 = 1.25: the edge's columns sample on
   std::vector<uint8_t> sampled;
-  EXPECT_EQ(PassPlan::make(64, SamplerKind::Sobol, r).choosePixels(grid, 4, 32, {1, 0}, sampled),
-            6);
+  ChoiceCache first, second;  // one for each plan
+  EXPECT_EQ(
+      PassPlan::make(64, SamplerKind::Sobol, r).choosePixels(grid, 4, 32, {1, 0}, first, sampled),
+      6);
   const std::vector<uint8_t> edge = {0, 1, 1, 0,  //
                                      0, 1, 1, 0,  //
                                      0, 1, 1, 0};
   EXPECT_EQ(sampled, edge);
   r.target.rmse = 0.2;  // ratio 0.0125 / 0.04 = 0.31: met
-  EXPECT_EQ(PassPlan::make(64, SamplerKind::Sobol, r).choosePixels(grid, 4, 32, {1, 0}, sampled),
-            0);
+  EXPECT_EQ(
+      PassPlan::make(64, SamplerKind::Sobol, r).choosePixels(grid, 4, 32, {1, 0}, second, sampled),
+      0);
+}
+
+TEST(PassPlan, KeptInputsChooseAsInputsTakenAfresh) {
+  // A 16 x 12 frame of pixels (fixed seed), 8 samples each, one in 23 ten times as noisy (60
+  // pixels chosen around them). A pass adds 8 bright samples to the pixels chosen; the next
+  // choice, from the inputs kept by the first, must be the one taken afresh, bit for bit, though
+  // only the pixels whose samples moved have their ratios recomputed (and their 4-neighbours
+  // their edge ratios).
+  const int width = 16, height = 12;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> unit(0.f, 1.f);
+  const auto addSamples = [&](PixelEstimate& p, int n, float scale) {
+    for (int i = 0; i < n; ++i) {
+      const float v = scale * unit(rng);
+      p.half[i % 2].add({v, v * 0.5f, 1 - v}, 1, 1 + i % 3);
+    }
+  };
+  std::vector<PixelEstimate> grid(size_t(width) * height);
+  for (size_t p = 0; p < grid.size(); ++p) addSamples(grid[p], 8, p % 23 == 0 ? 2.f : 0.2f);
+  SamplingRequest r;
+  r.minSpp = 8;
+  r.maxSpp = 64;
+  r.target.rmse = 0.05;
+  const PassPlan plan = PassPlan::make(64, SamplerKind::Sobol, r);
+  const FrameSpread spread = FrameSpread::of(grid);
+  ChoiceCache kept;
+  std::vector<uint8_t> first, again, fresh;
+  const int64_t chosen = plan.choosePixels(grid, width, 16, spread, kept, first);
+  // Not all and not none: the test needs pixels that move and pixels that do not.
+  ASSERT_GT(chosen, 0);
+  ASSERT_LT(chosen, int64_t(grid.size()));
+  for (size_t p = 0; p < grid.size(); ++p)
+    if (first[p])
+      for (int i = 0; i < 8; ++i) grid[p].half[i % 2].add({3, 3, 3}, 1, 1);
+  ChoiceCache none;
+  EXPECT_EQ(plan.choosePixels(grid, width, 32, spread, kept, again),
+            plan.choosePixels(grid, width, 32, spread, none, fresh));
+  EXPECT_EQ(again, fresh);
+  // The bright samples moved the choice: 112 pixels, most of them on the edges the chosen
+  // pixels' new means make with their unchosen 4-neighbours, whose own states did not move (a
+  // cache that refreshed only the moved pixels' edge ratios chose 52).
+  EXPECT_NE(again, first);
+  EXPECT_GT(std::count(again.begin(), again.end(), 1), 0);
+  // Another spread (as after the probes' pass) takes every ratio anew.
+  const FrameSpread wider{2 * spread.deviation, 0};
+  ChoiceCache none2;
+  EXPECT_EQ(plan.choosePixels(grid, width, 32, wider, kept, again),
+            plan.choosePixels(grid, width, 32, wider, none2, fresh));
+  EXPECT_EQ(again, fresh);
 }
 
 TEST(ProbeLattice, AboutTwoHundredFiftySixProbesAtMostOneInSixtyFour) {
