@@ -164,6 +164,13 @@ TEST(PassesCli, AResumeStateThatNoRenderLeavesIsRefused) {
     EXPECT_EQ(r.exitCode, 2) << r.output;
     EXPECT_NE(r.output.find("pixel (0, 0)"), std::string::npos) << r.output;
   }
+  // Exactly 2^62 rays in a half is the most a state may hold (both halves' sum, 2^63, fits in
+  // 64 bits): that is continued.
+  const std::string most = tmp("state-most.exr");
+  rewriteResumeWords(good, most, {{"glint_resume.09", 0x40000000u}, {"glint_resume.10", 0}});
+  const auto r =
+      test::runGlint("render " + soft("--spp 8 --resume " + most + " -o " + tmp("z.exr")));
+  EXPECT_EQ(r.exitCode, 0) << r.output;
 }
 
 TEST(PassesCli, AResumeStateWithoutTheRaysChannelsNamesTheGlintThatWroteIt) {
