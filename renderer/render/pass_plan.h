@@ -24,10 +24,10 @@ struct SamplingRequest {
 // The first pass of an adaptive or time-limited render unless --min-spp says otherwise. Every
 // pixel takes it, so it bounds what adaptive sampling can save (depth_of_field at uniform's
 // 32-spp error: at most 1.38x the rays after 16 samples, 1.64x after 8, tools/adaptive-oracle.py).
-// A first pass of 8 saves more rays in 48 of the 51 cells of docs/performance.md's table, but
-// its extra pass made two scenes' fastest renders 5-6 % slower than uniform at the 32-spp level
-// (objects 0.94, real_assets 0.95), where 16 keeps every scene within 1 %.
-inline constexpr int kDefaultFirstPassSpp = 16;
+// 8 saves more rays than 16 in 48 of the 51 cells of docs/performance.md's table; its extra pass
+// cost the fastest frames more than it saved (objects 0.94x uniform's time at the 32-spp level)
+// until the choices stopped taking every pixel's ratios anew at each pass (ChoiceCache).
+inline constexpr int kDefaultFirstPassSpp = 8;
 
 // What PassPlan::choosePixels keeps from one choice to the next, for one plan and frame: each
 // pixel's ratios (by its halves, by its edge floor), its mean, and the samples it had when they

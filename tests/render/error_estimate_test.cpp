@@ -168,9 +168,9 @@ TEST(AdaptiveSampling, TimeLimitStopsWithinOnePassAndLeavesACompleteFrame) {
   const RenderResult r = render(scene, kSoftShadows.crop, opt);
   EXPECT_TRUE(r.stats.timeLimitReached);
   EXPECT_FALSE(r.partial);
-  // Every pixel has at least the first pass (16 spp, the default --min-spp) and the passes
+  // Every pixel has at least the first pass (8 spp, the default --min-spp) and the passes
   // recorded all ended within the limit.
-  EXPECT_GE(r.stats.minPixelSpp, 16);
+  EXPECT_GE(r.stats.minPixelSpp, 8);
   ASSERT_FALSE(r.stats.passes.empty());
   EXPECT_LE(r.stats.passes.back().seconds, 0.3);
   // The pass in flight stops at its next chunk of samples (milliseconds); 2 s leaves room for

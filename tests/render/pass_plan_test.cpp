@@ -28,8 +28,10 @@ TEST(PassPlan, AdaptiveRenderStartsAtMinSppAndUsesAProgressiveSampler) {
   r.target.rmse = 0.01;
   r.maxSpp = 256;
   const PassPlan plan = PassPlan::make(16, SamplerKind::Stratified, r);
-  // --min-spp defaults to min(16, max): 16, 32, ..., 256.
-  EXPECT_EQ(plan.ends, (std::vector<int>{16, 32, 64, 128, 256}));
+  // --min-spp defaults to min(8, max): 8, 16, ..., 256.
+  EXPECT_EQ(plan.ends, (std::vector<int>{8, 16, 32, 64, 128, 256}));
+  r.maxSpp = 4;  // a first pass of the most a pixel may take
+  EXPECT_EQ(PassPlan::make(16, SamplerKind::Stratified, r).ends, (std::vector<int>{4}));
   EXPECT_EQ(plan.sampler, SamplerKind::Sobol);
   // A random sampler is progressive already and stays.
   EXPECT_EQ(PassPlan::make(16, SamplerKind::Random, r).sampler, SamplerKind::Random);
