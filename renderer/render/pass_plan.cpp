@@ -41,7 +41,8 @@ int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int wid
                                std::vector<uint8_t>& sampled) const {
   sampled.assign(pixels.size(), 0);
   const int height = width > 0 ? static_cast<int>(pixels.size() / size_t(width)) : 0;
-  if (adaptive()) refreshRatios(pixels, width, height, spread, kept);
+  // A ratio is read only where a pixel has its first pass and is below this one's end.
+  if (adaptive() && end > minSpp) refreshRatios(pixels, width, height, spread, kept);
   int64_t count = 0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
@@ -64,11 +65,13 @@ int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int wid
 void PassPlan::refreshRatios(const std::vector<PixelEstimate>& pixels, int width, int height,
                              const FrameSpread& spread, ChoiceCache& kept) const {
   const size_t size = pixels.size();
-  if (kept.samples.size() != size || kept.width != width || !(kept.spread == spread)) {
+  if (kept.samples.size() != size || kept.width != width || !(kept.target == target) ||
+      !(kept.spread == spread)) {
     kept.ratio.assign(size, 0);
     kept.edgeRatio.assign(size, 0);
     kept.means.assign(3 * size, 0);
     kept.samples.assign(size, -1);
+    kept.target = target;
     kept.spread = spread;
     kept.width = width;
   }

@@ -24,20 +24,22 @@ struct SamplingRequest {
 // The first pass of an adaptive or time-limited render unless --min-spp says otherwise. Every
 // pixel takes it, so it bounds what adaptive sampling can save (depth_of_field at uniform's
 // 32-spp error: at most 1.38x the rays after 16 samples, 1.64x after 8, tools/adaptive-oracle.py).
-// 8 saves more rays than 16 in 48 of the 51 cells of docs/performance.md's table; its extra pass
-// cost the fastest frames more than it saved (objects 0.94x uniform's time at the 32-spp level)
-// until the choices stopped taking every pixel's ratios anew at each pass (ChoiceCache).
+// 8 saves more rays than 16 in 48 of the 51 cells of a 140 x 90 table (docs/performance.md, Why
+// the first pass is 8 samples); its extra pass cost the fastest frames more than it saved
+// (objects 0.94x uniform's time at the 32-spp level) until the choices stopped taking every
+// pixel's ratios anew at each pass (ChoiceCache).
 inline constexpr int kDefaultFirstPassSpp = 8;
 
-// What PassPlan::choosePixels keeps from one choice to the next, for one plan and frame: each
-// pixel's ratios (by its halves, by its edge floor), its mean, and the samples it had when they
-// were taken. A pass changes a pixel only by adding samples, so a choice recomputes them only
-// where the sample count moved (and the edge ratios of those pixels' 4-neighbours): taken anew
-// over the whole frame at every pass, they cost 3 ms a pass, 23 ms of a 156-ms adaptive render
-// (objects at 240 x 150, --min-spp 8), which kept runs 1.13x as fast (median of 30 pairs).
+// What PassPlan::choosePixels keeps from one choice to the next: each pixel's ratios (by its
+// halves, by its edge floor), its mean, and the samples it had when they were taken, for one
+// target, spread and frame. A pass changes a pixel only by adding samples, so a choice recomputes
+// them only where the sample count moved (and the edge ratios of those pixels' 4-neighbours):
+// taken anew over the whole frame at every pass, they cost 3 ms a pass, 23 ms of a 156-ms
+// adaptive render (objects at 240 x 150, --min-spp 8).
 struct ChoiceCache {
   std::vector<double> ratio, edgeRatio, means;
   std::vector<int64_t> samples;  // -1 where not taken yet
+  ErrorTarget target;
   FrameSpread spread;
   int width = 0;
 };

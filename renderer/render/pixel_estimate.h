@@ -82,6 +82,7 @@ struct FrameSpread {
 struct ErrorTarget {
   double rmse = 0, relmse = 0;  // 0: no target of that kind
   bool any() const { return rmse > 0 || relmse > 0; }
+  bool operator==(const ErrorTarget&) const = default;
   // How far a pixel is from its share of the target, at most 1 where it meets it; the larger of
   // the two targets given; infinity where the pixel has no estimate. The frame's squared error
   // falls fastest per ray traced when each pixel's samples grow with its per-sample deviation σ

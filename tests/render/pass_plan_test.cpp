@@ -267,10 +267,9 @@ TEST(PassPlan, KeptInputsChooseAsInputsTakenAfresh) {
   const FrameSpread spread = FrameSpread::of(grid);
   ChoiceCache kept;
   std::vector<uint8_t> first, again, fresh;
-  const int64_t chosen = plan.choosePixels(grid, width, 16, spread, kept, first);
-  // Not all and not none: the test needs pixels that move and pixels that do not.
-  ASSERT_GT(chosen, 0);
-  ASSERT_LT(chosen, int64_t(grid.size()));
+  // Not all and not none (60 of 192 with this seed): the test needs pixels that move and pixels
+  // that do not.
+  ASSERT_EQ(plan.choosePixels(grid, width, 16, spread, kept, first), 60);
   for (size_t p = 0; p < grid.size(); ++p)
     if (first[p])
       for (int i = 0; i < 8; ++i) grid[p].half[i % 2].add({3, 3, 3}, 1, 1);
@@ -281,8 +280,7 @@ TEST(PassPlan, KeptInputsChooseAsInputsTakenAfresh) {
   // The bright samples moved the choice: 112 pixels, most of them on the edges the chosen
   // pixels' new means make with their unchosen 4-neighbours, whose own states did not move (a
   // cache that refreshed only the moved pixels' edge ratios chose 52).
-  EXPECT_NE(again, first);
-  EXPECT_GT(std::count(again.begin(), again.end(), 1), 0);
+  EXPECT_EQ(std::count(again.begin(), again.end(), 1), 112);
   // Another spread (as after the probes' pass) takes every ratio anew.
   const FrameSpread wider{2 * spread.deviation, 0};
   ChoiceCache none2;
