@@ -315,6 +315,9 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   const PassPlan plan = PassPlan::make(scene.render.spp, scene.render.sampler, a.sampling);
   RenderOptions opt;
   opt.threads = a.threads.value_or(0);
+  // The frame's line blocks are compressed on the render's threads: zip took 90 ms, on one
+  // thread, of a 560 x 360 frame whose render takes 0.36 s on 16.
+  setExrThreads(opt.threads > 0 ? opt.threads : defaultThreadCount());
   opt.tileSize = a.tileSize;
   parseIntegratorKind(a.integrator, opt.integrator);
   opt.progress = !a.quiet;

@@ -16,6 +16,7 @@
 #include <OpenEXR/ImfStandardAttributes.h>
 #include <OpenEXR/ImfStdIO.h>
 #include <OpenEXR/ImfStringAttribute.h>
+#include <OpenEXR/ImfThreading.h>
 
 #include <algorithm>
 #include <cmath>
@@ -52,6 +53,10 @@ Imf::Compression compressionNamed(const std::string& name) {
 }
 
 }  // namespace
+
+void setExrThreads(int threads) {
+  if (Imf::globalThreadCount() != threads) Imf::setGlobalThreadCount(threads);
+}
 
 const std::vector<std::string>& exrCompressions() {
   static const std::vector<std::string> names = [] {

@@ -30,6 +30,11 @@ struct ExrOptions {
   bool multipart = false;           // one part per AOV instead of layered channels in one part
 };
 
+// The threads OpenEXR compresses and decompresses line blocks on, for the whole process (its
+// own pool; 0: the calling thread alone). Blocks are written in order, so the bytes are the
+// same for any count.
+void setExrThreads(int threads);
+
 // The compression names OpenEXR (through OpenImageIO) accepts.
 const std::vector<std::string>& exrCompressions();
 

@@ -1,7 +1,12 @@
 #include "render/pass_plan.h"
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_reduce.h>
+
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 
 #include "core/error.h"
@@ -36,6 +41,24 @@ PassPlan PassPlan::make(int spp, SamplerKind sceneSampler, const SamplingRequest
   return plan;
 }
 
+// The loops below run on the threads of the caller's arena (the render's, withThreads): each
+// pixel's result depends on its inputs alone, and the sums are of integers or split the same
+// way for any thread count, so the choices and statistics do not depend on the threads. On one
+// thread they took 43 ms of a 1.45-s render of the default scene (statistics 33, choices 10):
+// at 16 threads, where the render takes 0.13 s, the other 15 would wait that long.
+
+namespace {
+
+// Calls row(y) for every y in [0, height) on the arena's threads.
+template <class Row>
+void forEachRow(int height, const Row& row) {
+  tbb::parallel_for(tbb::blocked_range<int>(0, height), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y) row(y);
+  });
+}
+
+}  // namespace
+
 int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int width, int end,
                                const FrameSpread& spread, ChoiceCache& kept,
                                std::vector<uint8_t>& sampled) const {
@@ -43,8 +66,8 @@ int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int wid
   const int height = width > 0 ? static_cast<int>(pixels.size() / size_t(width)) : 0;
   // A ratio is read only where a pixel has its first pass and is below this one's end.
   if (adaptive() && end > minSpp) refreshRatios(pixels, width, height, spread, kept);
-  int64_t count = 0;
-  for (int y = 0; y < height; ++y)
+  const auto chooseRow = [&](int y) {
+    int64_t count = 0;
     for (int x = 0; x < width; ++x) {
       const size_t p = size_t(y) * size_t(width) + size_t(x);
       const int64_t n = pixels[p].samples();
@@ -59,7 +82,15 @@ int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int wid
       sampled[p] = needs;
       count += needs;
     }
-  return count;
+    return count;
+  };
+  return tbb::parallel_reduce(
+      tbb::blocked_range<int>(0, height), int64_t{0},
+      [&](const tbb::blocked_range<int>& r, int64_t count) {
+        for (int y = r.begin(); y != r.end(); ++y) count += chooseRow(y);
+        return count;
+      },
+      std::plus<>());
 }
 
 void PassPlan::refreshRatios(const std::vector<PixelEstimate>& pixels, int width, int height,
@@ -77,18 +108,20 @@ void PassPlan::refreshRatios(const std::vector<PixelEstimate>& pixels, int width
   }
   // Each pixel's ratio by its halves' estimate, where its samples moved.
   std::vector<uint8_t> moved(size, 0);
-  for (size_t p = 0; p < size; ++p) {
-    if (pixels[p].samples() == kept.samples[p]) continue;
-    moved[p] = 1;
-    kept.samples[p] = pixels[p].samples();
-    kept.ratio[p] = target.ratio(pixels[p], spread);
-    double value[4];
-    pixels[p].mean(value);
-    std::copy(value, value + 3, &kept.means[3 * p]);
-  }
+  forEachRow(height, [&](int y) {
+    for (size_t p = size_t(y) * size_t(width), last = p + size_t(width); p < last; ++p) {
+      if (pixels[p].samples() == kept.samples[p]) continue;
+      moved[p] = 1;
+      kept.samples[p] = pixels[p].samples();
+      kept.ratio[p] = target.ratio(pixels[p], spread);
+      double value[4];
+      pixels[p].mean(value);
+      std::copy(value, value + 3, &kept.means[3 * p]);
+    }
+  });
   // Its ratio by the edge floor its 4-neighbours' means set (PixelError::edgeFloor), where it
   // or one of them moved.
-  for (int y = 0; y < height; ++y)
+  forEachRow(height, [&](int y) {
     for (int x = 0; x < width; ++x) {
       const size_t p = size_t(y) * size_t(width) + size_t(x);
       const bool left = x > 0, right = x + 1 < width, up = y > 0, down = y + 1 < height;
@@ -109,21 +142,40 @@ void PassPlan::refreshRatios(const std::vector<PixelEstimate>& pixels, int width
       kept.edgeRatio[p] = target.ratio(PixelError::edgeFloor(pixels[p], contrast),
                                        pixels[p].samples(), pixels[p].raysPerSample(), spread);
     }
+  });
 }
 
 FrameError estimateFrameError(const std::vector<PixelEstimate>& pixels, SamplerKind sampler) {
   FrameError e;
   if (sampler == SamplerKind::Regular || pixels.empty()) return e;
-  double squared = 0, relative = 0;
-  for (const PixelEstimate& p : pixels) {
-    PixelError pixel;
-    if (!PixelError::of(p, pixel)) return e;
-    squared += pixel.mse;
-    relative += pixel.relmse;
-  }
+  struct Sums {
+    double squared = 0, relative = 0;
+    bool complete = true;  // every pixel has an estimate
+  };
+  // Deterministic: the range is cut into the same blocks, summed in the same order, for any
+  // thread count, so the figures' bits do not depend on it.
+  constexpr size_t kBlock = 4096;
+  const Sums sums = tbb::parallel_deterministic_reduce(
+      tbb::blocked_range<size_t>(0, pixels.size(), kBlock), Sums{},
+      [&](const tbb::blocked_range<size_t>& r, Sums s) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          PixelError pixel;
+          if (!PixelError::of(pixels[i], pixel)) {
+            s.complete = false;
+            break;
+          }
+          s.squared += pixel.mse;
+          s.relative += pixel.relmse;
+        }
+        return s;
+      },
+      [](Sums a, const Sums& b) {
+        return Sums{a.squared + b.squared, a.relative + b.relative, a.complete && b.complete};
+      });
+  if (!sums.complete) return e;
   const double n = static_cast<double>(pixels.size());
-  e.rmse = std::sqrt(squared / n);
-  e.relmse = relative / n;
+  e.rmse = std::sqrt(sums.squared / n);
+  e.relmse = sums.relative / n;
   return e;
 }
 

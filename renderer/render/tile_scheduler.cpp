@@ -47,16 +47,24 @@ int effectiveTileSize(const PixelWindow& window, int requested, int threads) {
   const auto tilesAt = [&](int s) {
     return int64_t((window.width() + s - 1) / s) * ((window.height() + s - 1) / s);
   };
-  while (size > 8 && tilesAt(size) < 8 * int64_t(threads)) size = std::max(8, size / 2);
+  // Every pass ends when its last tile does, so tiles must be small against a thread's share
+  // of the frame: at 16 threads, 8 tiles a thread left lamp_in_mirror 0.69 s where 32 take
+  // 0.49 (the 16-pixel tiles that gives; docs/performance.md, Scaling with cores).
+  while (size > 8 && tilesAt(size) < kTilesPerThread * int64_t(threads))
+    size = std::max(8, size / 2);
   return size;
 }
 
 int defaultThreadCount() { return tbb::info::default_concurrency(); }
 
+void withThreads(int threads, const std::function<void()>& body) {
+  tbb::task_arena arena(threads > 0 ? threads : defaultThreadCount());
+  arena.execute(body);
+}
+
 void runTiles(const std::vector<PixelWindow>& tiles, int threads,
               const std::function<void(size_t)>& renderTile) {
-  tbb::task_arena arena(threads > 0 ? threads : defaultThreadCount());
-  arena.execute([&] {
+  const auto run = [&] {
     tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1),
                       [&](const tbb::blocked_range<size_t>& r) {
                         // Cheap, and TBB workers are not ours to set up; restored after, since
@@ -64,7 +72,12 @@ void runTiles(const std::vector<PixelWindow>& tiles, int threads,
                         const FlushToZeroScope flushToZero;
                         for (size_t i = r.begin(); i != r.end(); ++i) renderTile(i);
                       });
-  });
+  };
+  // Inside withThreads of as many threads, on its arena, else on an arena of its own.
+  if (tbb::this_task_arena::max_concurrency() == (threads > 0 ? threads : defaultThreadCount()))
+    run();
+  else
+    withThreads(threads, run);
 }
 
 }  // namespace glint

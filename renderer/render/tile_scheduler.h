@@ -18,8 +18,13 @@ std::vector<PixelWindow> makeTiles(const PixelWindow& window, int tileSize,
                                    TileOrder order = TileOrder::Morton);
 
 // The tile edge actually used: `requested`, halved (not below 8) until there are at least
-// 8 tiles per thread, so that no thread idles at the end of a frame.
+// kTilesPerThread tiles per thread, so that no thread idles long at the end of a pass.
+inline constexpr int kTilesPerThread = 32;
 int effectiveTileSize(const PixelWindow& window, int requested, int threads);
+
+// Runs `body` on an arena of `threads` threads (0 = all cores): the tiles and every other TBB
+// loop it runs share those threads, and no more.
+void withThreads(int threads, const std::function<void()>& body);
 
 // Runs renderTile(tileIndex) for every tile on `threads` threads (0 = all cores).
 void runTiles(const std::vector<PixelWindow>& tiles, int threads,

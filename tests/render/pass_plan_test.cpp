@@ -9,6 +9,7 @@
 #include <random>
 
 #include "core/error.h"
+#include "render/tile_scheduler.h"
 
 namespace glint {
 namespace {
@@ -314,6 +315,50 @@ TEST(FrameError, AveragesPixelsLikeCompareAndIsAbsentForRegularGrids) {
   EXPECT_DOUBLE_EQ(*e.rmse, 1.0);                 // every channel's variance is 1
   EXPECT_DOUBLE_EQ(*e.relmse, 1.0 / (9 + 0.01));  // 1 / (mean² + ε)
   EXPECT_FALSE(estimateFrameError(pixels, SamplerKind::Regular).rmse);
+}
+
+TEST(FrameError, SameBitsAndChoicesForAnyThreadCount) {
+  // The statistics and choices run on the render's threads. A 320 x 200 frame (16 of the
+  // reduction's 4096-pixel blocks, fixed seed) must give the same estimate, bit for bit, and the
+  // same choice on 1 thread as on 4: the render's bytes may not depend on the thread count. An
+  // ordinary parallel sum, split where threads steal work, would differ in its last bits.
+  const int width = 320, height = 200;
+  std::mt19937 rng(11);
+  std::lognormal_distribution<float> radiance(0.f, 2.f);
+  std::vector<PixelEstimate> grid(size_t(width) * height);
+  for (PixelEstimate& p : grid)
+    for (int i = 0; i < 8; ++i) {
+      const float v = radiance(rng);
+      p.half[i % 2].add({v, 0.5f * v, 1.f}, 1, 1 + i % 3);
+    }
+  SamplingRequest r;
+  r.minSpp = 8;
+  r.maxSpp = 64;
+  r.target.rmse = 10;
+  const PassPlan plan = PassPlan::make(64, SamplerKind::Sobol, r);
+  const FrameSpread spread = FrameSpread::of(grid);
+  const auto run = [&](int threads, FrameError& error, std::vector<uint8_t>& chosen) {
+    int64_t count = 0;
+    withThreads(threads, [&] {
+      error = estimateFrameError(grid, SamplerKind::Sobol);
+      ChoiceCache kept;
+      count = plan.choosePixels(grid, width, 16, spread, kept, chosen);
+    });
+    return count;
+  };
+  FrameError one, four;
+  std::vector<uint8_t> chosenOne, chosenFour;
+  const int64_t countOne = run(1, one, chosenOne);
+  ASSERT_TRUE(one.rmse && one.relmse);
+  for (int attempt = 0; attempt < 5; ++attempt) {  // stealing differs from run to run
+    ASSERT_EQ(run(4, four, chosenFour), countOne);
+    EXPECT_EQ(*four.rmse, *one.rmse);
+    EXPECT_EQ(*four.relmse, *one.relmse);
+    EXPECT_EQ(chosenFour, chosenOne);
+  }
+  // About half of the pixels chosen with this seed and target, so that the choice compared is
+  // a real one.
+  EXPECT_EQ(countOne, 29838);
 }
 
 }  // namespace
