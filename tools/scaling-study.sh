@@ -1,0 +1,174 @@
+#!/usr/bin/env bash
+# How tile rendering and the farm's tasks scale with cores (docs/performance.md, "Scaling with
+# cores"). Meant for a machine with many cores; on 2 it runs, but measures little.
+#
+#   tools/scaling-study.sh OUTDIR [--glint PATH] [--threads "1 2 4 8 16"] [--runs R]
+#                          [--scenes "default soft_shadows ..."] [--farm-scene NAME]
+#                          [--farm-tiles "16 64"] [--adaptive SCENE "RENDER OPTIONS"]
+#
+# 1. Threads: every scene rendered R times at each thread count; the best render seconds
+#    (--stats-json "seconds": no start-up), the speed-up and the parallel efficiency against one
+#    thread. Every count's image must equal the 1-thread image (glint compare: max_abs 0), or
+#    the study stops with status 1: the scheduler promises the same bytes for any thread count.
+#    One more row set renders an adaptive frame (default: soft_shadows, --target-rmse 0.002 --max-spp 256),
+#    whose passes are planned on one thread between parallel passes.
+# 2. Tiles: at the most threads, --tile-size 8/16/32/64 and --tile-order row against the default
+#    (32, morton). The scheduler halves a tile until there are 8 per thread, so a large size may
+#    run as a smaller one.
+# 3. Farm: `glint-farm plan` cuts the farm scene into T tiles, one task each; the tasks run P at a
+#    time with C threads each (P x C = the most threads; xargs -P does what one node of a farm
+#    does, without the scheduler, whose own seconds docs/farm.md measures), then
+#    `glint-farm merge` joins and checks the frame. Wall time from the first task to the merged
+#    frame, best of R, against the local render at the most threads.
+#
+# Writes OUTDIR/scaling.md (also printed) and the renders, stats and job directories under
+# OUTDIR/raw. Exit status: 0 done, 1 an image differed or a command failed, 2 bad usage.
+set -euo pipefail
+
+usage_error() {
+  echo "scaling-study: $*" >&2
+  exit 2
+}
+
+kRoot="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+out="" glint="${GLINT:-$kRoot/build/bin/glint}" runs=3 farm_scene=soft_shadows
+threads="1 2 4 8 16" scenes="default soft_shadows depth_of_field real_assets lamp_in_mirror"
+farm_tiles="16 64" adaptive_scene=soft_shadows adaptive_args="--target-rmse 0.002 --max-spp 256"
+while [ $# -gt 0 ]; do
+  case "$1" in
+  --glint) glint=${2:?}; shift 2 ;;
+  --threads) threads=${2:?}; shift 2 ;;
+  --runs) runs=${2:?}; shift 2 ;;
+  --scenes) scenes=${2:?}; shift 2 ;;
+  --farm-scene) farm_scene=${2:?}; shift 2 ;;
+  --farm-tiles) farm_tiles=${2:?}; shift 2 ;;
+  --adaptive) adaptive_scene=${2:?}; adaptive_args=${3:?}; shift 3 ;;
+  -*) usage_error "unknown option $1" ;;
+  *) [ -z "$out" ] || usage_error "one output directory only"; out=$1; shift ;;
+  esac
+done
+[ -n "$out" ] || usage_error "give an output directory"
+[ -x "$glint" ] || usage_error "no glint binary at $glint (build it, or pass --glint PATH)"
+[[ "$runs" =~ ^[1-9][0-9]*$ ]] || usage_error "--runs must be a positive integer"
+for t in $threads; do [[ "$t" =~ ^[1-9][0-9]*$ ]] || usage_error "bad thread count $t"; done
+most=$(echo "$threads" | tr ' ' '\n' | sort -n | tail -n 1)
+raw="$out/raw"
+mkdir -p "$raw"
+report="$out/scaling.md"
+: >"$report"
+
+say() { echo "$*" | tee -a "$report"; }
+field() { # JSON KEY → the value
+  python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))[sys.argv[2]])' "$1" "$2"
+}
+best_seconds() { # PREFIX → the least "seconds" of PREFIX.run*.json
+  python3 -c 'import glob, json, sys
+print(min(json.load(open(p))["seconds"] for p in glob.glob(sys.argv[1] + ".run*.json")))' "$1"
+}
+render_best() { # NAME SCENE ARGS... → renders R times as raw/NAME, prints the best seconds
+  local name=$1 scene=$2
+  shift 2
+  local r
+  for r in $(seq 1 "$runs"); do
+    "$glint" render "$kRoot/scenes/$scene.json" -o "$raw/$name.exr" --quiet \
+      --stats-json "$raw/$name.run$r.json" "$@"
+  done
+  best_seconds "$raw/$name"
+}
+same_image() { # A B → fails unless the pixels are equal
+  "$glint" compare "$1" "$2" --json "$raw/cmp.json" >/dev/null
+  [ "$(field "$raw/cmp.json" max_abs)" = 0.0 ] || {
+    echo "scaling-study: $1 and $2 differ (max_abs $(field "$raw/cmp.json" max_abs))" >&2
+    exit 1
+  }
+}
+now() { echo "$EPOCHREALTIME"; }
+since() { awk -v a="$1" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.6f", b - a }'; } # b: read before awk starts
+least() { python3 -c 'import sys; print(min(map(float, sys.argv[1:])))' "$@"; }
+
+say "# Scaling with cores"
+say ""
+say "$(nproc) cores online; $(grep -m1 'model name' /proc/cpuinfo | sed 's/.*: //');" \
+  "$(lscpu 2>/dev/null | grep -E '^(Thread|Core|Socket)' | tr -s ' ' | paste -sd ';')"
+say "glint: $("$glint" --version | head -n 1); best of $runs runs"
+say ""
+say "## Threads"
+say ""
+say "| scene | threads | best seconds | speed-up | efficiency | Mrays/s |"
+say "|---|---|---|---|---|---|"
+thread_rows() { # LABEL NAME SCENE ARGS...: a row per thread count
+  local label=$1 name=$2 scene=$3 t s one="" first="" rays
+  shift 3
+  for t in $threads; do
+    s=$(render_best "$name.t$t" "$scene" --threads "$t" "$@")
+    [ -n "$first" ] || { first=$t; one=$s; }
+    same_image "$raw/$name.t$t.exr" "$raw/$name.t$first.exr"
+    rays=$(field "$raw/$name.t$t.run1.json" rays_total)
+    say "$(python3 -c 'import sys
+s, one, first, t, rays = map(float, sys.argv[2:])
+print(f"| {sys.argv[1]} | {t:.0f} | {s:.3f} | {one / s:.2f} | {one / s / t * first:.2f} | {rays / s / 1e6:.0f} |")' \
+      "$label" "$s" "$one" "$first" "$t" "$rays")"
+  done
+}
+for scene in $scenes; do thread_rows "$scene" "$scene" "$scene"; done
+# Adaptive sampling plans each pass on one thread between parallel passes: what that costs as
+# threads are added, and whether its choices stay the same for any thread count.
+thread_rows "$adaptive_scene, $adaptive_args" "$adaptive_scene.adaptive" "$adaptive_scene" $adaptive_args
+say ""
+say "Speed-up and efficiency are against the first thread count ($(echo $threads | cut -d" " -f1)), whose"
+say "image every other count's equals (glint compare, max_abs 0)."
+
+say ""
+say "## Tiles, $most threads"
+say ""
+say "| scene | tile 8 | 16 | 32 (default) | 64 | 32, row order |"
+say "|---|---|---|---|---|---|"
+for scene in $scenes; do
+  row="| $scene"
+  for size in 8 16 32 64; do
+    row+=" | $(printf %.3f "$(render_best "$scene.tile$size" "$scene" --threads "$most" --tile-size "$size")")"
+  done
+  row+=" | $(printf %.3f "$(render_best "$scene.row" "$scene" --threads "$most" --tile-order row)") |"
+  same_image "$raw/$scene.tile8.exr" "$raw/$scene.row.exr"
+  say "$row"
+done
+
+say ""
+say "## Farm tasks on one node of $most cores ($farm_scene)"
+say ""
+local_best=""
+for r in $(seq 1 "$runs"); do
+  start=$(now)
+  "$glint" render "$kRoot/scenes/$farm_scene.json" -o "$raw/farm.local.exr" --quiet --threads "$most"
+  local_best=$(least $local_best "$(since "$start")")
+done
+say "Local \`glint render\`, $most threads: $(printf %.3f "$local_best") s wall (process start to" \
+  "written frame). The rows below are wall seconds from the first task's start to the merged," \
+  "checked frame (process start, scene load and BVH build in every task)."
+say ""
+say "| tiles | tasks at a time x threads each | best wall seconds | against the local render |"
+say "|---|---|---|---|"
+for tiles in $farm_tiles; do
+  for p in $(seq 1 "$most" | awk -v m="$most" 'm % $1 == 0 && ($1 == 1 || $1 == 4 || $1 == m)'); do
+    c=$((most / p))
+    best=""
+    for r in $(seq 1 "$runs"); do
+      job="$raw/farm.t$tiles.p$p.r$r"
+      GLINT="$glint" "$kRoot/tools/glint-farm" plan "$kRoot/scenes/$farm_scene.json" \
+        -o "$job/frame.exr" --tiles "$tiles" --tiles-per-task 1 >/dev/null 2>&1
+      tasks=$(awk -F '\t' 'END { print $1 + 1 }' "$job/frame.farm/tasks.tsv")
+      start=$(now)
+      seq 0 $((tasks - 1)) | GLINT_THREADS=$c xargs -P "$p" -I K \
+        "$kRoot/tools/glint-farm" run-task "$job/frame.farm" K >>"$raw/farm.log" 2>&1
+      "$kRoot/tools/glint-farm" merge "$job/frame.farm" >>"$raw/farm.log" 2>&1
+      best=$(least $best "$(since "$start")")
+      same_image "$job/frame.exr" "$raw/farm.local.exr"
+    done
+    say "$(python3 -c 'import sys
+tiles, p, c, best, local = sys.argv[1:]
+print(f"| {tiles} | {p} x {c} | {float(best):.3f} | {float(best) / float(local):.2f}x |")' \
+      "$tiles" "$p" "$c" "$best" "$local_best")"
+  done
+done
+say ""
+say "Every merged frame equals the local render (glint compare, max_abs 0)."
