@@ -243,6 +243,15 @@ TEST(PassPlan, AnEdgeWhoseHalvesAgreeKeepsSamplingByItsFloor) {
       0);
 }
 
+// Passes of 8 to 64 samples to a target RMSE.
+PassPlan adaptivePlan(double targetRmse) {
+  SamplingRequest r;
+  r.minSpp = 8;
+  r.maxSpp = 64;
+  r.target.rmse = targetRmse;
+  return PassPlan::make(64, SamplerKind::Sobol, r);
+}
+
 TEST(PassPlan, KeptInputsChooseAsInputsTakenAfresh) {
   // A 16 x 12 frame of pixels (fixed seed), 8 samples each, one in 23 ten times as noisy (60
   // pixels chosen around them). A pass adds 8 bright samples to the pixels chosen; the next
@@ -260,11 +269,7 @@ TEST(PassPlan, KeptInputsChooseAsInputsTakenAfresh) {
   };
   std::vector<PixelEstimate> grid(size_t(width) * height);
   for (size_t p = 0; p < grid.size(); ++p) addSamples(grid[p], 8, p % 23 == 0 ? 2.f : 0.2f);
-  SamplingRequest r;
-  r.minSpp = 8;
-  r.maxSpp = 64;
-  r.target.rmse = 0.05;
-  const PassPlan plan = PassPlan::make(64, SamplerKind::Sobol, r);
+  const PassPlan plan = adaptivePlan(0.05);
   const FrameSpread spread = FrameSpread::of(grid);
   ChoiceCache kept;
   std::vector<uint8_t> first, again, fresh;
@@ -331,11 +336,7 @@ TEST(FrameError, SameBitsAndChoicesForAnyThreadCount) {
       const float v = radiance(rng);
       p.half[i % 2].add({v, 0.5f * v, 1.f}, 1, 1 + i % 3);
     }
-  SamplingRequest r;
-  r.minSpp = 8;
-  r.maxSpp = 64;
-  r.target.rmse = 10;
-  const PassPlan plan = PassPlan::make(64, SamplerKind::Sobol, r);
+  const PassPlan plan = adaptivePlan(10);
   const FrameSpread spread = FrameSpread::of(grid);
   const auto run = [&](int threads, FrameError& error, std::vector<uint8_t>& chosen) {
     int64_t count = 0;
