@@ -6,15 +6,15 @@
 #                          [--scenes "default soft_shadows ..."] [--farm-scene NAME]
 #                          [--farm-tiles "16 64"] [--adaptive SCENE "RENDER OPTIONS"]
 #
-# 1. Threads: every scene rendered R times at each thread count; the best render seconds
+# 1. Threads: each scene rendered R times at each thread count; the best render seconds
 #    (--stats-json "seconds": no start-up), the speed-up and the parallel efficiency against one
 #    thread. Every count's image must equal the 1-thread image (glint compare: max_abs 0), or
 #    the study stops with status 1: the scheduler promises the same bytes for any thread count.
-#    One more row set renders an adaptive frame (default: soft_shadows, --target-rmse 0.002 --max-spp 256),
-#    whose passes are planned on one thread between parallel passes.
+#    One more row set renders an adaptive frame (default: soft_shadows, --target-rmse 0.002
+#    --max-spp 256), whose later passes are short: they sample few pixels.
 # 2. Tiles: at the most threads, --tile-size 8/16/32/64 and --tile-order row against the default
-#    (32, morton). The scheduler halves a tile until there are 8 per thread, so a large size may
-#    run as a smaller one.
+#    (32, morton). The scheduler halves a tile until each thread has kTilesPerThread (32), so a
+#    large size may run as a smaller one.
 # 3. Farm: `glint-farm plan` cuts the farm scene into T tiles, one task each; the tasks run P at a
 #    time with C threads each (P x C = the most threads; xargs -P does what one node of a farm
 #    does, without the scheduler, whose own seconds docs/farm.md measures), then
@@ -22,8 +22,11 @@
 #    frame, best of R, against the local render at the most threads.
 #
 # Writes OUTDIR/scaling.md (also printed) and the renders, stats and job directories under
-# OUTDIR/raw. Exit status: 0 done, 1 an image differed or a command failed, 2 bad usage.
+# OUTDIR/raw (a run replaces what an earlier one left there). Exit status: 0 done, 1 an image
+# differed, 2 bad usage, another a command failed (its own status).
 set -euo pipefail
+shopt -s inherit_errexit # a failed render inside $(...) stops the study
+export LC_ALL=C          # EPOCHREALTIME and awk with a decimal point
 
 usage_error() {
   echo "scaling-study: $*" >&2
@@ -69,6 +72,7 @@ render_best() { # NAME SCENE ARGS... → renders R times as raw/NAME, prints the
   local name=$1 scene=$2
   shift 2
   local r
+  rm -f "$raw/$name".run*.json
   for r in $(seq 1 "$runs"); do
     "$glint" render "$kRoot/scenes/$scene.json" -o "$raw/$name.exr" --quiet \
       --stats-json "$raw/$name.run$r.json" "$@"
@@ -111,9 +115,11 @@ print(f"| {sys.argv[1]} | {t:.0f} | {s:.3f} | {one / s:.2f} | {one / s / t * fir
   done
 }
 for scene in $scenes; do thread_rows "$scene" "$scene" "$scene"; done
-# Adaptive sampling plans each pass on one thread between parallel passes: what that costs as
-# threads are added, and whether its choices stay the same for any thread count.
-thread_rows "$adaptive_scene, $adaptive_args" "$adaptive_scene.adaptive" "$adaptive_scene" $adaptive_args
+# Adaptive sampling: short later passes and the choices between them, and whether those stay
+# the same for any thread count.
+read -ra adaptive_words <<<"$adaptive_args"
+thread_rows "$adaptive_scene, $adaptive_args" "$adaptive_scene.adaptive" "$adaptive_scene" \
+  "${adaptive_words[@]}"
 say ""
 say "Speed-up and efficiency are against the first thread count ($(echo $threads | cut -d" " -f1)), whose"
 say "image every other count's equals (glint compare, max_abs 0)."
@@ -154,11 +160,13 @@ for tiles in $farm_tiles; do
     best=""
     for r in $(seq 1 "$runs"); do
       job="$raw/farm.t$tiles.p$p.r$r"
+      rm -rf "$job"
       GLINT="$glint" "$kRoot/tools/glint-farm" plan "$kRoot/scenes/$farm_scene.json" \
-        -o "$job/frame.exr" --tiles "$tiles" --tiles-per-task 1 >/dev/null 2>&1
+        -o "$job/frame.exr" --tiles "$tiles" --tiles-per-task 1 >>"$raw/farm.log" 2>&1
       tasks=$(awk -F '\t' 'END { print $1 + 1 }' "$job/frame.farm/tasks.tsv")
       start=$(now)
-      seq 0 $((tasks - 1)) | GLINT_THREADS=$c xargs -P "$p" -I K \
+      # run-task prefers a farm's own thread count to GLINT_THREADS: not this study's.
+      seq 0 $((tasks - 1)) | env -u SLURM_CPUS_PER_TASK -u CUE_THREADS GLINT_THREADS=$c xargs -P "$p" -I K \
         "$kRoot/tools/glint-farm" run-task "$job/frame.farm" K >>"$raw/farm.log" 2>&1
       "$kRoot/tools/glint-farm" merge "$job/frame.farm" >>"$raw/farm.log" 2>&1
       best=$(least $best "$(since "$start")")

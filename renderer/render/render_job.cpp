@@ -14,7 +14,6 @@
 
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
-#include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include "camera/camera.h"
@@ -308,18 +307,15 @@ Film resolveFrame(const FrameContext& f, const PixelWindow& window) {
   for (const auto& [key, value] : sums.stringAttributes()) out.addAttribute(key, value);
   for (const auto& [key, value] : sums.intAttributes()) out.addAttribute(key, value);
   // On the render's threads: each pixel is written from its own state alone.
-  tbb::parallel_for(tbb::blocked_range<int>(window.y0, window.y1),
-                    [&](const tbb::blocked_range<int>& rows) {
-                      for (int y = rows.begin(); y != rows.end(); ++y)
-                        for (int x = window.x0; x < window.x1; ++x) {
-                          const PixelEstimate& pixel = f.estimate(x, y);
-                          double rgba[4];
-                          pixel.mean(rgba);
-                          out.setPixel(x, y, rgba[0], rgba[1], rgba[2], rgba[3]);
-                          if (f.opt.aovs.any())
-                            resolveAovs(f.aovLayout, sums, f.aovTables, pixel, out, x, y);
-                        }
-                    });
+  forEachRow(window.y0, window.y1, [&](int y) {
+    for (int x = window.x0; x < window.x1; ++x) {
+      const PixelEstimate& pixel = f.estimate(x, y);
+      double rgba[4];
+      pixel.mean(rgba);
+      out.setPixel(x, y, rgba[0], rgba[1], rgba[2], rgba[3]);
+      if (f.opt.aovs.any()) resolveAovs(f.aovLayout, sums, f.aovTables, pixel, out, x, y);
+    }
+  });
   return out;
 }
 
@@ -433,7 +429,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
     estimates = *opt.resumeFrom;
   }
 
-  const int threads = opt.threads > 0 ? opt.threads : defaultThreadCount();
+  const int threads = threadCount(opt.threads);
   const int tileSize = effectiveTileSize(sampledWindow, opt.tileSize, threads);
   const std::vector<PixelWindow> tiles = makeTiles(sampledWindow, tileSize, opt.tileOrder);
   std::vector<RayCounters> tileCounters(tiles.size());

@@ -151,7 +151,8 @@ void checkSampleSets(const Scene& scene, int64_t spp);
 void checkFrameFits(int64_t pixels, size_t channels, uint64_t availableBytes);
 
 // Called after each finished pass with the frame so far (its film resolved, its stats up to
-// that pass): previews. Runs on the calling thread, between passes.
+// that pass): previews. Runs on the calling thread, between passes, inside the render's arena
+// (withThreads): TBB work it starts shares the render's threads.
 using PassCallback = std::function<void(const RenderResult& soFar)>;
 
 RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt,

@@ -57,9 +57,24 @@ int effectiveTileSize(const PixelWindow& window, int requested, int threads) {
 
 int defaultThreadCount() { return tbb::info::default_concurrency(); }
 
+int threadCount(int requested) { return requested > 0 ? requested : defaultThreadCount(); }
+
+namespace {
+// The threads of the withThreads whose body this thread runs; 0 outside one.
+thread_local int tArenaThreads = 0;
+}  // namespace
+
 void withThreads(int threads, const std::function<void()>& body) {
-  tbb::task_arena arena(threads > 0 ? threads : defaultThreadCount());
-  arena.execute(body);
+  const int count = threadCount(threads);
+  tbb::task_arena arena(count);
+  arena.execute([&] {
+    struct Mark {
+      int outer = tArenaThreads;
+      ~Mark() { tArenaThreads = outer; }
+    } restoredOnExit;
+    tArenaThreads = count;
+    body();
+  });
 }
 
 void runTiles(const std::vector<PixelWindow>& tiles, int threads,
@@ -73,11 +88,16 @@ void runTiles(const std::vector<PixelWindow>& tiles, int threads,
                         for (size_t i = r.begin(); i != r.end(); ++i) renderTile(i);
                       });
   };
-  // Inside withThreads of as many threads, on its arena, else on an arena of its own.
-  if (tbb::this_task_arena::max_concurrency() == (threads > 0 ? threads : defaultThreadCount()))
+  if (tArenaThreads == threadCount(threads))
     run();
   else
     withThreads(threads, run);
+}
+
+void forEachRow(int y0, int y1, const std::function<void(int)>& row) {
+  tbb::parallel_for(tbb::blocked_range<int>(y0, y1), [&](const tbb::blocked_range<int>& r) {
+    for (int y = r.begin(); y != r.end(); ++y) row(y);
+  });
 }
 
 }  // namespace glint

@@ -26,10 +26,17 @@ int effectiveTileSize(const PixelWindow& window, int requested, int threads);
 // loop it runs share those threads, and no more.
 void withThreads(int threads, const std::function<void()>& body);
 
-// Runs renderTile(tileIndex) for every tile on `threads` threads (0 = all cores).
+// Runs renderTile(tileIndex) for every tile on `threads` threads (0 = all cores): called from
+// the body of withThreads of as many threads, on its arena, else on an arena of its own.
 void runTiles(const std::vector<PixelWindow>& tiles, int threads,
               const std::function<void(size_t tileIndex)>& renderTile);
 
+// Calls row(y) for every y in [y0, y1) on the current arena's threads (inside withThreads, the
+// render's), for per-pixel work whose rows write only their own results.
+void forEachRow(int y0, int y1, const std::function<void(int y)>& row);
+
 int defaultThreadCount();
+// The threads a --threads value asks for: itself, or every core for 0.
+int threadCount(int requested);
 
 }  // namespace glint

@@ -1,11 +1,17 @@
 // EXR frames written with OpenEXR (film/exr_output.h) read back by OpenImageIO's own tools, as
 // a compositor's pipeline would: float, half, multi-part, crops and Glint's metadata.
+#include "film/exr_output.h"
+
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cstdio>
+#include <random>
 #include <regex>
 
+#include "film/film.h"
 #include "test_util.h"
 
 namespace glint {
@@ -57,6 +63,36 @@ TEST(ExrOutput, IinfoReadsFloatHalfCropsAndMetadata) {
   // The crop's data window inside the full 24 × 16 display window.
   EXPECT_NE(h.find("pixel data origin: x=4, y=2"), std::string::npos) << h;
   EXPECT_NE(h.find("full/display size: 24 x 16"), std::string::npos) << h;
+}
+
+TEST(ExrOutput, PixelChunksAreTheSameBytesForAnyOpenExrThreadCount) {
+  // A render's frame is compressed on OpenEXR's pool of the render's threads (setExrThreads);
+  // its compressed line blocks must not depend on how many, or the file would depend on
+  // --threads. 200 x 120 noisy pixels, zip: 8 chunks of 16 lines.
+  Film film(200, 120, PixelWindow{0, 200, 0, 120});
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (int y = 0; y < 120; ++y)
+    for (int x = 0; x < 200; ++x) film.setPixel(x, y, unit(rng), unit(rng), unit(rng), 1);
+  const auto chunks = [&](int threads) {
+    setExrThreads(threads);
+    const std::string path = tmp("exr-threads-" + std::to_string(threads) + ".exr");
+    writeExr(path, film, {});
+    Imf::InputFile in(path.c_str());
+    EXPECT_EQ(in.header().compression(), Imf::ZIP_COMPRESSION);
+    std::vector<std::string> out;
+    for (int y = 0; y < 120; y += 16) {  // zip: a chunk of 16 lines
+      const char* data = nullptr;
+      int size = 0;
+      in.rawPixelData(y, data, size);
+      out.emplace_back(data, size_t(size));
+    }
+    return out;
+  };
+  const std::vector<std::string> alone = chunks(0);
+  ASSERT_EQ(alone.size(), 8u);
+  EXPECT_EQ(chunks(4), alone);
+  setExrThreads(0);  // as the process started
 }
 
 TEST(ExrOutput, OiiotoolStatsSeeEveryPartOfAMultiPartFrame) {

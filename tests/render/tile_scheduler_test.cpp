@@ -4,9 +4,9 @@
 #include <pmmintrin.h>
 #include <xmmintrin.h>
 
-#include <tbb/task_arena.h>
-
 #include <atomic>
+#include <chrono>
+#include <thread>
 
 namespace glint {
 namespace {
@@ -42,23 +42,27 @@ TEST(TileScheduler, TilesShrinkUntilEveryThreadHasItsShare) {
   EXPECT_EQ(effectiveTileSize(PixelWindow{0, 4, 0, 4}, 32, 1), 8);  // one tile, at the floor
 }
 
-TEST(TileScheduler, WithThreadsCapsTheTilesAndEveryLoopInside) {
-  // --threads is a cap on the whole render: its tiles and the per-pixel loops between passes.
+TEST(TileScheduler, WithThreadsCapsTheTilesAndTheRowLoopsInside) {
+  // --threads caps the whole render: its tiles and the per-pixel loops between passes. With one
+  // thread, all of them run on the calling thread; on the default arena TBB's workers would
+  // take rows (each row waits 0.1 ms, long enough for a worker to steal).
   const std::vector<PixelWindow> tiles = makeTiles(PixelWindow{0, 64, 0, 64}, 8);
-  std::atomic<int> highest{-1};
-  int concurrency = 0;
-  withThreads(2, [&] {
-    concurrency = tbb::this_task_arena::max_concurrency();
-    runTiles(tiles, 2, [&](size_t) {
-      const int index = tbb::this_task_arena::current_thread_index();
-      int seen = highest.load();
-      while (index > seen && !highest.compare_exchange_weak(seen, index)) {
-      }
+  const std::thread::id caller = std::this_thread::get_id();
+  std::atomic<int> rows{0}, tilesRun{0}, elsewhere{0};
+  withThreads(1, [&] {
+    forEachRow(0, 64, [&](int) {
+      std::this_thread::sleep_for(std::chrono::microseconds(100));
+      ++rows;
+      elsewhere += std::this_thread::get_id() != caller;
+    });
+    runTiles(tiles, 1, [&](size_t) {
+      ++tilesRun;
+      elsewhere += std::this_thread::get_id() != caller;
     });
   });
-  EXPECT_EQ(concurrency, 2);
-  EXPECT_GE(highest.load(), 0);
-  EXPECT_LT(highest.load(), 2);
+  EXPECT_EQ(rows.load(), 64);
+  EXPECT_EQ(tilesRun.load(), 64);
+  EXPECT_EQ(elsewhere.load(), 0);
 }
 
 }  // namespace
