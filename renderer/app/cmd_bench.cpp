@@ -114,7 +114,7 @@ int runBench(const BenchArgs& a) {
     if (!a.json.empty()) writeTextFileAtomically(a.json, j.dump(2) + "\n");
     return kExitOk;
   }
-  const int allThreads = a.threads > 0 ? a.threads : defaultThreadCount();
+  const int allThreads = threadCount(a.threads);
   std::printf("scene          %s, %zu triangles\n", scene.sourcePath.c_str(),
               scene.triangleCount());
 
