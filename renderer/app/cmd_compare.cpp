@@ -52,7 +52,7 @@ CommandRunner addCompareCommand(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--threshold", a->threshold,
                   "Per-pixel error counted in share_above_threshold (default 0.01)")
-      ->check(CLI::PositiveNumber & notNaN());
+      ->check(positiveNumber());
   cmd->add_option("--diff", a->diff, "Write a false-colour difference image (PNG)");
   cmd->add_option("--json", a->json, "Write the figures as JSON");
   return [a] {

@@ -6,8 +6,10 @@
 #include <OpenEXR/ImfMultiPartInputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -18,6 +20,7 @@
 #include "core/hash.h"
 #include "core/input_files.h"
 #include "core/log.h"
+#include "core/sampler.h"
 #include "film/atomic_file.h"
 #include "film/compare.h"
 #include "film/exr_input.h"
@@ -105,37 +108,61 @@ nlohmann::json passesOf(const std::string& path) {
                        "records its passes");
     text = "{\"passes\": " + passes->value() + "}";
   }
-  const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
-  if (j.is_discarded() || !j.is_object() || !j.contains("passes") || !j["passes"].is_array())
-    throw UsageError(path + ": its passes are not a JSON list");
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw UsageError(path + ": not JSON (at byte " + std::to_string(e.byte) + ")");
+  }
+  if (!j.is_object() || !j.contains("passes") || !j["passes"].is_array())
+    throw UsageError(path + ": has no \"passes\" list");
   return j["passes"];
+}
+
+// One pass of a render's record, checked: the record may be edited or damaged, and a pass that
+// no render can have finished is refused rather than plotted.
+ConvergencePoint passPoint(const std::string& path, size_t index, const nlohmann::json& pass) {
+  const std::string where = path + ": passes[" + std::to_string(index) + "]";
+  if (!pass.is_object()) throw UsageError(where + " is not an object");
+  const auto number = [&](const char* key, double least, double most, const char* range) {
+    if (!pass.contains(key)) throw UsageError(where + " has no \"" + key + "\"");
+    const nlohmann::json& v = pass[key];
+    if (v.is_null() && std::string(key).rfind("estimated_", 0) == 0)
+      throw UsageError(where +
+                       " has no error estimate (a render of one sample, or of the "
+                       "regular sampler, has nothing to estimate from)");
+    if (!v.is_number()) throw UsageError(where + "." + key + " is not a number");
+    const double x = v.get<double>();
+    if (!(x >= least && x <= most))
+      throw UsageError(where + "." + key + " is " + v.dump() + ", not " + range);
+    return x;
+  };
+  constexpr double kLargest = std::numeric_limits<double>::max();
+  ConvergencePoint p;
+  const double spp = number("spp", 1, double(kMaxSampleSet), "a sample count from 1 to 2^28");
+  if (spp != std::floor(spp)) throw UsageError(where + ".spp is not a whole number");
+  p.spp = static_cast<int>(spp);
+  p.seconds = number("seconds", 0, kLargest, "a time of 0 seconds or more");
+  p.rmse = number("estimated_rmse", 0, kLargest, "an error of 0 or more");
+  p.relmse = number("estimated_relmse", 0, kLargest, "an error of 0 or more");
+  return p;
 }
 
 // --from-render: one series, the render's passes with their estimated errors.
 int convergeFromRender(const ConvergeArgs& a) {
   ConvergenceSeries s;
   s.name = "estimated";
-  for (const nlohmann::json& p : passesOf(a.fromRender)) {
-    ConvergencePoint point;
-    const auto number = [&](const char* key) {
-      if (!p.is_object() || !p.contains(key) || !p[key].is_number())
-        throw UsageError(a.fromRender + ": a pass has no number \"" + key +
-                         "\" (a render without an error estimate: one sample, or a regular "
-                         "grid)");
-      return p[key].get<double>();
-    };
-    point.spp = static_cast<int>(number("spp"));
-    point.seconds = number("seconds");
-    point.rmse = number("estimated_rmse");
-    point.relmse = number("estimated_relmse");
+  const nlohmann::json passes = passesOf(a.fromRender);
+  for (size_t i = 0; i < passes.size(); ++i) {
+    const ConvergencePoint point = passPoint(a.fromRender, i, passes[i]);
     s.points.push_back(point);
     std::printf("pass to spp %6d  %9.4f s  estimated rmse %.6g  relmse %.6g\n", point.spp,
                 point.seconds, point.rmse, point.relmse);
   }
   if (s.points.empty()) throw UsageError(a.fromRender + " records no finished pass");
   fitSlopes(s);
-  std::printf("estimated          slope %.3f against seconds, %.3f against spp\n", s.slope,
-              s.sppSlope);
+  std::printf("estimated          slope %s against seconds, %s against spp\n",
+              slopeText(s.slope).c_str(), slopeText(s.sppSlope).c_str());
   writeOutputs(a, {s}, "Estimated error against time: " + a.fromRender,
                {{"from_render", a.fromRender}});
   return kExitOk;
@@ -218,8 +245,8 @@ int runConverge(const ConvergeArgs& a) {
                     s.name.c_str(), spp, p.seconds, p.cpuSeconds, p.rmse, p.relmse);
       }
       fitSlopes(s);
-      std::printf("%-18s slope %.3f against seconds, %.3f against spp\n", s.name.c_str(), s.slope,
-                  s.sppSlope);
+      std::printf("%-18s slope %s against seconds, %s against spp\n", s.name.c_str(),
+                  slopeText(s.slope).c_str(), slopeText(s.sppSlope).c_str());
       series.push_back(std::move(s));
     }
   }

@@ -261,10 +261,8 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const PassPlan&
 
 // The state of --resume's frame, after checking it is this frame with these settings; its
 // passes, each later by the seconds this render starts after (none: they are its own).
-std::vector<PixelEstimate> readResumable(const RenderArgs& a, const Scene& scene,
-                                         const PassPlan& plan,
-                                         const std::optional<PixelWindow>& crop,
-                                         std::vector<PassRecord>& passes) {
+ResumeState readResumable(const RenderArgs& a, const Scene& scene, const PassPlan& plan,
+                          const std::optional<PixelWindow>& crop, std::vector<PassRecord>& passes) {
   const RenderSettings& r = scene.render;
   const PixelWindow window = crop.value_or(PixelWindow{0, r.width, 0, r.height});
   {
@@ -299,8 +297,8 @@ std::vector<PixelEstimate> readResumable(const RenderArgs& a, const Scene& scene
         passes.push_back(record);
       }
   }
-  std::vector<PixelEstimate> state =
-      readResumeState(a.resume, window, r.width, r.height, plan.maxSpp);
+  ResumeState state = readResumeState(a.resume, window, r.width, r.height, plan.maxSpp);
+  checkResumeChecksum(a.resume, state, resumeHash(a, scene, plan));
   log::info("resuming " + a.resume + " to " + std::to_string(plan.maxSpp) + " spp");
   return state;
 }
@@ -326,6 +324,10 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   opt.tileOrder = a.tileOrder == "row" ? TileOrder::RowMajor : TileOrder::Morton;
   opt.cancel = &interrupt::requested();
   opt.aovs = AovSet::parse(a.aovs);
+  if (a.sampling.progressive && a.resume.empty() && opt.aovs.needsSamples())
+    throw UsageError("--resumable keeps the beauty and its variance only, and --aov " + a.aovs +
+                     " asks for AOVs whose sums are not kept with the frame: its continuation "
+                     "would be refused; drop --resumable, or those AOVs");
   opt.sampling = a.sampling;
   AccelKind kind = AccelKind::Embree;
   parseAccelKind(a.accel, kind);
@@ -374,7 +376,7 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
               std::to_string(scene.render.height) + " at " + std::to_string(scene.render.spp) +
               " spp to " + job.out);
     opt.crop = job.crop;
-    std::vector<PixelEstimate> resumeFrom;
+    ResumeState resumeFrom;
     std::vector<PassRecord> earlierPasses;
     if (!a.resume.empty()) {
       resumeFrom = readResumable(a, scene, plan, job.crop, earlierPasses);
@@ -391,7 +393,7 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
           a.sampling.progressive || partial || r.stats.timeLimitReached || !a.resume.empty();
       if (!resumable) return writeExr(job.out, r.film, m, {a.half, a.compression, a.multipart});
       Film withState = r.film;
-      addResumeState(withState, r.estimates);
+      addResumeState(withState, m, r.estimates, r.position, resumeHash(a, scene, plan));
       return writeExr(job.out, withState, m, {a.half, a.compression, a.multipart});
     };
     // --preview-every: the frame so far, written as the frame is (atomically), marked partial.
@@ -519,14 +521,14 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--target-rmse", args->sampling.target.rmse,
                   "Adaptive sampling: a pixel stops taking samples once its estimated RMSE is "
                   "at most this")
-      ->check(CLI::PositiveNumber & notNaN());
+      ->check(positiveNumber());
   cmd->add_option("--target-relmse", args->sampling.target.relmse,
                   "Adaptive sampling: a pixel stops once its estimated relMSE is at most this")
-      ->check(CLI::PositiveNumber & notNaN());
+      ->check(positiveNumber());
   cmd->add_option("--time-limit", args->sampling.timeLimitSeconds,
                   "Stop after the last pass that ends within this many seconds of rendering "
                   "(the first pass always finishes)")
-      ->check(CLI::PositiveNumber & notNaN());
+      ->check(positiveNumber());
   cmd->add_option("--min-spp", args->sampling.minSpp,
                   "Samples every pixel takes before adaptive sampling may stop it (default "
                   "min(" +
@@ -538,7 +540,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--preview-every", args->previewEvery,
                   "Rewrite the output (and --display) with the passes done so far, at most this "
                   "often in seconds")
-      ->check(CLI::PositiveNumber & notNaN());
+      ->check(positiveNumber());
   cmd->add_option("--resume", args->resume,
                   "Continue this frame (partial, a preview, time-limited, or --resumable) to "
                   "--spp: the same pixels as a straight render at --spp; -o may name it")

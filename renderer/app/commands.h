@@ -49,6 +49,23 @@ inline CLI::Validator notNaN() {
       "NUMBER");
 }
 
+// Accepts a finite number above 0, as a whole text ("0.01abc" is refused, not read as 0.01).
+// CLI11's PositiveNumber told "--target-rmse 0" it was "not in range 0 to 1.8e308" and read
+// "abc" as out of range.
+inline CLI::Validator positiveNumber() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0' || std::isnan(v))
+          return "must be a number, got " + excerpt(text);
+        if (!(v > 0) || !std::isfinite(v))
+          return "must be a finite number above 0, got " + excerpt(text);
+        return {};
+      },
+      "NUMBER > 0");
+}
+
 // Accepts a whole number that fits `max` and is not negative. CLI11 reads "-1" into an unsigned
 // option as 2^64 − 1 and an overflowing one as the largest value: both are refused instead.
 inline CLI::Validator wholeNumberUpTo(uint64_t max) {

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
+#include <string>
 
 #include "film/atomic_file.h"
 
@@ -17,8 +19,8 @@ void leastSquares(const std::vector<double>& x, const std::vector<double>& y, do
   for (size_t i = 0; i < x.size(); ++i)
     sx += x[i], sy += y[i], sxx += x[i] * x[i], sxy += x[i] * y[i];
   const double d = n * sxx - sx * sx;
-  slope = d != 0 ? (n * sxy - sx * sy) / d : 0;
-  intercept = n > 0 ? (sy - slope * sx) / n : 0;
+  slope = n >= 2 && d > 0 ? (n * sxy - sx * sy) / d : std::nan("");
+  intercept = (sy - slope * sx) / n;
 }
 
 std::string esc(const std::string& s) {
@@ -30,16 +32,22 @@ std::string esc(const std::string& s) {
 }  // namespace
 
 void fitSlopes(ConvergenceSeries& s) {
-  std::vector<double> lt, ls, le;
-  for (const auto& p : s.points)
-    if (p.rmse > 0 && p.seconds > 0) {
-      lt.push_back(std::log10(p.seconds));
-      ls.push_back(std::log10(double(p.spp)));
-      le.push_back(std::log10(p.rmse));
-    }
+  std::vector<double> lt, le, ls, lse;  // (time, error) and (spp, error), logs of those above 0
+  for (const auto& p : s.points) {
+    if (!(p.rmse > 0)) continue;
+    if (p.seconds > 0) lt.push_back(std::log10(p.seconds)), le.push_back(std::log10(p.rmse));
+    if (p.spp > 0) ls.push_back(std::log10(double(p.spp))), lse.push_back(std::log10(p.rmse));
+  }
   leastSquares(lt, le, s.slope, s.intercept);
   double unused;
-  leastSquares(ls, le, s.sppSlope, unused);
+  leastSquares(ls, lse, s.sppSlope, unused);
+}
+
+std::string slopeText(double slope) {
+  if (!std::isfinite(slope)) return "n/a";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3f", slope);
+  return text;
 }
 
 void writeConvergenceSvg(const std::string& path, const std::string& title,
@@ -55,6 +63,10 @@ void writeConvergenceSvg(const std::string& path, const std::string& title,
         eMin = std::min(eMin, std::log10(p.rmse));
         eMax = std::max(eMax, std::log10(p.rmse));
       }
+  // A log-log plot cannot show a zero error or time (an empty scene converges exactly): with
+  // no other point the axes keep a decade each and the plot says why it is empty.
+  const bool empty = tMin > tMax;
+  if (empty) tMin = -1, tMax = 0, eMin = -3, eMax = -2;
   tMin = std::floor(tMin * 2) / 2, tMax = std::ceil(tMax * 2) / 2;
   eMin = std::floor(eMin * 2) / 2, eMax = std::ceil(eMax * 2) / 2;
   if (tMax <= tMin) tMax = tMin + 1;
@@ -68,15 +80,18 @@ void writeConvergenceSvg(const std::string& path, const std::string& title,
        "fill='white'/>\n";
   o << "<text x='" << W / 2 << "' y='22' text-anchor='middle' font-size='15'>" << esc(title)
     << "</text>\n";
-  // Decade grid and labels.
-  for (double v = std::ceil(tMin); v <= tMax + 1e-9; v += 1)
+  // Decade grid and labels (logs of finite doubles lie within ±324: a few hundred decades).
+  for (int v = int(std::ceil(tMin)); v <= int(std::floor(tMax)); ++v)
     o << "<line x1='" << X(v) << "' y1='" << T << "' x2='" << X(v) << "' y2='" << H - B
       << "' stroke='#ddd'/><text x='" << X(v) << "' y='" << H - B + 18
-      << "' text-anchor='middle'>1e" << int(v) << "</text>\n";
-  for (double v = std::ceil(eMin); v <= eMax + 1e-9; v += 1)
+      << "' text-anchor='middle'>1e" << v << "</text>\n";
+  for (int v = int(std::ceil(eMin)); v <= int(std::floor(eMax)); ++v)
     o << "<line x1='" << L << "' y1='" << Y(v) << "' x2='" << W - R << "' y2='" << Y(v)
       << "' stroke='#ddd'/><text x='" << L - 8 << "' y='" << Y(v) + 4 << "' text-anchor='end'>1e"
-      << int(v) << "</text>\n";
+      << v << "</text>\n";
+  if (empty)
+    o << "<text x='" << (L + W - R) / 2 << "' y='" << (T + H - B) / 2
+      << "' text-anchor='middle'>no point with an error and a time above zero</text>\n";
   o << "<rect x='" << L << "' y='" << T << "' width='" << W - L - R << "' height='" << H - T - B
     << "' fill='none' stroke='black'/>\n";
   o << "<text x='" << (L + W - R) / 2 << "' y='" << H - 15
@@ -98,15 +113,14 @@ void writeConvergenceSvg(const std::string& path, const std::string& title,
     // The fitted line over the series' own time range, dashed.
     double lo = 1e300, hi = -1e300;
     for (const auto& p : s.points)
-      if (p.seconds > 0)
+      if (p.rmse > 0 && p.seconds > 0)
         lo = std::min(lo, std::log10(p.seconds)), hi = std::max(hi, std::log10(p.seconds));
-    if (hi > lo)
+    if (hi > lo && std::isfinite(s.slope))
       o << "<line x1='" << X(lo) << "' y1='" << Y(s.intercept + s.slope * lo) << "' x2='" << X(hi)
         << "' y2='" << Y(s.intercept + s.slope * hi) << "' stroke='" << col
         << "' stroke-dasharray='5,4'/>\n";
-    char label[160];
-    std::snprintf(label, sizeof label, "%s: slope %.2f (%.2f vs spp)", s.name.c_str(), s.slope,
-                  s.sppSlope);
+    const std::string label =
+        s.name + ": slope " + slopeText(s.slope) + " (" + slopeText(s.sppSlope) + " vs spp)";
     o << "<text x='" << W - R + 10 << "' y='" << T + 16 + 18 * double(i) << "' fill='" << col
       << "'>" << esc(label) << "</text>\n";
   }

@@ -14,12 +14,16 @@ struct ConvergencePoint {
 struct ConvergenceSeries {
   std::string name;
   std::vector<ConvergencePoint> points;
-  double slope = 0, intercept = 0;  // log10 rmse = intercept + slope · log10 seconds
-  double sppSlope = 0;              // log10 rmse against log10 spp
+  // log10 rmse = intercept + slope · log10 seconds; NaN where fewer than two points with error,
+  // time and spp above zero and apart in time (in spp for sppSlope) leave no line to fit.
+  double slope = 0, intercept = 0;
+  double sppSlope = 0;  // log10 rmse against log10 spp
 };
 
 // Least-squares fits of log10(rmse) against log10(seconds) and log10(spp).
 void fitSlopes(ConvergenceSeries& s);
+// "-0.512", or "n/a" for a slope that could not be fitted.
+std::string slopeText(double slope);
 void writeConvergenceSvg(const std::string& path, const std::string& title,
                          const std::vector<ConvergenceSeries>& series);
 

@@ -7,6 +7,9 @@ int main(int argc, char** argv) {
   // A file size limit should fail the write (EFBIG) so the temporary file is cleaned up, not
   // kill the process half-way through it.
   std::signal(SIGXFSZ, SIG_IGN);
+  // A reader that goes away (`glint render ... 2>&1 | head -1`) should cost the progress lines
+  // it no longer reads (their writes fail with EPIPE), not the frame.
+  std::signal(SIGPIPE, SIG_IGN);
   glint::interrupt::install();  // before anything is loaded: every phase can be interrupted
   return glint::interrupt::finish(glint::runCli(argc, argv));
 }

@@ -18,6 +18,14 @@ PassPlan PassPlan::make(int spp, SamplerKind sceneSampler, const SamplingRequest
   plan.target = request.target;
   plan.timeLimitSeconds = request.timeLimitSeconds;
   const bool open = plan.adaptive() || plan.timeLimitSeconds > 0;
+  // Without a target or a time limit every pixel takes the spp: a --max-spp apart from it
+  // would silently render another count than the frame's glint:spp says.
+  if (!open && request.maxSpp > 0 && request.maxSpp != spp)
+    throw UsageError("--max-spp " + std::to_string(request.maxSpp) +
+                     " bounds adaptive sampling or a --time-limit render; without either every "
+                     "pixel takes the spp (" +
+                     std::to_string(spp) + "): give --spp " + std::to_string(request.maxSpp) +
+                     " instead");
   plan.maxSpp = request.maxSpp > 0 ? request.maxSpp : spp;
   plan.minSpp = request.minSpp > 0 ? request.minSpp
                 : open             ? std::min(kDefaultFirstPassSpp, plan.maxSpp)

@@ -298,6 +298,38 @@ std::vector<PixelEstimate> estimatesIn(const FrameContext& f, const PixelWindow&
   return out;
 }
 
+// The part of a per-pixel mask over `from` that lies in `window` (inside it), row-major.
+std::vector<uint8_t> windowPart(const std::vector<uint8_t>& mask, const PixelWindow& from,
+                                const PixelWindow& window) {
+  std::vector<uint8_t> out;
+  out.reserve(static_cast<size_t>(window.area()));
+  for (int y = window.y0; y < window.y1; ++y)
+    for (int x = window.x0; x < window.x1; ++x)
+      out.push_back(mask[size_t(y - from.y0) * size_t(from.width()) + size_t(x - from.x0)]);
+  return out;
+}
+
+// An adaptive frame continues as a straight render only if its passes are where this plan's
+// are: the last it finished is one of the plan's ends, and the one it cut short the next. Their
+// ends double from the first pass up to --max-spp: a frame finished at --max-spp 20 (8, 16, 20)
+// has taken a pass that a render to 32 (8, 16, 32) never takes. Any position suits the other
+// renders, whose passes choose every pixel below their end.
+void checkResumablePosition(const PassPlan& plan, const PassPosition& at) {
+  if (!plan.adaptive()) return;
+  const auto next = std::upper_bound(plan.ends.begin(), plan.ends.end(), at.finishedEnd);
+  const bool finishedOnPlan = at.finishedEnd == 0 || std::find(plan.ends.begin(), plan.ends.end(),
+                                                               at.finishedEnd) != plan.ends.end();
+  if (finishedOnPlan && (at.cutEnd == 0 || (next != plan.ends.end() && *next == at.cutEnd))) return;
+  std::string ends;
+  for (const int end : plan.ends) ends += (ends.empty() ? "" : ", ") + std::to_string(end);
+  throw UsageError("--resume: the frame's adaptive passes stopped at " +
+                   std::to_string(at.cutEnd > 0 ? at.cutEnd : at.finishedEnd) +
+                   " spp, which this render's passes (" + ends +
+                   ") do not reach on their way: a continued frame takes the choices a "
+                   "straight render takes only where their passes end alike; give a --max-spp "
+                   "whose passes, doubling from --min-spp, include it");
+}
+
 // The frame as it stands in `window`: each pixel's mean and the AOVs' finished values.
 Film resolveFrame(const FrameContext& f, const PixelWindow& window) {
   const Film& sums = f.aovSums;
@@ -421,12 +453,13 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
       throw UsageError(
           "--resume continues an adaptive render of the full frame only: a crop's "
           "adaptive sampling depends on pixels around it, whose state is not kept");
-    GLINT_CHECK(opt.resumeFrom->size() == estimates.size());
+    GLINT_CHECK(opt.resumeFrom->estimates.size() == estimates.size());
     if (opt.aovs.needsSamples())
       throw UsageError(
           "--resume continues the beauty and its variance only: the other AOVs' "
           "sums are not kept with the frame");
-    estimates = *opt.resumeFrom;
+    checkResumablePosition(plan, opt.resumeFrom->position);
+    estimates = opt.resumeFrom->estimates;
   }
 
   const int threads = threadCount(opt.threads);
@@ -481,7 +514,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   };
   std::optional<FrameSpread> spread;
 
-  RenderResult result{Film(rs.width, rs.height, window), {}, false, tileSize, {}};
+  RenderResult result{Film(rs.width, rs.height, window), {}, false, tileSize, {}, {}};
   // The pixels' states in the window: the frame's own where it samples no apron (copied at
   // every pass, they cost a fast render 1-2 ms a pass at 240 x 150), else a copy.
   std::vector<PixelEstimate> cropEstimates;
@@ -501,12 +534,20 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   };
   std::vector<uint8_t> sampled(estimates.size(), 1);
   ChoiceCache choiceCache;
+  const PassPosition* resumed = opt.resumeFrom ? &opt.resumeFrom->position : nullptr;
+  PassPosition& position = result.position;
   std::atomic<bool> deadlinePassed{false};
   // From here on, on the render's threads: the tiles, and the per-pixel work between passes
   // (choosing pixels, the statistics, the resolved frame), which other threads would wait for.
   withThreads(threads, [&] {
     for (size_t k = 0; k < plan.ends.size(); ++k) {
       const int end = plan.ends[k];
+      // A continued frame's finished passes are not taken again: their choices would read a
+      // state later passes have moved on (a straight render takes each from the one before).
+      if (resumed && end <= resumed->finishedEnd) {
+        position.finishedEnd = end;
+        continue;
+      }
       if (plan.adaptive() && k > 0 && !spread) {
         spread = measureSpread();
         if (!spread) {
@@ -514,10 +555,19 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
           break;
         }
       }
-      const int64_t pixels =
-          plan.choosePixels(estimates, sampledWindow.width(), end, spread.value_or(FrameSpread{}),
-                            choiceCache, sampled);
-      if (pixels == 0) continue;  // every pixel is past this pass (resumed), or met its target
+      // The pass a stop cut short goes on with the pixels it had chosen.
+      int64_t pixels = 0;
+      if (resumed && end == resumed->cutEnd) {
+        sampled = resumed->cutChosen;
+        pixels = std::count(sampled.begin(), sampled.end(), uint8_t{1});
+      } else {
+        pixels = plan.choosePixels(estimates, sampledWindow.width(), end,
+                                   spread.value_or(FrameSpread{}), choiceCache, sampled);
+      }
+      if (pixels == 0) {  // every pixel is past this pass (resumed), or met its target
+        position.finishedEnd = end;
+        continue;
+      }
       // The time limit applies from the second pass on: the first is what makes a frame.
       std::optional<Clock::time_point> deadline;
       if (plan.timeLimitSeconds > 0 && k > 0)  // a limit past 30 years is none (no overflow)
@@ -530,8 +580,11 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
       if (stopped) {
         result.stats.timeLimitReached = deadlinePassed.load();
         result.partial = !result.stats.timeLimitReached;
+        position.cutEnd = end;
+        position.cutChosen = windowPart(sampled, sampledWindow, window);
         break;
       }
+      position.finishedEnd = end;
       const int64_t samples = statsSoFar();
       result.stats.passes.push_back({end, double(samples) / double(window.area()),
                                      result.stats.seconds, result.stats.estimated, pixels});

@@ -14,6 +14,7 @@
 #include "integrator/batched_kernel.h"
 #include "integrator/ray_counters.h"
 #include "render/pass_plan.h"
+#include "render/resume_state.h"
 #include "render/tile_scheduler.h"
 #include "scene/scene.h"
 
@@ -35,8 +36,8 @@ struct RenderOptions {
   // Adaptive sampling, a time limit, bounds on a pixel's samples (render/pass_plan.h).
   SamplingRequest sampling;
   // The state a render of the same frame and settings left (render/resume_state.h): its
-  // pixels go on from there. Null: from nothing.
-  const std::vector<PixelEstimate>* resumeFrom = nullptr;
+  // pixels go on from there, and its passes from where they stood. Null: from nothing.
+  const ResumeState* resumeFrom = nullptr;
   AovSet aovs;  // none by default
   // The production kernel (integrator/batched_kernel.h), or its oracle, the depth-first
   // reference integrator (integrator/reference.h: `--integrator reference`, beauty only).
@@ -135,6 +136,7 @@ struct RenderResult {
   bool partial = false;  // cancelled before every pixel had the samples the plan gave it
   int tileSize = 0;      // the effective tile edge
   std::vector<PixelEstimate> estimates;  // each pixel's state, to resume from
+  PassPosition position;                 // where the passes stood, to resume from
 };
 
 // Throws UsageError, naming the numbers and the light, when one pixel's set of samples (`spp`,

@@ -2,7 +2,9 @@
 
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfMultiPartInputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
 
 #include <bit>
 #include <cmath>
@@ -10,6 +12,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/hash.h"
 #include "core/sampler.h"
 #include "film/exr_input.h"
 #include "film/image_limits.h"
@@ -22,7 +25,8 @@ constexpr int kDoublesPerHalf = 4;                  // mean ×3, alpha
 constexpr int kCountChannel = 2 * kDoublesPerHalf;  // after their words
 constexpr int kRaysChannel = kCountChannel + 1;     // 64 bits in two words
 constexpr int kChannelsPerHalf = kRaysChannel + 2;
-constexpr int kChannels = 2 * kChannelsPerHalf;
+constexpr int kCutChosenChannel = 2 * kChannelsPerHalf;
+constexpr int kChannels = kCutChosenChannel + 1;
 // A Glint before the rays channels wrote .00 to .17 (its halves without them): a file that has
 // those and lacks the next was likely written by it.
 constexpr int kChannelsOfOlderGlint = 2 * kCountChannel + 2;
@@ -45,9 +49,36 @@ std::string channelName(int i) {
 
 double* doublesOf(HalfEstimate& h, int k) { return k < 3 ? &h.mean[k] : &h.alpha; }
 
+constexpr const char* kFinishedEndKey = "glint:resume_finished_end";
+constexpr const char* kCutEndKey = "glint:resume_cut_end";
+constexpr const char* kChecksumKey = "glint:resume_checksum";
+
+// Every word the state holds, in file order, with the position and the frame's resume hash.
+std::string checksumOf(const std::vector<PixelEstimate>& estimates, const PassPosition& position,
+                       const std::string& resumeHash) {
+  uint64_t h =
+      hashKey(hashBytes(resumeHash), uint64_t(position.finishedEnd), uint64_t(position.cutEnd));
+  for (size_t p = 0; p < estimates.size(); ++p) {
+    PixelEstimate e = estimates[p];
+    for (HalfEstimate& half : e.half) {
+      for (int k = 0; k < kDoublesPerHalf; ++k)
+        h = hashCombine(h, std::bit_cast<uint64_t>(*doublesOf(half, k)));
+      h = hashCombine(h, uint64_t(uint32_t(half.count)));
+      h = hashCombine(h, half.rays);
+    }
+    const auto& chosen = position.cutChosen;
+    h = hashCombine(h, p < chosen.size() ? chosen[p] : 0);
+  }
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
+}
+
 }  // namespace
 
-void addResumeState(Film& film, const std::vector<PixelEstimate>& estimates) {
+void addResumeState(Film& film, ExrMetadata& metadata, const std::vector<PixelEstimate>& estimates,
+                    const PassPosition& position, const std::string& resumeHash) {
+  const std::vector<uint8_t>& chosen = position.cutChosen;
   std::vector<std::string> names;
   for (int i = 0; i < kChannels; ++i) names.push_back(channelName(i));
   const size_t plane = film.addPlane(kResumeLayer, names, true);
@@ -64,12 +95,28 @@ void addResumeState(Film& film, const std::vector<PixelEstimate>& estimates) {
         out[kCountChannel] = double(e.half[h].count);
         splitWords(e.half[h].rays, out + kRaysChannel);
       }
+      v[kCutChosenChannel] = p < chosen.size() ? chosen[p] : 0;
       film.setPlanePixel(plane, x, y, v);
     }
+  metadata.ints.emplace_back(kFinishedEndKey, position.finishedEnd);
+  metadata.ints.emplace_back(kCutEndKey, position.cutEnd);
+  metadata.strings.emplace_back(kChecksumKey, checksumOf(estimates, position, resumeHash));
 }
 
-std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelWindow& window,
-                                           int fullWidth, int fullHeight, int64_t maxSamples) {
+void checkResumeChecksum(const std::string& path, const ResumeState& state,
+                         const std::string& resumeHash) {
+  const auto file = openExr(path);
+  const auto* stored = file->header(0).findTypedAttribute<Imf::StringAttribute>(kChecksumKey);
+  if (!stored || stored->value() != checksumOf(state.estimates, state.position, resumeHash))
+    throw UsageError(path + (stored ? "'s resume state is not the one its render wrote: it was "
+                                      "altered (a tool that converts its words to float, an "
+                                      "edit) or taken from another frame"
+                                    : " has no glint:resume_checksum: it was not written by "
+                                      "this Glint"));
+}
+
+ResumeState readResumeState(const std::string& path, const PixelWindow& window, int fullWidth,
+                            int fullHeight, int64_t maxSamples) {
   // Not noted as an input file: -o may name the partial itself, which the continued frame
   // replaces atomically once it is complete.
   const auto file = openExr(path);
@@ -82,6 +129,23 @@ std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelW
                      std::to_string(w.y + w.height) + ") of a " + std::to_string(w.fullWidth) +
                      "x" + std::to_string(w.fullHeight) + " frame: --resume continues the same " +
                      "frame and crop only");
+  ResumeState state;
+  PassPosition& position = state.position;
+  for (const auto& [key, value] : {std::pair{kFinishedEndKey, &position.finishedEnd},
+                                   std::pair{kCutEndKey, &position.cutEnd}}) {
+    const auto* a = header.findTypedAttribute<Imf::IntAttribute>(key);
+    if (!a)
+      throw UsageError(path + " has no " + key +
+                       ": it was written by an older Glint, which did not keep where its passes "
+                       "stood (render it again)");
+    *value = a->value();
+  }
+  if (position.finishedEnd < 0 || position.finishedEnd > maxSamples || position.cutEnd < 0 ||
+      position.cutEnd > maxSamples ||
+      (position.cutEnd > 0 && position.cutEnd <= position.finishedEnd))
+    throw UsageError(path + ": its passes' position (finished to " +
+                     std::to_string(position.finishedEnd) + " spp, cut at " +
+                     std::to_string(position.cutEnd) + ") is not one a render leaves");
   std::vector<ExrSlice> slices;
   for (int i = 0; i < kChannels; ++i) {
     const Imf::Channel* c = header.channels().findChannel(channelName(i));
@@ -97,7 +161,9 @@ std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelW
   checkImageFits(path, "data window", w.width, w.height, double(pixelBytes));
   std::vector<uint32_t> words;
   readPixelsInBands(path, *file, 0, slices, pixelBytes, words);
-  std::vector<PixelEstimate> out(size_t(window.area()));
+  std::vector<PixelEstimate>& out = state.estimates;
+  out.resize(size_t(window.area()));
+  if (position.cutEnd > 0) position.cutChosen.resize(out.size());
   for (size_t p = 0; p < out.size(); ++p) {
     const uint32_t* in = words.data() + p * kChannels;
     for (int h = 0; h < 2; ++h) {
@@ -128,8 +194,20 @@ std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelW
       throw UsageError(path +
                        ": the halves of a pixel's resume state do not split its samples "
                        "as a render does");
+    // A pass brings a pixel up to its end at most, and a pixel past the last finished pass
+    // is one the cut pass had chosen and brought to its end.
+    const uint32_t chosen = in[kCutChosenChannel];
+    const int64_t n = out[p].samples();
+    if (chosen > 1 || (chosen == 1 && position.cutEnd == 0) ||
+        (n > position.finishedEnd && !(chosen == 1 && n == position.cutEnd)))
+      throw UsageError(path + ": pixel (" +
+                       std::to_string(window.x0 + int(p % size_t(window.width()))) + ", " +
+                       std::to_string(window.y0 + int(p / size_t(window.width()))) + ") holds " +
+                       std::to_string(n) + " samples, past the passes its frame finished (" +
+                       std::to_string(position.finishedEnd) + " spp)");
+    if (position.cutEnd > 0) position.cutChosen[p] = static_cast<uint8_t>(chosen);
   }
-  return out;
+  return state;
 }
 
 }  // namespace glint

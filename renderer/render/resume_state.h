@@ -1,13 +1,17 @@
 #pragma once
 // What `glint render --resume` continues from: each pixel's state between passes
-// (render/pixel_estimate.h), stored with the frame as the UINT channels glint_resume.00 to .21
-// (per half: mean R, G, B and coverage as each double's 64 bits in two channels, high word
-// first, then the sample count, then the rays traced in two channels). Bits, not values: a
-// resumed render adds its samples to exactly the state a straight one would have, so it writes
-// the same pixels.
+// (render/pixel_estimate.h) and where the frame's passes stood, stored with the frame as the
+// UINT channels glint_resume.00 to .22 (per half: mean R, G, B and coverage as each double's 64
+// bits in two channels, high word first, then the sample count, then the rays traced in two
+// channels; last, whether the pass a stop cut short had chosen the pixel) and the attributes
+// glint:resume_finished_end, glint:resume_cut_end and glint:resume_checksum. Bits, not values:
+// a resumed render adds its samples to exactly the state a straight one would have, and takes
+// the same choices, so it writes the same pixels.
+#include <cstdint>
 #include <string>
 #include <vector>
 
+#include "film/exr_output.h"
 #include "film/film.h"
 #include "render/pixel_estimate.h"
 
@@ -15,14 +19,38 @@ namespace glint {
 
 inline constexpr const char* kResumeLayer = "glint_resume";
 
-// Adds the state plane to `film` (whose window the estimates cover, row-major).
-void addResumeState(Film& film, const std::vector<PixelEstimate>& estimates);
+// Where a frame's passes stood when it was written. Adaptive choices read the state the
+// previous pass left; a pass cut short (a signal, the time limit) has moved some of its pixels
+// and not others, so its choice cannot be taken again from the state: it is kept.
+struct PassPosition {
+  int finishedEnd = 0;             // the end of the last pass finished; 0: none
+  int cutEnd = 0;                  // the end of the pass a stop cut short; 0: none
+  std::vector<uint8_t> cutChosen;  // the pixels that pass had chosen (the window's, row-major)
+  bool operator==(const PassPosition&) const = default;
+};
+
+struct ResumeState {
+  std::vector<PixelEstimate> estimates;  // the window's pixels, row-major
+  PassPosition position;
+};
+
+// Adds the state plane to `film` (whose window the estimates cover, row-major) and the
+// position's attributes to `metadata`, with a checksum over both and `resumeHash`.
+void addResumeState(Film& film, ExrMetadata& metadata, const std::vector<PixelEstimate>& estimates,
+                    const PassPosition& position, const std::string& resumeHash);
 
 // The state of `path`'s part 0, which must cover exactly `window` of a full frame of
 // fullWidth × fullHeight. Throws UsageError naming the file when the state is missing, of
 // another shape, or holds what no render leaves (a non-finite value, a negative coverage, a
-// count past `maxSamples`, fewer rays than samples or more than 2^62).
-std::vector<PixelEstimate> readResumeState(const std::string& path, const PixelWindow& window,
-                                           int fullWidth, int fullHeight, int64_t maxSamples);
+// count past `maxSamples`, fewer rays than samples or more than 2^62, a pixel past the passes
+// the position names).
+ResumeState readResumeState(const std::string& path, const PixelWindow& window, int fullWidth,
+                            int fullHeight, int64_t maxSamples);
+
+// Throws UsageError naming `path` when its glint:resume_checksum is not that of `state` and
+// `resumeHash`: the state was altered (a tool that converted its words to float, an edit) or
+// taken from another frame.
+void checkResumeChecksum(const std::string& path, const ResumeState& state,
+                         const std::string& resumeHash);
 
 }  // namespace glint

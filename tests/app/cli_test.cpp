@@ -80,6 +80,21 @@ TEST(Cli, FailedWriteLeavesThePreviousFileAndNoTemporaries) {
   EXPECT_NE(m.output.find("does not exist"), std::string::npos) << m.output;
 }
 
+TEST(Cli, AReaderThatGoesAwayCostsTheLinesNotTheFrame) {
+  // `glint render ... 2>&1 | head -1`: the reader (here `true`, which reads nothing) is gone
+  // before the render's lines are written. Each write then fails with EPIPE; the frame must
+  // still be rendered and written, exit 0 (it died of SIGPIPE, 141, and wrote nothing).
+  const std::string scene = test::writeTemp("piped.json", kSmallScene);
+  const std::string target = (test::tempDir() / "piped.exr").string();
+  fs::remove(target);
+  const std::string cmd = "bash -c '" + std::string(GLINT_BINARY) + " render " + scene +
+                          " --width 40 --height 30 --spp 4 --stats -o " + target +
+                          " 2>&1 | true; exit ${PIPESTATUS[0]}'";
+  const int status = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_TRUE(fs::exists(target));
+}
+
 TEST(Cli, OutputsNeverReplaceTheSceneALinkOrADevice) {
   // Each is refused before rendering, with exit 2, and left as it was.
   const fs::path dir = test::tempDir() / "refused";

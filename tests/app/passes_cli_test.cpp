@@ -165,12 +165,20 @@ TEST(PassesCli, AResumeStateThatNoRenderLeavesIsRefused) {
     EXPECT_NE(r.output.find("pixel (0, 0)"), std::string::npos) << r.output;
   }
   // Exactly 2^62 rays in a half is the most a state may hold (both halves' sum, 2^63, fits in
-  // 64 bits): that is continued.
-  const std::string most = tmp("state-most.exr");
-  rewriteResumeWords(good, most, {{"glint_resume.09", 0x40000000u}, {"glint_resume.10", 0}});
-  const auto r =
-      test::runGlint("render " + soft("--spp 8 --resume " + most + " -o " + tmp("z.exr")));
-  EXPECT_EQ(r.exitCode, 0) << r.output;
+  // 64 bits): it passes the checks of the values, and is refused only as a state its render did
+  // not write (glint:resume_checksum), as is any edit that leaves the values plausible: a word
+  // of a mean (a tool that read the channels as float and wrote them back changed every one).
+  const std::vector<std::vector<std::pair<std::string, uint32_t>>> plausible = {
+      {{"glint_resume.09", 0x40000000u}, {"glint_resume.10", 0}}, {{"glint_resume.01", 12345u}}};
+  for (const auto& words : plausible) {
+    const std::string edited = tmp("state-edited.exr");
+    rewriteResumeWords(good, edited, words);
+    const auto r =
+        test::runGlint("render " + soft("--spp 8 --resume " + edited + " -o " + tmp("z.exr")));
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("resume state is not the one its render wrote"), std::string::npos)
+        << r.output;
+  }
 }
 
 TEST(PassesCli, AResumeStateWithoutTheRaysChannelsNamesTheGlintThatWroteIt) {
@@ -189,6 +197,27 @@ TEST(PassesCli, AResumeStateWithoutTheRaysChannelsNamesTheGlintThatWroteIt) {
         << r.output;
     EXPECT_EQ(r.output.find("before the rays channels") != std::string::npos, dropFrom == 18)
         << r.output;
+  }
+}
+
+TEST(PassesCli, SettingsThatCannotMeanWhatTheySayAreRefusedAndSaidWhy) {
+  struct Case {
+    std::string args, says;
+  };
+  const std::vector<Case> cases = {
+      // Without a target or a time limit every pixel takes the spp: --max-spp rendered 8 where
+      // the frame's glint:spp said 16.
+      {"--spp 16 --max-spp 8", "give --spp 8 instead"},
+      // A state that --resume would refuse to continue (the AOVs' sums are not kept).
+      {"--resumable --aov depth", "drop --resumable, or those AOVs"},
+      // Read as "not in range 0 to 1.8e308" (0 reads as in range) and "abc" as out of range.
+      {"--target-rmse 0", "must be a finite number above 0, got 0"},
+      {"--time-limit abc", "must be a number, got abc"},
+      {"--preview-every 0.5s", "must be a number, got 0.5s"}};
+  for (const Case& c : cases) {
+    const auto r = test::runGlint("render " + soft(c.args + " -o " + tmp("never.exr")));
+    EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.output;
+    EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args << "\n" << r.output;
   }
 }
 
@@ -225,6 +254,13 @@ TEST(PassesCli, ConvergeFromRenderReadsThePassesOfAFrame) {
   const std::string png = test::writeTemp("not-a-render.exr", "not an EXR at all");
   const auto bad = test::runGlint("converge --from-render " + png);
   EXPECT_EQ(bad.exitCode, 2) << bad.output;
+  // A record no render can have left (edited, or damaged): refused, naming the pass and value.
+  const std::string edited = test::writeTemp(
+      "edited-passes.json",
+      R"({"passes": [{"spp": -2, "seconds": 0.1, "estimated_rmse": 0.1, "estimated_relmse": 0.1}]})");
+  const auto lying = test::runGlint("converge --from-render " + edited);
+  EXPECT_EQ(lying.exitCode, 2) << lying.output;
+  EXPECT_NE(lying.output.find("passes[0].spp is -2"), std::string::npos) << lying.output;
 }
 
 }  // namespace

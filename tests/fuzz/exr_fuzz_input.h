@@ -49,12 +49,18 @@ inline std::string exrReadProblem(const std::string& path, const std::string& me
     constexpr int64_t kMaxSamples = int64_t{1} << 20;
     const ExrWindow w = exrWindow(path, openExr(path)->header(0));
     const PixelWindow window{w.x, w.x + w.width, w.y, w.y + w.height};
-    const auto state = readResumeState(path, window, w.fullWidth, w.fullHeight, kMaxSamples);
-    if (state.size() != size_t(window.area()))
-      return "readResumeState: " + std::to_string(state.size()) + " pixels for " +
+    const ResumeState state = readResumeState(path, window, w.fullWidth, w.fullHeight, kMaxSamples);
+    const PassPosition& at = state.position;
+    if (state.estimates.size() != size_t(window.area()) ||
+        (at.cutEnd > 0 && at.cutChosen.size() != state.estimates.size()))
+      return "readResumeState: " + std::to_string(state.estimates.size()) + " pixels for " +
              std::to_string(w.width) + "x" + std::to_string(w.height);
-    for (const PixelEstimate& p : state) {
+    for (size_t i = 0; i < state.estimates.size(); ++i) {
+      const PixelEstimate& p = state.estimates[i];
+      const bool chosen = at.cutEnd > 0 && at.cutChosen[i] == 1;
       bool valid = p.samples() <= kMaxSamples && halfSampleCount(p.samples(), 0) == p.half[0].count;
+      // No pixel past the passes the frame finished, but for one the cut pass brought to its end.
+      valid = valid && (p.samples() <= at.finishedEnd || (chosen && p.samples() == at.cutEnd));
       for (const HalfEstimate& h : p.half) {
         valid = valid && h.count >= 0 && h.alpha >= 0 && h.alpha <= h.count &&
                 h.rays >= uint64_t(h.count) && h.rays <= uint64_t{1} << 62 &&

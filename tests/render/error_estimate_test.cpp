@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "accel/accelerator.h"
+#include "core/error.h"
 #include "io/scene_loader.h"
 #include "render/render_job.h"
 #include "test_util.h"
@@ -246,7 +247,8 @@ TEST(Resume, ContinuingFromTheStateLeftGivesTheSameBitsAsAStraightRender) {
     ASSERT_TRUE(partial.partial);
     ASSERT_LT(partial.stats.minPixelSpp, partial.stats.maxPixelSpp);  // stopped mid-pass
     RenderOptions resumed;
-    resumed.resumeFrom = &partial.estimates;
+    const ResumeState left{partial.estimates, partial.position};
+    resumed.resumeFrom = &left;
     resumed.threads = 2;
     EXPECT_EQ(rgbOf(render(scene, kSoftShadows.crop, resumed).film), rgbOf(straight.film))
         << samplerName(sampler);
@@ -256,9 +258,65 @@ TEST(Resume, ContinuingFromTheStateLeftGivesTheSameBitsAsAStraightRender) {
   const Scene at64 = load(kSoftShadows, 64, 4, SamplerKind::Sobol);
   const RenderResult first = render(at16, kSoftShadows.crop);
   RenderOptions resumed;
-  resumed.resumeFrom = &first.estimates;
+  const ResumeState left{first.estimates, first.position};
+  resumed.resumeFrom = &left;
   EXPECT_EQ(rgbOf(render(at64, kSoftShadows.crop, resumed).film),
             rgbOf(render(at64, kSoftShadows.crop).film));
+}
+
+// An adaptive frame continues with the choices a straight render takes, whether it finished at
+// a lower --max-spp or a stop cut a pass short. Each pass's choice reads the state the pass
+// before left: a continuation that took its finished passes' choices again read a later state
+// (a frame finished at 16 spp, continued to 64, gave 11 of 1000 pixels 16 samples a straight
+// render never gave them), and a cut pass has moved some of its chosen pixels and not others.
+TEST(Resume, AnAdaptiveFrameContinuesWithTheChoicesOfAStraightRender) {
+  const auto& whole = kSoftShadowsWhole;  // the full frame: an adaptive crop cannot continue
+  const Scene scene = load(whole, 16, 3, SamplerKind::Stratified);
+  const double target = 0.004;
+  const RenderResult straight = render(scene, whole.crop, adaptive(target, 4, 64));
+  ASSERT_LT(straight.stats.minPixelSpp, straight.stats.maxPixelSpp);  // it did adapt
+  const auto continued = [&](const RenderResult& from) {
+    RenderOptions opt = adaptive(target, 4, 64);
+    const ResumeState left{from.estimates, from.position};
+    opt.resumeFrom = &left;
+    opt.threads = 2;
+    return render(scene, whole.crop, opt);
+  };
+  // Finished at --max-spp 16 (passes 4, 8, 16): the straight render's first three.
+  const RenderResult at16 = render(scene, whole.crop, adaptive(target, 4, 16));
+  EXPECT_EQ(at16.position.finishedEnd, 16);
+  EXPECT_EQ(rgbOf(continued(at16).film), rgbOf(straight.film));
+
+  // Cut 500 samples into the pass to 32, on one thread (so where it stops is fixed).
+  const auto accel = makeAccelerator(AccelKind::Embree, scene);
+  std::atomic<bool> cancel{false};
+  int64_t afterPass16 = -1;
+  RenderOptions cut = adaptive(target, 4, 64);
+  cut.progress = false;
+  cut.crop = whole.crop;
+  cut.threads = 1;
+  cut.cancel = &cancel;
+  cut.sampleHook = [&](int, int, Radiance&) {
+    if (afterPass16 >= 0 && ++afterPass16 == 500) cancel = true;
+  };
+  const RenderResult partial = renderScene(scene, *accel, cut, [&](const RenderResult& soFar) {
+    if (soFar.stats.passes.back().spp == 16) afterPass16 = 0;
+  });
+  ASSERT_TRUE(partial.partial);
+  EXPECT_EQ(partial.position.finishedEnd, 16);
+  ASSERT_EQ(partial.position.cutEnd, 32);
+  // Some chosen pixels had reached 32 samples and some had not: the pass was cut inside.
+  int reached = 0, waiting = 0;
+  for (size_t p = 0; p < partial.estimates.size(); ++p)
+    if (partial.position.cutChosen[p]) ++(partial.estimates[p].samples() == 32 ? reached : waiting);
+  EXPECT_GT(reached, 0);
+  EXPECT_GT(waiting, 0);
+  EXPECT_EQ(rgbOf(continued(partial).film), rgbOf(straight.film));
+
+  // Finished at --max-spp 24 (4, 8, 16, 24): a pass the render to 64 (4, 8, 16, 32, 64) never
+  // takes, so no continuation to 64 can be a straight render's; refused.
+  const RenderResult at24 = render(scene, whole.crop, adaptive(target, 4, 24));
+  EXPECT_THROW(continued(at24), UsageError);
 }
 
 // Each pass's preview is the frame so far; with a progressive sampler, that is exactly the frame

@@ -65,6 +65,17 @@ TEST(PassPlan, ContradictoryBoundsAreRefused) {
   one.target.relmse = 0.001;
   one.minSpp = 1;  // no estimate can be made from one sample
   EXPECT_THROW(PassPlan::make(16, SamplerKind::Stratified, one), UsageError);
+  // Without a target or a time limit every pixel takes the spp: a --max-spp of 8 or 32 would
+  // render another count than the 16 the frame's metadata names; 16 itself says nothing new.
+  for (const int most : {8, 32}) {
+    SamplingRequest plain;
+    plain.maxSpp = most;
+    EXPECT_THROW(PassPlan::make(16, SamplerKind::Stratified, plain), UsageError) << most;
+  }
+  SamplingRequest same;
+  same.maxSpp = 16;
+  EXPECT_EQ(PassPlan::make(16, SamplerKind::Stratified, same).ends,
+            (std::vector<int>{2, 4, 8, 16}));
 }
 
 // A pixel with half 0 = {1, 3} and half 1 = {2, 6} in every channel, each sample `rays` rays.
