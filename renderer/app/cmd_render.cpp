@@ -1,6 +1,7 @@
 #include <glint_version.h>
 
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfMultiPartInputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <algorithm>
@@ -198,20 +199,66 @@ std::string samplingSettings(const SamplingRequest& r) {
 // renders filter textures at the finest footprint (PassPlan::footprintSpp).
 constexpr uint64_t kSampleRevision = 2;
 
+// The sampling settings --resume must find unchanged: the targets and the first pass, not the
+// sample counts or the time limit.
+std::string resumedSampling(const SamplingRequest& sampling) {
+  SamplingRequest targets = sampling;
+  targets.maxSpp = 0;
+  targets.timeLimitSeconds = 0;
+  const std::string s = samplingSettings(targets);
+  return s.empty() ? s : s.substr(1);  // without the separating space it opens with
+}
+
 // What must match for --resume to continue a frame: the settings hash without the sample
-// counts and time limit, the sampler actually used, for a sampler whose sets are laid out for
-// one total (stratified) that total, and the Glint's kSampleRevision.
+// counts, the time limit, the AOVs and half floats (they change what is written, not the
+// samples; AOVs whose sums are not kept are refused on their own), the sampler actually used,
+// for a sampler whose sets are laid out for one total (stratified) that total, and the Glint's
+// kSampleRevision.
 std::string resumeHash(const RenderArgs& a, const Scene& scene, const PassPlan& plan) {
   Scene withoutSpp = scene;
   withoutSpp.render.spp = 0;
-  SamplingRequest targets = a.sampling;
-  targets.maxSpp = 0;
-  targets.timeLimitSeconds = 0;
-  return hex(hashKey(settingsHash(withoutSpp, a.accel,
-                                  a.aovs + (a.half ? " half" : "") + " " + a.integrator +
-                                      samplingSettings(targets)),
-                     uint64_t(plan.sampler), uint64_t(plan.progressive() ? 0 : plan.maxSpp),
-                     kSampleRevision));
+  return hex(hashKey(
+      settingsHash(withoutSpp, a.accel, a.integrator + " " + resumedSampling(a.sampling)),
+      uint64_t(plan.sampler), uint64_t(plan.progressive() ? 0 : plan.maxSpp), kSampleRevision));
+}
+
+// What differs between --resume's frame and this render, as far as its metadata tells ("the
+// scene file's bytes; seed: the frame's 1, this render's 9"); empty when nothing it records does.
+std::string resumeDifferences(const Imf::Header& header, const RenderArgs& a, const Scene& scene,
+                              const PassPlan& plan) {
+  std::string out;
+  const auto differs = [&](const char* what, const std::optional<std::string>& theirs,
+                           const std::string& ours) {
+    if (!theirs || *theirs == ours) return;
+    out += (out.empty() ? "" : "; ") + std::string(what) + ": the frame's " +
+           (theirs->empty() ? "none" : *theirs) + ", this render's " +
+           (ours.empty() ? "none" : ours);
+  };
+  const auto text = [&](const char* key) -> std::optional<std::string> {
+    const auto* v = header.findTypedAttribute<Imf::StringAttribute>(key);
+    return v ? std::optional<std::string>(v->value()) : std::nullopt;
+  };
+  const auto number = [&](const char* key) -> std::optional<std::string> {
+    const auto* v = header.findTypedAttribute<Imf::IntAttribute>(key);
+    return v ? std::optional<std::string>(std::to_string(v->value())) : std::nullopt;
+  };
+  if (text("glint:scene_hash") && *text("glint:scene_hash") != hex(scene.sourceHash))
+    out += "the scene file's bytes";
+  const Imath::Box2i& full = header.displayWindow();
+  differs("size",
+          std::to_string(full.max.x - full.min.x + 1) + "x" +
+              std::to_string(full.max.y - full.min.y + 1),
+          std::to_string(scene.render.width) + "x" + std::to_string(scene.render.height));
+  differs("seed", text("glint:seed"), std::to_string(scene.render.seed));
+  differs("sampler", text("glint:sampler"), std::string(samplerName(plan.sampler)));
+  differs("max depth", number("glint:max_depth"), std::to_string(scene.render.maxDepth));
+  differs("backend", text("glint:accel"), a.accel);
+  differs("integrator", text("glint:integrator"), a.integrator);
+  differs("targets and first pass", text("glint:resume_sampling"), resumedSampling(a.sampling));
+  if (!plan.progressive())
+    differs("spp its stratified sets are laid out for", number("glint:spp"),
+            std::to_string(scene.render.spp));
+  return out;
 }
 
 ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const PassPlan& plan,
@@ -233,6 +280,7 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const PassPlan&
                {"glint:sampler", std::string(samplerName(st.sampler))},
                {"glint:passes", passesJson(st.passes).dump()},
                {"glint:resume_hash", resumeHash(a, scene, plan)},
+               {"glint:resume_sampling", resumedSampling(a.sampling)},
                {"glint:accel", a.accel},
                {"glint:seed", std::to_string(scene.render.seed)},  // 64-bit: kept exact as text
                {"glint:crop", std::to_string(w.x0) + " " + std::to_string(w.x1) + " " +
@@ -269,15 +317,19 @@ ResumeState readResumable(const RenderArgs& a, const Scene& scene, const PassPla
     const auto file = openExr(a.resume);
     const auto* hash =
         file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:resume_hash");
-    if (!hash || hash->value() != resumeHash(a, scene, plan))
-      throw UsageError(
-          a.resume +
-          (hash ? " was rendered from another scene, or with other settings or a "
-                  "stratified sampler laid out for another spp"
-                : " has no glint:resume_hash: it was not written by this Glint") +
-          ": --resume continues a frame with the scene and every setting but --spp / "
-          "--max-spp / --time-limit the same (render with --resumable to continue a frame to "
-          "any spp)");
+    if (!hash || hash->value() != resumeHash(a, scene, plan)) {
+      const std::string differences =
+          hash ? resumeDifferences(file->header(0), a, scene, plan) : std::string();
+      throw UsageError(a.resume +
+                       (!hash ? " has no glint:resume_hash: it was not written by this Glint"
+                        : differences.empty()
+                            ? " was rendered from another scene, or with other settings or a "
+                              "stratified sampler laid out for another spp"
+                            : " differs from this render (" + differences + ")") +
+                       ": --resume continues a frame with the scene and every setting but --spp / "
+                       "--max-spp / --time-limit / --aov variance / --half the same (render with "
+                       "--resumable to continue a frame to any spp)");
+    }
     const auto* earlier = file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:passes");
     const nlohmann::json list =
         earlier ? nlohmann::json::parse(earlier->value(), nullptr, false) : nlohmann::json();

@@ -61,13 +61,32 @@ TEST(PassesCli, ResumeGivesTheStraightRendersPixelsAndRefusesAnotherFrame) {
   for (size_t i = 1; i < 5; ++i)
     EXPECT_GE(j["passes"][i]["seconds"].get<double>(), j["passes"][i - 1]["seconds"].get<double>());
   EXPECT_GT(j["passes"][4]["seconds"].get<double>(), j["seconds"].get<double>());
-  // Another seed, another setting, a frame without state: exit 2, the frame named.
-  for (const std::string& other : {std::string("--seed 9"), std::string("--max-depth 2")}) {
+  // Another seed, another setting, a frame without state: exit 2, the frame and what differs
+  // named.
+  for (const auto& [other, named] : std::vector<std::pair<std::string, std::string>>{
+           {"--seed 9", "seed: the frame's "}, {"--max-depth 2", "max depth: the frame's "}}) {
     const auto r = test::runGlint("render " + soft("--spp 32 " + other + " --resume " + straight +
                                                    " -o " + tmp("resume-x.exr")));
     EXPECT_EQ(r.exitCode, 2) << other << r.output;
     EXPECT_NE(r.output.find(straight), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(named), std::string::npos) << r.output;
   }
+  // The variance AOV and half floats change what is written, not the samples: a frame continues
+  // with them (from 8 spp: `part` is the continued frame now, `straight` at 32 is continued).
+  const std::string withVariance = tmp("resume-variance.exr");
+  const auto v = test::runGlint(
+      "render " + soft("--spp 32 --aov variance --resume " + straight + " -o " + withVariance));
+  ASSERT_EQ(v.exitCode, 0) << v.output;
+  const auto rgbaOf = [](const Image& image) {
+    std::vector<float> rgba;
+    for (size_t p = 0; p < image.pixels.size(); p += size_t(image.channels))
+      rgba.insert(rgba.end(), image.pixels.begin() + long(p), image.pixels.begin() + long(p) + 4);
+    return rgba;
+  };
+  EXPECT_EQ(rgbaOf(readImage(withVariance)), rgbaOf(readImage(straight)));
+  const auto h = test::runGlint(
+      "render " + soft("--spp 32 --half --resume " + straight + " -o " + tmp("resume-half.exr")));
+  EXPECT_EQ(h.exitCode, 0) << h.output;
   const std::string plain = tmp("resume-plain.exr");
   ASSERT_EQ(test::runGlint("render " + soft("--spp 8 -o " + plain)).exitCode, 0);
   const auto r =
