@@ -1,10 +1,12 @@
 #include <glint_version.h>
 
+#include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfMultiPartInputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 #include <algorithm>
+#include <charconv>
 #include <filesystem>
 #include <fstream>
 
@@ -184,7 +186,12 @@ uint64_t settingsHash(const Scene& scene, const std::string& accel, const std::s
 std::string samplingSettings(const SamplingRequest& r) {
   std::string s;
   const auto add = [&](const char* name, double v) {
-    if (v > 0) s += std::string(" ") + name + " " + std::to_string(v);
+    if (!(v > 0)) return;
+    // The shortest text that reads back as v: to_string's six decimals read 2e-7 and 4e-7 as
+    // one target.
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, v).ptr;
+    s += std::string(" ") + name + " " + std::string(text, end);
   };
   add("target-rmse", r.target.rmse);
   add("target-relmse", r.target.relmse);
@@ -317,6 +324,17 @@ ResumeState readResumable(const RenderArgs& a, const Scene& scene, const PassPla
     const auto file = openExr(a.resume);
     const auto* hash =
         file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:resume_hash");
+    // A frame without a state cannot be continued, whatever its settings; one whose state has
+    // no checksum was left by an older Glint, whose hash was made otherwise and whose state
+    // lacks where its passes stood.
+    if (!file->header(0).channels().findChannel(std::string(kResumeLayer) + ".00"))
+      throw UsageError(a.resume +
+                       " holds no resume state: only a frame Glint wrote with --resumable, or a "
+                       "partial, preview or time-limited one, can be resumed");
+    if (hash && !file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:resume_checksum"))
+      throw UsageError(a.resume +
+                       " was left by an older Glint, whose resume state did not keep where its "
+                       "passes stood: render it again");
     if (!hash || hash->value() != resumeHash(a, scene, plan)) {
       const std::string differences =
           hash ? resumeDifferences(file->header(0), a, scene, plan) : std::string();

@@ -535,7 +535,15 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   std::vector<uint8_t> sampled(estimates.size(), 1);
   ChoiceCache choiceCache;
   const PassPosition* resumed = opt.resumeFrom ? &opt.resumeFrom->position : nullptr;
+  // Where the passes stand, from where the continued frame's stood: its pixels may hold more
+  // than the ends this plan skips (--spp 24, continued to 64: 24 against 16), and a stop
+  // before its cut pass is taken again must keep that pass's choice.
   PassPosition& position = result.position;
+  if (resumed) position = *resumed;
+  const auto finished = [&](int end) {
+    position.finishedEnd = end;
+    if (position.cutEnd <= end) position.cutEnd = 0, position.cutChosen.clear();
+  };
   std::atomic<bool> deadlinePassed{false};
   // From here on, on the render's threads: the tiles, and the per-pixel work between passes
   // (choosing pixels, the statistics, the resolved frame), which other threads would wait for.
@@ -544,10 +552,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
       const int end = plan.ends[k];
       // A continued frame's finished passes are not taken again: their choices would read a
       // state later passes have moved on (a straight render takes each from the one before).
-      if (resumed && end <= resumed->finishedEnd) {
-        position.finishedEnd = end;
-        continue;
-      }
+      if (resumed && end <= resumed->finishedEnd) continue;
       if (plan.adaptive() && k > 0 && !spread) {
         spread = measureSpread();
         if (!spread) {
@@ -565,7 +570,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
                                    spread.value_or(FrameSpread{}), choiceCache, sampled);
       }
       if (pixels == 0) {  // every pixel is past this pass (resumed), or met its target
-        position.finishedEnd = end;
+        finished(end);
         continue;
       }
       // The time limit applies from the second pass on: the first is what makes a frame.
@@ -584,7 +589,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
         position.cutChosen = windowPart(sampled, sampledWindow, window);
         break;
       }
-      position.finishedEnd = end;
+      finished(end);
       const int64_t samples = statsSoFar();
       result.stats.passes.push_back({end, double(samples) / double(window.area()),
                                      result.stats.seconds, result.stats.estimated, pixels});

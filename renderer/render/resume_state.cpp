@@ -129,23 +129,6 @@ ResumeState readResumeState(const std::string& path, const PixelWindow& window, 
                      std::to_string(w.y + w.height) + ") of a " + std::to_string(w.fullWidth) +
                      "x" + std::to_string(w.fullHeight) + " frame: --resume continues the same " +
                      "frame and crop only");
-  ResumeState state;
-  PassPosition& position = state.position;
-  for (const auto& [key, value] : {std::pair{kFinishedEndKey, &position.finishedEnd},
-                                   std::pair{kCutEndKey, &position.cutEnd}}) {
-    const auto* a = header.findTypedAttribute<Imf::IntAttribute>(key);
-    if (!a)
-      throw UsageError(path + " has no " + key +
-                       ": it was written by an older Glint, which did not keep where its passes "
-                       "stood (render it again)");
-    *value = a->value();
-  }
-  if (position.finishedEnd < 0 || position.finishedEnd > maxSamples || position.cutEnd < 0 ||
-      position.cutEnd > maxSamples ||
-      (position.cutEnd > 0 && position.cutEnd <= position.finishedEnd))
-    throw UsageError(path + ": its passes' position (finished to " +
-                     std::to_string(position.finishedEnd) + " spp, cut at " +
-                     std::to_string(position.cutEnd) + ") is not one a render leaves");
   std::vector<ExrSlice> slices;
   for (int i = 0; i < kChannels; ++i) {
     const Imf::Channel* c = header.channels().findChannel(channelName(i));
@@ -154,9 +137,31 @@ ResumeState readResumeState(const std::string& path, const PixelWindow& window, 
           path + " holds no resume state (" + channelName(i) +
           "): only a frame Glint wrote with --resumable, or a partial, preview "
           "or time-limited one, can be resumed" +
-          (i == kChannelsOfOlderGlint ? " (a Glint before the rays channels wrote fewer)" : ""));
+          (i == kChannelsOfOlderGlint ? " (a Glint before the rays channels wrote fewer)"
+           : i == kCutChosenChannel
+               ? " (a Glint before the passes' position was kept wrote fewer: render it again)"
+               : ""));
     slices.push_back({channelName(i), Imf::UINT, sizeof(uint32_t) * size_t(i)});
   }
+  ResumeState state;
+  PassPosition& position = state.position;
+  for (const auto& [key, value] : {std::pair{kFinishedEndKey, &position.finishedEnd},
+                                   std::pair{kCutEndKey, &position.cutEnd}}) {
+    const auto* a = header.findTypedAttribute<Imf::IntAttribute>(key);
+    if (!a)
+      throw UsageError(path + " has no " + key +
+                       ": a Glint before the passes' position was kept wrote it (render it "
+                       "again)");
+    *value = a->value();
+  }
+  // Plausible ends only; whether this render's passes can continue from them is the render's
+  // to say (a pixel past --spp is refused below, naming the counts).
+  if (position.finishedEnd < 0 || position.finishedEnd > kMaxSampleSet || position.cutEnd < 0 ||
+      position.cutEnd > kMaxSampleSet ||
+      (position.cutEnd > 0 && position.cutEnd <= position.finishedEnd))
+    throw UsageError(path + ": its passes' position (finished to " +
+                     std::to_string(position.finishedEnd) + " spp, cut at " +
+                     std::to_string(position.cutEnd) + ") is not one a render leaves");
   const size_t pixelBytes = sizeof(uint32_t) * kChannels;
   checkImageFits(path, "data window", w.width, w.height, double(pixelBytes));
   std::vector<uint32_t> words;
@@ -194,12 +199,13 @@ ResumeState readResumeState(const std::string& path, const PixelWindow& window, 
       throw UsageError(path +
                        ": the halves of a pixel's resume state do not split its samples "
                        "as a render does");
-    // A pass brings a pixel up to its end at most, and a pixel past the last finished pass
-    // is one the cut pass had chosen and brought to its end.
+    // A pass brings a pixel up to its end at most, and a pixel past the last finished pass is
+    // one the cut pass had chosen (a continuation's earlier frame may have left it between the
+    // two: --spp 24, continued to 64 and cut in the pass to 32).
     const uint32_t chosen = in[kCutChosenChannel];
     const int64_t n = out[p].samples();
     if (chosen > 1 || (chosen == 1 && position.cutEnd == 0) ||
-        (n > position.finishedEnd && !(chosen == 1 && n == position.cutEnd)))
+        (n > position.finishedEnd && !(chosen == 1 && n <= position.cutEnd)))
       throw UsageError(path + ": pixel (" +
                        std::to_string(window.x0 + int(p % size_t(window.width()))) + ", " +
                        std::to_string(window.y0 + int(p / size_t(window.width()))) + ") holds " +

@@ -71,6 +71,22 @@ TEST(PassesCli, ResumeGivesTheStraightRendersPixelsAndRefusesAnotherFrame) {
     EXPECT_NE(r.output.find(straight), std::string::npos) << r.output;
     EXPECT_NE(r.output.find(named), std::string::npos) << r.output;
   }
+  // Targets apart by less than 1e-6 are other targets: they read alike (six decimals) and a
+  // frame rendered to one was continued to the other.
+  const std::string fine = tmp("resume-fine-target.exr");
+  ASSERT_EQ(test::runGlint("render " + soft("--target-relmse 0.0000002 --max-spp 16 --resumable "
+                                            "-o " +
+                                            fine))
+                .exitCode,
+            0);
+  const auto target = test::runGlint("render " + soft("--target-relmse 0.0000004 --max-spp 32 "
+                                                      "--resume " +
+                                                      fine + " -o " + tmp("resume-y.exr")));
+  EXPECT_EQ(target.exitCode, 2) << target.output;
+  EXPECT_NE(target.output.find("targets and first pass: the frame's target-relmse 2e-07, this "
+                               "render's target-relmse 4e-07"),
+            std::string::npos)
+      << target.output;
   // The variance AOV and half floats change what is written, not the samples: a frame continues
   // with them (from 8 spp: `part` is the continued frame now, `straight` at 32 is continued).
   const std::string withVariance = tmp("resume-variance.exr");
@@ -89,9 +105,14 @@ TEST(PassesCli, ResumeGivesTheStraightRendersPixelsAndRefusesAnotherFrame) {
   EXPECT_EQ(h.exitCode, 0) << h.output;
   const std::string plain = tmp("resume-plain.exr");
   ASSERT_EQ(test::runGlint("render " + soft("--spp 8 -o " + plain)).exitCode, 0);
-  const auto r =
-      test::runGlint("render " + soft("--spp 8 --resume " + plain + " -o " + tmp("y.exr")));
-  EXPECT_EQ(r.exitCode, 2) << r.output;
+  // A frame without state, whatever its settings (here another spp, which a stratified frame's
+  // hash also tells): it holds nothing to continue, and is told so.
+  for (const char* spp : {"8", "16"}) {
+    const auto r = test::runGlint("render " + soft(std::string("--spp ") + spp + " --resume " +
+                                                   plain + " -o " + tmp("y.exr")));
+    EXPECT_EQ(r.exitCode, 2) << r.output;
+    EXPECT_NE(r.output.find("holds no resume state"), std::string::npos) << r.output;
+  }
 }
 
 TEST(PassesCli, ATexturedFrameResumesToTheStraightRendersPixels) {

@@ -59,8 +59,8 @@ inline std::string exrReadProblem(const std::string& path, const std::string& me
       const PixelEstimate& p = state.estimates[i];
       const bool chosen = at.cutEnd > 0 && at.cutChosen[i] == 1;
       bool valid = p.samples() <= kMaxSamples && halfSampleCount(p.samples(), 0) == p.half[0].count;
-      // No pixel past the passes the frame finished, but for one the cut pass brought to its end.
-      valid = valid && (p.samples() <= at.finishedEnd || (chosen && p.samples() == at.cutEnd));
+      // No pixel past the passes the frame finished, but for one the cut pass had chosen.
+      valid = valid && (p.samples() <= at.finishedEnd || (chosen && p.samples() <= at.cutEnd));
       for (const HalfEstimate& h : p.half) {
         valid = valid && h.count >= 0 && h.alpha >= 0 && h.alpha <= h.count &&
                 h.rays >= uint64_t(h.count) && h.rays <= uint64_t{1} << 62 &&

@@ -312,11 +312,61 @@ TEST(Resume, AnAdaptiveFrameContinuesWithTheChoicesOfAStraightRender) {
   EXPECT_GT(reached, 0);
   EXPECT_GT(waiting, 0);
   EXPECT_EQ(rgbOf(continued(partial).film), rgbOf(straight.film));
+  // Stopped again before the cut pass is taken again (at its first sample: the probes the
+  // continuation measures the spread with), the frame keeps that pass's choice; it was lost,
+  // and the state left named pixels past the passes it finished.
+  RenderOptions again = adaptive(target, 4, 64);
+  const ResumeState left{partial.estimates, partial.position};
+  again.resumeFrom = &left;
+  again.threads = 1;
+  std::atomic<bool> stopAtOnce{false};
+  again.cancel = &stopAtOnce;
+  again.sampleHook = [&](int, int, Radiance&) { stopAtOnce = true; };
+  const RenderResult stoppedAgain = render(scene, whole.crop, again);
+  ASSERT_TRUE(stoppedAgain.partial);
+  EXPECT_EQ(stoppedAgain.position, partial.position);
+  EXPECT_EQ(rgbOf(continued(stoppedAgain).film), rgbOf(straight.film));
 
   // Finished at --max-spp 24 (4, 8, 16, 24): a pass the render to 64 (4, 8, 16, 32, 64) never
   // takes, so no continuation to 64 can be a straight render's; refused.
   const RenderResult at24 = render(scene, whole.crop, adaptive(target, 4, 24));
   EXPECT_THROW(continued(at24), UsageError);
+}
+
+// A frame of 24 spp continued to 64 (passes to 2, 4, 8, 16, 32, 64: 24 is not one of them) and
+// cut in the pass to 32 keeps the 24 it had finished, not the 16 of the last pass it skipped:
+// its state named pixels of 24 samples past the passes it finished, and its continuation was
+// refused.
+TEST(Resume, AFrameContinuedPastAnEndOffThePlanKeepsWhatItHad) {
+  const Scene at24 = load(kSoftShadows, 24, 4, SamplerKind::Sobol);
+  const Scene at64 = load(kSoftShadows, 64, 4, SamplerKind::Sobol);
+  const RenderResult first = render(at24, kSoftShadows.crop);
+  EXPECT_EQ(first.position.finishedEnd, 24);
+  std::atomic<bool> cancel{false};
+  int64_t samples = 0;
+  RenderOptions cut;
+  const ResumeState from24{first.estimates, first.position};
+  cut.resumeFrom = &from24;
+  cut.threads = 1;
+  cut.cancel = &cancel;
+  cut.sampleHook = [&](int, int, Radiance&) {
+    if (++samples == kSoftShadows.crop.area() * 3) cancel = true;  // 3 of the pass's 8 a pixel
+  };
+  const RenderResult partial = render(at64, kSoftShadows.crop, cut);
+  ASSERT_TRUE(partial.partial);
+  EXPECT_EQ(partial.position.finishedEnd, 24);
+  ASSERT_EQ(partial.position.cutEnd, 32);
+  // What readResumeState asks of a state: no pixel past the finished passes but one the cut
+  // pass had chosen, and none of those past its end.
+  for (size_t p = 0; p < partial.estimates.size(); ++p) {
+    const int64_t n = partial.estimates[p].samples();
+    EXPECT_TRUE(n <= 24 || (partial.position.cutChosen[p] && n <= 32)) << p << ": " << n;
+  }
+  RenderOptions resumed;
+  const ResumeState left{partial.estimates, partial.position};
+  resumed.resumeFrom = &left;
+  EXPECT_EQ(rgbOf(render(at64, kSoftShadows.crop, resumed).film),
+            rgbOf(render(at64, kSoftShadows.crop).film));
 }
 
 // Each pass's preview is the frame so far; with a progressive sampler, that is exactly the frame
