@@ -171,13 +171,15 @@ void printStats(const Scene& scene, const RenderStats& st) {
 }
 
 // What must match for crops of one frame to merge: the scene's bytes and every setting that
-// changes pixels. Threads and tile size do not (the image is the same for any of them).
-uint64_t settingsHash(const Scene& scene, const std::string& accel, const std::string& extras) {
+// changes pixels. Threads and tile size do not (the image is the same for any of them). `spp`
+// stands for the scene's (0 where it must not count), so no caller copies the scene to change it.
+uint64_t settingsHash(const Scene& scene, int spp, const std::string& accel,
+                      const std::string& extras) {
   const RenderSettings& r = scene.render;
   // An animated scene's frames share its file but not its pixels.
   const std::string frame =
       scene.animation ? " frame " + std::to_string(scene.animation->frame) : "";
-  return hashKey(scene.sourceHash, uint64_t(r.width), uint64_t(r.height), uint64_t(r.spp), r.seed,
+  return hashKey(scene.sourceHash, uint64_t(r.width), uint64_t(r.height), uint64_t(spp), r.seed,
                  uint64_t(r.sampler), uint64_t(r.maxDepth), uint64_t(r.transparentBackground),
                  hashBytes(accel), hashBytes(extras + frame));
 }
@@ -222,10 +224,8 @@ std::string resumedSampling(const SamplingRequest& sampling) {
 // for a sampler whose sets are laid out for one total (stratified) that total, and the Glint's
 // kSampleRevision.
 std::string resumeHash(const RenderArgs& a, const Scene& scene, const PassPlan& plan) {
-  Scene withoutSpp = scene;
-  withoutSpp.render.spp = 0;
   return hex(hashKey(
-      settingsHash(withoutSpp, a.accel, a.integrator + " " + resumedSampling(a.sampling)),
+      settingsHash(scene, 0, a.accel, a.integrator + " " + resumedSampling(a.sampling)),
       uint64_t(plan.sampler), uint64_t(plan.progressive() ? 0 : plan.maxSpp), kSampleRevision));
 }
 
@@ -279,7 +279,7 @@ ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const PassPlan&
                {"glint:scene", scene.sourcePath},
                {"glint:scene_hash", hex(scene.sourceHash)},
                {"glint:settings_hash",
-                hex(settingsHash(scene, a.accel,
+                hex(settingsHash(scene, scene.render.spp, a.accel,
                                  a.aovs + (a.half ? " half" : "") +
                                      (a.integrator == "production" ? "" : " " + a.integrator) +
                                      samplingSettings(a.sampling)))},
