@@ -320,6 +320,7 @@ ResumeState readResumable(const RenderArgs& a, const Scene& scene, const PassPla
                           const std::optional<PixelWindow>& crop, std::vector<PassRecord>& passes) {
   const RenderSettings& r = scene.render;
   const PixelWindow window = crop.value_or(PixelWindow{0, r.width, 0, r.height});
+  const std::string expectedHash = resumeHash(a, scene, plan);
   {
     const auto file = openExr(a.resume);
     const auto* hash =
@@ -335,7 +336,7 @@ ResumeState readResumable(const RenderArgs& a, const Scene& scene, const PassPla
       throw UsageError(a.resume +
                        " was left by an older Glint, whose resume state did not keep where its "
                        "passes stood: render it again");
-    if (!hash || hash->value() != resumeHash(a, scene, plan)) {
+    if (!hash || hash->value() != expectedHash) {
       const std::string differences =
           hash ? resumeDifferences(file->header(0), a, scene, plan) : std::string();
       throw UsageError(a.resume +
@@ -367,8 +368,8 @@ ResumeState readResumable(const RenderArgs& a, const Scene& scene, const PassPla
         passes.push_back(record);
       }
   }
-  ResumeState state = readResumeState(a.resume, window, r.width, r.height, plan.maxSpp);
-  checkResumeChecksum(a.resume, state, resumeHash(a, scene, plan));
+  ResumeState state =
+      readResumeState(a.resume, window, r.width, r.height, plan.maxSpp, &expectedHash);
   log::info("resuming " + a.resume + " to " + std::to_string(plan.maxSpp) + " spp");
   return state;
 }

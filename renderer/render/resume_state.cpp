@@ -103,20 +103,8 @@ void addResumeState(Film& film, ExrMetadata& metadata, const std::vector<PixelEs
   metadata.strings.emplace_back(kChecksumKey, checksumOf(estimates, position, resumeHash));
 }
 
-void checkResumeChecksum(const std::string& path, const ResumeState& state,
-                         const std::string& resumeHash) {
-  const auto file = openExr(path);
-  const auto* stored = file->header(0).findTypedAttribute<Imf::StringAttribute>(kChecksumKey);
-  if (!stored || stored->value() != checksumOf(state.estimates, state.position, resumeHash))
-    throw UsageError(path + (stored ? "'s resume state is not the one its render wrote: it was "
-                                      "altered (a tool that converts its words to float, an "
-                                      "edit) or taken from another frame"
-                                    : " has no glint:resume_checksum: it was not written by "
-                                      "this Glint"));
-}
-
 ResumeState readResumeState(const std::string& path, const PixelWindow& window, int fullWidth,
-                            int fullHeight, int64_t maxSamples) {
+                            int fullHeight, int64_t maxSamples, const std::string* resumeHash) {
   // Not noted as an input file: -o may name the partial itself, which the continued frame
   // replaces atomically once it is complete.
   const auto file = openExr(path);
@@ -212,6 +200,15 @@ ResumeState readResumeState(const std::string& path, const PixelWindow& window, 
                        std::to_string(n) + " samples, past the passes its frame finished (" +
                        std::to_string(position.finishedEnd) + " spp)");
     if (position.cutEnd > 0) position.cutChosen[p] = static_cast<uint8_t>(chosen);
+  }
+  if (resumeHash) {
+    const auto* stored = header.findTypedAttribute<Imf::StringAttribute>(kChecksumKey);
+    if (!stored || stored->value() != checksumOf(state.estimates, position, *resumeHash))
+      throw UsageError(path + (stored ? "'s resume state is not the one its render wrote: it was "
+                                        "altered (a tool that converts its words to float, an "
+                                        "edit) or taken from another frame"
+                                      : " has no glint:resume_checksum: it was not written by "
+                                        "this Glint"));
   }
   return state;
 }

@@ -43,14 +43,11 @@ void addResumeState(Film& film, ExrMetadata& metadata, const std::vector<PixelEs
 // fullWidth × fullHeight. Throws UsageError naming the file when the state is missing, of
 // another shape, or holds what no render leaves (a non-finite value, a negative coverage, a
 // count past `maxSamples`, fewer rays than samples or more than 2^62, a pixel past the passes
-// the position names).
+// the position names); and, given the frame's `resumeHash`, when its glint:resume_checksum is
+// not that of the state and the hash: the state was altered (a tool that converted its words to
+// float, an edit) or taken from another frame.
 ResumeState readResumeState(const std::string& path, const PixelWindow& window, int fullWidth,
-                            int fullHeight, int64_t maxSamples);
-
-// Throws UsageError naming `path` when its glint:resume_checksum is not that of `state` and
-// `resumeHash`: the state was altered (a tool that converted its words to float, an edit) or
-// taken from another frame.
-void checkResumeChecksum(const std::string& path, const ResumeState& state,
-                         const std::string& resumeHash);
+                            int fullHeight, int64_t maxSamples,
+                            const std::string* resumeHash = nullptr);
 
 }  // namespace glint
