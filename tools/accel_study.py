@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Cost per ray against the number of primitives n for every acceleration structure
-(docs/performance.md, "The documents' acceleration structures").
+(docs/acceleration.md).
 
 Two families of scenes, n from 10^2 to 10^6 (--max-n):
   spheres  n spheres scattered uniformly in [-1, 1]^3, radius 0.25 n^(-1/3) (the same share of

@@ -24,7 +24,7 @@ struct PrimitiveBox {
   uint32_t prim = 0;  // triangle index, or 0
 };
 
-// What `glint validate` and the study of docs/performance.md report of a spatial subdivision
+// What `glint validate` and the study of docs/acceleration.md report of a spatial subdivision
 // (the octree and the k-d tree).
 struct SubdivisionStats {
   double buildSeconds = 0;

@@ -328,7 +328,7 @@ CommandRunner addBenchCommand(CLI::App& app) {
       ->check(CLI::Range(0, 100));
   cmd->add_flag("--structures", args->structures,
                 "Only the study of the acceleration structures: build time, memory and one "
-                "thread's time per camera and random ray for each --accel (docs/performance.md)");
+                "thread's time per camera and random ray for each --accel (docs/acceleration.md)");
   cmd->add_option("--json", args->json, "Write the figures as JSON");
   return [args] { return runBench(*args); };
 }

@@ -48,8 +48,7 @@ int effectiveTileSize(const PixelWindow& window, int requested, int threads) {
     return int64_t((window.width() + s - 1) / s) * ((window.height() + s - 1) / s);
   };
   // Every pass ends when its last tile does, so tiles must be small against a thread's share
-  // of the frame: at 16 threads, 8 tiles a thread left lamp_in_mirror 0.69 s where 32 take
-  // 0.49 (the 16-pixel tiles that gives; docs/performance.md, Scaling with cores).
+  // of the frame (docs/performance.md, Scaling with cores).
   while (size > 8 && tilesAt(size) < kTilesPerThread * int64_t(threads))
     size = std::max(8, size / 2);
   return size;

@@ -1,6 +1,5 @@
 #!/usr/bin/env python3
-"""Glint against POV-Ray 3.7 and Embree's `pathtracer`, in one run (docs/performance.md,
-"Against peers").
+"""Glint against POV-Ray 3.7 and Embree's `pathtracer`, in one run (docs/peers.md).
 
 1. scenes/peers/whitted_area_dof.{json,pov}: the same Whitted scene with a quad area light and
    focal blur in both renderers. Each renderer renders a converged reference of its own, then a
