@@ -14,6 +14,11 @@ struct ShadingPoint {
   Vec3f pError;  // per-coordinate bound on |p − true point| (float rounding)
   Vec3f ng;      // unit geometric normal, as the primitive defines it (not flipped)
   Vec3f ns;      // unit shading normal, same side as ng
+  // Where shadow rays leave from, as an offset from p, when `lifted`: on a smooth-shaded mesh,
+  // towards the smooth surface on the side the arriving ray came from (geometry/terminator.h).
+  // Other surfaces set only the flag, which each shadow ray reads.
+  Vec3f shadowLift;
+  bool lifted = false;
   float t = 0;
   uint32_t materialId = 0;
   uint32_t objectId = 0;
@@ -39,13 +44,27 @@ struct ShadingPoint {
 // surface never occludes it. Otherwise `v` is the direction and the ray unbounded. (Written
 // into `r`, not returned: a returned copy stalled on store forwarding.)
 inline constexpr float kShadowRayEnd = 1.0f - 1.0f / 4096.0f;
-[[gnu::always_inline]] inline void spawnRayInto(Ray& r, const ShadingPoint& sp, bool toPoint,
-                                                const Vec3f& v, float time) {
-  r.o = offsetRayOrigin(sp.p, sp.pError, sp.ng, toPoint ? v - sp.p : v);
+[[gnu::always_inline]] inline void spawnRayFrom(Ray& r, const Vec3f& p, const Vec3f& pError,
+                                                const Vec3f& ng, bool toPoint, const Vec3f& v,
+                                                float time) {
+  r.o = offsetRayOrigin(p, pError, ng, toPoint ? v - p : v);
   r.d = toPoint ? v - r.o : v;
   r.tMin = 0;
   r.tMax = toPoint ? kShadowRayEnd : kInfinity;
   r.time = time;
+}
+[[gnu::always_inline]] inline void spawnRayInto(Ray& r, const ShadingPoint& sp, bool toPoint,
+                                                const Vec3f& v, float time) {
+  spawnRayFrom(r, sp.p, sp.pError, sp.ng, toPoint, v, time);
+}
+// A shadow ray from the point the light is sampled for: from p lifted by sp.shadowLift, whose
+// sum p + lift carries one more rounding.
+[[gnu::always_inline]] inline void spawnShadowRayInto(Ray& r, const ShadingPoint& sp, bool toPoint,
+                                                      const Vec3f& v, float time) {
+  if (!sp.lifted) [[likely]]
+    return spawnRayInto(r, sp, toPoint, v, time);
+  const Vec3f from = sp.p + sp.shadowLift;
+  spawnRayFrom(r, from, sp.pError + gamma(2) * abs(from), sp.ng, toPoint, v, time);
 }
 inline Ray spawnRay(const ShadingPoint& sp, const Vec3f& dir, float time) {
   Ray r;
@@ -55,6 +74,12 @@ inline Ray spawnRay(const ShadingPoint& sp, const Vec3f& dir, float time) {
 inline Ray spawnRayTo(const ShadingPoint& sp, const Vec3f& target, float time) {
   Ray r;
   spawnRayInto(r, sp, true, target, time);
+  return r;
+}
+
+inline Ray spawnShadowRay(const ShadingPoint& sp, bool toPoint, const Vec3f& v, float time) {
+  Ray r;
+  spawnShadowRayInto(r, sp, toPoint, v, time);
   return r;
 }
 

@@ -170,7 +170,8 @@ class BatchedKernel {
     if (!facesLight(pt.at, ls.wi) || ls.intensity.isBlack()) return;
     const Rgb f = reflectedLight(pt.material->surface, pt.at, ls.wi);
     const int q = queue.size++;
-    spawnRayInto(queue.rays[q], pt.sp, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target, pt.time);
+    spawnShadowRayInto(queue.rays[q], pt.sp, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target,
+                       pt.time);
     queue.term[q] = f * ls.intensity;
     queue.atInfinity[q] = ls.atInfinity;
     if (transparentShadows()) queue.media[q] = &pt.branch->media;

@@ -5,6 +5,7 @@
 
 #include "core/check.h"
 #include "core/frame.h"
+#include "geometry/terminator.h"
 
 namespace glint {
 
@@ -116,7 +117,7 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
   const Vec3f oObj = worldFromObject ? worldFromObject->inverse().point(ray.o) : ray.o;
   const Vec3f dObj = worldFromObject ? worldFromObject->inverse().vector(ray.d) : ray.d;
 
-  Vec3f p, n, pError;
+  Vec3f p, n, pError, lift;
   const TriangleMesh* smoothMesh = nullptr;  // a mesh with vertex normals: ns is interpolated
   switch (g.kind) {
     case GeomKind::Mesh: {
@@ -128,7 +129,14 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
       // Embree interpolates deforming vertices in its own order of operations: allow for the
       // difference to our vertexAt.
       if (m.deforming()) pError += gamma(4) * (abs(p0) + abs(p1) + abs(p2));
-      if (m.smooth()) smoothMesh = &m;
+      if (m.smooth()) {
+        smoothMesh = &m;
+        // Towards the side the arriving ray came from: the lights a surface reflects are there.
+        const uint32_t* tri = &m.indices[3 * size_t(hit.primId)];
+        lift = smoothSurfaceLift(p, {p0, p1, p2},
+                                 {m.normals[tri[0]], m.normals[tri[1]], m.normals[tri[2]]},
+                                 {1 - hit.u - hit.v, hit.u, hit.v}, dot(n, dObj) < 0 ? n : -n);
+      }
       break;
     }
     case GeomKind::Sphere:
@@ -194,6 +202,8 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
   const Vec3f ng = normalize(n);
   storeWhole(sp.ng, ng);
   storeWhole(sp.ns, smoothMesh ? smoothNormal(*smoothMesh, hit, worldFromObject, ng) : ng);
+  sp.lifted = smoothMesh != nullptr;
+  if (smoothMesh) storeWhole(sp.shadowLift, worldFromObject ? worldFromObject->vector(lift) : lift);
   if (features.surfaceCoordinates) [[unlikely]]
     surfaceCoordinates(g, hit, pObject, ray.time, worldFromObject, sp);
   if (features.vertexColors) [[unlikely]] {
