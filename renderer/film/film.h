@@ -21,7 +21,7 @@ struct PixelWindow {
 struct FilmPlane {
   std::string name;                   // e.g. "normal"; the part name in multi-part EXRs
   std::vector<std::string> channels;  // e.g. {"N.X", "N.Y", "N.Z"}
-  bool isUint = false;                // written as UINT (object ids), else FLOAT
+  bool isUint = false;                // written as UINT (the resume state), else FLOAT
   std::vector<double> values;         // window area × channels
 };
 

@@ -12,11 +12,11 @@
 namespace glint {
 
 enum class Aov : uint32_t {
-  Depth = 1,       // Z: distance along the camera's view axis
+  Depth = 1,       // Z: distance along the camera's view axis (1e10 where nothing was hit)
   Normal = 2,      // N: world-space shading normal, facing the camera
   Albedo = 4,      // k_d (Phong), k_m (mirror), 1 (dielectric)
   Position = 8,    // P: world-space hit point
-  ObjectId = 16,   // id: objects[] index + 1, 0 = background (uint32)
+  ObjectId = 16,   // IndexOB.X: objects[] index + 1, 0 = background (float)
   Direct = 32,     // local shading at the first hit (ambient + lights)
   Indirect = 64,   // everything else: reflection and refraction
   Lights = 128,    // direct light per light source (light0, light1, ...)

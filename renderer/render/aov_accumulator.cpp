@@ -54,7 +54,20 @@ AovLayout AovLayout::create(const AovSet& set, const Scene& scene, Film& film) {
   if (set.has(Aov::Normal)) l.normal = film.addPlane("normal", {"N.X", "N.Y", "N.Z"});
   if (set.has(Aov::Albedo)) l.albedo = film.addPlane("albedo", rgb("Albedo"));
   if (set.has(Aov::Position)) l.position = film.addPlane("position", {"P.X", "P.Y", "P.Z"});
-  if (set.has(Aov::ObjectId)) l.objectId = film.addPlane("objectid", {"id"}, true);
+  if (set.has(Aov::ObjectId)) {
+    // Blender's name for its object index pass (pass IndexOB, channel X), which its EXR reader
+    // and compositor take as a float pass; a channel it cannot name it drops, and a part left
+    // with none stops its reading of the parts after it.
+    uint64_t ids = 0;
+    if (!scene.groups.empty())
+      for (const Geometry& g : scene.groups[0].geometries)
+        ids = std::max(ids, uint64_t{g.objectId} + 1);
+    if (ids > kMaxObjectIdAov)
+      throw UsageError("--aov objectid: the scene has " + std::to_string(ids) +
+                       " object ids; the float channel holds ids up to " +
+                       std::to_string(kMaxObjectIdAov) + " exactly (use --aov cryptomatte)");
+    l.objectId = film.addPlane("objectid", {"IndexOB.X"});
+  }
   if (set.has(Aov::Direct)) l.direct = film.addPlane("direct", rgb("direct"));
   if (set.has(Aov::Indirect)) l.indirect = film.addPlane("indirect", rgb("indirect"));
   if (set.has(Aov::Lights)) {
@@ -187,8 +200,11 @@ void resolveAovs(const AovLayout& layout, const Film& sums, const AovTables& tab
     const double v[3] = {sum[0] * inv, sum[1] * inv, sum[2] * inv};
     out.setPlanePixel(plane, x, y, v);
   };
-  if (layout.depth != SIZE_MAX)
-    out.setPlanePixel(layout.depth, x, y, sums.planePixel(layout.depth, x, y));
+  if (layout.depth != SIZE_MAX) {
+    const double nearest = *sums.planePixel(layout.depth, x, y);
+    const double depth = nearest == 0 ? kBackgroundDepth : std::min(nearest, kBackgroundDepth);
+    out.setPlanePixel(layout.depth, x, y, &depth);
+  }
   average(layout.normal);
   average(layout.position);
   average(layout.albedo);

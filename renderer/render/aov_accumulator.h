@@ -1,10 +1,11 @@
 #pragma once
 // Turns per-sample AOV records into film planes (docs/output.md): depth is the nearest hit over
-// the pixel's samples; normal, position, albedo, direct, indirect and per-light values are
-// averaged over all samples (misses add zero, so they are premultiplied by coverage like the
-// beauty); the object id is the most frequent one (ties go to the smaller id); variance is the
-// estimated variance of the pixel's mean beauty (render/pixel_estimate.h). Cryptomatte ranks
-// the objects and materials of the pixel's first hits by their share of its samples.
+// the pixel's samples (kBackgroundDepth where none hit); normal, position, albedo, direct,
+// indirect and per-light values are averaged over all samples (misses add zero, so they are
+// premultiplied by coverage like the beauty); the object id is the most frequent one (ties go to
+// the smaller id), a float like Blender's IndexOB pass; variance is the estimated variance of the
+// pixel's mean beauty (render/pixel_estimate.h). Cryptomatte ranks the objects and materials of
+// the pixel's first hits by their share of its samples.
 //
 // A render adds a pixel's samples pass by pass: while it runs, the film's AOV planes hold sums
 // (depth: the nearest hit so far, 0 for none) and AovTables the id counts; resolveAovs turns
@@ -21,6 +22,16 @@
 
 namespace glint {
 
+// The depth written where no sample hit anything; a hit farther away is written as it too, so
+// that a Z-combine never puts the background in front of the scene. Blender writes 1e10 there;
+// +Inf cannot be written (an EXR from Glint holds no Inf: exr_output.h) and would turn every
+// difference a tool takes with it into Inf or NaN. 1e10 is exact in float.
+inline constexpr double kBackgroundDepth = 1e10;
+
+// The largest object id written (objects[] index + 1): every integer up to 2^24 is exact in the
+// float channel that Blender's IndexOB pass is.
+inline constexpr uint32_t kMaxObjectIdAov = uint32_t{1} << 24;
+
 struct AovLayout {
   AovSet set;
   size_t lights = 0;
@@ -34,7 +45,7 @@ struct AovLayout {
   std::vector<float> objectCryptoIds, materialCryptoIds;
 
   // Adds the planes (and the metadata they need) to the film. Throws UsageError for per-light
-  // AOVs with too many lights.
+  // AOVs with too many lights, and for object ids beyond kMaxObjectIdAov.
   static AovLayout create(const AovSet& set, const Scene& scene, Film& film);
 };
 

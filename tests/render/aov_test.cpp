@@ -7,7 +7,9 @@
 #include <limits>
 #include <map>
 
+#include "core/error.h"
 #include "io/scene_loader.h"
+#include "render/aov_accumulator.h"
 #include "render/render_job.h"
 #include "test_util.h"
 
@@ -62,7 +64,10 @@ TEST(Aov, EveryAovRoundTripsWithExactValues) {
       0);
   std::map<std::string, OIIO::TypeDesc> types;
   const auto ch = readChannels(out, nullptr, &types);
-  EXPECT_EQ(types["id"], OIIO::TypeDesc::UINT);
+  // The object id as Blender's IndexOB pass: a float channel X of layer IndexOB (Blender drops
+  // a channel named `id`; docs/output.md).
+  EXPECT_EQ(types.count("id"), 0u);
+  EXPECT_EQ(types["IndexOB.X"], OIIO::TypeDesc::FLOAT);
   EXPECT_EQ(types["Z"], OIIO::TypeDesc::FLOAT);
   const float kd[3] = {0.5f, 0.4f, 0.2f};
   const char* rgb[3] = {"R", "G", "B"};
@@ -76,7 +81,7 @@ TEST(Aov, EveryAovRoundTripsWithExactValues) {
       EXPECT_FLOAT_EQ(ch.at("P.X")[i], px);
       EXPECT_FLOAT_EQ(ch.at("P.Y")[i], 0);
       EXPECT_FLOAT_EQ(ch.at("P.Z")[i], pz);
-      EXPECT_EQ(ch.at("id")[i], 1.0f);  // objects[0] + 1
+      EXPECT_EQ(ch.at("IndexOB.X")[i], 1.0f);  // objects[0] + 1
       const float cos1 = 2 / std::sqrt(px * px + pz * pz + 4);
       for (int c = 0; c < 3; ++c) {
         const std::string C = rgb[c];
@@ -113,7 +118,61 @@ TEST(Aov, VarianceOfAHalfCoveredPixel) {
   EXPECT_FLOAT_EQ(ch.at("R")[0], 0.5f);
   EXPECT_FLOAT_EQ(ch.at("A")[0], 0.5f);
   EXPECT_NEAR(ch.at("Variance.R")[0], 0.25, 1e-7);
-  EXPECT_EQ(ch.at("id")[0], 1.0f);
+  EXPECT_EQ(ch.at("IndexOB.X")[0], 1.0f);
+}
+
+TEST(Aov, DepthIsFarWhereNothingWasHitAndTheNearestHitWherePartlyCovered) {
+  // Three pixels of 2 x 2 regular samples (at x = -1.25, -0.75; -0.25, 0.25; 0.75, 1.25),
+  // orthographic from z = 5: a quad at z = 0 over x in [-1, -0.5] half covers the left pixel,
+  // the middle one sees nothing, and the right one sees a quad at z = -3e10. Depth along the
+  // view axis: a partly covered pixel keeps its nearest hit (5), not a blend with the
+  // background; the empty pixel holds the far value 1e10 (kBackgroundDepth), never 0, which a
+  // Z-combine would take as nearest; a hit beyond it (3e10 + 5) is written as 1e10 too, so the
+  // background is never in front of it. Object ids: 1, 0 (background), 2.
+  const std::string scene = test::writeTemp("far.json", R"({
+    "render": {"width": 3, "height": 1, "spp": 4, "sampler": "regular",
+               "transparent_background": true},
+    "camera": {"type": "orthographic", "eye": [0,0,5], "look_at": [0,0,0], "height": 1},
+    "materials": {"w": {"type": "phong", "ka": [1,1,1], "kd": [0,0,0]}},
+    "objects": [{"type": "quad", "corner": [-1,-1,0], "edge1": [0.5,0,0], "edge2": [0,2,0],
+                 "material": "w"},
+                {"type": "quad", "corner": [0.5,-1,-3e10], "edge1": [1,0,0], "edge2": [0,2,0],
+                 "material": "w"}]})");
+  for (const char* flags : {"", " --multipart"}) {
+    const std::string out = (test::tempDir() / "far.exr").string();
+    const auto run =
+        test::runGlint("render " + scene + " --quiet -o " + out + " --aov depth,objectid" + flags);
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    const auto ch = readChannels(out);
+    EXPECT_FLOAT_EQ(ch.at("A")[0], 0.5f) << flags;  // the left pixel is half covered
+    EXPECT_FLOAT_EQ(ch.at("Z")[0], 5.0f) << flags;
+    EXPECT_EQ(ch.at("IndexOB.X")[0], 1.0f) << flags;
+    EXPECT_EQ(ch.at("A")[1], 0.0f) << flags;
+    EXPECT_EQ(ch.at("Z")[1], 1e10f) << flags;  // exact in float: 1e10 = 2^10 * 9765625
+    EXPECT_EQ(double(ch.at("Z")[1]), kBackgroundDepth) << flags;
+    EXPECT_EQ(ch.at("IndexOB.X")[1], 0.0f) << flags;
+    EXPECT_EQ(ch.at("A")[2], 1.0f) << flags;
+    EXPECT_EQ(ch.at("Z")[2], 1e10f) << flags;
+    EXPECT_EQ(ch.at("IndexOB.X")[2], 2.0f) << flags;
+  }
+}
+
+TEST(Aov, ObjectIdsBeyondWhatAFloatHoldsExactlyAreRefused) {
+  // A world whose last entry is objects[2^24] would write id 2^24 + 1, which a float channel
+  // rounds to 2^24: a usage error naming the limit, not a wrong id.
+  Scene scene;
+  scene.groups.push_back({"world", {Geometry{GeomKind::Sphere, 0, 0, kMaxObjectIdAov}}});
+  Film film(2, 2, PixelWindow{0, 2, 0, 2});
+  try {
+    AovLayout::create(AovSet::parse("objectid"), scene, film);
+    ADD_FAILURE() << "no error";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("16777217 object ids"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("up to 16777216"), std::string::npos) << e.what();
+  }
+  // One id fewer is written.
+  scene.groups[0].geometries[0].objectId = kMaxObjectIdAov - 1;
+  EXPECT_NE(AovLayout::create(AovSet::parse("objectid"), scene, film).objectId, SIZE_MAX);
 }
 
 TEST(Aov, ValuesBeyondTheirChannelTypeAreClampedNeverInfinite) {
@@ -156,7 +215,8 @@ TEST(Aov, MultipartWritesOnePartPerAovWithItsOwnType) {
   EXPECT_EQ(parts, (std::vector<std::string>{"rgba", "depth", "objectid", "light0", "light1"}));
   EXPECT_EQ(types["R"], OIIO::TypeDesc::HALF);
   EXPECT_EQ(types["Z"], OIIO::TypeDesc::FLOAT);
-  EXPECT_EQ(types["id"], OIIO::TypeDesc::UINT);
+  EXPECT_EQ(types["IndexOB.X"], OIIO::TypeDesc::FLOAT);  // Blender's IndexOB, in part objectid
+  EXPECT_EQ(ch.at("IndexOB.X")[0], 1.0f);
   EXPECT_FLOAT_EQ(ch.at("Z")[0], 5);
   // An unknown AOV is a usage error that lists the known ones.
   const auto bad = test::runGlint("render " + scene + " --quiet -o " + out + " --aov depth,motion");
