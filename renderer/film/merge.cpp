@@ -7,7 +7,10 @@
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
+#include <Imath/half.h>
+
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <optional>
@@ -33,6 +36,33 @@ struct Crop {
   std::vector<unsigned char> pixels;
 };
 
+// Glint writes no Inf or NaN (a value beyond its channel's type is clamped to it): a crop that
+// holds one was not written by Glint as rendered, and merging would copy it into the frame.
+void refuseNonFinite(const Crop& c) {
+  const size_t pixels = size_t(c.window.width) * size_t(c.window.height);
+  for (size_t p = 0; p < pixels; ++p)
+    for (const ExrSlice& s : c.slices) {
+      if (s.type == Imf::UINT) continue;
+      const unsigned char* at = &c.pixels[p * c.pixelBytes + s.offset];
+      float v;
+      if (s.type == Imf::HALF) {
+        Imath::half h;
+        std::memcpy(&h, at, sizeof h);
+        v = float(h);
+      } else {
+        std::memcpy(&v, at, sizeof v);
+      }
+      if (std::isfinite(v)) continue;
+      const int x = c.window.x + int(p % size_t(c.window.width)),
+                y = c.window.y + int(p / size_t(c.window.width));
+      throw UsageError(c.path + ": channel " + excerpt(s.name) + " is " +
+                       (std::isnan(v) ? "NaN" : "infinite") + " at pixel (" + std::to_string(x) +
+                       ", " + std::to_string(y) +
+                       "); Glint never writes one, so the crop was changed after it was "
+                       "rendered: render it again");
+    }
+}
+
 // Like readImage, every failure is the file's (exit 2, naming it), and the declared data window
 // is checked against memory before its pixels are allocated.
 Crop readCrop(const std::string& path) {
@@ -51,6 +81,7 @@ Crop readCrop(const std::string& path) {
   if (c.slices.empty()) throw UsageError(path + ": the image has no channels");
   checkImageFits(path, "data window", c.window.width, c.window.height, double(c.pixelBytes));
   readPixelsInBands(path, *file, 0, c.slices, c.pixelBytes, c.pixels);
+  refuseNonFinite(c);
   return c;
 }
 

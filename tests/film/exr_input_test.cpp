@@ -227,6 +227,19 @@ TEST(ExrInput, AHugeFrameAroundOneCropIsReportedWithoutAllocatingIt) {
       << r.output;
 }
 
+TEST(ExrInput, MergeRefusesACropHoldingNaNNamingItAndThePixel) {
+  // A whole 2 x 1 frame, its second pixel NaN in B, G and R: merge copied it into the merged
+  // frame, exit 0. Glint writes no NaN or Inf, so the crop was altered: exit 2, naming the
+  // file, the first channel in the file's order (B) and the pixel, and no frame written.
+  const std::string crop = (kHostile / "nan-pixel-copied-into-the-merged-frame.exr").string();
+  const std::string out = tmp("nan-merged.exr");
+  const auto r = runGlint("merge " + out + " " + crop);
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find(crop + ": channel B is NaN at pixel (1, 0)"), std::string::npos)
+      << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(ExrInput, MissingRegionsOfRectanglesMatchThoseOfPixels) {
   // The rectangle search must give exactly the pixel search's regions: 200 random sets of
   // non-overlapping crops of a 13 × 11 frame, each compared with the mask version.

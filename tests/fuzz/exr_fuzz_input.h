@@ -2,10 +2,14 @@
 // The oracle of glint_fuzz_exr, shared with its regression test
 // (tests/io/input_fuzz_regression_test.cpp): an EXR file goes to readImage (glint compare,
 // convert, converge), to mergeCrops (glint merge) as the one crop of a frame, and to
-// readResumeState (glint render --resume) for the window it declares.
+// readResumeState (glint render --resume) for the window it declares. A merged frame must hold no
+// Inf or NaN: Glint writes none, and merge refuses a crop that does.
+#include <OpenEXR/ImfChannelList.h>
+
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "core/sampler.h"
@@ -16,10 +20,26 @@
 
 namespace glint::fuzz {
 
+// "" when every value of part 0 of `path` (each channel read as float) is finite, else which is
+// not.
+inline std::string nonFiniteValueIn(const std::string& path) {
+  const auto file = openExr(path);
+  std::vector<ExrSlice> slices;
+  const Imf::ChannelList& channels = file->header(0).channels();
+  for (auto c = channels.begin(); c != channels.end(); ++c)
+    slices.push_back({c.name(), Imf::FLOAT, sizeof(float) * slices.size()});
+  std::vector<float> values;
+  readPixelsInBands(path, *file, 0, slices, sizeof(float) * slices.size(), values);
+  for (size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i]))
+      return "mergeCrops wrote a non-finite " + slices[i % slices.size()].name + " value";
+  return "";
+}
+
 // "" when every reader gives an acceptable outcome (an image whose pixel array matches its size,
-// a merged frame, a resume state a render could leave, or a GlintError naming the file), else
-// what is wrong. `mergedPath` receives the merge's output. Any other exception propagates: that
-// is a bug too.
+// a merged frame of finite values, a resume state a render could leave, or a GlintError naming the
+// file), else what is wrong. `mergedPath` receives the merge's output. Any other exception
+// propagates: that is a bug too.
 inline std::string exrReadProblem(const std::string& path, const std::string& mergedPath) {
   const auto namesFile = [&](const GlintError& e) {
     return std::string(e.what()).find(path) != std::string::npos
@@ -37,6 +57,7 @@ inline std::string exrReadProblem(const std::string& path, const std::string& me
   }
   try {
     (void)mergeCrops(mergedPath, {path}, "glint merge (fuzz)");
+    if (const std::string p = nonFiniteValueIn(mergedPath); !p.empty()) return p;
   } catch (const GlintError& e) {
     if (const std::string p = namesFile(e); !p.empty()) return p;
   }

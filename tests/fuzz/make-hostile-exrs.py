@@ -42,3 +42,9 @@ write('data-window-outside-display-window.exr', h+struct.pack('<Q',len(h)+8)+row
 lie=b'comments\0string\0'+struct.pack('<i',900000000)+b'abc'
 h=header(['B','G','R'],(0,0,0,0),(0,0,0,0),comp=0,extra=lie)
 write('string-attribute-declaring-900-MB.exr', h)
+# 6. A whole 2x1 frame (with a glint:settings_hash, so that merge takes it as its one crop) whose
+# second pixel is NaN: merge copied it into the frame, exit 0. Glint writes no NaN.
+h=header(['B','G','R'],(0,0,1,0),(0,0,1,0),comp=0,extra=extra)
+nan=struct.unpack('<f',struct.pack('<I',0x7fc00000))[0]
+row=struct.pack('<ii',0,24)+struct.pack('<6f',0.5,nan,0.5,nan,0.5,nan)
+write('nan-pixel-copied-into-the-merged-frame.exr', h+struct.pack('<Q',len(h)+8)+row)
