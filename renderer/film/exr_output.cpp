@@ -91,10 +91,14 @@ std::vector<Part> layoutParts(const Film& film, const std::vector<double>& rgba,
   for (size_t c = 0; c < 4; ++c)
     parts[0].channels.push_back({rgbaNames[c], beautyType, &rgba, 4, c});
   for (const FilmPlane& plane : film.planes()) {
-    if (multipart) parts.push_back({plane.name, {}});
+    // A UINT plane is Glint's own state (the resume state), not an image: it stays with the
+    // beauty in part 0, where --resume reads it. In a part of its own it would hold no channel
+    // a compositor reads, and Blender fails such a part and leaves the parts after it black.
+    if (multipart && !plane.isUint) parts.push_back({plane.name, {}});
+    Part& part = multipart && plane.isUint ? parts.front() : parts.back();
     for (size_t c = 0; c < plane.channels.size(); ++c)
-      parts.back().channels.push_back({plane.channels[c], plane.isUint ? Imf::UINT : Imf::FLOAT,
-                                       &plane.values, plane.channels.size(), c});
+      part.channels.push_back({plane.channels[c], plane.isUint ? Imf::UINT : Imf::FLOAT,
+                               &plane.values, plane.channels.size(), c});
   }
   return parts;
 }

@@ -27,7 +27,8 @@ struct ExrMetadata {
 struct ExrOptions {
   bool half = false;                // half-float beauty instead of float
   std::string compression = "zip";  // none, rle, zips, zip, piz, pxr24, b44, b44a, dwaa, dwab
-  bool multipart = false;           // one part per AOV instead of layered channels in one part
+  bool multipart = false;  // one part per AOV instead of layered channels in one part (UINT
+                           // planes, Glint's own state, stay in part 0 with the beauty)
 };
 
 // The threads OpenEXR compresses and decompresses line blocks on, for the whole process (its

@@ -21,8 +21,8 @@ struct PixelWindow {
 struct FilmPlane {
   std::string name;                   // e.g. "normal"; the part name in multi-part EXRs
   std::vector<std::string> channels;  // e.g. {"N.X", "N.Y", "N.Z"}
-  bool isUint = false;                // written as UINT (the resume state), else FLOAT
-  std::vector<double> values;         // window area × channels
+  bool isUint = false;         // written as UINT (the resume state, kept in part 0), else FLOAT
+  std::vector<double> values;  // window area × channels
 };
 
 class Film {

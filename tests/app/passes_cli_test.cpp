@@ -115,6 +115,36 @@ TEST(PassesCli, ResumeGivesTheStraightRendersPixelsAndRefusesAnotherFrame) {
   }
 }
 
+TEST(PassesCli, AMultipartFrameKeepsItsResumeStateWithTheBeautyAndResumes) {
+  // The resume state stays in part 0 with the beauty: as a part of its own, --resume (which
+  // reads part 0) found none, and Blender, which cannot name its channels, failed that part.
+  const std::string part = tmp("resume-mp-part.exr"), straight = tmp("resume-mp-straight.exr"),
+                    continued = tmp("resume-mp-continued.exr");
+  const std::string flags = "--resumable --multipart --aov variance ";
+  ASSERT_EQ(test::runGlint("render " + soft(flags + "--spp 8 -o " + part)).exitCode, 0);
+  ASSERT_EQ(test::runGlint("render " + soft(flags + "--spp 32 -o " + straight)).exitCode, 0);
+  const auto run =
+      test::runGlint("render " + soft(flags + "--spp 32 --resume " + part + " -o " + continued));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  // Part 0 (R, G, B, A and the state) is the straight render's, and so is the variance part.
+  EXPECT_EQ(readImage(continued).pixels, readImage(straight).pixels);
+  auto a = OIIO::ImageInput::open(continued), b = OIIO::ImageInput::open(straight);
+  ASSERT_TRUE(a && b);
+  std::vector<std::string> parts;
+  for (int sub = 0; a->seek_subimage(sub, 0); ++sub) {
+    parts.push_back(a->spec().get_string_attribute("name"));
+    ASSERT_TRUE(b->seek_subimage(sub, 0));
+    std::vector<float> pa(size_t(a->spec().image_pixels()) * size_t(a->spec().nchannels)),
+        pb(pa.size());
+    ASSERT_TRUE(a->read_image(sub, 0, 0, a->spec().nchannels, OIIO::TypeDesc::FLOAT, pa.data()));
+    ASSERT_TRUE(b->read_image(sub, 0, 0, b->spec().nchannels, OIIO::TypeDesc::FLOAT, pb.data()));
+    EXPECT_EQ(pa, pb) << "part " << sub;
+  }
+  EXPECT_EQ(parts, (std::vector<std::string>{"rgba", "variance"}));
+  ASSERT_TRUE(a->seek_subimage(0, 0));
+  EXPECT_NE(a->spec().channelindex("glint_resume.00"), -1);
+}
+
 TEST(PassesCli, ATexturedFrameResumesToTheStraightRendersPixels) {
   // Image textures filter over each sample's footprint, a share of its pixel that narrows with
   // the samples (integrator/footprint.h). A frame that may be continued filters every sample as
