@@ -6,6 +6,8 @@
 #include "core/error.h"
 #include "film/atomic_file.h"
 #include "film/compare.h"
+#include "film/image_format.h"
+#include "film/rgb_channels.h"
 
 namespace glint {
 
@@ -19,26 +21,6 @@ nlohmann::json errorsJson(const ImageErrors& e) {
           {"pixels", e.pixels}};
 }
 
-namespace {
-
-// Compare measures R, G and B, which readImage puts first (with or without a layer prefix,
-// "beauty.R"); an image of other channels (depth, a luminance "Y") is refused by name rather
-// than measured as if it were colour.
-void requireRgb(const Image& img, const std::string& path) {
-  const auto is = [&](int c, char name) {
-    if (c >= int(img.channelNames.size())) return false;
-    const std::string& n = img.channelNames[size_t(c)];
-    return n.size() >= 1 && n.back() == name && (n.size() == 1 || n[n.size() - 2] == '.');
-  };
-  if (is(0, 'R') && is(1, 'G') && is(2, 'B')) return;
-  std::string names;
-  for (const std::string& n : img.channelNames) names += (names.empty() ? "" : ", ") + n;
-  throw UsageError(path + ": compare needs R, G and B channels; it has " +
-                   excerpt(names.empty() ? "none" : names));
-}
-
-}  // namespace
-
 CommandRunner addCompareCommand(CLI::App& app) {
   struct Args {
     std::string test, reference, diff, json;
@@ -51,14 +33,18 @@ CommandRunner addCompareCommand(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("--threshold", a->threshold,
-                  "Per-pixel error counted in share_above_threshold (default 0.01)")
+                  "Per-pixel error counted in share_above_threshold (default " +
+                      defaultText(a->threshold) + ")")
       ->check(positiveNumber());
-  cmd->add_option("--diff", a->diff, "Write a false-colour difference image (PNG)");
+  cmd->add_option("--diff", a->diff, "Write a false-colour difference image (.png, .jpg or .tif, 8-bit)");
   cmd->add_option("--json", a->json, "Write the figures as JSON");
   return [a] {
+    if (!a->diff.empty()) imageOutputFormat("--diff", a->diff, ImageOutput::Display);
+    // R, G and B, which readImage puts first: an image of other channels (depth, a luminance
+    // "Y") is refused by name rather than measured as if it were colour.
     const Image test = readImage(a->test), ref = readImage(a->reference);
-    requireRgb(test, a->test);
-    requireRgb(ref, a->reference);
+    requireRgb(test, a->test, "compare");
+    requireRgb(ref, a->reference, "compare");
     const ImageErrors e = compareImages(test, ref, a->threshold);
     std::printf(
         "rmse      %.6g\nrelmse    %.6g\nmae       %.6g\nmax_abs   %.6g\npsnr      %.3f dB\n"

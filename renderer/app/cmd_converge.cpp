@@ -24,11 +24,15 @@
 #include "film/atomic_file.h"
 #include "film/compare.h"
 #include "film/exr_input.h"
+#include "film/image_format.h"
 #include "render/render_job.h"
 
 namespace glint {
 
 namespace {
+
+// A rendered reference takes this many times the largest spp of the series, unless told.
+constexpr int kReferenceSppFactor = 16;
 
 struct ConvergeArgs {
   std::string scenePath;
@@ -36,7 +40,7 @@ struct ConvergeArgs {
   std::string samplers;  // default: the scene's
   std::string accels = "embree";
   std::string reference;
-  int referenceSpp = 0;  // default: 16 × the largest spp
+  int referenceSpp = 0;  // default: kReferenceSppFactor × the largest spp
   std::optional<int> width, height;
   int threads = 0;
   std::string csv, plot, json;
@@ -169,6 +173,7 @@ int convergeFromRender(const ConvergeArgs& a) {
 }
 
 int runConverge(const ConvergeArgs& a) {
+  if (!a.plot.empty()) imageOutputFormat("--plot", a.plot, ImageOutput::Plot);
   if (!a.fromRender.empty()) return convergeFromRender(a);
   Scene scene = loadSceneOrDefault(a.scenePath);
   if (a.width) scene.render.width = *a.width;
@@ -210,7 +215,8 @@ int runConverge(const ConvergeArgs& a) {
     Scene refScene = scene;
     refScene.render.seed = mix64(scene.render.seed ^ 0x5eedf00dULL);
     refScene.render.spp =
-        a.referenceSpp > 0 ? a.referenceSpp : 16 * *std::max_element(spps.begin(), spps.end());
+        a.referenceSpp > 0 ? a.referenceSpp
+                         : kReferenceSppFactor * *std::max_element(spps.begin(), spps.end());
     refScene.render.sampler = SamplerKind::Stratified;
     log::info("rendering the reference at " + std::to_string(refScene.render.spp) + " spp");
     const auto accel = makeAccelerator(AccelKind::Embree, refScene);
@@ -269,13 +275,15 @@ CommandRunner addConvergeCommand(CLI::App& app) {
                   "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
                   "camera and light; omitted: the default scene")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--spp", a->spp, "Sample counts, comma separated (default 1,2,4,...,64)");
+  cmd->add_option("--spp", a->spp, "Sample counts, comma separated (default " + a->spp + ")");
   cmd->add_option("--sampler", a->samplers, "Samplers to compare, comma separated");
-  cmd->add_option("--accel", a->accels, "Backends to compare, comma separated");
+  cmd->add_option("--accel", a->accels,
+                  "Backends to compare, comma separated (default " + a->accels + ")");
   cmd->add_option("--reference", a->reference, "Reference EXR (default: rendered)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--reference-spp", a->referenceSpp,
-                  "Samples of the rendered reference (default 16 × the largest spp)")
+                  "Samples of the rendered reference (default " + std::to_string(kReferenceSppFactor) +
+                      " × the largest spp)")
       ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--width", a->width, "Override the scene's width")->check(CLI::Range(1, 1 << 15));
   cmd->add_option("--height", a->height, "Override the scene's height")

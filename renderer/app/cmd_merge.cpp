@@ -1,6 +1,7 @@
 // `glint merge OUT.exr CROP.exr...`: assembles crop renders into the full frame.
 #include "app/commands.h"
 #include "core/log.h"
+#include "film/image_format.h"
 #include "film/merge.h"
 
 namespace glint {
@@ -18,6 +19,7 @@ CommandRunner addMergeCommand(CLI::App& app) {
   cmd->add_option("--scene-hash", *sceneHash,
                   "Refuse crops whose glint:scene_hash differs (a farm passes the planned hash)");
   return [out, crops, sceneHash] {
+    imageOutputFormat("merge's output", *out, ImageOutput::Exr);
     const MergeReport r = mergeCrops(*out, *crops, commandLine(), *sceneHash);
     log::info("merged " + std::to_string(r.crops) + " crops into " + *out + " (" +
               std::to_string(r.fullWidth) + "x" + std::to_string(r.fullHeight) + ")");

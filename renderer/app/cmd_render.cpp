@@ -14,6 +14,7 @@
 
 #include "app/commands.h"
 #include "app/farm_plan.h"
+#include "app/render_output.h"
 #include "app/scene_source.h"
 #include "camera/camera.h"
 #include "core/error.h"
@@ -57,6 +58,7 @@ struct RenderArgs {
   bool transparentBackground = false;
   std::string aovs;
   std::string compression = "zip";
+  bool compressionGiven = false;
   bool stats = false;
   bool quiet = false;
   SamplingRequest sampling;  // --target-rmse, --target-relmse, --time-limit, --min/max-spp
@@ -435,7 +437,6 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   if (!stats.empty() && stats != "-") checkOutputPath(stats);
   if (!display.empty()) {
     checkOutputPath(display);
-    checkDisplayImagePath(display);
     DisplayTransform check(a.ocio);
   }
   const auto accel = makeAccelerator(kind, scene);
@@ -456,7 +457,14 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
     // The frame as written: with its state when it may be continued (render/resume_state.h):
     // asked for, or partial (interrupted, a preview), or cut by the time limit, or itself a
     // continuation.
-    const auto write = [&](const RenderResult& r, bool partial) {
+    // A display -o is written only whole: a PNG cannot say it is partial or carry its state.
+    const bool displayOut = isDisplayFormat(renderOutputFormat(job.out, {}));
+    const bool transparent = scene.render.transparentBackground;
+    const auto write = [&](const RenderResult& r, bool partial) -> uint64_t {
+      if (displayOut) {
+        if (!partial) writeDisplayImage(job.out, r.film, a.ocio, transparent);
+        return 0;
+      }
       ExrMetadata m = exrMetadata(a, scene, plan, r);
       for (auto& [key, value] : m.ints)
         if (key == "glint:partial") value = partial ? 1 : 0;
@@ -474,7 +482,7 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
       if (std::chrono::duration<double>(now - lastPreview).count() < a.previewEvery) return;
       lastPreview = now;
       write(soFar, true);
-      if (!display.empty()) writeDisplayImage(display, soFar.film, a.ocio);
+      if (!display.empty()) writeDisplayImage(display, soFar.film, a.ocio, transparent);
       log::info("preview: " + job.out + " at " + std::to_string(soFar.stats.passes.back().spp) +
                 " spp");
     };
@@ -490,7 +498,7 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
       log::warning(std::to_string(clamped) + " values beyond " +
                    (a.half ? "half-float's ±65504" : "float's range") +
                    " were clamped to it (glint:clamped_values)");
-    if (!display.empty()) writeDisplayImage(display, result.film, a.ocio);
+    if (!display.empty()) writeDisplayImage(display, result.film, a.ocio, transparent);
     if (!stats.empty())
       writeTextFileAtomically(stats, statsJson(scene, result.stats, clamped).dump(2) + "\n");
     if (a.stats) printStats(scene, result.stats);
@@ -500,7 +508,11 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
     if (result.partial) {
       // CLI.md: interrupted → a valid partial EXR (each pixel keeps the passes it finished;
       // one that finished none has alpha 0), exit 130.
-      log::warning("interrupted: wrote the partial frame " + job.out + " (glint:partial = 1)");
+      log::warning(displayOut ? "interrupted: " + job.out +
+                                    " not written (a display image cannot mark a frame partial; "
+                                    "-o FRAME.exr keeps partial frames)"
+                              : "interrupted: wrote the partial frame " + job.out +
+                                    " (glint:partial = 1)");
       return kExitInterrupted;
     }
     if (interrupt::requested()) {
@@ -538,7 +550,25 @@ bool drewFromSobol(const std::string& path) {
   return sampler && sampler->value() == samplerName(SamplerKind::Sobol);
 }
 
+// The flags given whose request only an EXR frame can carry (app/render_output.h).
+std::vector<std::string> exrOnlyFlags(const RenderArgs& a) {
+  std::vector<std::string> flags;
+  const auto add = [&](bool given, const char* flag) {
+    if (given) flags.emplace_back(flag);
+  };
+  add(a.half, "--half");
+  add(a.multipart, "--multipart");
+  add(!a.aovs.empty(), "--aov");
+  add(a.compressionGiven, "--compression");
+  add(a.sampling.progressive, "--resumable");
+  add(a.previewEvery > 0, "--preview-every");
+  return flags;
+}
+
 int runRender(const RenderArgs& given) {
+  // Every image output's format, before anything is loaded.
+  for (const std::string& out : given.outputs) renderOutputFormat(out, exrOnlyFlags(given));
+  if (!given.display.empty()) imageOutputFormat("--display", given.display, ImageOutput::Display);
   RenderArgs a = given;
   if (!a.resume.empty() && drewFromSobol(a.resume)) a.sampling.progressive = true;
   if (a.quiet) log::setLevel(log::Level::Warning);
@@ -582,7 +612,8 @@ CommandRunner addRenderCommand(CLI::App& app) {
                   "camera and light; omitted: the default scene")
       ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->outputs,
-                  "Output EXR (default: SCENE_NAME.exr); with several --crop, one each")
+                  "Output: .exr the scene-linear frame, .png/.jpg/.tif a display image through the "
+                  "OCIO view (default: SCENE_NAME.exr); with several --crop, one each")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_option("--display", args->display,
                   "Also write a display image (.png, .jpg, .tif) through OCIO");
@@ -657,13 +688,16 @@ CommandRunner addRenderCommand(CLI::App& app) {
                   "AOVs, comma separated: depth,normal,albedo,position,objectid,direct,indirect,"
                   "lights,variance,cryptomatte");
   cmd->add_flag("--multipart", args->multipart, "One EXR part per AOV (default: layers in one)");
-  cmd->add_option("--compression", args->compression, "EXR compression (default zip)")
-      ->check(CLI::IsMember(exrCompressions()));
+  CLI::Option* compression =
+      cmd->add_option("--compression", args->compression,
+                      "EXR compression (default " + args->compression + ")")
+          ->check(CLI::IsMember(exrCompressions()));
   cmd->add_flag("--stats", args->stats, "Print render statistics");
   cmd->add_option("--stats-json", args->statsJson, "Write render statistics as JSON");
   cmd->add_flag("--quiet", args->quiet, "No progress or info messages");
-  return [args, &app] {
+  return [args, compression, &app] {
     (void)app;
+    args->compressionGiven = compression->count() > 0;
     return runRender(*args);
   };
 }

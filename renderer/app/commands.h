@@ -4,10 +4,12 @@
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <functional>
+#include <string>
 
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -82,6 +84,15 @@ inline CLI::Validator wholeNumberUpTo(uint64_t max) {
       },
       "UINT");
 }
+
+// An option's default as its help text states it: the value the option's variable holds before
+// parsing, so that the help cannot drift from the code. Numbers in their shortest exact form.
+inline std::string defaultText(const std::string& value) { return value; }
+inline std::string defaultText(double value) {
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof text, value).ptr);
+}
+inline std::string defaultText(int value) { return std::to_string(value); }
 
 // The command line as typed, for EXR metadata.
 const std::string& commandLine();

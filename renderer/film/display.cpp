@@ -11,9 +11,13 @@
 #include <filesystem>
 #include <sstream>
 
+#include <mutex>
+#include <set>
+
 #include "core/error.h"
-#include "core/file_names.h"
-#include "film/image_file.h"
+#include "core/log.h"
+#include "film/display_tag.h"
+#include "film/image_format.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -129,7 +133,25 @@ DisplayTransform::DisplayTransform(const DisplaySettings& s) : impl_(new Impl) {
     if (!knownView)
       throw UsageError("OCIO (" + source_ + "): display " + inQuotes(display) + " has no view " +
                        inQuotes(view) + "; views: " + views);
+    display_ = display;
+    view_ = view;
+    // A view whose colour space is data (Raw) encodes for no display: it gets no tag.
+    const char* viewSpace = config->getDisplayViewColorSpaceName(display.c_str(), view.c_str());
+    const auto viewColorSpace = viewSpace ? config->getColorSpace(viewSpace) : nullptr;
+    if (!viewColorSpace || !viewColorSpace->isData()) {
+      tag_ = colourTagForDisplay({viewSpace ? viewSpace : "", display});
+      tagKnown_ = tag_.kind != ColourTag::Kind::None;
+    }
     auto group = OCIO::GroupTransform::Create();
+    if (s.toSource) {
+      double m44[16] = {};
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) m44[4 * r + c] = (*s.toSource)[size_t(3 * r + c)];
+      m44[15] = 1;
+      const auto matrix = OCIO::MatrixTransform::Create();
+      matrix->setMatrix(m44);
+      group->appendTransform(matrix);
+    }
     const std::string source = sourceInConfig(config, s.source, group);
     if (!s.look.empty()) {
       const auto look = OCIO::LookTransform::Create();
@@ -165,35 +187,84 @@ void DisplayTransform::apply(float* pixels, int width, int height, int channels)
   });
 }
 
-void checkDisplayImagePath(const std::string& path) {
-  const std::string ext = lowerExtension(path);
-  if (ext != ".png" && ext != ".jpg" && ext != ".jpeg" && ext != ".tif" && ext != ".tiff")
-    throw UsageError("display image " + path + ": use .png, .jpg or .tif");
+namespace {
+
+// Each message once per process: a sequence of frames would repeat it for every one.
+void warnOnce(const std::string& message) {
+  static std::mutex mutex;
+  static std::set<std::string> warned;
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (warned.insert(message).second) log::warning(message);
 }
+
+}  // namespace
 
 void writeDisplayImage(const std::string& path, std::vector<float> rgba, int width, int height,
-                       const DisplaySettings& settings) {
-  checkDisplayImagePath(path);
-  const std::string ext = lowerExtension(path);
-  const bool tiff = ext == ".tif" || ext == ".tiff";
+                       const DisplaySettings& settings, bool transparent) {
+  const ImageFormat format = imageOutputFormat("display image", path, ImageOutput::Display);
+  const bool alpha = transparent && hasAlphaChannel(format);
+  // Straight alpha (PNG's only kind; TIFF marked so): the view develops the colour of what
+  // covers the pixel, so it is un-premultiplied while still scene-linear, where coverage mixes
+  // colours linearly. Developing the premultiplied colour would darken edges through the
+  // view's curve, and dividing after it could not undo that. Alpha 0 has no colour to
+  // develop: it stays 0 (RGB is 0 there in Glint's frames), never 0/0.
+  if (alpha)
+    for (size_t p = 0; p < rgba.size(); p += 4) {
+      const float a = rgba[p + 3];
+      for (int c = 0; c < 3; ++c) rgba[p + size_t(c)] = a > 0 ? rgba[p + size_t(c)] / a : 0.0f;
+    }
   const DisplayTransform transform(settings);
   transform.apply(rgba.data(), width, height, 4);
-  // Display-referred code values: clamp to [0, 1] (NaN → 0), drop alpha (the display image
-  // is the premultiplied beauty over black: the opaque background, or black on a transparent
-  // film).
+  if (format == ImageFormat::Png && !transform.tagKnown())
+    warnOnce("the OCIO display " + inQuotes(transform.display()) +
+             " is not one Glint knows a PNG colour tag for (sRGB, Display P3, Rec.1886 / Rec.709, "
+             "Rec.2020, Rec.2100 PQ / HLG): its PNGs carry no colour chunk, and readers will "
+             "take them as sRGB");
+  if (transparent && !alpha)
+    warnOnce(std::string(formatName(format)) +
+             " has no alpha channel: the transparent frame is shown over black (PNG and TIFF "
+             "keep its alpha)");
+  // Display-referred code values: clamp to [0, 1] (NaN → 0). Without alpha the image is the
+  // premultiplied beauty over black: the opaque background, or black on a transparent film
+  // written as JPEG.
+  const bool tiff = format == ImageFormat::Tiff;
   const double scale = tiff ? 65535.0 : 255.0;
-  std::vector<uint16_t> codes(size_t(width) * size_t(height) * 3);
-  for (size_t i = 0, p = 0; p < rgba.size(); p += 4)
-    for (int c = 0; c < 3; ++c) {
-      const float v = rgba[p + size_t(c)];
-      codes[i++] = static_cast<uint16_t>(std::lround(scale * (v > 0 ? std::min(v, 1.0f) : 0.0f)));
-    }
-  writeRgbImage(path, width, height, tiff ? 16 : 8, codes);
+  const auto code = [&](float v) {
+    return static_cast<uint16_t>(std::lround(scale * (v > 0 ? std::min(v, 1.0f) : 0.0f)));
+  };
+  CodeImage image;
+  image.width = width;
+  image.height = height;
+  image.channels = alpha ? 4 : 3;
+  image.bits = tiff ? 16 : 8;
+  if (format == ImageFormat::Png) image.tag = transform.colourTag();
+  image.codes.resize(size_t(width) * size_t(height) * size_t(image.channels));
+  for (size_t i = 0, p = 0; p < rgba.size(); p += 4) {
+    const bool covered = !alpha || rgba[p + 3] > 0;
+    for (int c = 0; c < 3; ++c) image.codes[i++] = covered ? code(rgba[p + size_t(c)]) : 0;
+    if (alpha) image.codes[i++] = code(rgba[p + 3]);
+  }
+  writeCodeImage(path, image);
 }
 
-void writeDisplayImage(const std::string& path, const Film& film, const DisplaySettings& settings) {
+void writeDisplayImage(const std::string& path, const Film& film, const DisplaySettings& settings,
+                       bool transparent) {
   writeDisplayImage(path, film.toFloatRgba(), film.window().width(), film.window().height(),
-                    settings);
+                    settings, transparent);
+}
+
+std::vector<std::string> ocioColorSpaces(const std::string& configPath) {
+  std::string source;
+  const OCIO::ConstConfigRcPtr config = loadConfig(configPath, source);
+  std::vector<std::string> names;
+  for (int c = 0; c < config->getNumColorSpaces(); ++c)
+    names.emplace_back(config->getColorSpaceNameByIndex(c));
+  return names;
+}
+
+bool ocioHasColorSpace(const std::string& configPath, const std::string& name) {
+  std::string source;
+  return loadConfig(configPath, source)->getColorSpace(name.c_str()) != nullptr;
 }
 
 std::string describeOcioConfig(const std::string& configPath) {

@@ -286,6 +286,11 @@ Image readImage(const std::string& path) {
   img.fullHeight = window.fullHeight;
   if (const auto* cs = header.findTypedAttribute<Imf::StringAttribute>("glint:colorspace"))
     img.colorspace = cs->value();
+  if (Imf::hasChromaticities(header)) {
+    const Imf::Chromaticities& c = Imf::chromaticities(header);
+    img.chromaticities = {c.red.x,  c.red.y,  c.green.x, c.green.y,
+                          c.blue.x, c.blue.y, c.white.x, c.white.y};
+  }
   std::vector<ExrSlice> slices;
   for (size_t c = 0; c < img.channelNames.size(); ++c)
     slices.push_back({img.channelNames[c], Imf::FLOAT, c * sizeof(float)});

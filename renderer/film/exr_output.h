@@ -5,8 +5,10 @@
 // with the film's own attributes (those its planes need, such as Cryptomatte's manifests).
 #include <OpenEXR/ImfIO.h>
 
+#include <array>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -61,6 +63,8 @@ struct Image {
   int x = 0, y = 0, fullWidth = 0, fullHeight = 0;
   std::vector<float> pixels;
   std::string colorspace;  // its glint:colorspace, empty when it has none (a foreign EXR)
+  // OpenEXR's standard chromaticities, when the file has them: red, green, blue, white (x, y).
+  std::optional<std::array<float, 8>> chromaticities;
 };
 Image readImage(const std::string& path);
 // The film's window as an RGBA image (float), as it would read back from its EXR.

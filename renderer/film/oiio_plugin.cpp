@@ -20,7 +20,10 @@ extern "C" __attribute__((visibility("default"))) int glint_oiio_write_image(
   // No exception may cross this C boundary.
   try {
     const OIIO::TypeDesc type = bits == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
-    const OIIO::ImageSpec spec(width, height, channels, type);
+    OIIO::ImageSpec spec(width, height, channels, type);
+    // Glint's 4-channel display images hold straight alpha (film/display.h): a TIFF marks it
+    // unassociated (ExtraSamples 2) rather than premultiplied.
+    if (channels == 4) spec.attribute("oiio:UnassociatedAlpha", 1);
     std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(formatPath);
     if (out && out->open(path, spec) && out->write_image(type, pixels) && out->close()) return 0;
     std::snprintf(error, errorSize, "%s", (out ? out->geterror() : OIIO::geterror()).c_str());
