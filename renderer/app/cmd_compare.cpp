@@ -36,7 +36,8 @@ CommandRunner addCompareCommand(CLI::App& app) {
                   "Per-pixel error counted in share_above_threshold (default " +
                       defaultText(a->threshold) + ")")
       ->check(positiveNumber());
-  cmd->add_option("--diff", a->diff, "Write a false-colour difference image (.png, .jpg or .tif, 8-bit)");
+  cmd->add_option("--diff", a->diff,
+                  "Write a false-colour difference image (.png, .jpg or .tif, 8-bit)");
   cmd->add_option("--json", a->json, "Write the figures as JSON");
   return [a] {
     if (!a->diff.empty()) imageOutputFormat("--diff", a->diff, ImageOutput::Display);

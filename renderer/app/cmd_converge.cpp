@@ -214,9 +214,9 @@ int runConverge(const ConvergeArgs& a) {
   } else {
     Scene refScene = scene;
     refScene.render.seed = mix64(scene.render.seed ^ 0x5eedf00dULL);
-    refScene.render.spp =
-        a.referenceSpp > 0 ? a.referenceSpp
-                         : kReferenceSppFactor * *std::max_element(spps.begin(), spps.end());
+    refScene.render.spp = a.referenceSpp > 0
+                              ? a.referenceSpp
+                              : kReferenceSppFactor * *std::max_element(spps.begin(), spps.end());
     refScene.render.sampler = SamplerKind::Stratified;
     log::info("rendering the reference at " + std::to_string(refScene.render.spp) + " spp");
     const auto accel = makeAccelerator(AccelKind::Embree, refScene);
@@ -282,8 +282,8 @@ CommandRunner addConvergeCommand(CLI::App& app) {
   cmd->add_option("--reference", a->reference, "Reference EXR (default: rendered)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--reference-spp", a->referenceSpp,
-                  "Samples of the rendered reference (default " + std::to_string(kReferenceSppFactor) +
-                      " × the largest spp)")
+                  "Samples of the rendered reference (default " +
+                      std::to_string(kReferenceSppFactor) + " × the largest spp)")
       ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--width", a->width, "Override the scene's width")->check(CLI::Range(1, 1 << 15));
   cmd->add_option("--height", a->height, "Override the scene's height")

@@ -9,6 +9,7 @@
 #include "app/scene_source.h"
 #include "core/error.h"
 #include "core/sampler.h"
+#include "film/image_format.h"
 
 namespace glint {
 
@@ -23,6 +24,8 @@ struct PlanArgs {
 };
 
 int runPlan(const PlanArgs& a) {
+  // A farm's frame is merged from its tiles, and merge writes EXR.
+  if (!a.output.empty()) imageOutputFormat("-o", a.output, ImageOutput::Exr);
   Scene scene = loadSceneOrDefault(a.scenePath);
   if (a.width) scene.render.width = *a.width;
   if (a.height) scene.render.height = *a.height;

@@ -665,11 +665,13 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--width", args->width, "Image width")->check(CLI::Range(1, 1 << 15));
   cmd->add_option("--height", args->height, "Image height")->check(CLI::Range(1, 1 << 15));
   cmd->add_option("--max-depth", args->maxDepth, "Recursion limit")->check(CLI::Range(0, 1000));
-  cmd->add_option("--accel", args->accel, "Intersection backend")
+  cmd->add_option("--accel", args->accel,
+                  "Intersection backend (default " + defaultText(args->accel) + ")")
       ->check(CLI::IsMember({"embree", "bvh", "brute", "grid", "octree", "kdtree"}));
   cmd->add_option("--integrator", args->integrator,
-                  "production (default), or reference: seed 002's depth-first Trace, the oracle "
-                  "the production kernel is tested against (beauty only)")
+                  "production, or reference: seed 002's depth-first Trace, the oracle the "
+                  "production kernel is tested against (beauty only) (default " +
+                      defaultText(args->integrator) + ")")
       ->check(CLI::IsMember({"production", "reference"}));
   cmd->add_option("--sampler", args->sampler, "Pixel sampler (overrides the scene)")
       ->check(CLI::IsMember({"regular", "random", "stratified", "sobol"}));
@@ -678,8 +680,12 @@ CommandRunner addRenderCommand(CLI::App& app) {
                   "to render several crops from one scene load")
       ->type_size(4)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  cmd->add_option("--tile-size", args->tileSize, "Tile edge in pixels")->check(CLI::Range(1, 4096));
-  cmd->add_option("--tile-order", args->tileOrder, "Tile order (the image is the same for any)")
+  cmd->add_option("--tile-size", args->tileSize,
+                  "Tile edge in pixels (default " + defaultText(args->tileSize) + ")")
+      ->check(CLI::Range(1, 4096));
+  cmd->add_option(
+         "--tile-order", args->tileOrder,
+         "Tile order, the image the same for any (default " + defaultText(args->tileOrder) + ")")
       ->check(CLI::IsMember({"morton", "row"}));
   cmd->add_flag("--half", args->half, "Half-float beauty (default float)");
   cmd->add_flag("--transparent-background", args->transparentBackground,
@@ -690,7 +696,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_flag("--multipart", args->multipart, "One EXR part per AOV (default: layers in one)");
   CLI::Option* compression =
       cmd->add_option("--compression", args->compression,
-                      "EXR compression (default " + args->compression + ")")
+                      "EXR compression (default " + defaultText(args->compression) + ")")
           ->check(CLI::IsMember(exrCompressions()));
   cmd->add_flag("--stats", args->stats, "Print render statistics");
   cmd->add_option("--stats-json", args->statsJson, "Write render statistics as JSON");

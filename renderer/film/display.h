@@ -1,8 +1,8 @@
 #pragma once
 // Display images for people, made through OpenColorIO: scene-linear film → (look) → display /
-// view → 8-bit PNG/JPEG or 16-bit TIFF, with straight alpha when the frame is transparent. The config is --ocio-config, else $OCIO, else the config
-// bundled in the repository (ocio/config.ocio, compiled in), so a display image never depends
-// on what happens to be installed.
+// view → 8-bit PNG/JPEG or 16-bit TIFF, with straight alpha when the frame is transparent. The
+// config is --ocio-config, else $OCIO, else the config bundled in the repository (ocio/config.ocio,
+// compiled in), so a display image never depends on what happens to be installed.
 #include <array>
 #include <optional>
 #include <string>

@@ -14,9 +14,9 @@ namespace glint {
 // a cICP chunk (ITU-T H.273 codes) with cHRM and gAMA for readers that predate cICP.
 struct ColourTag {
   enum class Kind { None, Srgb, Cicp } kind = Kind::None;
-  uint8_t primaries = 0, transfer = 0;  // H.273 ColourPrimaries, TransferCharacteristics
+  uint8_t primaries = 0, transfer = 0;     // H.273 ColourPrimaries, TransferCharacteristics
   std::array<double, 8> chromaticities{};  // white x y, red x y, green x y, blue x y (cHRM)
-  double encodingGamma = 0;                 // gAMA: the encoding exponent (1/2.2 for sRGB-like)
+  double encodingGamma = 0;                // gAMA: the encoding exponent (1/2.2 for sRGB-like)
 };
 
 // Interleaved code values, `channels` (3: RGB, 4: RGB and straight alpha) of `bits` (8 or 16).

@@ -56,9 +56,9 @@ ImageFormat imageOutputFormat(const std::string& option, const std::string& path
   const std::string ext = lowerExtension(path);
   const std::optional<ImageFormat> format = formatOfExtension(ext);
   if (format && accepts(output, *format)) return *format;
-  const std::string what = ext.empty()                   ? "has no extension"
-                           : format                      ? "names the " + std::string(formatName(*format)) + " format"
-                                                         : "has an extension Glint does not write";
+  const std::string what = ext.empty() ? "has no extension"
+                           : format    ? "names the " + std::string(formatName(*format)) + " format"
+                                       : "has an extension Glint does not write";
   throw UsageError(option + " " + excerpt(path) + ": " + what + "; " + option + " writes " +
                    accepted(output));
 }

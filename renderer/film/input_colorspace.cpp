@@ -15,7 +15,8 @@ Mat3 multiply(const Mat3& a, const Mat3& b) {
   Mat3 m{};
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c)
-      for (int k = 0; k < 3; ++k) m[size_t(3 * r + c)] += a[size_t(3 * r + k)] * b[size_t(3 * k + c)];
+      for (int k = 0; k < 3; ++k)
+        m[size_t(3 * r + c)] += a[size_t(3 * r + k)] * b[size_t(3 * k + c)];
   return m;
 }
 
@@ -106,7 +107,8 @@ InputColorspace inputColorspace(const Image& image, const std::string& path,
   for (const KnownSpace& k : kKnownSpaces) {
     bool same = true;
     for (size_t i = 0; i < c.size(); ++i) same &= std::fabs(c[i] - k.rgbw[i]) < kSameChromaticity;
-    if (same) return {k.name, std::nullopt, std::string(k.name) + ", which its chromaticities name"};
+    if (same)
+      return {k.name, std::nullopt, std::string(k.name) + ", which its chromaticities name"};
   }
   // Chromaticities define a linear RGB space exactly (OpenEXR's ImfChromaticities.h): through
   // XYZ, adapted to D65 as the bundled config adapts, into Glint's rendering space.
