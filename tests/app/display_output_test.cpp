@@ -163,6 +163,31 @@ TEST(DisplayOutput, DisplayPngsCarryTheirDisplaysColourChunk) {
   EXPECT_EQ(p3.cicp, (std::array<int, 4>{12, 13, 0, 1}));  // P3-D65, sRGB curve, RGB, full
 }
 
+TEST(DisplayOutput, ADisplayGlintCannotMapGetsNoTagAndAWarning) {
+  // The bundled config with its sRGB display and display colour space renamed "Cinema": no
+  // name says what it encodes for, so the PNG carries no colour chunk, and the run says so.
+  std::string text = test::readFile(std::string(GLINT_SOURCE_DIR) + "/ocio/config.ocio");
+  const auto replaceAll = [&](const std::string& from, const std::string& to) {
+    for (size_t at = 0; (at = text.find(from, at)) != std::string::npos; at += to.size())
+      text.replace(at, from.size(), to);
+  };
+  replaceAll("sRGB - Display", "Cinema - Display");
+  replaceAll("\n  sRGB:\n", "\n  Cinema:\n");
+  replaceAll("active_displays: [sRGB,", "active_displays: [Cinema,");
+  const std::string config = test::writeTemp("cinema.ocio", text);
+  const auto r = runGlint(kSmall + "-o " + tmp("cinema.png") + " --ocio-config " + config);
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("the OCIO display \"Cinema\" is not one Glint knows a PNG colour tag"),
+            std::string::npos)
+      << r.output;
+  const test::PngFile png = test::readPng(tmp("cinema.png"));
+  ASSERT_TRUE(png.ok);
+  EXPECT_FALSE(png.srgbIntent);
+  EXPECT_FALSE(png.cicp);
+  EXPECT_FALSE(png.gamma);
+  EXPECT_FALSE(png.chrm);
+}
+
 TEST(DisplayOutput, ConvertOfAnAp0TaggedExrMatchesTheHandConvertedValue) {
   // An EXR that is not Glint's, with ACES AP0 chromaticities (ACES white) and no
   // glint:colorspace. AP0 (0.3, 0.25, 0.2) to linear Rec.709 by the published ACES2065-1 →

@@ -202,6 +202,19 @@ TEST(Output, AnInterruptStopsAOnePixelFrameAtAnySampleCount) {
   EXPECT_EQ(readImage(out).pixels[3], taken > 0 ? 1.0f : 0.0f);  // alpha, the 4th channel
 }
 
+TEST(Output, AnInterruptedRenderToADisplayImageWritesNone) {
+  // A PNG cannot say it is partial or carry the state to resume it: an interrupted render to
+  // -o frame.png writes no frame (exit 130, and says so) rather than an unmarked partial one.
+  const std::string out = tmp("interrupted.png");
+  fs::remove(out);
+  const Interrupted run =
+      interruptWhen("render --width 1 --height 1 --spp 268435456 --threads 1 -o " + out, kRendering,
+                    "TERM", "interrupted_png.log");
+  ASSERT_EQ(run.exitCode, 130) << run.log;
+  EXPECT_NE(run.log.find(out + " not written"), std::string::npos) << run.log;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(Output, AnInterruptWhileLoadingEndsAtOnceWithExit130) {
   // The scene is a FIFO nobody writes to, so loading blocks for ever: SIGTERM there (once
   // /proc shows the handler installed: SigCgt bit 14 is SIGTERM) must end the process with 130
