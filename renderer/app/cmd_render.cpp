@@ -435,10 +435,12 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
         throw UsageError("-o " + jobs[k].out + " is given for two crops");
   }
   if (!stats.empty() && stats != "-") checkOutputPath(stats);
-  if (!display.empty()) {
-    checkOutputPath(display);
-    DisplayTransform check(a.ocio);
-  }
+  if (!display.empty()) checkOutputPath(display);
+  const bool displayImages =
+      !display.empty() || std::any_of(jobs.begin(), jobs.end(), [](const Job& job) {
+        return isDisplayFormat(renderOutputFormat(job.out, {}));
+      });
+  if (displayImages) DisplayTransform check(a.ocio);
   const auto accel = makeAccelerator(kind, scene);
   // From here a signal stops the render and the frame so far is written (CLI.md).
   const interrupt::RenderPhase stopCleanlyOnSignal;

@@ -9,10 +9,9 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <sstream>
-
 #include <mutex>
 #include <set>
+#include <sstream>
 
 #include "core/error.h"
 #include "core/log.h"

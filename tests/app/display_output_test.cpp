@@ -104,6 +104,16 @@ TEST(DisplayOutput, WhatOnlyAnExrCarriesIsRefusedWithADisplayOutput) {
   }
 }
 
+TEST(DisplayOutput, ABadViewForADisplayOutputIsRefusedBeforeRendering) {
+  // The OCIO settings of a display -o are checked as --display's are, before the render.
+  const auto r =
+      runGlint("render --width 24 --height 16 --spp 1 -o " + tmp("v.png") + " --view Nonesuch");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("has no view \"Nonesuch\""), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("rendering 24x16"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(tmp("v.png")));
+}
+
 TEST(DisplayOutput, OtherCommandsFollowTheSameRule) {
   writeExr(tmp("a.exr"), {"R", "G", "B"}, {0.5f, 0.5f, 0.5f});
   const auto merge = runGlint("merge " + tmp("merged.png") + " " + tmp("a.exr"));
