@@ -1,8 +1,11 @@
 #include <glint_version.h>
 
+#include <algorithm>
 #include <map>
+#include <vector>
 
 #include "app/commands.h"
+#include "app/option_arity.h"
 #include "core/error.h"
 #include "core/log.h"
 
@@ -33,8 +36,16 @@ int runCli(int argc, char** argv) {
   add(addBenchCommand(app));
   add(addInfoCommand(app));
 
+  std::vector<std::string> args(argv + std::min(argc, 1), argv + argc);
   try {
-    app.parse(argc, argv);
+    args = checkArities(app, std::move(args));
+  } catch (const UsageError& e) {
+    log::error(e.what());
+    return kExitUsage;
+  }
+  std::reverse(args.begin(), args.end());  // CLI11 takes them last first
+  try {
+    app.parse(std::move(args));
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? kExitOk : kExitUsage;

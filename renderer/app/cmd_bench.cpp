@@ -93,6 +93,7 @@ class RateCollector : public benchmark::BenchmarkReporter {
 };
 
 int runBench(const BenchArgs& a) {
+  checkOutputPaths({{"--json", a.json}});
   const auto loadStart = std::chrono::steady_clock::now();
   const Scene scene =
       a.procedural ? makeProceduralScene(a.procedural) : loadSceneOrDefault(a.scenePath);
@@ -309,10 +310,7 @@ int runBench(const BenchArgs& a) {
 CommandRunner addBenchCommand(CLI::App& app) {
   auto args = std::make_shared<BenchArgs>();
   CLI::App* cmd = app.add_subcommand("bench", "Ray rates of the intersection backends");
-  cmd->add_option("scene", args->scenePath,
-                  "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
-                  "camera and light; omitted: the default scene")
-      ->check(CLI::ExistingFile);
+  cmd->add_option("scene", args->scenePath, sceneArgumentHelp())->check(CLI::ExistingFile);
   cmd->add_option("--accel", args->accels,
                   "Comma-separated backends (embree, bvh, brute, grid, octree, kdtree)");
   // A heightfield beyond 2^28 triangles would not fit this machine's memory (80 B each).

@@ -41,6 +41,7 @@ CommandRunner addCompareCommand(CLI::App& app) {
   cmd->add_option("--json", a->json, "Write the figures as JSON");
   return [a] {
     if (!a->diff.empty()) imageOutputFormat("--diff", a->diff, ImageOutput::Display);
+    checkOutputPaths({{"--diff", a->diff}, {"--json", a->json}});
     // R, G and B, which readImage puts first: an image of other channels (depth, a luminance
     // "Y") is refused by name rather than measured as if it were colour.
     const Image test = readImage(a->test), ref = readImage(a->reference);

@@ -101,7 +101,8 @@ void writeOutputs(const ConvergeArgs& a, const std::vector<ConvergenceSeries>& s
 // The passes a render recorded: the `passes` of its --stats-json, or its EXR's glint:passes.
 nlohmann::json passesOf(const std::string& path) {
   std::string text;
-  if (path.size() > 5 && path.substr(path.size() - 5) == ".json") {
+  const bool isJson = path.size() > 5 && path.substr(path.size() - 5) == ".json";
+  if (isJson) {
     text = readInputFile(path, size_t{64} << 20, "a render's --stats-json");
   } else {
     const auto file = openExr(path);
@@ -112,11 +113,16 @@ nlohmann::json passesOf(const std::string& path) {
                        "records its passes");
     text = "{\"passes\": " + passes->value() + "}";
   }
+  const std::string what = isJson ? "its JSON" : "its glint:passes";
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    throw UsageError(path + ": not JSON (at byte " + std::to_string(e.byte) + ")");
+    throw UsageError(path + ": " + what + " is not JSON (at byte " + std::to_string(e.byte) + ")");
+  } catch (const nlohmann::json::exception& e) {
+    // A number past a double's range (1e999) is no parse error to nlohmann but out_of_range.
+    throw UsageError(path + ": " + what + " holds a value Glint cannot read (" + excerpt(e.what()) +
+                     ")");
   }
   if (!j.is_object() || !j.contains("passes") || !j["passes"].is_array())
     throw UsageError(path + ": has no \"passes\" list");
@@ -174,6 +180,7 @@ int convergeFromRender(const ConvergeArgs& a) {
 
 int runConverge(const ConvergeArgs& a) {
   if (!a.plot.empty()) imageOutputFormat("--plot", a.plot, ImageOutput::Plot);
+  checkOutputPaths({{"--csv", a.csv}, {"--plot", a.plot}, {"--json", a.json}});
   if (!a.fromRender.empty()) return convergeFromRender(a);
   Scene scene = loadSceneOrDefault(a.scenePath);
   if (a.width) scene.render.width = *a.width;
@@ -271,10 +278,7 @@ int runConverge(const ConvergeArgs& a) {
 CommandRunner addConvergeCommand(CLI::App& app) {
   auto a = std::make_shared<ConvergeArgs>();
   CLI::App* cmd = app.add_subcommand("converge", "Error against run time over sample counts");
-  cmd->add_option("scene", a->scenePath,
-                  "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
-                  "camera and light; omitted: the default scene")
-      ->check(CLI::ExistingFile);
+  cmd->add_option("scene", a->scenePath, sceneArgumentHelp())->check(CLI::ExistingFile);
   cmd->add_option("--spp", a->spp, "Sample counts, comma separated (default " + a->spp + ")");
   cmd->add_option("--sampler", a->samplers, "Samplers to compare, comma separated");
   cmd->add_option("--accel", a->accels,

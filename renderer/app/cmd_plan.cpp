@@ -76,10 +76,7 @@ CommandRunner addPlanCommand(CLI::App& app) {
   auto args = std::make_shared<PlanArgs>();
   CLI::App* cmd = app.add_subcommand(
       "plan", "Print the tiles and frames a render farm runs for a scene (docs/farm.md)");
-  cmd->add_option("scene", args->scenePath,
-                  "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
-                  "camera and light; omitted: the default scene")
-      ->check(CLI::ExistingFile);
+  cmd->add_option("scene", args->scenePath, sceneArgumentHelp())->check(CLI::ExistingFile);
   cmd->add_option("--tiles", args->tiles, "Tiles per frame (a grid of near-square crops)")
       ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--frames", args->frames,

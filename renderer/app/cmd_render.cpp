@@ -15,6 +15,7 @@
 #include "app/commands.h"
 #include "app/farm_plan.h"
 #include "app/render_output.h"
+#include "app/option_arity.h"
 #include "app/scene_source.h"
 #include "camera/camera.h"
 #include "core/error.h"
@@ -423,19 +424,14 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   }
   const std::string display = numbered(a.display);
   const std::string stats = a.statsJson == "-" ? a.statsJson : numbered(a.statsJson);
-  // Every output, and the display image's format and the OCIO config, display, view and look,
-  // are checked before the render is spent on them.
-  for (size_t k = 0; k < jobs.size(); ++k) {
-    checkOutputPath(jobs[k].out);
-    const auto where = [](const std::string& p) {
-      return std::filesystem::weakly_canonical(std::filesystem::absolute(p));
-    };
-    for (size_t j = 0; j < k; ++j)
-      if (where(jobs[j].out) == where(jobs[k].out))
-        throw UsageError("-o " + jobs[k].out + " is given for two crops");
-  }
-  if (!stats.empty() && stats != "-") checkOutputPath(stats);
-  if (!display.empty()) checkOutputPath(display);
+  // Every output (each its own file), and the OCIO config, display, view and look of every
+  // display image, are checked before the render is spent on them (their formats were checked
+  // with the options, in runRender).
+  std::vector<NamedOutput> outputs;
+  for (const Job& job : jobs) outputs.push_back({"-o", job.out});
+  outputs.push_back({"--display", display});
+  outputs.push_back({"--stats-json", stats});
+  checkOutputPaths(outputs);
   const bool displayImages =
       !display.empty() || std::any_of(jobs.begin(), jobs.end(), [](const Job& job) {
         return isDisplayFormat(renderOutputFormat(job.out, {}));
@@ -447,8 +443,7 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   for (const Job& job : jobs) {
     if (interrupt::requested()) return kExitInterrupted;  // between two crops: none started
     log::info("rendering " + std::to_string(scene.render.width) + "x" +
-              std::to_string(scene.render.height) + " at " + std::to_string(scene.render.spp) +
-              " spp to " + job.out);
+              std::to_string(scene.render.height) + " " + plan.describe() + " to " + job.out);
     opt.crop = job.crop;
     ResumeState resumeFrom;
     std::vector<PassRecord> earlierPasses;
@@ -575,6 +570,13 @@ int runRender(const RenderArgs& given) {
   if (!a.resume.empty() && drewFromSobol(a.resume)) a.sampling.progressive = true;
   if (a.quiet) log::setLevel(log::Level::Warning);
   checkCropsAndOutputs(a);
+  // The outputs as given, before the scene is loaded; renderFrame checks them again as
+  // numbered for an animated scene's frame.
+  std::vector<NamedOutput> asGiven;
+  for (const std::string& out : a.outputs) asGiven.push_back({"-o", out});
+  asGiven.push_back({"--display", a.display});
+  asGiven.push_back({"--stats-json", a.statsJson});
+  checkOutputPaths(asGiven);
   if (a.frames.empty()) return renderFrame(a, a.frame);
   // Several frames in one process: each output must be numbered, or the frames would replace
   // one another.
@@ -609,10 +611,7 @@ int runRender(const RenderArgs& given) {
 CommandRunner addRenderCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   CLI::App* cmd = app.add_subcommand("render", "Render a scene to an HDR EXR frame");
-  cmd->add_option("scene", args->scenePath,
-                  "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
-                  "camera and light; omitted: the default scene")
-      ->check(CLI::ExistingFile);
+  cmd->add_option("scene", args->scenePath, sceneArgumentHelp())->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", args->outputs,
                   "Output: .exr the scene-linear frame, .png/.jpg/.tif a display image through the "
                   "OCIO view (default: SCENE_NAME.exr); with several --crop, one each")
@@ -677,10 +676,11 @@ CommandRunner addRenderCommand(CLI::App& app) {
       ->check(CLI::IsMember({"production", "reference"}));
   cmd->add_option("--sampler", args->sampler, "Pixel sampler (overrides the scene)")
       ->check(CLI::IsMember({"regular", "random", "stratified", "sobol"}));
-  cmd->add_option("--crop", args->crop,
-                  "Pixel bounds X0 X1 Y0 Y1 ([X0,X1) x [Y0,Y1)); repeat it, each with its own -o, "
-                  "to render several crops from one scene load")
-      ->type_size(4)
+  takesValues(*cmd,
+              cmd->add_option("--crop", args->crop,
+                              "Pixel bounds X0 X1 Y0 Y1 ([X0,X1) x [Y0,Y1)); repeat it, each with "
+                              "its own -o, to render several crops from one scene load"),
+              4, ValueKind::Integer, "X0 X1 Y0 Y1")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_option("--tile-size", args->tileSize,
                   "Tile edge in pixels (default " + defaultText(args->tileSize) + ")")

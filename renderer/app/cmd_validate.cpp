@@ -14,6 +14,7 @@
 #include "accel/reference_bvh.h"
 #include "accel/uniform_grid.h"
 #include "app/commands.h"
+#include "app/option_arity.h"
 #include "app/scene_source.h"
 #include "core/error.h"
 #include "film/atomic_file.h"
@@ -30,7 +31,7 @@ struct ValidateArgs {
   int spp = 1;
   double minAgreement = 1 - 1e-6;
   std::string json;
-  std::string ray;
+  std::vector<std::string> ray;  // --ray's nine numbers
   bool occludedRay = false;
   bool noBrute = false;
 };
@@ -39,6 +40,7 @@ struct ValidateArgs {
 constexpr size_t kBruteForceLimit = 5000;
 
 int runValidate(const ValidateArgs& a) {
+  checkOutputPaths({{"--json", a.json}});
   Scene scene = loadSceneOrDefault(a.scenePath);
   const EmbreeAccel embree(scene);
   const ReferenceBvh bvh(scene);
@@ -53,7 +55,9 @@ int runValidate(const ValidateArgs& a) {
 
   if (!a.ray.empty()) {  // reproduce one ray from a report line
     Ray r;
-    if (!parseRay(a.ray, r))
+    std::string text;
+    for (const std::string& v : a.ray) text += v + " ";
+    if (!parseRay(text, r))
       throw UsageError("--ray: expected 9 numbers: ox oy oz dx dy dz tmin tmax time");
     if (const std::string why = rayProblem(r); !why.empty()) throw UsageError("--ray: " + why);
     std::printf("ray %s\n", formatRay(r).c_str());
@@ -160,10 +164,7 @@ CommandRunner addValidateCommand(CLI::App& app) {
       "validate",
       "Cross-check Embree against the reference BVH and the uniform grid (and brute force), hit "
       "by hit");
-  cmd->add_option("scene", args->scenePath,
-                  "Scene file (.json), or a mesh file (.obj, .ply, .gltf, .glb) with a default "
-                  "camera and light; omitted: the default scene")
-      ->check(CLI::ExistingFile);
+  cmd->add_option("scene", args->scenePath, sceneArgumentHelp())->check(CLI::ExistingFile);
   cmd->add_option("--rays", args->rays, "Random rays besides the scene's own")
       ->check(CLI::Range(0, 1 << 30));
   cmd->add_option("--seed", args->seed, "Seed of the random rays")
@@ -175,7 +176,11 @@ CommandRunner addValidateCommand(CLI::App& app) {
                   "Fail (exit 1) when hit/miss or occlusion agreement is below this")
       ->check(CLI::Range(0.0, 1.0) & notNaN());
   cmd->add_option("--json", args->json, "Write the figures as JSON");
-  cmd->add_option("--ray", args->ray, "Trace one ray \"ox oy oz dx dy dz tmin tmax time\"");
+  takesValues(*cmd,
+              cmd->add_option("--ray", args->ray,
+                              "Trace one ray: nine numbers, as separate arguments or one quoted "
+                              "\"ox oy oz dx dy dz tmin tmax time\" (a report line's)"),
+              9, ValueKind::Number, "ox oy oz dx dy dz tmin tmax time");
   cmd->add_flag("--occluded", args->occludedRay, "With --ray: an occlusion query");
   cmd->add_flag("--no-brute", args->noBrute, "Skip the brute-force oracle");
   return [args] { return runValidate(*args); };

@@ -7,19 +7,14 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "core/file_names.h"
 #include "core/log.h"
 #include "io/gltf_scene.h"
+#include "io/scene_formats.h"
 #include "io/scene_loader.h"
 
 namespace glint {
 
 namespace {
-
-bool isMeshFile(const std::string& path) {
-  const std::string ext = lowerExtension(path);
-  return ext == ".obj" || ext == ".ply" || ext == ".gltf" || ext == ".glb";
-}
 
 // glTF's photometric intensities (candela for point and spot lights, lux for directional
 // ones) as Glint's: the seeds' surfaces reflect k_d · I · cos θ with no 1/π (docs/shading.md),
@@ -55,9 +50,9 @@ nlohmann::json gltfLight(const GltfLight& l) {
 Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
                       const std::string& cameraName) {
   const std::filesystem::path file = std::filesystem::absolute(path);
-  const std::string ext = lowerExtension(path);
-  const GltfSceneInfo gltf =
-      ext == ".gltf" || ext == ".glb" ? readGltfSceneInfo(file.string()) : GltfSceneInfo{};
+  const GltfSceneInfo gltf = sceneFileKind(path) == SceneFileKind::Gltf
+                                 ? readGltfSceneInfo(file.string())
+                                 : GltfSceneInfo{};
   nlohmann::json lights = nlohmann::json::array();
   for (const GltfLight& l : gltf.lights) lights.push_back(gltfLight(l));
   if (lights.empty())
@@ -89,8 +84,13 @@ Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
     c.up = toFloat(chosen->up);
     c.focusDistance = 1;
     if (chosen->orthographic) {
+      // glTF's orthographic projection maps [−xmag, xmag] × [−ymag, ymag] onto the whole
+      // image, whatever its size: the view spans exactly that, and an image whose aspect is
+      // not xmag / ymag (--width, --height) has non-square pixels, as a camera "window" gives.
       c.projection = Projection::Orthographic;
       c.orthoHeight = float(2 * chosen->ymag);
+      c.window = ImageWindow{float(-chosen->xmag), float(chosen->xmag), float(-chosen->ymag),
+                             float(chosen->ymag)};
     } else {
       c.vfovDegrees = float(chosen->yfovDegrees);
     }
@@ -114,15 +114,23 @@ Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
 
 }  // namespace
 
+std::string sceneArgumentHelp() {
+  return "Scene: " + sceneFormatList() +
+         "; a mesh file gets a default camera and light (a glTF file its own); omitted: the "
+         "default scene";
+}
+
 Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame,
                          const std::string& cameraName) {
-  if (!cameraName.empty() && !isMeshFile(path))
+  // Refused by its extension before anything is read.
+  const bool glintScene = path.empty() || sceneFileKind(path) == SceneFileKind::GlintScene;
+  if (!cameraName.empty() && glintScene)
     throw UsageError("--camera names a camera of a glTF file; " +
                      (path.empty() ? std::string("the default scene") : path) +
                      " has the one camera its \"camera\" gives");
   if (path.empty())
     return loadSceneText(kDefaultSceneJson, "<default scene>", kDefaultSceneDir, frame);
-  return isMeshFile(path) ? meshFileAsScene(path, frame, cameraName) : loadSceneFile(path, frame);
+  return glintScene ? loadSceneFile(path, frame) : meshFileAsScene(path, frame, cameraName);
 }
 
 }  // namespace glint

@@ -1,7 +1,7 @@
 #pragma once
-// The scene a command works on: a scene file, a mesh file (.obj, .ply, .gltf, .glb: framed by a
-// default camera and lit by a default light, or a glTF file's own cameras and lights), or the
-// bundled default scene when none is named.
+// The scene a command works on: a scene file, a mesh file (framed by a default camera and lit by
+// a default light, or a glTF file's own cameras and lights), or the bundled default scene when
+// none is named; a file of a format Glint does not read (io/scene_formats.h) is refused.
 #include <optional>
 #include <string>
 
@@ -12,6 +12,9 @@ namespace glint {
 // `frame`: the frame of an animated scene (default: its first); see io/animation.h.
 // `cameraName`: a camera of a glTF file (`--camera`); empty: the file's first camera, or the
 // framing default.
+// The SCENE argument's help, from the table of formats (io/scene_formats.h).
+std::string sceneArgumentHelp();
+
 Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame = std::nullopt,
                          const std::string& cameraName = "");
 

@@ -39,7 +39,9 @@ bool isInputFile(const std::string& path) {
 
 std::string readInputFile(const std::string& path, size_t maxBytes, const std::string& what) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw GlintError("cannot open " + path + ": " + std::strerror(errno));
+  // A named input that cannot be opened is a bad argument, as a missing one is (exit 2, as for
+  // the EXRs, textures and meshes a run reads); a read that fails part-way is a runtime failure.
+  if (!in) throw UsageError("cannot open " + path + ": " + std::strerror(errno));
   noteInputFile(path);
   std::string bytes;
   char buffer[1 << 16];

@@ -15,8 +15,8 @@ bool isInputFile(const std::string& path);
 
 // Reads a whole input file, notes it (above), and refuses more than `maxBytes`: a device such
 // as /dev/zero, or a file that is not what it claims, would otherwise be read until memory runs
-// out. Too large: a UsageError naming the file, the limit and `what` it was meant to be; a
-// failure to read: a GlintError.
+// out. Too large, or not to be opened (no permission): a UsageError naming the file (and the
+// limit and `what` it was meant to be); a failure part-way through reading: a GlintError.
 // Pipes and FIFOs are read like files (a scene from `<(generator)`).
 std::string readInputFile(const std::string& path, size_t maxBytes, const std::string& what);
 

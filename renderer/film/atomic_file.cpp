@@ -94,6 +94,30 @@ void checkReplaceable(const std::string& finalPath) {
                      ", which an output never replaces");
   if (isInputFile(finalPath))
     throw UsageError("refusing to write " + finalPath + ": it is one of this run's inputs");
+  // Renaming over a file needs only the directory's permission: a file the user may not write
+  // (0444, or another user's in a shared directory) would be replaced all the same.
+  if (::faccessat(AT_FDCWD, finalPath.c_str(), W_OK, AT_EACCESS) != 0 && errno == EACCES) {
+    char mode[8];
+    std::snprintf(mode, sizeof mode, "%04o", static_cast<unsigned>(st.st_mode & 07777));
+    throw UsageError("refusing to replace " + finalPath +
+                     ": it is not writable by this user (mode " + mode + ")");
+  }
+}
+
+// Gives the temporary file the permission bits, owner and group of the file it replaces. The
+// owner and group are kept where the process may set them (root, or the owner itself for a
+// group it is in); the mode always.
+void keepModeOf(const std::string& finalPath, const std::string& tmp) {
+  struct stat old {};
+  if (::stat(finalPath.c_str(), &old) != 0) return;  // a new file
+  if (::chmod(tmp.c_str(), old.st_mode & 07777) != 0)
+    throw GlintError("cannot set the mode of " + tmp + ": " + std::strerror(errno));
+  struct stat now {};
+  if (::stat(tmp.c_str(), &now) == 0 && (now.st_uid != old.st_uid || now.st_gid != old.st_gid) &&
+      ::chown(tmp.c_str(), old.st_uid, old.st_gid) != 0)
+    (void)!::chown(tmp.c_str(), static_cast<uid_t>(-1), old.st_gid);  // the group alone, if it may
+  // chown may clear the set-id bits: set the mode again.
+  (void)::chmod(tmp.c_str(), old.st_mode & 07777);
 }
 
 void fsyncPath(const std::string& path, bool directory) {
@@ -113,11 +137,47 @@ fs::path directoryOf(const fs::path& target) {
 }  // namespace
 
 void checkOutputPath(const std::string& finalPath) {
-  const fs::path dir = directoryOf(finalPath);
+  const fs::path target(finalPath);
+  const fs::path dir = directoryOf(target);
   if (!fs::is_directory(dir))
     throw UsageError("cannot write " + finalPath + ": directory " + dir.string() +
                      " does not exist");
   checkReplaceable(finalPath);
+  // The temporary file the write will make, made and removed now: a directory the user may not
+  // write, or on a read-only file system, is found before the render rather than after it.
+  const std::string probe = (dir / temporaryNameFor(target)).string();
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0)
+    throw UsageError("cannot write " + finalPath + ": no file can be made in " + dir.string() +
+                     " (" + std::strerror(errno) + ")");
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+void checkOutputPaths(const std::vector<NamedOutput>& outputs) {
+  const auto asked = [](const NamedOutput& o) { return !o.path.empty() && o.path != "-"; };
+  const auto where = [](const std::string& p) {
+    std::error_code ec;
+    const fs::path canonical = fs::weakly_canonical(fs::absolute(p), ec);
+    return ec ? fs::absolute(p).lexically_normal() : canonical;
+  };
+  for (size_t k = 0; k < outputs.size(); ++k) {
+    if (!asked(outputs[k])) continue;
+    struct stat a {};
+    const bool aExists = ::stat(outputs[k].path.c_str(), &a) == 0;
+    for (size_t j = 0; j < k; ++j) {
+      if (!asked(outputs[j])) continue;
+      struct stat b {};
+      const bool sameFile = aExists && ::stat(outputs[j].path.c_str(), &b) == 0 &&
+                            a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+      if (sameFile || where(outputs[j].path) == where(outputs[k].path))
+        throw UsageError(outputs[j].option + " " + outputs[j].path + " and " + outputs[k].option +
+                         " " + outputs[k].path +
+                         " name one file: each output needs a file of its own");
+    }
+  }
+  for (const NamedOutput& o : outputs)
+    if (asked(o)) checkOutputPath(o.path);
 }
 
 void writeFileAtomically(const std::string& finalPath,
@@ -130,6 +190,7 @@ void writeFileAtomically(const std::string& finalPath,
   const interrupt::TemporaryFile removedIfInterrupted(tmp);
   try {
     write(tmp);
+    keepModeOf(finalPath, tmp);
     fsyncPath(tmp, false);
     checkReplaceable(finalPath);  // again: something may have appeared there while we wrote
     if (std::rename(tmp.c_str(), finalPath.c_str()) != 0)

@@ -3,16 +3,33 @@
 // goes to a temporary file in the same directory, is fsync'ed, then renamed into place.
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace glint {
 
-// Throws a UsageError unless finalPath may be written: its directory exists, and nothing is
-// there or a regular file that this run did not read (core/input_files.h). Commands call it
-// before rendering, so that a long render does not end in a refusal.
+// Throws a UsageError unless finalPath may be written: its directory exists and a file can be
+// made in it (the temporary file the write would use is created and removed), and nothing is
+// there or a regular file that this run did not read (core/input_files.h) and that the user may
+// write (access(2): root may write any). Commands call it before rendering, so that a long
+// render does not end in a refusal.
 void checkOutputPath(const std::string& finalPath);
 
+// An output a command was asked for: the option that names it ("-o", "--stats-json") and its
+// path (empty: not asked for; "-": standard output).
+struct NamedOutput {
+  std::string option, path;
+};
+
+// checkOutputPath for each output asked for, after refusing two options that name one file:
+// the same path once made absolute and its directories' links resolved, or, for a file that
+// exists, the same device and inode (a hard link, or a link to it). Every command calls it with
+// all its outputs before doing any work, so that one output never overwrites another.
+void checkOutputPaths(const std::vector<NamedOutput>& outputs);
+
 // Calls write(tmpPath) to produce the data, then publishes it at finalPath. On any failure the
-// temporary file is removed, finalPath is left untouched, and a GlintError names the cause.
+// temporary file is removed, finalPath is left untouched, and a GlintError names the cause. A
+// file it replaces keeps its permission bits, and its owner and group where the process may
+// give them (a 0600 frame stays 0600); a new file gets the writer's default (0666 less umask).
 // Temporary files are named ".glint-tmp-HOST-PID-N-NAME.EXT" within NAME_MAX; those of this
 // host's processes that died before cleaning up are removed by the next write in the directory.
 void writeFileAtomically(const std::string& finalPath,

@@ -2,7 +2,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <iterator>
 
@@ -182,8 +184,12 @@ class Reader {
     const auto p = c.find(type);
     if (p == c.end() || !p->is_object()) fail(where + " has no \"" + type + "\" parameters");
     if (cam.orthographic) {
+      // Both required by glTF 2.0; a negative one would mirror the view.
+      cam.xmag = number(*p, "xmag", 0, where + "." + type);
+      if (!(cam.xmag > 0)) fail(where + ".orthographic.xmag must be positive");
       cam.ymag = number(*p, "ymag", 0, where + "." + type);
       if (!(cam.ymag > 0)) fail(where + ".orthographic.ymag must be positive");
+      cam.aspectRatio = cam.xmag / cam.ymag;
     } else {
       const double yfov = number(*p, "yfov", 0, where + "." + type);
       if (!(yfov > 0 && yfov < M_PI)) fail(where + ".perspective.yfov must be in (0, π) radians");
@@ -248,7 +254,7 @@ class Reader {
 
 GltfSceneInfo readGltfSceneInfo(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw GlintError("cannot open glTF file " + path);
+  if (!in) throw UsageError("cannot open glTF file " + path + ": " + std::strerror(errno));
   const std::string bytes((std::istreambuf_iterator<char>(in)), {});
   // The same checks as the mesh reader's (nesting depth, glTF 2, strict JSON), on the same text.
   const std::string text = lowerExtension(path) == ".glb" ? glbJsonChunk(path, bytes) : bytes;

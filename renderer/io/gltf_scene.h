@@ -15,9 +15,10 @@ struct GltfCamera {
   std::string name;       // the camera's name, else its node's, else "camera N"
   Vec3d eye, lookAt, up;  // world space: glTF cameras look down their node's −z, +y up
   bool orthographic = false;
-  double yfovDegrees = 40;  // perspective
-  double ymag = 1;          // orthographic: half the view's height
-  double aspectRatio = 0;   // width / height, 0 when the file does not say
+  double yfovDegrees = 40;    // perspective
+  double xmag = 1, ymag = 1;  // orthographic: half the view's width and height
+  // Width / height, 0 when the file does not say; an orthographic camera's is xmag / ymag.
+  double aspectRatio = 0;
 };
 
 struct GltfLight {

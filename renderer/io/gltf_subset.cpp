@@ -138,7 +138,7 @@ std::optional<size_t> gltfMaterialIndex(const std::string& name) {
 std::string gltfSubset(const std::string& path, const std::string& text,
                        std::vector<GltfMaterialInfo>* materials) {
   if (nestingDepth(text) > kMaxDepth)
-    throw GlintError("mesh " + path + ": its JSON nests more than " + std::to_string(kMaxDepth) +
+    throw UsageError("mesh " + path + ": its JSON nests more than " + std::to_string(kMaxDepth) +
                      " levels deep (a glTF file needs about 6)");
   // Only what Glint has parsed reaches Assimp: a file nlohmann's strict reader refuses (invalid
   // UTF-8, say) is refused here, since Assimp's lenient one would read all of it, skins too.
@@ -146,16 +146,31 @@ std::string gltfSubset(const std::string& path, const std::string& text,
   try {
     doc = json::parse(text);
   } catch (const json::exception& e) {
-    throw GlintError("mesh " + path + ": not glTF JSON: " + excerpt(e.what()));
+    throw UsageError("mesh " + path + ": not glTF JSON: " + excerpt(e.what()));
   }
-  if (!doc.is_object()) throw GlintError("mesh " + path + ": not glTF: not a JSON object");
+  if (!doc.is_object()) throw UsageError("mesh " + path + ": not glTF: not a JSON object");
+  // glTF 1.0 files give their version as "1.0" or as the number 1 (Cesium's exporters), and
+  // keep nodes, meshes and the rest in objects keyed by name where glTF 2.0 has arrays: named
+  // here rather than reported as "nodes is not an array".
+  const std::string glTF1 = "mesh " + path + ": glTF 1.0 is not supported; Glint reads glTF 2.0";
   if (const auto asset = doc.find("asset"); asset != doc.end() && asset->is_object()) {
     const auto version = asset->find("version");
+    if (version != asset->end() && version->is_number() && version->get<double>() < 2)
+      throw UsageError(glTF1 + " (asset.version is " + version->dump() + ")");
+    if (version != asset->end() && version->is_string() &&
+        version->get<std::string>().rfind("1", 0) == 0)
+      throw UsageError(glTF1 + " (asset.version is " +
+                       inQuotes(excerpt(version->get<std::string>())) + ")");
     if (version != asset->end() && version->is_string() &&
         version->get<std::string>().rfind("2", 0) != 0)
-      throw GlintError("mesh " + path + " is glTF " + excerpt(version->get<std::string>()) +
+      throw UsageError("mesh " + path + " is glTF " + excerpt(version->get<std::string>()) +
                        "; Glint reads glTF 2.0");
   }
+  for (const char* key : {"nodes", "meshes", "accessors", "bufferViews", "buffers"})
+    if (const auto it = doc.find(key); it != doc.end() && it->is_object())
+      throw UsageError("mesh " + path + ": its \"" + key +
+                       "\" is an object keyed by name, as in glTF 1.0, which is not supported; "
+                       "Glint reads glTF 2.0");
   keepOnly(doc,
            {"asset", "scene", "scenes", "nodes", "meshes", "materials", "accessors", "bufferViews",
             "buffers", "textures", "images", "samplers", "extensionsUsed", "extensionsRequired"});
@@ -265,7 +280,7 @@ std::string gltfSubset(const std::string& path, const std::string& text,
   try {
     return doc.dump();
   } catch (const json::exception& e) {
-    throw GlintError("mesh " + path + ": not glTF JSON: " + excerpt(e.what()));
+    throw UsageError("mesh " + path + ": not glTF JSON: " + excerpt(e.what()));
   }
 }
 
@@ -277,9 +292,12 @@ std::string glbJsonChunk(const std::string& path, const std::string& bytes) {
     std::memcpy(&v, bytes.data() + at, 4);
     return v;
   };
+  if (bytes.size() >= 8 && bytes.compare(0, 4, "glTF") == 0 && u32(4) == 1)
+    throw UsageError("mesh " + path +
+                     ": binary glTF 1.0 is not supported; Glint reads glTF 2.0 (GLB version 2)");
   if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0 || u32(4) != 2 ||
       u32(16) != 0x4E4F534Au || 20 + uint64_t{u32(12)} > bytes.size())
-    throw GlintError("mesh " + path +
+    throw UsageError("mesh " + path +
                      ": not a GLB 2 file (magic \"glTF\", version 2, a JSON chunk first)");
   return bytes.substr(20, u32(12));
 }

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "io/ply_header.h"
+#include "io/scene_formats.h"
 
 namespace glint {
 
@@ -29,11 +30,11 @@ std::string headOf(const std::string& path, size_t bytes) {
 }  // namespace
 
 bool isMeshExtension(const std::string& extension) {
-  const std::string e = lower(extension);
-  return e == ".obj" || e == ".ply" || e == ".gltf" || e == ".glb";
+  const SceneFormat* f = findSceneFormat("x" + extension);
+  return f && f->kind != SceneFileKind::GlintScene;
 }
 
-const char* meshFormatList() { return "OBJ (.obj), PLY (.ply) and glTF 2.0 (.gltf, .glb)"; }
+std::string meshFormatList() { return sceneFormatList(true); }
 
 void checkPlyCounts(const std::string& path, const std::string& head, uint64_t fileSize) {
   if (head.size() < 3 || lower(head.substr(0, 3)) != "ply") return;  // the reader refuses it

@@ -17,10 +17,10 @@ namespace glint {
 // a few GB.
 inline constexpr uint64_t kMaxMeshFileBytes = uint64_t{1} << 30;
 
-// The extensions Glint reads, lower case with the dot: .obj, .ply, .gltf, .glb.
+// The mesh extensions of io/scene_formats.h's table (any case, with the dot).
 bool isMeshExtension(const std::string& extension);
-// "OBJ (.obj), PLY (.ply), glTF 2.0 (.gltf, .glb)", for messages.
-const char* meshFormatList();
+// "OBJ (.obj), PLY (.ply) and glTF 2.0 (.gltf, .glb)", for messages.
+std::string meshFormatList();
 
 // Throws GlintError naming `path` when its extension is not one of the above, it is larger
 // than kMaxMeshFileBytes, or a PLY header does not end or declares more elements than the

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <string>
 
@@ -47,6 +48,31 @@ PassPlan PassPlan::make(int spp, SamplerKind sceneSampler, const SamplingRequest
     if (end >= plan.maxSpp) break;
   }
   return plan;
+}
+
+std::string PassPlan::describe() const {
+  const auto number = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return std::string(text);
+  };
+  const bool timed = timeLimitSeconds > 0;
+  if (!adaptive() && !timed) return "at " + std::to_string(maxSpp) + " spp";
+  std::string s;
+  if (adaptive()) {
+    s = "until the estimated ";
+    if (target.rmse > 0) s += "RMSE is at most " + number(target.rmse);
+    if (target.rmse > 0 && target.relmse > 0) s += " and the ";
+    if (target.relmse > 0) s += "relMSE is at most " + number(target.relmse);
+    s += ", " + std::to_string(minSpp) + " to " + std::to_string(maxSpp) + " spp per pixel";
+    if (timed) s += ", ";
+  }
+  if (timed)
+    s += "for at most " + number(timeLimitSeconds) + " s" +
+         (adaptive() ? std::string()
+                     : ", up to " + std::to_string(maxSpp) + " spp (a first pass of " +
+                           std::to_string(minSpp) + " spp always finishes)");
+  return s;
 }
 
 // The loops below run on the threads of the caller's arena (the render's, withThreads): each

@@ -5,6 +5,7 @@
 // the passes before it left, never on time or threads, except where a time limit stops it.
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/sampler.h"
@@ -62,6 +63,10 @@ struct PassPlan {
   // bounds that contradict each other.
   static PassPlan make(int spp, SamplerKind sceneSampler, const SamplingRequest& request);
   bool adaptive() const { return target.any(); }
+  // What the render will do, for its announcement: "at 16 spp", "for at most 3 s, up to 4096
+  // spp (a first pass of 8 spp always finishes)", "until the estimated RMSE is at most 0.01,
+  // 8 to 4096 spp per pixel".
+  std::string describe() const;
   // Whether the sets are the same whatever the total: Sobol's and random's are, so a render
   // can be continued to any spp; a stratified set is laid out for maxSpp.
   bool progressive() const {

@@ -466,7 +466,13 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
   const int tileSize = effectiveTileSize(sampledWindow, opt.tileSize, threads);
   const std::vector<PixelWindow> tiles = makeTiles(sampledWindow, tileSize, opt.tileOrder);
   std::vector<RayCounters> tileCounters(tiles.size());
-  Progress progress(sampledWindow.area() * plan.maxSpp, opt.progress);
+  ProgressPlan progressPlan;
+  progressPlan.totalWork = sampledWindow.area() * plan.maxSpp;
+  progressPlan.workIsBound = plan.adaptive();
+  if (plan.timeLimitSeconds > 0) progressPlan.timeLimitSeconds = plan.timeLimitSeconds;
+  // A continued frame's first pass is behind it: the limit holds from its first pass taken.
+  if (!opt.resumeFrom) progressPlan.firstPassWork = sampledWindow.area() * plan.ends.front();
+  Progress progress(progressPlan, opt.progress, start);
   std::atomic<int> loggedNonfinite{0};
   const CameraSampling cameraSampling(scene, camera);
   const FrameContext frame{scene,          accel,   opt,       camera,
@@ -503,7 +509,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
     const std::vector<uint8_t> all(probes.size(), 1);
     std::atomic<bool> never{false}, stopped{false};
     const PassContext pass{plan.minSpp, all, std::nullopt, never};
-    Progress silent(0, false);
+    Progress silent({}, false);
     const std::vector<PixelWindow> frameTiles =
         makeTiles(PixelWindow{0, rs.width, 0, rs.height}, tileSize, opt.tileOrder);
     probeCounters.assign(frameTiles.size(), {});
@@ -573,6 +579,7 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
         finished(end);
         continue;
       }
+      if (plan.adaptive()) progress.replan(pixels * (plan.maxSpp - (k > 0 ? plan.ends[k - 1] : 0)));
       // The time limit applies from the second pass on: the first is what makes a frame.
       std::optional<Clock::time_point> deadline;
       if (plan.timeLimitSeconds > 0 && k > 0)  // a limit past 30 years is none (no overflow)
@@ -599,7 +606,9 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
         onPass(result);
       }
     }
-    progress.finish();
+    progress.finish(result.stats.timeLimitReached ? "the time limit"
+                    : result.partial              ? "an interrupt"
+                                                  : "");
     result.film = resolveFrame(frame, window);
     statsSoFar();
   });

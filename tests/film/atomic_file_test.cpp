@@ -2,6 +2,7 @@
 // previous file when the write fails; temporary names fit NAME_MAX and do not outlive a kill.
 #include "film/atomic_file.h"
 
+#include <grp.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -10,6 +11,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "core/error.h"
@@ -150,6 +152,137 @@ TEST(AtomicFile, DashWritesJsonToStandardOutput) {
   testing::internal::CaptureStdout();
   writeTextFileAtomically("-", "{\"a\": 1}\n");
   EXPECT_EQ(testing::internal::GetCapturedStdout(), "{\"a\": 1}\n");
+}
+
+mode_t modeOf(const fs::path& p) {
+  struct stat st {};
+  EXPECT_EQ(::stat(p.c_str(), &st), 0) << p;
+  return st.st_mode & 07777;
+}
+
+// Runs `body` in a child process as the unprivileged user nobody (65534) when this test runs as
+// root, since root passes every permission check; as itself otherwise. Returns the error it
+// threw ("" for none).
+std::string asUnprivilegedUser(const std::function<void()>& body) {
+  int pipe[2];
+  if (::pipe(pipe) != 0) return "(no pipe)";
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    ::close(pipe[0]);
+    std::string message;
+    if (::getuid() == 0 &&
+        (::setgroups(0, nullptr) != 0 || ::setgid(65534) != 0 || ::setuid(65534) != 0))
+      message = "(could not become nobody)";
+    else
+      try {
+        body();
+      } catch (const std::exception& e) {
+        message = e.what();
+      }
+    (void)!::write(pipe[1], message.data(), message.size());
+    ::_exit(0);
+  }
+  ::close(pipe[1]);
+  std::string message;
+  char buffer[512];
+  for (ssize_t n; (n = ::read(pipe[0], buffer, sizeof buffer)) > 0;)
+    message.append(buffer, size_t(n));
+  ::close(pipe[0]);
+  ::waitpid(pid, nullptr, 0);
+  return message;
+}
+
+TEST(AtomicFile, AReplacedFileKeepsItsMode) {
+  const fs::path dir = freshDir("modes");
+  const mode_t umaskWas = ::umask(022);
+  for (const mode_t mode : {mode_t(0600), mode_t(0640), mode_t(0755)}) {
+    const fs::path target = dir / ("frame-" + std::to_string(mode) + ".json");
+    std::ofstream(target) << "old";
+    ASSERT_EQ(::chmod(target.c_str(), mode), 0);
+    writeTextFileAtomically(target.string(), "new");
+    EXPECT_EQ(slurp(target), "new");
+    // A rename puts the temporary file in its place: without keeping the mode, 0644 (umask 022).
+    EXPECT_EQ(modeOf(target), mode) << std::oct << mode;
+  }
+  // A new file gets the writer's default, 0666 less the umask.
+  writeTextFileAtomically((dir / "new.json").string(), "new");
+  EXPECT_EQ(modeOf(dir / "new.json"), mode_t(0644));
+  ::umask(umaskWas);
+}
+
+TEST(AtomicFile, AFileTheUserMayNotWriteIsNotReplaced) {
+  // A 0444 file in a world-writable directory: the directory lets anyone rename over it, the
+  // file's mode says this user may not write it (access(2), which root passes: root's own
+  // writes replace it, keeping 0444, as its other writes to read-only files do).
+  const fs::path dir = freshDir("read-only-file");
+  ASSERT_EQ(::chmod(dir.c_str(), 0777), 0);
+  const fs::path target = dir / "frame.json";
+  std::ofstream(target) << "theirs";
+  ASSERT_EQ(::chmod(target.c_str(), 0444), 0);
+  const std::string refused =
+      asUnprivilegedUser([&] { writeTextFileAtomically(target.string(), "mine"); });
+  EXPECT_EQ(refused, "refusing to replace " + target.string() +
+                         ": it is not writable by this user (mode 0444)");
+  EXPECT_EQ(slurp(target), "theirs");
+  EXPECT_EQ(temporaries(dir), 0u);
+  if (::getuid() == 0) {
+    writeTextFileAtomically(target.string(), "root's");
+    EXPECT_EQ(slurp(target), "root's");
+    EXPECT_EQ(modeOf(target), mode_t(0444));
+  }
+}
+
+TEST(AtomicFile, ADirectoryNoFileCanBeMadeInIsFoundBeforeTheWrite) {
+  // Checked as an unprivileged user (root may write a 0555 directory).
+  const fs::path dir = freshDir("read-only-dir");
+  ASSERT_EQ(::chmod(dir.c_str(), 0555), 0);
+  const std::string target = (dir / "frame.exr").string();
+  EXPECT_EQ(asUnprivilegedUser([&] { checkOutputPath(target); }),
+            "cannot write " + target + ": no file can be made in " + dir.string() +
+                " (Permission denied)");
+  EXPECT_EQ(temporaries(dir), 0u);
+  // A writable one passes, and the probe leaves nothing behind.
+  const fs::path open = freshDir("writable-dir");
+  ASSERT_EQ(::chmod(open.c_str(), 0777), 0);
+  EXPECT_EQ(asUnprivilegedUser([&] { checkOutputPath((open / "frame.exr").string()); }), "");
+  EXPECT_TRUE(fs::is_empty(open));
+}
+
+TEST(AtomicFile, TwoOutputsNamingOneFileAreRefused) {
+  const fs::path dir = freshDir("two-outputs");
+  const fs::path frame = dir / "x.exr", hard = dir / "hard.exr", soft = dir / "soft.json";
+  std::ofstream(frame) << "frame";
+  fs::create_hard_link(frame, hard);
+  fs::create_symlink(frame, soft);
+  fs::create_directory(dir / "sub");
+  const auto refusal = [](const std::vector<NamedOutput>& outputs) {
+    try {
+      checkOutputPaths(outputs);
+      return std::string("(accepted)");
+    } catch (const UsageError& e) {
+      return std::string(e.what());
+    }
+  };
+  EXPECT_EQ(refusal({{"-o", frame.string()}, {"--stats-json", frame.string()}}),
+            "-o " + frame.string() + " and --stats-json " + frame.string() +
+                " name one file: each output needs a file of its own");
+  // Other names of one file: a hard link, a symbolic link, a path through "sub/..".
+  EXPECT_NE(refusal({{"-o", frame.string()}, {"--display", hard.string()}}).find("name one file"),
+            std::string::npos);
+  EXPECT_NE(refusal({{"--json", soft.string()}, {"--diff", frame.string()}}).find("name one file"),
+            std::string::npos);
+  // Files that do not exist yet: the same path once made canonical.
+  const std::string fresh = (dir / "p.json").string(),
+                    alias = (dir / "sub" / ".." / "p.json").string();
+  EXPECT_NE(refusal({{"--csv", fresh}, {"--json", ""}, {"--plot", alias}})
+                .find("--csv " + fresh + " and --plot " + alias + " name one file"),
+            std::string::npos);
+  // Distinct files, outputs not asked for and standard output pass.
+  EXPECT_EQ(refusal({{"--csv", fresh},
+                     {"--json", "-"},
+                     {"--plot", ""},
+                     {"--diff", (dir / "q.png").string()}}),
+            "(accepted)");
 }
 
 }  // namespace

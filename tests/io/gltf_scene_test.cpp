@@ -7,6 +7,7 @@
 
 #include "accel/accelerator.h"
 #include "app/scene_source.h"
+#include "camera/camera.h"
 #include "io/gltf_scene.h"
 #include "render/render_job.h"
 #include "test_util.h"
@@ -159,6 +160,58 @@ TEST(GltfScene, ACyclicNodeTreeIsRefused) {
   } catch (const UsageError& e) {
     EXPECT_NE(std::string(e.what()).find("nodes[0] is its own ancestor"), std::string::npos)
         << e.what();
+  }
+}
+
+// glTF's orthographic projection maps [−xmag, xmag] × [−ymag, ymag] onto the image (glTF 2.0,
+// "Projection Matrices"): xmag 1.5, ymag 1 showed ±1.33 across, the 4:3 default's width at
+// ymag's height.
+TEST(GltfScene, AnOrthographicCameraSpansXmagAndYmag) {
+  std::string text = quadScene(kNodes);
+  const std::string front = R"({"name": "front", "type": "perspective",
+                 "perspective": {"yfov": 0.5, "aspectRatio": 1.5, "znear": 0.1}})";
+  ASSERT_NE(text.find(front), std::string::npos);
+  text.replace(text.find(front), front.size(),
+               R"({"name": "front", "type": "orthographic",
+                   "orthographic": {"xmag": 1.5, "ymag": 1, "znear": 0.1, "zfar": 100}})");
+  const std::string file = test::writeTemp("quad_ortho.gltf", text);
+  const Scene scene = loadSceneOrDefault(file, std::nullopt, "front");
+  // The image takes the camera's aspect xmag / ymag at the default height: 480 · 1.5.
+  EXPECT_EQ(scene.render.height, 480);
+  EXPECT_EQ(scene.render.width, 720);
+  // The camera sits at (0, 0, 3) looking down −z, +y up: the film's top-left corner is
+  // (−xmag, +ymag) across the image plane, its bottom-right (+xmag, −ymag), rays along −z.
+  const Camera camera(scene.cameraDesc, scene.render.width, scene.render.height);
+  const Ray topLeft = camera.generateRay(0, 0);
+  EXPECT_NEAR(topLeft.o.x, -1.5, 1e-6);
+  EXPECT_NEAR(topLeft.o.y, 1, 1e-6);
+  EXPECT_NEAR(topLeft.o.z, 3, 1e-6);
+  EXPECT_NEAR(topLeft.d.z, -1, 1e-6);
+  // The centre of pixel (540, 120) of 720 × 480: u = −1.5 + 3 · 540.5 / 720 = 0.752083…,
+  // v = 1 − 2 · 120.5 / 480 = 0.497916….
+  const Ray inside = camera.generateRay(540.5f, 120.5f);
+  EXPECT_NEAR(inside.o.x, -1.5 + 3 * 540.5 / 720, 1e-5);
+  EXPECT_NEAR(inside.o.y, 1 - 2 * 120.5 / 480, 1e-5);
+  // Another image size (--width 640 --height 480) keeps the view glTF's projection gives,
+  // ±1.5 × ±1, with pixels 1.5 / (4/3) = 1.125 times as wide as tall (docs/scene-format.md).
+  const Camera narrower(scene.cameraDesc, 640, 480);
+  EXPECT_NEAR(narrower.generateRay(640, 480).o.x, 1.5, 1e-6);
+  EXPECT_NEAR(narrower.generateRay(640, 480).o.y, -1, 1e-6);
+}
+
+TEST(GltfScene, AnOrthographicCameraNeedsBothMagnifications) {
+  std::string text = quadScene(kNodes);
+  const std::string front = R"({"name": "front", "type": "perspective",
+                 "perspective": {"yfov": 0.5, "aspectRatio": 1.5, "znear": 0.1}})";
+  text.replace(text.find(front), front.size(),
+               R"({"type": "orthographic", "orthographic": {"ymag": 1, "znear": 0, "zfar": 9}})");
+  const std::string file = test::writeTemp("quad_ortho_no_xmag.gltf", text);
+  try {
+    readGltfSceneInfo(file);
+    FAIL() << "no error";
+  } catch (const UsageError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "glTF " + file + ": cameras[0].orthographic.xmag must be positive");
   }
 }
 

@@ -373,5 +373,27 @@ TEST(FrameError, SameBitsAndChoicesForAnyThreadCount) {
   EXPECT_EQ(countOne, 29838);
 }
 
+// What `glint render` announces (PassPlan::describe): under a time limit, the limit and the most
+// samples, not the scene's spp ("--time-limit 3 --max-spp 4096" said "at 16 spp").
+TEST(PassPlan, DescribesWhatTheRenderWillDo) {
+  EXPECT_EQ(PassPlan::make(16, SamplerKind::Stratified, {}).describe(), "at 16 spp");
+  SamplingRequest timed;
+  timed.timeLimitSeconds = 3;
+  timed.maxSpp = 4096;
+  EXPECT_EQ(PassPlan::make(16, SamplerKind::Stratified, timed).describe(),
+            "for at most 3 s, up to 4096 spp (a first pass of 8 spp always finishes)");
+  SamplingRequest adaptive;
+  adaptive.target.rmse = 0.01;
+  adaptive.maxSpp = 256;
+  EXPECT_EQ(PassPlan::make(16, SamplerKind::Stratified, adaptive).describe(),
+            "until the estimated RMSE is at most 0.01, 8 to 256 spp per pixel");
+  adaptive.target.relmse = 0.002;
+  adaptive.timeLimitSeconds = 1.5;
+  adaptive.minSpp = 4;
+  EXPECT_EQ(PassPlan::make(16, SamplerKind::Stratified, adaptive).describe(),
+            "until the estimated RMSE is at most 0.01 and the relMSE is at most 0.002, 4 to 256 "
+            "spp per pixel, for at most 1.5 s");
+}
+
 }  // namespace
 }  // namespace glint
