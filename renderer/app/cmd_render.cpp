@@ -615,7 +615,9 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("-o,--output", args->outputs,
                   "Output: .exr the scene-linear frame, .png/.jpg/.tif a display image through the "
                   "OCIO view (default: SCENE_NAME.exr); with several --crop, one each")
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      // One path each time it is given: CLI11 let it take the scene after it as a second.
+      ->allow_extra_args(false);
   cmd->add_option("--display", args->display,
                   "Also write a display image (.png, .jpg, .tif) through OCIO");
   addDisplayOptions(*cmd, args->ocio);

@@ -85,7 +85,7 @@ void Progress::print(bool final, const std::string& stoppedBy) {
   if (final && !stoppedBy.empty()) {
     char taken[96];
     std::snprintf(
-        taken, sizeof taken, "stopped by %s with %.0f%% of the most samples", stoppedBy.c_str(),
+        taken, sizeof taken, "stopped by %s with %.3g%% of the most samples", stoppedBy.c_str(),
         100 * std::min(double(done_) / double(std::max<int64_t>(plan_.totalWork, 1)), 1.0));
     eta = taken;
   }

@@ -47,6 +47,11 @@ TEST(CommandPromises, OptionsOfSeveralValuesSayWhatTheyGot) {
   EXPECT_EQ(longCrop.exitCode, 2);
   EXPECT_TRUE(contains(longCrop.output, "got 5: 0 10 0 5 7")) << longCrop.output;
   EXPECT_FALSE(fs::exists(out));
+  // -o takes one path each time: the scene after it is the scene ("-o is given 2 times").
+  const auto sceneAfter =
+      runGlint("render -o " + out + " " + kScene + " --quiet --width 8 --height 6 --spp 1");
+  EXPECT_EQ(sceneAfter.exitCode, 0) << sceneAfter.output;
+  EXPECT_TRUE(fs::exists(out));
   // validate --ray takes its nine numbers quoted or not; eight are refused by count.
   const auto ray = runGlint("validate " + kScene + " --no-brute --rays 0 --spp 0 " +
                             "--ray 0 0.5 5 0 0 -1 0 inf 0");
