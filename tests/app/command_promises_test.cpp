@@ -104,7 +104,8 @@ TEST(CommandPromises, TwoOptionsNamingOneFileAreRefusedBeforeAnyWork) {
   struct Case {
     std::string args, says;
   };
-  const std::string x = tmp("same.exr"), p = tmp("same.png"), j = tmp("same.json");
+  // The plot's format is checked first: the three converge outputs share an .svg name.
+  const std::string x = tmp("same.exr"), p = tmp("same.png"), j = tmp("same.svg");
   const std::vector<Case> cases = {
       {"render " + kScene + " -o " + x + " --stats-json " + x,
        "-o " + x + " and --stats-json " + x + " name one file"},
