@@ -103,7 +103,7 @@ nlohmann::json passesOf(const std::string& path) {
   std::string text;
   const bool isJson = path.size() > 5 && path.substr(path.size() - 5) == ".json";
   if (isJson) {
-    text = readInputFile(path, size_t{64} << 20, "a render's --stats-json");
+    text = readInputFile(path, size_t{64} << 20, "render record (--stats-json)");
   } else {
     const auto file = openExr(path);
     const auto* passes = file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:passes");

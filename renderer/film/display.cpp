@@ -14,9 +14,13 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/file_names.h"
+#include "core/input_files.h"
 #include "core/log.h"
 #include "film/display_tag.h"
+#include "film/image_file.h"
 #include "film/image_format.h"
+#include "film/ocio_files.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 
@@ -25,19 +29,22 @@ namespace glint {
 namespace {
 
 // `path`: a config file; empty: $OCIO, else the bundled config; "-": the bundled config.
+// Every file the config reads is checked before any processor reads it (film/ocio_files.h).
 OCIO::ConstConfigRcPtr loadConfig(const std::string& path, std::string& source) {
   try {
     if (!path.empty() && path != "-") {
-      if (!std::filesystem::is_regular_file(path))
-        throw UsageError("OCIO config not found: " + path);
+      checkInputFile(path, kMaxOcioConfigBytes, "OCIO config");
       source = path;
-      return OCIO::Config::CreateFromFile(path.c_str());
+      const auto config = OCIO::Config::CreateFromFile(path.c_str());
+      checkOcioConfigFiles(config, source);
+      return config;
     }
     if (const char* env = std::getenv("OCIO"); env && *env && path.empty()) {
-      if (!std::filesystem::is_regular_file(env))
-        throw UsageError("the OCIO config named by $OCIO was not found: " + std::string(env));
+      checkInputFile(env, kMaxOcioConfigBytes, "$OCIO's config");
       source = std::string("$OCIO = ") + env;
-      return OCIO::Config::CreateFromFile(env);
+      const auto config = OCIO::Config::CreateFromFile(env);
+      checkOcioConfigFiles(config, source);
+      return config;
     }
     source = "bundled (ocio/config.ocio)";
     std::istringstream in(kBundledOcioConfig);

@@ -13,6 +13,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/input_files.h"
 
 namespace glint {
 
@@ -52,6 +53,7 @@ int fixedAttributeSize(const std::string& type) {
 }  // namespace
 
 void checkExrHeaders(const std::string& path) {
+  checkInputFile(path, kAnyFileSize, "image");
   std::ifstream in(path, std::ios::binary);
   std::error_code ec;
   const uint64_t fileSize = std::filesystem::file_size(path, ec);

@@ -4,11 +4,13 @@
 #include <OpenImageIO/imageio.h>
 #include <OpenImageIO/texture.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <list>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <type_traits>
 #include <vector>
 
@@ -51,6 +53,44 @@ OIIO::TextureSystem& textureSystem() {
   return *ts;
 }
 
+// Whether every mip level the file `name` holds reads whole (`proxy`: its bytes, for an image
+// held in memory); else `why` says what failed. OpenImageIO's TIFF reader reports a truncated
+// file's missing strips as errors yet says it succeeded, and the TextureSystem then rendered
+// them black without a word; so the file is read once when opened, in bands of about 16 MB,
+// and any error its reader reports refuses it.
+bool readsWhole(const char* name, OIIO::Filesystem::IOProxy* proxy, std::string& why) {
+  OIIO::ImageSpec config;
+  if (proxy) config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(name, &config);
+  if (!in) {
+    why = OIIO::geterror();
+    return false;
+  }
+  std::vector<float> band;
+  for (int level = 0; in->seek_subimage(0, level); ++level) {
+    const OIIO::ImageSpec spec = in->spec();
+    const size_t row = size_t(std::max(spec.width, 1)) * size_t(std::max(spec.nchannels, 1));
+    const int rows =
+        int(std::clamp<size_t>((size_t{4} << 20) / row, 1, size_t(std::max(spec.height, 1))));
+    band.resize(row * size_t(rows));
+    for (int z = spec.z; z < spec.z + std::max(spec.depth, 1); ++z)
+      for (int y = spec.y; y < spec.y + spec.height; y += rows)
+        if (!in->read_scanlines(0, level, y, std::min(y + rows, spec.y + spec.height), z, 0,
+                                spec.nchannels, OIIO::TypeDesc::FLOAT, band.data()) ||
+            in->has_error()) {
+          why = in->geterror();
+          why = why.empty() ? "OpenImageIO could not read all of its pixels"
+                            : why.substr(0, why.find('\n'));  // one line per failed strip
+          return false;
+        }
+  }
+  if (in->has_error()) {
+    why = in->geterror();
+    return false;
+  }
+  return true;
+}
+
 // A texture's handle and what the caller needs of its header; null with OpenImageIO's message.
 void* openHandle(const char* name, GlintOiioTextureInfo* info, char* error, size_t errorSize) {
   {
@@ -61,6 +101,7 @@ void* openHandle(const char* name, GlintOiioTextureInfo* info, char* error, size
       std::snprintf(error, errorSize, "%s", ts.geterror().c_str());
       return nullptr;
     }
+
     info->width = spec->width;
     info->height = spec->height;
     info->channels = spec->nchannels;
@@ -76,6 +117,10 @@ void* openHandle(const char* name, GlintOiioTextureInfo* info, char* error, size
 extern "C" __attribute__((visibility("default"))) void* glint_oiio_texture_open(
     const char* path, GlintOiioTextureInfo* info, char* error, size_t errorSize) {
   try {
+    if (std::string why; !readsWhole(path, nullptr, why)) {
+      std::snprintf(error, errorSize, "%s", why.c_str());
+      return nullptr;
+    }
     return openHandle(path, info, error, errorSize);
   } catch (const std::exception& e) {
     std::snprintf(error, errorSize, "%s", e.what());
@@ -104,6 +149,12 @@ extern "C" __attribute__((visibility("default"))) void* glint_oiio_texture_open_
                      static_cast<const unsigned char*>(bytes) + size);
       h.proxy = std::make_unique<OIIO::Filesystem::IOMemReader>(h.bytes.data(), h.bytes.size());
       proxy = h.proxy.get();
+    }
+    // Checked through a proxy of its own: the cache's keeps its own read position.
+    OIIO::Filesystem::IOMemReader check(bytes, size);
+    if (std::string why; !readsWhole(name, &check, why)) {
+      std::snprintf(error, errorSize, "%s", why.c_str());
+      return nullptr;
     }
     OIIO::ImageSpec config;
     config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);

@@ -98,10 +98,7 @@ std::shared_ptr<const ImageTexture> checkedTexture(const std::string& path, void
 
 std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
                                                      const std::string& colorspace) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw GlintError("texture not found (or not a regular file): " + path);
-  noteInputFile(path);
+  checkInputFile(path, kMaxTextureFileBytes, "texture");
   const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(path);
   GlintOiioTextureInfo info{};
   char error[512] = "";

@@ -2,12 +2,19 @@
 // Image textures read from files by OpenImageIO's TextureSystem (through its module,
 // film/oiio_module.h: only scenes with image textures load it): mip-mapped, cached, filtered
 // over each lookup's footprint, repeating; colours converted to the rendering space by OCIO.
+#include <cstdint>
 #include <memory>
 #include <string>
 
 #include "materials/image_texture.h"
 
 namespace glint {
+
+// The largest texture file read. OpenImageIO reads tiled files a tile at a time and the pixels
+// an image may take are bounded apart (film/image_limits.h); this bound is on the file, so that
+// no file of any size is taken on trust: a 16k x 16k RGBA float texture with its mip levels,
+// uncompressed, is 5.4 GB.
+inline constexpr uint64_t kMaxTextureFileBytes = uint64_t{8} << 30;
 
 // The colour space a file's texels are taken to be in when the scene does not say:
 // half or float texels (EXR, HDR) are scene-linear already; integer texels (PNG, JPEG, 8- and

@@ -10,7 +10,9 @@
 
 #include "core/error.h"
 #include "core/file_names.h"
+#include "core/input_files.h"
 #include "io/gltf_subset.h"
+#include "io/mesh_limits.h"
 
 namespace glint {
 
@@ -253,9 +255,13 @@ class Reader {
 }  // namespace
 
 GltfSceneInfo readGltfSceneInfo(const std::string& path) {
+  // The same check as every mesh file's: a FIFO named .gltf blocked here, /dev/zero was read
+  // until memory ran out.
+  checkInputFile(path, kMaxMeshFileBytes, "glTF file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw UsageError("cannot open glTF file " + path + ": " + std::strerror(errno));
   const std::string bytes((std::istreambuf_iterator<char>(in)), {});
+  if (in.bad()) throw GlintError("cannot read glTF file " + path);
   // The same checks as the mesh reader's (nesting depth, glTF 2, strict JSON), on the same text.
   const std::string text = lowerExtension(path) == ".glb" ? glbJsonChunk(path, bytes) : bytes;
   gltfSubset(path, text);

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "core/error.h"
+#include "core/input_files.h"
 #include "core/log.h"
 #include "io/gltf_texture_transform.h"
 
@@ -171,6 +172,14 @@ std::string gltfSubset(const std::string& path, const std::string& text,
       throw UsageError("mesh " + path + ": its \"" + key +
                        "\" is an object keyed by name, as in glTF 1.0, which is not supported; "
                        "Glint reads glTF 2.0");
+  // Assimp opens a URI as a C string: "b.bin\u0000x" would open b.bin behind a name that says
+  // otherwise (core/input_files.h).
+  for (const char* key : {"buffers", "images"})
+    for (size_t i = 0; i < countOf(doc, key); ++i)
+      if (const json& item = doc[key][i];
+          item.is_object() && item.contains("uri") && item["uri"].is_string())
+        checkPathCharacters(item["uri"].get<std::string>(),
+                            "mesh " + path + ": " + key + "[" + std::to_string(i) + "].uri");
   keepOnly(doc,
            {"asset", "scene", "scenes", "nodes", "meshes", "materials", "accessors", "bufferViews",
             "buffers", "textures", "images", "samplers", "extensionsUsed", "extensionsRequired"});

@@ -32,10 +32,10 @@ namespace glint {
 namespace {
 
 // Assimp's file access for one mesh: the files a mesh names (a glTF's buffers, an OBJ's
-// materials) must be regular files, since a device or FIFO (/dev/zero) would never end, and
-// together hold at most kMaxMeshFileBytes. Opens of the mesh file itself (Assimp opens it
-// several times) are not counted; it was measured before the import. A glTF mesh file is served
-// as Glint's subset of it (io/gltf_subset.h).
+// materials) pass checkInputFile (core/input_files.h: regular files only, since a device or FIFO
+// such as /dev/zero would never end) and together hold at most kMaxMeshFileBytes. Opens of the
+// mesh file itself (Assimp opens it several times) are not counted; it was checked before the
+// import. A glTF mesh file is served as Glint's subset of it (io/gltf_subset.h).
 class BoundedFiles : public Assimp::DefaultIOSystem {
  public:
   explicit BoundedFiles(std::string meshPath) : meshPath_(std::move(meshPath)) {}
@@ -43,23 +43,27 @@ class BoundedFiles : public Assimp::DefaultIOSystem {
   // Serves `bytes` whenever Assimp opens the mesh file itself (a glTF reduced to Glint's subset).
   void replaceMeshBytes(std::string bytes) { meshBytes_ = std::move(bytes); }
 
+  // Why the last file refused was refused, for the message of the failed import.
+  const std::string& refusal() const { return refusal_; }
+
   bool Exists(const char* file) const override {
     std::error_code ec;
     return std::filesystem::is_regular_file(file, ec);
   }
 
   Assimp::IOStream* Open(const char* file, const char* mode) override {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(file, ec)) return nullptr;
     const bool isMesh = ComparePaths(file, meshPath_.c_str());
     if (isMesh && meshBytes_)
       return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(meshBytes_->data()),
                                         meshBytes_->size());
-    if (!isMesh) {
-      const uint64_t size = std::filesystem::file_size(file, ec);
-      if (ec || size > kMaxMeshFileBytes - std::min(referencedBytes_, kMaxMeshFileBytes))
-        return nullptr;  // Assimp reports the file it could not open
-      referencedBytes_ += size;
+    try {
+      if (!isMesh)
+        referencedBytes_ +=
+            checkInputFile(file, kMaxMeshFileBytes - std::min(referencedBytes_, kMaxMeshFileBytes),
+                           "mesh " + meshPath_ + "'s file");
+    } catch (const GlintError& e) {
+      refusal_ = e.what();
+      return nullptr;  // Assimp reports the file it could not open
     }
     return DefaultIOSystem::Open(file, mode);
   }
@@ -68,6 +72,7 @@ class BoundedFiles : public Assimp::DefaultIOSystem {
   std::string meshPath_;
   std::optional<std::string> meshBytes_;
   uint64_t referencedBytes_ = 0;
+  std::string refusal_;
 };
 
 // Where several of Assimp's importers claim an extension (.gltf and .glb: glTF 1 and glTF 2),
@@ -142,8 +147,7 @@ TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
 }  // namespace
 
 MeshFile loadMeshFile(const std::string& path, bool readTextures) {
-  if (!std::filesystem::is_regular_file(path)) throw GlintError("mesh file not found: " + path);
-  noteInputFile(path);
+  checkInputFile(path, kMaxMeshFileBytes, "mesh");
   checkMeshFileBeforeImport(path);
   if (lowerExtension(path) == ".ply") return readPlyFile(path);  // Glint's own (io/ply_reader.h)
   Assimp::Importer importer;
@@ -166,7 +170,8 @@ MeshFile loadMeshFile(const std::string& path, bool readTextures) {
   // not exist made them read and write out of bounds.
   const aiScene* s = importer.ReadFile(path, aiProcess_ValidateDataStructure);
   if (!s || !s->mRootNode)
-    throw GlintError("cannot read mesh " + path + ": " + excerpt(importer.GetErrorString()));
+    throw GlintError("cannot read mesh " + path + ": " + excerpt(importer.GetErrorString()) +
+                     (files->refusal().empty() ? "" : " (" + files->refusal() + ")"));
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
     // The importer's own scene, not const: the primitive types its readers declare are replaced
     // by those of the faces. Assimp's triangulation asserts (an abort, in Debian's build) when a

@@ -10,9 +10,11 @@
 
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/input_files.h"
 #include "geometry/triangulate.h"
 #include "io/local_mesh.h"
 #include "io/mesh_io.h"
+#include "io/mesh_limits.h"
 #include "io/scene_builder.h"
 
 namespace glint {
@@ -164,12 +166,9 @@ FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
   const std::filesystem::path rel(fileNode.string());
   const std::filesystem::path full =
       rel.is_absolute() ? rel : std::filesystem::path(b.baseDir) / rel;
-  // A device or pipe (/dev/zero, a FIFO) would never end; only regular files are meshes.
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(full, ec))
-    fileNode.fail(std::filesystem::exists(full, ec) ? "is not a regular file: " + full.string()
-                                                    : "mesh file not found: " + full.string());
   try {
+    // Before anything reads it (the hash below): a device or FIFO would never end.
+    checkInputFile(full.string(), kMaxMeshFileBytes, "mesh file");
     // The file's bytes join the scene hash, so crops rendered after the mesh changed are not
     // merged with ones rendered before.
     std::ifstream in(full, std::ios::binary);

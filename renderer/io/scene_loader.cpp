@@ -157,6 +157,11 @@ std::shared_ptr<const ImageTexture> parseImageFile(SceneBuilder& b, const JsonNo
   const std::string path =
       (rel.is_absolute() ? rel : std::filesystem::path(b.baseDir) / rel).lexically_normal();
   try {
+    checkInputFile(path, kMaxTextureFileBytes, "texture");
+  } catch (const GlintError& e) {
+    file.fail(e.what());
+  }
+  try {
     return b.texture(path, n.has("colorspace") ? n.at("colorspace").string() : "");
   } catch (const GlintError& e) {
     (n.has("colorspace") && dynamic_cast<const UsageError*>(&e) ? n.at("colorspace") : file)
@@ -420,8 +425,7 @@ Scene loadSceneText(const std::string& text, const std::string& fileName,
 }
 
 Scene loadSceneFile(const std::string& path, std::optional<int> frame) {
-  const std::string text =
-      readInputFile(path, kMaxSceneFileBytes, "a JSON scene (large meshes belong in mesh files)");
+  const std::string text = readInputFile(path, kMaxSceneFileBytes, "JSON scene");
   const std::filesystem::path p(path);
   return loadSceneText(text, path, p.parent_path().string(), frame);
 }
