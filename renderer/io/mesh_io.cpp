@@ -22,6 +22,7 @@
 #include "core/input_files.h"
 #include "core/log.h"
 #include "film/texture_file.h"
+#include "io/gltf_indices.h"
 #include "io/gltf_subset.h"
 #include "io/mesh_limits.h"
 #include "io/mesh_materials.h"
@@ -160,6 +161,10 @@ MeshFile loadMeshFile(const std::string& path, bool readTextures) {
     const std::string bytes((std::istreambuf_iterator<char>(in)), {});
     files->replaceMeshBytes(ext == ".gltf" ? gltfSubset(path, bytes, &gltfMaterials)
                                            : glbSubset(path, bytes, &gltfMaterials));
+    if (ext == ".gltf")
+      checkGltfIndices(path, bytes);
+    else
+      checkGltfIndices(path, glbJsonChunk(path, bytes), glbBinaryChunk(bytes));
   }
   checkAnImporterOfTheExtensionReadsIt(importer, path);
   // Positions, the file's vertex normals (smooth shading), its first texture coordinates and

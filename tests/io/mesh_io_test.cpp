@@ -366,5 +366,60 @@ TEST(MeshFile, FilesAMeshNamesMustBeRegularFiles) {
   EXPECT_NE(message.find("buffer.bin"), std::string::npos) << message;
 }
 
+// One triangle in an embedded buffer: 3 float positions, then indices 0, 1 and `third` (uint16).
+std::string triangleWithIndices(const char* base64) {
+  return std::string(R"({"asset": {"version": "2.0"}, "scene": 0,
+    "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "buffers": [{"uri": "data:application/octet-stream;base64,)") +
+         base64 + R"(", "byteLength": 44}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                   "min": [0, 0, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
+}
+
+TEST(MeshFile, AGltfIndexPastItsVerticesIsRefusedNotDropped) {
+  // Assimp's glTF 2 reader dropped the triangle without a word (assimp-testmodels'
+  // IndexOutOfRange rendered a triangle short, exit 0). Indices 0, 1, 3 of 3 vertices: the
+  // third index, indices[2], names vertex 3.
+  const std::string message = test::meshLoadError(
+      "index-past.gltf",
+      triangleWithIndices("AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAMAAAA="));
+  EXPECT_NE(message.find("index-past.gltf: meshes[0].primitives[0]: indices[2] = 3, but its "
+                         "POSITION has 3 vertices"),
+            std::string::npos)
+      << message;
+  // Indices 0, 1, 2 of the same buffer: the one triangle loads.
+  const MeshFile ok = loadMeshFile(test::writeTemp(
+      "index-in-range.gltf",
+      triangleWithIndices("AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA=")));
+  size_t triangles = 0;
+  for (const TriangleMesh& part : ok.parts) triangles += part.indices.size() / 3;
+  EXPECT_EQ(triangles, 1u);
+  // Assimp's own test file, where installed: 255 in a mesh of 24 vertices.
+  const std::string model = "/usr/share/assimp/models/glTF2/IndexOutOfRange/IndexOutOfRange.gltf";
+  if (!std::filesystem::exists(model)) return;
+  try {
+    loadMeshFile(model);
+    ADD_FAILURE() << model << " loaded";
+  } catch (const GlintError& e) {
+    EXPECT_NE(std::string(e.what()).find("meshes[0].primitives[0]: indices[0] = 255, but its "
+                                         "POSITION has 24 vertices"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(MeshFile, AGltfUriWithAControlCharacterIsRefused) {
+  // "buffer.bin\u0000.png" would open buffer.bin: the name is refused whatever follows it.
+  const std::string message = test::meshLoadError("uri-nul.gltf", R"({"asset": {"version": "2.0"},
+    "buffers": [{"uri": "buffer.bin\u0000.png", "byteLength": 36}]})");
+  EXPECT_NE(message.find("buffers[0].uri \"buffer.bin\\x00.png\": a file name may not hold "
+                         "control characters"),
+            std::string::npos)
+      << message;
+}
+
 }  // namespace
 }  // namespace glint

@@ -1,0 +1,172 @@
+#include "io/gltf_indices.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+
+#include "core/error.h"
+#include "core/input_files.h"
+#include "io/mesh_limits.h"
+
+namespace glint {
+
+namespace {
+
+using nlohmann::json;
+
+uint32_t u32At(const std::string& bytes, size_t at) {
+  uint32_t v = 0;
+  std::memcpy(&v, bytes.data() + at, 4);
+  return v;
+}
+
+std::optional<uint64_t> unsignedOf(const json& object, const char* key, uint64_t otherwise) {
+  const auto it = object.find(key);
+  if (it == object.end()) return otherwise;
+  if (!it->is_number_unsigned()) return std::nullopt;
+  return it->get<uint64_t>();
+}
+
+std::optional<std::string> base64Decode(const std::string& text) {
+  static const std::string alphabet =
+      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  uint32_t bits = 0;
+  int count = 0;
+  for (const char c : text) {
+    if (c == '=') break;
+    const size_t v = alphabet.find(c);
+    if (v == std::string::npos) return std::nullopt;
+    bits = (bits << 6) | uint32_t(v);
+    if ((count += 6) >= 8) {
+      count -= 8;
+      out += char((bits >> count) & 0xff);
+    }
+  }
+  return out;
+}
+
+// The bytes of the file's buffers, read once each as they are asked for; null when a buffer
+// cannot be located (Assimp then says why, or finds the file its own way).
+class Buffers {
+ public:
+  Buffers(const std::string& path, const json& doc, const std::string& glbBinary)
+      : dir_(std::filesystem::path(path).parent_path()), doc_(doc), glbBinary_(glbBinary) {}
+
+  const std::string* get(uint64_t index) {
+    if (const auto it = read_.find(index); it != read_.end())
+      return it->second ? &*it->second : nullptr;
+    std::optional<std::string>& slot = read_[index];
+    const auto buffers = doc_.find("buffers");
+    if (buffers == doc_.end() || !buffers->is_array() || index >= buffers->size()) return nullptr;
+    const json& buffer = (*buffers)[index];
+    if (!buffer.is_object()) return nullptr;
+    const auto uri = buffer.find("uri");
+    if (uri == buffer.end()) {
+      if (index == 0 && !glbBinary_.empty()) slot = glbBinary_;
+      return slot ? &*slot : nullptr;
+    }
+    if (!uri->is_string()) return nullptr;
+    const std::string name = uri->get<std::string>();
+    if (name.rfind("data:", 0) == 0) {
+      const size_t comma = name.find(',');
+      if (comma == std::string::npos || name.rfind(";base64", comma) == std::string::npos)
+        return nullptr;
+      slot = base64Decode(name.substr(comma + 1));
+      return slot ? &*slot : nullptr;
+    }
+    std::filesystem::path file(name);
+    if (file.is_relative()) file = dir_ / file;
+    std::error_code ec;
+    if (!std::filesystem::exists(file, ec)) return nullptr;
+    checkInputFile(file.string(), kMaxMeshFileBytes, "glTF buffer");
+    std::ifstream in(file, std::ios::binary);
+    slot = std::string(std::istreambuf_iterator<char>(in), {});
+    return &*slot;
+  }
+
+ private:
+  std::filesystem::path dir_;
+  const json& doc_;
+  const std::string& glbBinary_;
+  std::map<uint64_t, std::optional<std::string>> read_;
+};
+
+const json* element(const json& doc, const char* key, const json& index) {
+  const auto list = doc.find(key);
+  if (list == doc.end() || !list->is_array() || !index.is_number_unsigned() ||
+      index.get<uint64_t>() >= list->size())
+    return nullptr;
+  const json& e = (*list)[index.get<size_t>()];
+  return e.is_object() ? &e : nullptr;
+}
+
+}  // namespace
+
+std::string glbBinaryChunk(const std::string& bytes) {
+  if (bytes.size() < 20) return "";
+  const uint64_t next = 20 + ((uint64_t{u32At(bytes, 12)} + 3) & ~uint64_t{3});
+  if (next + 8 > bytes.size() || u32At(bytes, size_t(next) + 4) != 0x004E4942u) return "";
+  const uint64_t length = u32At(bytes, size_t(next));
+  if (next + 8 + length > bytes.size()) return "";
+  return bytes.substr(size_t(next) + 8, size_t(length));
+}
+
+void checkGltfIndices(const std::string& path, const std::string& gltfJson,
+                      const std::string& glbBinary) {
+  const json doc = json::parse(gltfJson, nullptr, false);
+  if (!doc.is_object()) return;  // gltfSubset has refused it, or will
+  Buffers buffers(path, doc, glbBinary);
+  const auto meshes = doc.find("meshes");
+  if (meshes == doc.end() || !meshes->is_array()) return;
+  for (size_t m = 0; m < meshes->size(); ++m) {
+    const json& mesh = (*meshes)[m];
+    const auto primitives = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+    if (primitives == mesh.end() || !primitives->is_array()) continue;
+    for (size_t p = 0; p < primitives->size(); ++p) {
+      const json& primitive = (*primitives)[p];
+      // Only triangles reach Assimp (io/gltf_subset.h): mode 4, the default, 5 and 6.
+      const auto mode = primitive.is_object() ? unsignedOf(primitive, "mode", 4) : std::nullopt;
+      if (!mode || *mode < 4 || *mode > 6 || !primitive.contains("indices") ||
+          !primitive.contains("attributes") || !primitive["attributes"].is_object() ||
+          !primitive["attributes"].contains("POSITION"))
+        continue;
+      const json* positions = element(doc, "accessors", primitive["attributes"]["POSITION"]);
+      const json* indices = element(doc, "accessors", primitive["indices"]);
+      if (!positions || !indices || indices->contains("sparse") || !indices->contains("bufferView"))
+        continue;
+      const auto vertices = unsignedOf(*positions, "count", 0);
+      const auto count = unsignedOf(*indices, "count", 0);
+      const auto type = unsignedOf(*indices, "componentType", 0);
+      const auto offset = unsignedOf(*indices, "byteOffset", 0);
+      const json* view = element(doc, "bufferViews", (*indices)["bufferView"]);
+      if (!vertices || !count || !type || !offset || !view) continue;
+      const uint64_t size = *type == 5121 ? 1 : *type == 5123 ? 2 : *type == 5125 ? 4 : 0;
+      const auto viewOffset = unsignedOf(*view, "byteOffset", 0);
+      const auto viewLength = unsignedOf(*view, "byteLength", 0);
+      if (size == 0 || !viewOffset || !viewLength || !view->contains("buffer")) continue;
+      if (*count > *viewLength / size || *offset > *viewLength - *count * size) continue;
+      const auto buffer = unsignedOf(*view, "buffer", 0);
+      const std::string* bytes = buffer ? buffers.get(*buffer) : nullptr;
+      if (!bytes || *viewOffset > bytes->size() || *viewLength > bytes->size() - *viewOffset)
+        continue;  // Assimp reports a view past its buffer
+      const char* first = bytes->data() + *viewOffset + *offset;
+      for (uint64_t i = 0; i < *count; ++i) {
+        uint32_t index = 0;
+        std::memcpy(&index, first + i * size, size_t(size));  // little-endian, as glTF stores it
+        if (index >= *vertices)
+          throw GlintError("mesh " + path + ": meshes[" + std::to_string(m) + "].primitives[" +
+                           std::to_string(p) + "]: indices[" + std::to_string(i) +
+                           "] = " + std::to_string(index) + ", but its POSITION has " +
+                           std::to_string(*vertices) + " vertices");
+      }
+    }
+  }
+}
+
+}  // namespace glint
