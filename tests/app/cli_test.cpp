@@ -1,9 +1,12 @@
 // The command line contract of CLI.md: exit codes, messages, atomic output, determinism.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <OpenImageIO/imageio.h>
 #include <glint_version.h>
 #include <nlohmann/json.hpp>
+
+#include <fstream>
 
 #include "film/exr_output.h"
 #include "test_util.h"
@@ -144,13 +147,58 @@ TEST(Cli, OutOfRangeNumbersAreRefusedNotWrapped) {
 }
 
 TEST(Cli, AnEndlessSceneFileIsRefusedAtItsSizeLimit) {
-  // /dev/zero never ends: read whole, it took all memory. Read up to kMaxSceneFileBytes
-  // (128 MiB), then refused as a usage error naming the file and the limit.
+  // /dev/zero never ends: read whole, it took all memory. Only regular files and pipes are read
+  // as JSON scenes, so it is refused before a byte is read; a regular file is measured before
+  // it is read (a sparse 129 MiB file: no byte of it is read), a pipe as it is read.
   const auto r = runGlint("render /dev/zero -o " + (test::tempDir() / "zero.exr").string());
   EXPECT_EQ(r.exitCode, 2) << r.output;
-  EXPECT_NE(r.output.find("/dev/zero is larger than 128 MiB, the limit of a JSON scene"),
+  EXPECT_NE(r.output.find("JSON scene /dev/zero is a character device; it must be a regular "
+                          "file or a pipe"),
             std::string::npos)
       << r.output;
+  const fs::path big = test::tempDir() / "big.json";
+  std::ofstream(big) << "{}";
+  fs::resize_file(big, (uint64_t{129} << 20));
+  const auto sparse =
+      runGlint("render " + big.string() + " -o " + (test::tempDir() / "big.exr").string());
+  EXPECT_EQ(sparse.exitCode, 2) << sparse.output;
+  EXPECT_NE(sparse.output.find("JSON scene " + big.string() +
+                               " is 135266304 bytes; the limit is 128 MiB"),
+            std::string::npos)
+      << sparse.output;
+  fs::remove(big);
+}
+
+TEST(Cli, EverySceneArgumentPassesTheInputFileCheck) {
+  // glTF scene arguments were read without the checks JSON scenes had: a FIFO named f.gltf
+  // blocked for ever, a link to /dev/zero read 2 GB, a sparse 3 GB .gltf read to the memory
+  // cap. Every command that takes a scene refuses each with exit 2, naming the file, before
+  // opening it. `timeout` bounds each run: a check that opened the FIFO would wait for ever.
+  const fs::path dir = test::tempDir() / "hostile-scenes";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  ASSERT_EQ(::mkfifo((dir / "f.gltf").c_str(), 0600), 0);
+  fs::create_symlink("/dev/zero", dir / "z.glb");
+  std::ofstream(dir / "big.gltf") << "{}";
+  fs::resize_file(dir / "big.gltf", uint64_t{3} << 30);
+  ASSERT_EQ(::mkfifo((dir / "f.obj").c_str(), 0600), 0);
+  const std::pair<const char*, const char*> cases[] = {
+      {"f.gltf", "is a FIFO; it must be a regular file"},
+      {"z.glb", "is a character device; it must be a regular file"},
+      {"big.gltf", "is 3221225472 bytes; the limit is 1024 MiB"},
+      {"f.obj", "is a FIFO; it must be a regular file"}};
+  for (const auto& [name, why] : cases)
+    for (const std::string command :
+         {"render --width 4 --height 4 -o " + (dir / "o.exr").string(),
+          std::string("validate --rays 10"),
+          std::string("bench --json ") + (dir / "b.json").string(), std::string("info"),
+          "converge --spp 1 --json " + (dir / "c.json").string()}) {
+      const auto r = runGlint(command + " " + (dir / name).string(), "timeout 20");
+      EXPECT_EQ(r.exitCode, 2) << command << " " << name << ": " << r.output;
+      EXPECT_NE(r.output.find((dir / name).string() + " " + why), std::string::npos)
+          << command << " " << name << ": " << r.output;
+    }
+  fs::remove_all(dir);
 }
 
 TEST(Cli, NoInputReachesAnEmbreeAssertion) {

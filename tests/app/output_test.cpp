@@ -1,7 +1,9 @@
 // Frame output: EXR options and metadata, interrupted renders, crops merged into the frame.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -216,12 +218,15 @@ TEST(Output, AnInterruptedRenderToADisplayImageWritesNone) {
 }
 
 TEST(Output, AnInterruptWhileLoadingEndsAtOnceWithExit130) {
-  // The scene is a FIFO nobody writes to, so loading blocks for ever: SIGTERM there (once
-  // /proc shows the handler installed: SigCgt bit 14 is SIGTERM) must end the process with 130
-  // and say so, not 143 in silence, and write nothing.
+  // The scene is a FIFO whose writer (this test, which holds it open) never writes, so loading
+  // waits for ever: SIGTERM there (once /proc shows the handler installed: SigCgt bit 14 is
+  // SIGTERM) must end the process with 130 and say so, not 143 in silence, and write nothing.
+  // (A FIFO with no writer at all is not waited for: it reads as empty, core/input_files.h.)
   const std::string fifo = tmp("never_written.json");
   fs::remove(fifo);
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  const int writer = ::open(fifo.c_str(), O_RDWR | O_CLOEXEC);  // Linux: opens without a reader
+  ASSERT_GE(writer, 0);
   const std::string out = tmp("never.exr");
   const std::string handlerInstalled =
       "(( 0x$(grep SigCgt /proc/$pid/status | cut -f2) & 0x4000 ))";
@@ -230,6 +235,7 @@ TEST(Output, AnInterruptWhileLoadingEndsAtOnceWithExit130) {
   EXPECT_EQ(run.exitCode, 130) << run.log;
   EXPECT_NE(run.log.find("terminated (SIGTERM)"), std::string::npos) << run.log;
   EXPECT_FALSE(fs::exists(out));
+  ::close(writer);
   fs::remove(fifo);
 }
 

@@ -3,6 +3,8 @@
 // through mirrors as directly.
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/imageio.h>
+
 #include <cmath>
 #include <filesystem>
 
@@ -140,6 +142,35 @@ TEST(Textures, ACorruptTextureIsRefusedWhenTheSceneLoads) {
     "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})");
   EXPECT_NE(error.find("truncated.png"), std::string::npos) << error;
   EXPECT_NE(error.find("cannot read texture"), std::string::npos) << error;
+}
+
+TEST(Textures, ATruncatedTiffIsRefusedNotRenderedBlack) {
+  // A 256² uncompressed TIFF cut at half its bytes: its header and first strips read, its last
+  // strips are missing. OpenImageIO's TIFF reader reports them as errors yet says it succeeded,
+  // and the texture rendered black there, exit 0. Whole, the same file loads.
+  const std::string whole = (test::tempDir() / "whole.tif").string();
+  {
+    OIIO::ImageSpec spec(256, 256, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("compression", "none");
+    std::vector<unsigned char> texels(256 * 256 * 3);
+    for (size_t i = 0; i < texels.size(); ++i) texels[i] = static_cast<unsigned char>(i * 7);
+    auto out = OIIO::ImageOutput::create(whole);
+    ASSERT_TRUE(out && out->open(whole, spec) &&
+                out->write_image(OIIO::TypeDesc::UINT8, texels.data()) && out->close());
+  }
+  const std::string bytes = test::readFile(whole);
+  const std::string cut = test::writeTemp("truncated.tif", bytes.substr(0, bytes.size() / 2));
+  const auto scene = [](const std::string& texture) {
+    return R"({"camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
+      "materials": {"m": {"type": "phong", "kd": {"image": ")" +
+           texture + R"("}}},
+      "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})";
+  };
+  EXPECT_NO_THROW(test::sceneFromText(scene(whole)));
+  const std::string error = test::sceneErrorOf(scene(cut));
+  EXPECT_EQ(error.rfind("scene.json:2: materials.m.kd.image: cannot read texture " + cut + ": ", 0),
+            0u)
+      << error;
 }
 
 // Vertical stripes 4 texels wide on a 256² texture, emitted (k_e) by a 2 × 2 quad: a pixel's

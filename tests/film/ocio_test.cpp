@@ -1,5 +1,7 @@
 // Display images through OpenColorIO and the bundled config (ocio/config.ocio).
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -240,6 +242,72 @@ TEST(Ocio, OiiotoolDevelopsTheSameDisplayImageAsConvert) {
     };
     EXPECT_EQ(pixels(path("glint.png")), pixels(path("oiiotool.png"))) << view;
   }
+}
+
+// The bundled config in `dir` with a look "grade" whose FileTransform reads `lut` (resolved
+// through the config's search path, the config's own folder).
+std::string configWithLook(const std::filesystem::path& dir, const std::string& lut) {
+  std::string text = [] {
+    std::ifstream f(std::string(GLINT_SOURCE_DIR) + "/ocio/config.ocio");
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  }();
+  text.replace(text.find("search_path: \"\""), 15, "search_path: \".\"");
+  text +=
+      "\nlooks:\n  - !<Look>\n    name: grade\n    process_space: lin_rec709\n"
+      "    transform: !<FileTransform> {src: " +
+      lut + ", interpolation: linear}\n";
+  const std::filesystem::path config = dir / "look.ocio";
+  std::ofstream(config) << text;
+  return config.string();
+}
+
+std::string displayRefusal(const DisplaySettings& s) {
+  try {
+    DisplayTransform t(s);
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(Ocio, EveryFileAConfigReadsIsCheckedBeforeOcioOpensIt) {
+  // OCIO reads a look's LUT whole when it builds the processor: a FIFO there waited for a
+  // writer for ever, /dev/zero was read until 2.1 GB. Each is refused first, naming the look
+  // and the file; alarm() ends the test binary if a check ever opens the FIFO.
+  ::alarm(20);
+  const std::filesystem::path dir = test::tempDir() / "ocio-files";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  // A 1D LUT that halves every channel: the look is applied (0.8 → 0.4 through the Raw view,
+  // linear interpolation between the LUT's two points, float rounding only).
+  std::ofstream(dir / "half.cube") << "LUT_1D_SIZE 2\n0 0 0\n0.5 0.5 0.5\n";
+  DisplaySettings s;
+  s.view = "Raw";
+  s.look = "grade";
+  s.configPath = configWithLook(dir, "half.cube");
+  const std::vector<float> graded = through(s, {0.8f, 0.2f, 0.6f});
+  EXPECT_NEAR(graded[0], 0.4f, 1e-6);
+  EXPECT_NEAR(graded[1], 0.1f, 1e-6);
+  EXPECT_NEAR(graded[2], 0.3f, 1e-6);
+  ASSERT_EQ(::mkfifo((dir / "fifo.cube").c_str(), 0600), 0);
+  s.configPath = configWithLook(dir, "fifo.cube");
+  const std::string fifo = displayRefusal(s);
+  EXPECT_NE(fifo.find("look \"grade\": its FileTransform's file " + (dir / "fifo.cube").string() +
+                      " is a FIFO; it must be a regular file"),
+            std::string::npos)
+      << fifo;
+  s.configPath = configWithLook(dir, "/dev/zero");
+  EXPECT_NE(displayRefusal(s).find("/dev/zero is a character device"), std::string::npos);
+  // The whole config is checked, the look unused too: a display without it is refused as well.
+  s.look = "";
+  s.configPath = configWithLook(dir, "fifo.cube");
+  EXPECT_NE(displayRefusal(s).find("is a FIFO"), std::string::npos);
+  // And the config itself.
+  s.configPath = (dir / "fifo.cube").string();
+  EXPECT_EQ(displayRefusal(s),
+            "OCIO config " + s.configPath + " is a FIFO; it must be a regular file");
+  ::alarm(0);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 // crash ends the process with _Exit, past atexit, so each start also removes the directories of
 // fuzzer processes with this prefix that no longer exist.
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -40,6 +41,18 @@ inline std::filesystem::path makePrivateTempDir(std::string_view prefix) {
     fs::remove_all(tempDirPath(), ignored);
   });
   return dir;
+}
+
+// Hostile neighbours for the inputs to name (their names are in the dictionaries): FIFOs, which
+// a reader that opened them would wait on for ever (libFuzzer reports the hang), and links to
+// /dev/zero, which never ends. Every input file check must refuse them unopened.
+inline void addHostileFiles(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  for (const char* ext : {"ply", "obj", "gltf", "glb", "bin", "mtl", "png", "tif"}) {
+    ::mkfifo((dir / (std::string("fifo.") + ext)).c_str(), 0600);
+    fs::create_symlink("/dev/zero", dir / (std::string("zero.") + ext), ec);
+  }
 }
 
 }  // namespace glint::fuzz

@@ -22,6 +22,7 @@ std::filesystem::path gDir;
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   gDir = glint::fuzz::makePrivateTempDir("glint-fuzz-mesh-");
+  glint::fuzz::addHostileFiles(gDir);
   return 0;
 }
 

@@ -81,6 +81,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
   gBaseDir = glint::fuzz::makePrivateTempDir("glint-fuzz-");
   for (const char* mesh : {"square.ply", "triangle.gltf"})
     fs::copy_file(fs::path(GLINT_TEST_DATA) / mesh, gBaseDir / mesh);
+  glint::fuzz::addHostileFiles(gBaseDir);
   return 0;
 }
 
