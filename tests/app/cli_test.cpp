@@ -188,12 +188,13 @@ TEST(Cli, EverySceneArgumentPassesTheInputFileCheck) {
       {"big.gltf", "is 3221225472 bytes; the limit is 1024 MiB"},
       {"f.obj", "is a FIFO; it must be a regular file"}};
   for (const auto& [name, why] : cases)
-    for (const std::string command :
-         {"render --width 4 --height 4 -o " + (dir / "o.exr").string(),
-          std::string("validate --rays 10"),
-          std::string("bench --json ") + (dir / "b.json").string(), std::string("info"),
-          "converge --spp 1 --json " + (dir / "c.json").string()}) {
-      const auto r = runGlint(command + " " + (dir / name).string(), "timeout 20");
+    for (const auto& [command, options] : std::vector<std::pair<std::string, std::string>>{
+             {"render", "--width 4 --height 4 -o " + (dir / "o.exr").string()},
+             {"validate", "--rays 10"},
+             {"bench", "--json " + (dir / "b.json").string()},
+             {"info", ""},
+             {"converge", "--spp 1 --json " + (dir / "c.json").string()}}) {
+      const auto r = runGlint(command + " " + (dir / name).string() + " " + options, "timeout 20");
       EXPECT_EQ(r.exitCode, 2) << command << " " << name << ": " << r.output;
       EXPECT_NE(r.output.find((dir / name).string() + " " + why), std::string::npos)
           << command << " " << name << ": " << r.output;
