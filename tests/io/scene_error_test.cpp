@@ -237,14 +237,14 @@ TEST(SceneError, AFilePathWithANulByteIsRefusedAtItsKey) {
   // PLY readers were reached behind an OBJ name (the issue's fixed PLY hangs came back so). The
   // file before the NUL exists, so only the name can refuse it; textures likewise.
   const std::string dir = std::string(GLINT_TEST_DATA) + "/";
-  EXPECT_EQ(test::sceneErrorOf(std::string(kHead) + "\"objects\": [{\"type\": \"mesh\", \"file\": \"" +
-                               dir + "square.ply\\u0000.obj\", \"material\": \"red\"}]}"),
-            "scene.json:4: objects[0].file: mesh file \"" + dir +
-                "square.ply\\x00.obj\": a file name may not hold control characters; this one "
-                "has \\x00 (NUL) at byte " +
-                std::to_string(dir.size() + 10));
-  const std::string texture =
-      test::sceneErrorOf(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+  EXPECT_EQ(
+      test::sceneErrorOf(std::string(kHead) + "\"objects\": [{\"type\": \"mesh\", \"file\": \"" +
+                         dir + "square.ply\\u0000.obj\", \"material\": \"red\"}]}"),
+      "scene.json:4: objects[0].file: mesh file \"" + dir +
+          "square.ply\\x00.obj\": a file name may not hold control characters; this one "
+          "has \\x00 (NUL) at byte " +
+          std::to_string(dir.size() + 10));
+  const std::string texture = test::sceneErrorOf(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
     "materials": {"m": {"type": "phong", "kd": {"image": "a.png\u0000.exr"}}}, "objects": []})");
   EXPECT_NE(texture.find("scene.json:2: materials.m.kd.image: texture \""), std::string::npos)
       << texture;
