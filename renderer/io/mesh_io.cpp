@@ -57,14 +57,20 @@ class BoundedFiles : public Assimp::DefaultIOSystem {
     if (isMesh && meshBytes_)
       return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(meshBytes_->data()),
                                         meshBytes_->size());
+    std::error_code ec;
+    if (!isMesh && !std::filesystem::exists(file, ec))
+      return nullptr;  // Assimp asks for files that may not be there (an OBJ's default .mtl)
     try {
       if (!isMesh)
         referencedBytes_ +=
             checkInputFile(file, kMaxMeshFileBytes - std::min(referencedBytes_, kMaxMeshFileBytes),
                            "mesh " + meshPath_ + "'s file");
     } catch (const GlintError& e) {
+      // Assimp fails the import for a buffer it cannot open but goes on without a material
+      // library: said either way.
+      if (refusal_ != e.what()) log::warning(e.what());  // Assimp may ask more than once
       refusal_ = e.what();
-      return nullptr;  // Assimp reports the file it could not open
+      return nullptr;
     }
     return DefaultIOSystem::Open(file, mode);
   }

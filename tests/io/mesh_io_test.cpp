@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstring>
 #include <filesystem>
@@ -419,6 +420,23 @@ TEST(MeshFile, AGltfUriWithAControlCharacterIsRefused) {
                          "control characters"),
             std::string::npos)
       << message;
+}
+
+TEST(MeshFile, AnObjMaterialLibraryThatIsAFifoIsLeftOutUnopened) {
+  // An OBJ naming a FIFO as its material library: Assimp goes on without a library it cannot
+  // open, so the file loads with its geometry (and a warning naming the FIFO). alarm() ends the
+  // binary if the FIFO is ever opened for reading.
+  ::alarm(20);
+  const std::filesystem::path dir = test::tempDir() / "fifo-mtl";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  ASSERT_EQ(::mkfifo((dir / "m.mtl").c_str(), 0600), 0);
+  std::ofstream(dir / "a.obj") << "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+  const MeshFile mesh = loadMeshFile((dir / "a.obj").string());
+  size_t triangles = 0;
+  for (const TriangleMesh& part : mesh.parts) triangles += part.indices.size() / 3;
+  EXPECT_EQ(triangles, 1u);
+  ::alarm(0);
 }
 
 }  // namespace
