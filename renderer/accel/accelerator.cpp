@@ -7,6 +7,7 @@
 #include "accel/octree.h"
 #include "accel/reference_bvh.h"
 #include "accel/uniform_grid.h"
+#include "core/out_of_memory.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -39,7 +40,9 @@ bool parseAccelKind(std::string_view name, AccelKind& out) {
   return false;
 }
 
-std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene) {
+namespace {
+
+std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene) {
   switch (kind) {
     case AccelKind::Embree:
       return std::make_unique<EmbreeAccel>(scene);
@@ -55,6 +58,14 @@ std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene)
       return std::make_unique<KdTree>(scene);
   }
   return nullptr;
+}
+
+}  // namespace
+
+std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene) {
+  return out_of_memory::whileDoing(
+      "building the " + std::string(accelName(kind)) + " acceleration structure",
+      [&] { return build(kind, scene); });
 }
 
 namespace {

@@ -35,7 +35,15 @@ struct DeviceHolder {
   RTCDevice device = nullptr;
   DeviceHolder() {
     device = rtcNewDevice(nullptr);
-    if (!device) throw GlintError("cannot create the Embree device (rtcNewDevice failed)");
+    if (!device) {
+      const RTCError code = rtcGetDeviceError(nullptr);
+      // Embree starts its threads here; without address space for their stacks it fails.
+      if (code == RTC_ERROR_OUT_OF_MEMORY || code == RTC_ERROR_UNKNOWN)
+        throw OutOfMemoryError("out of memory: cannot create the Embree device (Embree error " +
+                               std::to_string(int(code)) + ")");
+      throw GlintError("cannot create the Embree device (rtcNewDevice failed, Embree error " +
+                       std::to_string(int(code)) + ")");
+    }
     rtcSetDeviceErrorFunction(device, onEmbreeError, nullptr);
     rtcSetDeviceMemoryMonitorFunction(device, onEmbreeMemory, nullptr);
   }
@@ -57,6 +65,7 @@ void throwIfEmbreeFailed(const char* what) {
   std::string msg =
       tEmbreeError.empty() ? "Embree error " + std::to_string(int(code)) : tEmbreeError;
   tEmbreeError.clear();
+  if (code == RTC_ERROR_OUT_OF_MEMORY) throw OutOfMemoryError(std::string(what) + ": " + msg);
   throw GlintError(std::string(what) + ": " + msg);
 }
 

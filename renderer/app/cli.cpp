@@ -8,6 +8,7 @@
 #include "app/option_arity.h"
 #include "core/error.h"
 #include "core/log.h"
+#include "core/out_of_memory.h"
 
 namespace glint {
 
@@ -63,10 +64,13 @@ int runCli(int argc, char** argv) {
     log::error(e.what());
     return kExitRuntime;
   } catch (const std::bad_alloc&) {
-    log::error("out of memory");
+    log::error(out_of_memory::message());
     return kExitRuntime;
   } catch (const std::exception& e) {
-    log::error(e.what());
+    if (out_of_memory::isResourceShortage(e))
+      log::error(out_of_memory::message() + " (" + e.what() + ")");
+    else
+      log::error(e.what());
     return kExitRuntime;
   }
   return kExitUsage;

@@ -1,5 +1,6 @@
 #include "app/commands.h"
 #include "core/interrupt.h"
+#include "core/out_of_memory.h"
 
 #include <csignal>
 
@@ -10,6 +11,7 @@ int main(int argc, char** argv) {
   // A reader that goes away (`glint render ... 2>&1 | head -1`) should cost the progress lines
   // it no longer reads (their writes fail with EPIPE), not the frame.
   std::signal(SIGPIPE, SIG_IGN);
-  glint::interrupt::install();  // before anything is loaded: every phase can be interrupted
+  glint::interrupt::install();      // before anything is loaded: every phase can be interrupted
+  glint::out_of_memory::install();  // likewise: running out of memory is exit 1 in every phase
   return glint::interrupt::finish(glint::runCli(argc, argv));
 }

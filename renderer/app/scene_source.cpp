@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/out_of_memory.h"
 #include "io/gltf_scene.h"
 #include "io/scene_formats.h"
 #include "io/scene_loader.h"
@@ -130,7 +131,9 @@ Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame,
                      " has the one camera its \"camera\" gives");
   if (path.empty())
     return loadSceneText(kDefaultSceneJson, "<default scene>", kDefaultSceneDir, frame);
-  return glintScene ? loadSceneFile(path, frame) : meshFileAsScene(path, frame, cameraName);
+  return out_of_memory::whileDoing("reading scene " + path, [&] {
+    return glintScene ? loadSceneFile(path, frame) : meshFileAsScene(path, frame, cameraName);
+  });
 }
 
 }  // namespace glint

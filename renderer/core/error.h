@@ -18,6 +18,15 @@ class UsageError : public GlintError {
   using GlintError::GlintError;
 };
 
+// The process ran out of memory, or a check found that what it is about to allocate will not
+// fit (core/memory.h): a failure of the machine, not of the input, so exit code 1 (CLI.md). The
+// message says what was being done ("out of memory while reading mesh big.obj"). Code that turns
+// an input's GlintError into a scene error or a warning lets this one through.
+class OutOfMemoryError : public GlintError {
+ public:
+  using GlintError::GlintError;
+};
+
 struct FileLoc {
   std::string file;  // as the user named it
   int line = 0;      // 1-based; 0 when unknown

@@ -63,6 +63,10 @@ extern "C" void onSignal(int sig) {
 
 void install() { handleWith(onSignal); }
 
+void removeTemporaryFile() {
+  if (gHasTemporary.load()) ::unlink(gTemporary);
+}
+
 const std::atomic<bool>& requested() { return gRequested; }
 
 int finish(int exitCode) {

@@ -23,6 +23,10 @@ const std::atomic<bool>& requested();
 // itself, as shells expect of an interrupted command.
 int finish(int exitCode);
 
+// Removes the TemporaryFile now registered, if any: for other ways of ending the process at
+// once (core/out_of_memory.h). Async-signal-safe.
+void removeTemporaryFile();
+
 // While one exists, a signal asks the render to stop instead of ending the process.
 class RenderPhase {
  public:

@@ -3,25 +3,47 @@
 #include <sys/resource.h>
 
 #include <cstdio>
-#include <fstream>
-#include <limits>
+
+#include "core/error.h"
 
 namespace glint {
 
-uint64_t availableMemoryBytes() {
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  uint64_t kb = 0;
-  while (meminfo >> key >> kb) {
-    if (key == "MemAvailable:") return kb * 1024;
-    meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+MemoryBudget currentMemoryBudget() { return memoryBudget(readMemoryReadings()); }
+
+uint64_t availableMemoryBytes() { return currentMemoryBudget().bytes; }
+
+std::string describeBudget(const MemoryBudget& budget) {
+  const std::string size = "the " + memorySize(double(budget.bytes));
+  switch (budget.limitedBy) {
+    case MemoryLimit::Available:
+      return size + " of memory available";
+    case MemoryLimit::AddressSpace:
+      return size + " of address space that the limit (ulimit -v, RLIMIT_AS) leaves";
+    case MemoryLimit::Cgroup:
+      return size + " that the memory cgroup's limit leaves";
+    case MemoryLimit::Unknown:
+      break;
   }
-  return 0;
+  return "what a process can address";
+}
+
+void checkMemoryFits(double bytes, const std::string& what) {
+  const MemoryBudget budget = currentMemoryBudget();
+  if (budget.limitedBy == MemoryLimit::Unknown || !(bytes > double(budget.bytes))) return;
+  throw OutOfMemoryError("out of memory: " + what + " needs " + memorySize(bytes) + ", more than " +
+                         describeBudget(budget));
 }
 
 std::string gigabytes(double bytes) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.1f GB", bytes * 1e-9);
+  return buf;
+}
+
+std::string memorySize(double bytes) {
+  if (bytes >= 1e9) return gigabytes(bytes);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.0f MB", bytes * 1e-6);
   return buf;
 }
 

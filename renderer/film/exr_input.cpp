@@ -152,7 +152,7 @@ void checkExrHeaders(const std::string& path) {
 namespace {
 
 // Runs `read`, turning OpenEXR's exceptions into a UsageError naming `path` (the file the user
-// named is unusable, as a scene with a mistake is); running out of memory stays what it is.
+// named is unusable, as a scene with a mistake is); running out of memory is OutOfMemoryError.
 template <typename Read>
 auto readingFile(const std::string& path, Read&& read) {
   try {
@@ -160,6 +160,8 @@ auto readingFile(const std::string& path, Read&& read) {
   } catch (const UsageError&) {
     throw;
   } catch (const std::bad_alloc&) {
+    throw OutOfMemoryError("out of memory while reading " + path);
+  } catch (const OutOfMemoryError&) {
     throw;
   } catch (const std::exception& e) {
     throw UsageError("cannot read " + path + ": " + excerpt(e.what()));

@@ -259,6 +259,8 @@ void writeExrStream(const std::string& path, const std::string& tmpPath,
   try {
     Imf::StdOFStream stream(out, tmpPath.c_str());
     write(stream);  // OpenEXR's file object is gone when this returns: every byte is handed over
+  } catch (const std::bad_alloc&) {
+    throw OutOfMemoryError("out of memory while writing " + path);
   } catch (const std::exception& e) {
     throw GlintError("cannot write " + path + ": " + e.what());
   }

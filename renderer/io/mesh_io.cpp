@@ -16,11 +16,13 @@
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <string_view>
 
 #include "core/error.h"
 #include "core/file_names.h"
 #include "core/input_files.h"
 #include "core/log.h"
+#include "core/out_of_memory.h"
 #include "film/texture_file.h"
 #include "io/gltf_indices.h"
 #include "io/gltf_subset.h"
@@ -128,6 +130,8 @@ TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
         slot = openImageTextureInMemory(
             meshPath + "#" + name + "." + (hint.empty() ? std::string("png") : hint),
             std::string(reinterpret_cast<const char*>(t->pcData), t->mWidth));
+      } catch (const OutOfMemoryError&) {
+        throw;  // not a texture to leave out: the rest would not fit either
       } catch (const GlintError& e) {
         log::warning("mesh " + meshPath + ": embedded texture " + inQuotes(excerpt(named)) +
                      " left out: " + e.what());
@@ -144,6 +148,8 @@ TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
     }
     try {
       slot = openImageTexture(file.lexically_normal().string());
+    } catch (const OutOfMemoryError&) {
+      throw;
     } catch (const GlintError& e) {
       log::warning("mesh " + meshPath + ": texture left out: " + e.what());
     }
@@ -151,9 +157,7 @@ TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
   };
 }
 
-}  // namespace
-
-MeshFile loadMeshFile(const std::string& path, bool readTextures) {
+MeshFile readMeshFile(const std::string& path, bool readTextures) {
   checkInputFile(path, kMaxMeshFileBytes, "mesh");
   checkMeshFileBeforeImport(path);
   if (lowerExtension(path) == ".ply") return readPlyFile(path);  // Glint's own (io/ply_reader.h)
@@ -180,6 +184,10 @@ MeshFile loadMeshFile(const std::string& path, bool readTextures) {
   // vertices through the faces before any check of ours, and a face naming a vertex that does
   // not exist made them read and write out of bounds.
   const aiScene* s = importer.ReadFile(path, aiProcess_ValidateDataStructure);
+  // Assimp catches every exception of its readers and keeps only its text: a failed allocation
+  // is the machine's failure (exit 1, named by loadMeshFile), not the file's.
+  if (!s && std::string_view(importer.GetErrorString()) == std::bad_alloc().what())
+    throw std::bad_alloc();
   if (!s || !s->mRootNode)
     throw GlintError("cannot read mesh " + path + ": " + excerpt(importer.GetErrorString()) +
                      (files->refusal().empty() ? "" : " (" + files->refusal() + ")"));
@@ -304,6 +312,13 @@ MeshFile loadMeshFile(const std::string& path, bool readTextures) {
     multiplyDiffuseByVertexColors(file.materials[i].surface);
   }
   return file;
+}
+
+}  // namespace
+
+MeshFile loadMeshFile(const std::string& path, bool readTextures) {
+  return out_of_memory::whileDoing("reading mesh " + path,
+                                   [&] { return readMeshFile(path, readTextures); });
 }
 
 }  // namespace glint

@@ -188,6 +188,8 @@ FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
     hashTextureFiles(b, loaded.materials);
     out.materials = std::move(loaded.materials);
     return out;
+  } catch (const OutOfMemoryError&) {
+    throw;  // the machine's failure, not the file's
   } catch (const GlintError& e) {
     fileNode.fail(e.what());
   }

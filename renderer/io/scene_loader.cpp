@@ -6,6 +6,7 @@
 #include "core/hash.h"
 #include "core/input_files.h"
 #include "core/log.h"
+#include "core/memory.h"
 #include "core/sampler.h"
 #include "film/texture_file.h"
 #include "io/animation.h"
@@ -163,6 +164,8 @@ std::shared_ptr<const ImageTexture> parseImageFile(SceneBuilder& b, const JsonNo
   }
   try {
     return b.texture(path, n.has("colorspace") ? n.at("colorspace").string() : "");
+  } catch (const OutOfMemoryError&) {
+    throw;  // the machine's failure, not the file's
   } catch (const GlintError& e) {
     (n.has("colorspace") && dynamic_cast<const UsageError*>(&e) ? n.at("colorspace") : file)
         .fail(e.what());
@@ -415,6 +418,8 @@ void parseScene(SceneBuilder& b, const JsonNode& root, std::optional<int> frame)
 
 Scene loadSceneText(const std::string& text, const std::string& fileName,
                     const std::string& baseDir, std::optional<int> frame) {
+  checkMemoryFits(kSceneBytesPerTextByte * double(text.size()),
+                  "parsing scene " + fileName + " (" + std::to_string(text.size()) + " bytes)");
   const JsonDocument doc(text, fileName);
   SceneBuilder b;
   b.baseDir = baseDir;
