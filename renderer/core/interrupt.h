@@ -3,8 +3,9 @@
 // phase, with exit 130 (CLI.md). Outside a render they end the process at once from the handler,
 // after removing the temporary file being written, if any: nothing was rendered that a partial
 // frame could keep. While a render runs (RenderPhase) they only raise the flag the render loop
-// polls between chunks of camera samples, so the frame rendered so far is still written. A
-// second signal always ends the process at once.
+// polls between chunks of camera samples, so the frame rendered so far is still written; a
+// watchdog (Sampling) ends the process if the loop does not stop in time. A second signal
+// always ends the process at once.
 #include <atomic>
 #include <string>
 
@@ -34,6 +35,20 @@ class RenderPhase {
   ~RenderPhase();
   RenderPhase(const RenderPhase&) = delete;
   RenderPhase& operator=(const RenderPhase&) = delete;
+};
+
+// While one exists (around the render loop), a signal that asks the render to stop must be
+// seen within a bound (kStopSeconds): a render thread waiting inside a library (OpenImageIO's
+// cache waiting for a tile that a failed read will never deliver) never polls the flag. Past
+// the bound the process ends with 130, as while loading, without writing the frame.
+inline constexpr unsigned kStopSeconds = 10;
+void setStopBound(unsigned seconds);  // for tests: a shorter bound
+class Sampling {
+ public:
+  Sampling();
+  ~Sampling();
+  Sampling(const Sampling&) = delete;
+  Sampling& operator=(const Sampling&) = delete;
 };
 
 // While one exists, a signal that ends the process removes `path` first (a temporary file

@@ -19,6 +19,7 @@
 #include "camera/camera.h"
 #include "core/check.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/log.h"
 #include "core/memory.h"
 #include "core/sampler.h"
@@ -421,6 +422,8 @@ RenderResult renderScene(const Scene& scene, const Accelerator& accel, const Ren
     return std::chrono::duration<double>(Clock::now() - t).count();
   };
   const RenderSettings& rs = scene.render;
+  // A stop asked for by a signal must be seen in bounded time, whatever the threads wait on.
+  const interrupt::Sampling boundedStop;
   const PassPlan plan = PassPlan::make(rs.spp, rs.sampler, opt.sampling);
   checkSampleSets(scene, plan.maxSpp);
   const PixelWindow window = opt.crop.value_or(PixelWindow{0, rs.width, 0, rs.height});
