@@ -23,6 +23,7 @@ struct TextureFunctions {
   GlintOiioTextureOpen open = nullptr;
   GlintOiioTextureOpenMemory openMemory = nullptr;
   GlintOiioTextureLookup lookup = nullptr;
+  GlintOiioTextureLoad load = nullptr;
 };
 const TextureFunctions& textureFunctions(const std::string& path);
 

@@ -14,6 +14,7 @@ using GlintOiioWriteImage = int (*)(const char* formatPath, const char* path, in
 struct GlintOiioTextureInfo {
   int width, height, channels;
   int isFloat;          // half or float texels (scene-linear by convention)
+  int bytesPerChannel;  // of the file's texels: 1 (8-bit), 2 (16-bit, half), 4 (float)
   char colorspace[64];  // the file's oiio:ColorSpace, or empty
 };
 // Opens `path` as a texture and fills `info`; returns its handle, or null with a message.
@@ -24,6 +25,10 @@ using GlintOiioTextureOpen = void* (*)(const char* path, GlintOiioTextureInfo* i
 using GlintOiioTextureOpenMemory = void* (*)(const char* name, const void* bytes, size_t size,
                                              GlintOiioTextureInfo* info, char* error,
                                              size_t errorSize);
+// Reads the texels of an opened texture (one lookup at its centre, which reads the file and
+// builds its MIP levels): returns 0, or nonzero with OpenImageIO's message when it reported any
+// error while reading (a failed read must stop the load, not render black or wait for ever).
+using GlintOiioTextureLoad = int (*)(void* handle, int channels, char* error, size_t errorSize);
 // Filtered lookup of `channels` channels from `firstChannel` at st[0], st[1] over the footprint
 // axes (dsdx, dtdx, dsdy, dtdy), repeating outside [0, 1]; returns 0 on success.
 using GlintOiioTextureLookup = int (*)(void* handle, const float* st, const float* axes,
@@ -35,3 +40,4 @@ inline constexpr const char* kGlintOiioWriteImageSymbol = "glint_oiio_write_imag
 inline constexpr const char* kGlintOiioTextureOpenSymbol = "glint_oiio_texture_open";
 inline constexpr const char* kGlintOiioTextureOpenMemorySymbol = "glint_oiio_texture_open_memory";
 inline constexpr const char* kGlintOiioTextureLookupSymbol = "glint_oiio_texture_lookup";
+inline constexpr const char* kGlintOiioTextureLoadSymbol = "glint_oiio_texture_load";

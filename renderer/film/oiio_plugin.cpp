@@ -106,6 +106,7 @@ void* openHandle(const char* name, GlintOiioTextureInfo* info, char* error, size
     info->height = spec->height;
     info->channels = spec->nchannels;
     info->isFloat = spec->format.is_floating_point();
+    info->bytesPerChannel = int(spec->format.size());
     std::snprintf(info->colorspace, sizeof info->colorspace, "%s",
                   spec->get_string_attribute("oiio:ColorSpace").c_str());
     return handle;
@@ -181,3 +182,24 @@ extern "C" __attribute__((visibility("default"))) int glint_oiio_texture_lookup(
              : 1;
 }
 static_assert(std::is_same_v<decltype(&glint_oiio_texture_lookup), GlintOiioTextureLookup>);
+
+extern "C" __attribute__((visibility("default"))) int glint_oiio_texture_load(void* handle,
+                                                                              int channels,
+                                                                              char* error,
+                                                                              size_t errorSize) {
+  try {
+    OIIO::TextureSystem& ts = textureSystem();
+    ts.geterror();  // the messages of earlier textures are theirs
+    float texel[4] = {0, 0, 0, 0};
+    const float st[2] = {0.5f, 0.5f}, axes[4] = {0, 0, 0, 0};
+    const int looked = glint_oiio_texture_lookup(handle, st, axes, 0, std::min(channels, 4), texel);
+    const std::string message = ts.geterror();
+    if (looked == 0 && message.empty()) return 0;
+    std::snprintf(error, errorSize, "%s",
+                  message.empty() ? "OpenImageIO could not read its texels" : message.c_str());
+  } catch (const std::exception& e) {
+    std::snprintf(error, errorSize, "%s", e.what());
+  }
+  return 1;
+}
+static_assert(std::is_same_v<decltype(&glint_oiio_texture_load), GlintOiioTextureLoad>);

@@ -4,6 +4,8 @@
 
 #include "core/error.h"
 #include "core/input_files.h"
+#include "core/memory.h"
+#include "core/out_of_memory.h"
 #include "film/display.h"
 #include "film/image_limits.h"
 #include "film/oiio_module.h"
@@ -11,6 +13,9 @@
 namespace glint {
 
 namespace {
+
+// What reading a texture takes, in multiples of its texels in their own type (above).
+constexpr double kTextureCopies = 3;
 
 class TextureFile final : public ImageTexture {
  public:
@@ -77,27 +82,36 @@ std::shared_ptr<const ImageTexture> checkedTexture(const std::string& path, void
                                                    const oiio_module::TextureFunctions& functions) {
   if (!handle) throw GlintError("cannot read texture " + path + ": " + excerpt(error));
   if (info.channels < 1) throw GlintError("texture " + path + " has no channels");
-  // The TextureSystem reads an untiled file whole and mip-maps it in memory (4/3 of its
-  // float texels).
-  checkImageFits(path, "texture", info.width, info.height, 4.0 / 3 * 4 * info.channels);
+  // Only the header is read so far. The TextureSystem reads an untiled file whole and mip-maps
+  // it in memory: its texels in their own type twice (the file's read and the cache's copy),
+  // the smaller levels and the working space of its threads (docs/hardening.md, "Memory")
+  // come to about three times them. That must fit before
+  // any is read, since OpenImageIO, failing to allocate it, goes on decoding the whole file
+  // again for every tile, for hours.
+  const int bytesPerChannel = std::max(info.bytesPerChannel, 1);
+  checkMemoryFits(
+      kTextureCopies * double(info.width) * double(info.height) * info.channels * bytesPerChannel,
+      "texture " + path + " (" + std::to_string(info.width) + "x" + std::to_string(info.height) +
+          ", " + std::to_string(info.channels) + " channels of " + std::to_string(bytesPerChannel) +
+          (bytesPerChannel == 1 ? " byte" : " bytes") + ", read, cached and MIP-mapped)");
+  // An empty size, or one past what a process can address, where the budget is unknown.
+  checkImageFits(path, "texture", info.width, info.height,
+                 4.0 / 3 * bytesPerChannel * info.channels);
   auto texture = std::make_shared<TextureFile>(
       path, handle, info,
       colorspace.empty() ? defaultTextureColorspace(info.isFloat != 0, info.colorspace)
                          : colorspace,
       functions);
-  // One lookup now reads the file (and builds its mip levels): a truncated or corrupt image is
-  // refused here, with its reason, instead of rendering black.
-  float texel[4];
-  const float st[2] = {0.5f, 0.5f}, axes[4] = {0, 0, 0, 0};
-  if (functions.lookup(handle, st, axes, 0, std::min(info.channels, 4), texel) != 0)
-    throw GlintError("cannot read texture " + path + ": OpenImageIO could not read its texels");
+  // Reading it now (and building its mip levels) refuses a truncated or corrupt image here, with
+  // its reason, instead of rendering black.
+  char loadError[512] = "";
+  if (functions.load(handle, info.channels, loadError, sizeof loadError) != 0)
+    throw GlintError("cannot read texture " + path + ": " + excerpt(loadError));
   return texture;
 }
 
-}  // namespace
-
-std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
-                                                     const std::string& colorspace) {
+std::shared_ptr<const ImageTexture> openTextureFile(const std::string& path,
+                                                    const std::string& colorspace) {
   checkInputFile(path, kMaxTextureFileBytes, "texture");
   const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(path);
   GlintOiioTextureInfo info{};
@@ -106,14 +120,28 @@ std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
   return checkedTexture(path, handle, info, error, colorspace, functions);
 }
 
-std::shared_ptr<const ImageTexture> openImageTextureInMemory(const std::string& name,
-                                                             const std::string& bytes) {
+std::shared_ptr<const ImageTexture> openTextureBytes(const std::string& name,
+                                                     const std::string& bytes) {
   const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(name);
   GlintOiioTextureInfo info{};
   char error[512] = "";
   void* handle =
       functions.openMemory(name.c_str(), bytes.data(), bytes.size(), &info, error, sizeof error);
   return checkedTexture(name, handle, info, error, "", functions);
+}
+
+}  // namespace
+
+std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
+                                                     const std::string& colorspace) {
+  return out_of_memory::whileDoing("reading texture " + path,
+                                   [&] { return openTextureFile(path, colorspace); });
+}
+
+std::shared_ptr<const ImageTexture> openImageTextureInMemory(const std::string& name,
+                                                             const std::string& bytes) {
+  return out_of_memory::whileDoing("reading texture " + name,
+                                   [&] { return openTextureBytes(name, bytes); });
 }
 
 }  // namespace glint
