@@ -50,6 +50,14 @@ void onNewFailure() {
       std::rethrow_exception(e);
     } catch (const std::bad_alloc&) {
       outOfMemory = true;
+    } catch (const OutOfMemoryError& x) {
+      // Being handled when a library gave up: Embree, releasing a scene it could not build for
+      // want of memory, calls std::terminate itself.
+      interrupt::removeTemporaryFile();
+      say("glint: error: ");
+      say(x.what());
+      say("\n");
+      ::_exit(1);
     } catch (const std::exception& x) {
       outOfMemory = isResourceShortage(x);
     } catch (...) {

@@ -6,8 +6,9 @@
 // - install() makes the failures that no catch can reach end the same way: a bad_alloc thrown
 //   through a noexcept function (nlohmann-json's destructor allocates), from a library's own
 //   thread, or out of a destructor while unwinding ends in std::terminate, whose handler then
-//   reports it with the activity under way; and a reserve of address space is given back at the
-//   first failed `new`, so that unwinding has memory to work with.
+//   reports it with the activity under way (as it reports an OutOfMemoryError being handled
+//   when a library calls std::terminate itself); and a reserve of address space is given back at
+//   the first failed `new`, so that unwinding has memory to work with.
 #include <new>
 #include <string>
 #include <system_error>

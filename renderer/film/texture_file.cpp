@@ -1,6 +1,9 @@
 #include "film/texture_file.h"
 
 #include <filesystem>
+#include <new>
+#include <stdexcept>
+#include <string_view>
 
 #include "core/error.h"
 #include "core/input_files.h"
@@ -74,13 +77,24 @@ std::string defaultTextureColorspace(bool floatTexels, const std::string& declar
 
 namespace {
 
+// The module passes exceptions back as their text: a failed allocation or a thread that could
+// not start is the machine's failure (exit 1, named by whileDoing), not a texture to leave out.
+void throwIfOutOfMemory(const char* error) {
+  if (std::string_view(error) == std::bad_alloc().what()) throw std::bad_alloc();
+  if (*error && out_of_memory::isResourceShortage(std::runtime_error(error)))
+    throw std::runtime_error(error);
+}
+
 // The texture behind a handle the module opened (null: it could not, `error` says why), checked
 // and read once.
 std::shared_ptr<const ImageTexture> checkedTexture(const std::string& path, void* handle,
                                                    const GlintOiioTextureInfo& info,
                                                    const char* error, const std::string& colorspace,
                                                    const oiio_module::TextureFunctions& functions) {
-  if (!handle) throw GlintError("cannot read texture " + path + ": " + excerpt(error));
+  if (!handle) {
+    throwIfOutOfMemory(error);
+    throw GlintError("cannot read texture " + path + ": " + excerpt(error));
+  }
   if (info.channels < 1) throw GlintError("texture " + path + " has no channels");
   // Only the header is read so far. The TextureSystem reads an untiled file whole and mip-maps
   // it in memory: its texels in their own type twice (the file's read and the cache's copy),
@@ -105,8 +119,10 @@ std::shared_ptr<const ImageTexture> checkedTexture(const std::string& path, void
   // Reading it now (and building its mip levels) refuses a truncated or corrupt image here, with
   // its reason, instead of rendering black.
   char loadError[512] = "";
-  if (functions.load(handle, info.channels, loadError, sizeof loadError) != 0)
+  if (functions.load(handle, info.channels, loadError, sizeof loadError) != 0) {
+    throwIfOutOfMemory(loadError);
     throw GlintError("cannot read texture " + path + ": " + excerpt(loadError));
+  }
   return texture;
 }
 

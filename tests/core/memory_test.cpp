@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
@@ -208,6 +209,22 @@ TEST(OutOfMemory, ABadAllocThatReachesTerminateIsExit1NamingTheWork) {
   });
   EXPECT_EQ(status, 1) << text;
   EXPECT_EQ(text, "glint: error: out of memory while reading scene big.json\n");
+}
+
+TEST(OutOfMemory, ALibraryThatTerminatesWhileOurOutOfMemoryErrorIsHandledIsExit1) {
+  // Embree, asked to release a scene it could not build for want of memory, calls
+  // std::terminate while the OutOfMemoryError its failure became is being handled.
+  const auto [status, text] = test::inChild([] {
+    out_of_memory::install();
+    try {
+      throw OutOfMemoryError("committing the Embree scene: Embree error 4: out of memory");
+    } catch (...) {
+      std::terminate();
+    }
+    return 0;
+  });
+  EXPECT_EQ(status, 1) << text;
+  EXPECT_EQ(text, "glint: error: committing the Embree scene: Embree error 4: out of memory\n");
 }
 
 }  // namespace
