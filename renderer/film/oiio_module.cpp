@@ -24,10 +24,8 @@ struct Module {
 // libraries' mappings and log4cplus's threads (their stacks and malloc arenas), and memory for
 // the pages it touches. A process that lacks it would fail inside the libraries' constructors:
 // a thread that cannot start aborts, or a failed allocation crashes.
-constexpr uint64_t kModuleAddressSpaceBytes = uint64_t{460} << 20;
-constexpr uint64_t kModuleMemoryBytes = uint64_t{160} << 20;
-
-std::string megabytes(uint64_t bytes) { return std::to_string(bytes >> 20) + " MB"; }
+constexpr uint64_t kModuleAddressSpaceBytes = 480'000'000;
+constexpr uint64_t kModuleMemoryBytes = 160'000'000;
 
 // Why the module cannot be loaded within this process's memory, or empty.
 std::string moduleMemoryShortage() {
@@ -37,15 +35,16 @@ std::string moduleMemoryShortage() {
         *r.addressSpaceLimit > r.addressSpaceUsed ? *r.addressSpaceLimit - r.addressSpaceUsed : 0;
     if (left < kModuleAddressSpaceBytes)
       return "out of memory: loading the image module (OpenImageIO) needs about " +
-             megabytes(kModuleAddressSpaceBytes) +
-             " of address space, the limit (ulimit -v) leaves " + megabytes(left);
+             memorySize(double(kModuleAddressSpaceBytes)) +
+             " of address space, the limit (ulimit -v) leaves " + memorySize(double(left));
   }
   MemoryReadings memoryOnly = r;
   memoryOnly.addressSpaceLimit.reset();
   const MemoryBudget budget = memoryBudget(memoryOnly);
   if (budget.limitedBy != MemoryLimit::Unknown && budget.bytes < kModuleMemoryBytes)
     return "out of memory: loading the image module (OpenImageIO) needs about " +
-           megabytes(kModuleMemoryBytes) + " of memory, more than " + describeBudget(budget);
+           memorySize(double(kModuleMemoryBytes)) + " of memory, more than " +
+           describeBudget(budget);
   return "";
 }
 
