@@ -14,12 +14,13 @@
 
 #include "app/commands.h"
 #include "app/farm_plan.h"
-#include "app/render_output.h"
 #include "app/option_arity.h"
+#include "app/render_output.h"
 #include "app/scene_source.h"
 #include "camera/camera.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/input_files.h"
 #include "core/interrupt.h"
 #include "core/log.h"
 #include "core/memory.h"
@@ -567,6 +568,7 @@ int runRender(const RenderArgs& given) {
   for (const std::string& out : given.outputs) renderOutputFormat(out, exrOnlyFlags(given));
   if (!given.display.empty()) imageOutputFormat("--display", given.display, ImageOutput::Display);
   RenderArgs a = given;
+  if (!a.resume.empty()) allowReplacingInput(a.resume);  // -o may name it (its help)
   if (!a.resume.empty() && drewFromSobol(a.resume)) a.sampling.progressive = true;
   if (a.quiet) log::setLevel(log::Level::Warning);
   checkCropsAndOutputs(a);

@@ -22,6 +22,10 @@ std::set<std::pair<dev_t, ino_t>>& inputs() {
   static std::set<std::pair<dev_t, ino_t>> files;
   return files;
 }
+std::set<std::pair<dev_t, ino_t>>& replaceableInputs() {
+  static std::set<std::pair<dev_t, ino_t>> files;
+  return files;
+}
 
 bool isControl(char c) {
   const auto u = static_cast<unsigned char>(c);
@@ -109,11 +113,19 @@ void noteInputFile(const std::string& path) {
   inputs().insert({st.st_dev, st.st_ino});
 }
 
+void allowReplacingInput(const std::string& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return;
+  const std::lock_guard lock(mutex);
+  replaceableInputs().insert({st.st_dev, st.st_ino});
+}
+
 bool isInputFile(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) return false;
   const std::lock_guard lock(mutex);
-  return inputs().count({st.st_dev, st.st_ino}) != 0;
+  return inputs().count({st.st_dev, st.st_ino}) != 0 &&
+         replaceableInputs().count({st.st_dev, st.st_ino}) == 0;
 }
 
 std::string readInputFile(const std::string& path, size_t maxBytes, const std::string& what) {

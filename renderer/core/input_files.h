@@ -37,6 +37,10 @@ void noteInputFile(const std::string& path);
 // Whether `path` names a file noted above.
 bool isInputFile(const std::string& path);
 
+// Lets an output replace `path`'s file although it is read: the frame --resume continues, read
+// whole before the render and written back under its own name.
+void allowReplacingInput(const std::string& path);
+
 // Reads a whole input file after checkInputFile's checks, and refuses more than `maxBytes`.
 // Pipes and FIFOs are read too (a scene from `<(generator)`), up to `maxBytes`; a FIFO that
 // nobody writes to reads as empty instead of waiting for a writer. Refused: a UsageError naming

@@ -175,7 +175,8 @@ TEST(CommandPromises, UnreadableScenesAndUnwritableDirectoriesAreFoundFirstWithE
   // An input the user may not read is a bad argument, as a missing one is (exit 2).
   const auto r = runGlint("render " + scene + " -o " + (dir / "out.exr").string(), who);
   EXPECT_EQ(r.exitCode, 2) << r.output;
-  EXPECT_TRUE(contains(r.output, "cannot open " + scene + ": Permission denied")) << r.output;
+  EXPECT_TRUE(contains(r.output, "cannot read JSON scene " + scene + ": Permission denied"))
+      << r.output;
   // An output directory no file can be made in is found before the scene is loaded.
   fs::permissions(scene, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
   const std::string out = (dir / "read-only" / "out.exr").string();

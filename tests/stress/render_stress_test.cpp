@@ -203,12 +203,13 @@ TEST(RuntimeNaN, CountedLoggedAndNeverWritten) {
   EXPECT_EQ(r.film.pixel(0, 0)[0], 0.5);
 }
 
-// 19. I/O faults: an unwritable directory (a read-only filesystem) and a full disk (a 1-block
-// file size limit) give a clear error and exit 1, and leave the previous file intact.
+// 19. I/O faults: an unwritable directory (a read-only filesystem) is found before rendering, an
+// output that cannot be used as given (exit 2); a full disk (a 1-block file size limit) only
+// while writing (exit 1). Both leave the previous file intact.
 TEST(IoFaults, UnwritableDirectoryAndFullDisk) {
   const auto r =
       test::runGlint("render --quiet --width 8 --height 8 --spp 1 -o /proc/glint-test.exr");
-  EXPECT_EQ(r.exitCode, 1);
+  EXPECT_EQ(r.exitCode, 2);
   EXPECT_NE(r.output.find("cannot write /proc/glint-test.exr"), std::string::npos) << r.output;
   const std::string target = (test::tempDir() / "keep.exr").string();
   std::ofstream(target) << "old frame";
