@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/file_names.h"
 #include "core/input_files.h"
+#include "io/gltf_expansion.h"
 #include "io/gltf_subset.h"
 #include "io/mesh_limits.h"
 
@@ -20,8 +21,6 @@ namespace {
 
 using nlohmann::json;
 
-// Deeper node trees than this are refused: real files nest a dozen levels.
-constexpr int kMaxNodeDepth = 256;
 
 class Reader {
  public:
@@ -124,8 +123,8 @@ class Reader {
     if (i >= nodes.size())
       fail(where + " does not exist (" + std::to_string(nodes.size()) + " nodes)");
     if (onPath[i]) fail(where + " is its own ancestor (the node tree has a cycle)");
-    if (depth > kMaxNodeDepth)
-      fail("the node tree is deeper than " + std::to_string(kMaxNodeDepth) + " levels");
+    if (depth > kMaxGltfNodeDepth)
+      fail("the node tree is deeper than " + std::to_string(kMaxGltfNodeDepth) + " levels");
     const json& node = nodes[i];
     if (!node.is_object()) fail(where + " is not an object");
     const Affine world = parent * localTransform(node, where);

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/input_files.h"
 #include "core/log.h"
+#include "io/gltf_expansion.h"
 #include "io/gltf_texture_transform.h"
 
 namespace glint {
@@ -180,6 +181,8 @@ std::string gltfSubset(const std::string& path, const std::string& text,
           item.is_object() && item.contains("uri") && item["uri"].is_string())
         checkPathCharacters(item["uri"].get<std::string>(),
                             "mesh " + path + ": " + key + "[" + std::to_string(i) + "].uri");
+  // Before Assimp or Glint's own reader places a node once per path to it.
+  checkGltfExpansion(path, doc);
   keepOnly(doc,
            {"asset", "scene", "scenes", "nodes", "meshes", "materials", "accessors", "bufferViews",
             "buffers", "textures", "images", "samplers", "extensionsUsed", "extensionsRequired"});

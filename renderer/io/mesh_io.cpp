@@ -24,6 +24,7 @@
 #include "core/log.h"
 #include "core/out_of_memory.h"
 #include "film/texture_file.h"
+#include "io/expansion_limits.h"
 #include "io/gltf_indices.h"
 #include "io/gltf_subset.h"
 #include "io/mesh_limits.h"
@@ -157,6 +158,42 @@ TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
   };
 }
 
+// The triangles Assimp's pre-transformation makes of the node tree under `node` (each node's
+// meshes copied for it), and the nodes on the way to where most of them are.
+uint64_t flattenedTriangles(const aiScene& s, const aiNode& node, int depth,
+                            std::vector<std::string>* path) {
+  uint64_t count = 0;
+  for (unsigned i = 0; i < node.mNumMeshes; ++i)
+    if (node.mMeshes[i] < s.mNumMeshes)
+      for (unsigned f = 0; f < s.mMeshes[node.mMeshes[i]]->mNumFaces; ++f)
+        count += s.mMeshes[node.mMeshes[i]]->mFaces[f].mNumIndices == 3;
+  uint64_t most = 0;
+  const aiNode* mostBelow = nullptr;
+  for (unsigned c = 0; c < node.mNumChildren && depth < 1024; ++c) {
+    const uint64_t below = flattenedTriangles(s, *node.mChildren[c], depth + 1, nullptr);
+    count = saturatingAdd(count, below);
+    if (below > most) most = below, mostBelow = node.mChildren[c];
+  }
+  if (path) {
+    path->push_back(inQuotes(excerpt(node.mName.C_Str())));
+    if (mostBelow) flattenedTriangles(s, *mostBelow, depth + 1, path);
+  }
+  return count;
+}
+
+// Refuses a file whose meshes, placed by every node that names them, would take more than
+// kMaxFlattenedTriangles: Assimp's pre-transformation copies a mesh for each node.
+void checkFlattenedTriangles(const std::string& path, const aiScene& s) {
+  const uint64_t triangles = flattenedTriangles(s, *s.mRootNode, 0, nullptr);
+  if (triangles <= kMaxFlattenedTriangles) return;
+  std::vector<std::string> nodes;
+  flattenedTriangles(s, *s.mRootNode, 0, &nodes);
+  throw UsageError("mesh " + path + ": its nodes place " + countText(triangles) +
+                   " triangles (a mesh is copied for each node that places it), more than the " +
+                   std::to_string(kMaxFlattenedTriangles) + " Glint reads from one file; most " +
+                   "come through the nodes " + pathText(nodes));
+}
+
 MeshFile readMeshFile(const std::string& path, bool readTextures) {
   checkInputFile(path, kMaxMeshFileBytes, "mesh");
   checkMeshFileBeforeImport(path);
@@ -234,6 +271,7 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
   s = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_RemoveComponent |
                                    aiProcess_SortByPType);
   if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
+  checkFlattenedTriangles(path, *s);
   s = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices |
                                    aiProcess_PreTransformVertices);
   if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());

@@ -12,6 +12,7 @@
 #include "core/hash.h"
 #include "core/input_files.h"
 #include "geometry/triangulate.h"
+#include "io/expansion_limits.h"
 #include "io/local_mesh.h"
 #include "io/mesh_io.h"
 #include "io/mesh_limits.h"
@@ -345,6 +346,51 @@ void placeGroup(SceneBuilder& b, uint32_t groupId, const Affine& toRender,
   path.pop_back();
 }
 
+// The world-level instances placeGroup creates for group `groupId`, counted from the nesting
+// without placing any, each group's count kept (SceneBuilder::flattenedInstances): linear in
+// the groups and their instances however many paths they have. A cycle or a nesting deeper
+// than kMaxNesting counts what lies before it; placeGroup then refuses the scene for it.
+uint64_t flattenedInstances(SceneBuilder& b, uint32_t groupId, size_t depth) {
+  if (const auto it = b.flattenedInstances.find(groupId); it != b.flattenedInstances.end())
+    return it->second;
+  const auto nested = b.nested.find(groupId);
+  if (nested == b.nested.end()) return 1;
+  if (depth >= kMaxNesting) return 0;
+  b.flattenedInstances[groupId] = 0;  // a cycle back to this group adds nothing
+  uint64_t count = b.scene.groups[groupId].geometries.empty() ? 0 : 1;
+  for (const SceneBuilder::NestedInstance& n : nested->second)
+    count = saturatingAdd(count, flattenedInstances(b, n.groupId, depth + 1));
+  return b.flattenedInstances[groupId] = count;
+}
+
+// Refuses, at `where`, an instance of `groupId` that would take the scene's world-level
+// instances past kMaxFlattenedInstances, naming the groups through which most of them come.
+void checkFlattenedInstances(SceneBuilder& b, uint32_t groupId, const JsonNode& where) {
+  const uint64_t count = flattenedInstances(b, groupId, 0);
+  const uint64_t placed = b.scene.instances.size();
+  if (saturatingAdd(placed, count) <= kMaxFlattenedInstances) return;
+  std::vector<std::string> names;
+  std::vector<uint32_t> seen;
+  for (uint32_t g = groupId;;) {
+    names.push_back(inQuotes(b.scene.groups[g].name));
+    seen.push_back(g);
+    const auto nested = b.nested.find(g);
+    if (nested == b.nested.end()) break;
+    const auto most = std::max_element(
+        nested->second.begin(), nested->second.end(), [&](const auto& x, const auto& y) {
+          return flattenedInstances(b, x.groupId, 0) < flattenedInstances(b, y.groupId, 0);
+        });
+    if (std::find(seen.begin(), seen.end(), most->groupId) != seen.end()) break;
+    g = most->groupId;
+  }
+  where.fail("this instance of group " + inQuotes(b.scene.groups[groupId].name) + " places " +
+             countText(count) + " instances (each instance of a group places every instance it "
+             "holds, so groups that place another twice double at each level)" +
+             (placed ? " after the " + std::to_string(placed) + " already placed" : "") +
+             ", more than the " + std::to_string(kMaxFlattenedInstances) +
+             " a scene may have; most come through " + pathText(names));
+}
+
 // Adds a shape (not an instance) under `xf`; `motion` may hold "center" (spheres) or
 // "positions" (meshes); "transform" motion has been taken care of by the caller.
 void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uint32_t groupId,
@@ -527,6 +573,7 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
       b.nested[groupId].push_back({it->second, place.affine(), obj});
       return;
     }
+    checkFlattenedInstances(b, it->second, obj);
     std::vector<uint32_t> path;
     placeGroup(b, it->second, place.affine(), std::move(transformKeys), objectId,
                motion && motion->has("transform") ? motion->at("transform")

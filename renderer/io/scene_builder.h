@@ -27,6 +27,8 @@ struct SceneBuilder {
     JsonNode where;  // the instance's entry, for errors
   };
   std::map<uint32_t, std::vector<NestedInstance>> nested;
+  // The world-level instances placing each group creates, once counted (io/object_loader.cpp).
+  std::map<uint32_t, uint64_t> flattenedInstances;
   // Image textures by file and colour space: a file several materials use is opened once.
   std::map<std::pair<std::string, std::string>, std::shared_ptr<const ImageTexture>> textures;
 
