@@ -9,6 +9,10 @@
 
 namespace glint {
 
+// The most keys one object may move through in a frame: Embree 3's RTC_MAX_TIME_STEP_COUNT
+// (accel/embree_accel.cpp asserts they agree); an animation resamples each frame's keys to fewer.
+inline constexpr size_t kMaxMotionKeys = 129;
+
 struct Quat {
   float w = 1, x = 0, y = 0, z = 0;
 

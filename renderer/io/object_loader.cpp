@@ -262,10 +262,16 @@ TrsKey parseTrsKey(const JsonNode& n, const Vec3d& origin) {
 // Keys that are all equal describe no motion: they come back as the one key, so the object is
 // built static (no time steps, no time dimension) and renders exactly as if it had no keys —
 // interpolating between equal keys in float would not always return the key itself.
+// `animated`: the scene's animation resamples the keys to each frame's few (io/animation.h), so
+// only a still scene's keys reach Embree as they are, at most kMaxMotionKeys of them.
 template <typename T, typename Parse>
-std::vector<T> parseKeys(const JsonNode& n, Parse parse) {
+std::vector<T> parseKeys(const JsonNode& n, bool animated, Parse parse) {
   if (!n.isArray() || n.size() < 2)
     n.fail("must list at least 2 keys (spread evenly over normalised time [0, 1])");
+  if (!animated && n.size() > kMaxMotionKeys)
+    n.fail("lists " + std::to_string(n.size()) + " keys; an object may move through at most " +
+           std::to_string(kMaxMotionKeys) + " in a frame (Embree's limit, " +
+           "RTC_MAX_TIME_STEP_COUNT; an animation's keys are resampled for each frame)");
   std::vector<T> keys;
   for (const JsonNode& k : n.elements()) keys.push_back(parse(k));
   if (std::all_of(keys.begin(), keys.end(), [&](const T& k) { return k == keys[0]; }))
@@ -384,7 +390,8 @@ void checkFlattenedInstances(SceneBuilder& b, uint32_t groupId, const JsonNode& 
     g = most->groupId;
   }
   where.fail("this instance of group " + inQuotes(b.scene.groups[groupId].name) + " places " +
-             countText(count) + " instances (each instance of a group places every instance it "
+             countText(count) +
+             " instances (each instance of a group places every instance it "
              "holds, so groups that place another twice double at each level)" +
              (placed ? " after the " + std::to_string(placed) + " already placed" : "") +
              ", more than the " + std::to_string(kMaxFlattenedInstances) +
@@ -411,8 +418,8 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     const auto centersPlacedBy = [&](const Placement& p) {
       std::vector<Vec3f> keys;
       if (motion && motion->has("center"))
-        keys =
-            parseKeys<Vec3f>(motion->at("center"), [&](const JsonNode& k) { return p.point(k); });
+        keys = parseKeys<Vec3f>(motion->at("center"), b.scene.animation.has_value(),
+                                [&](const JsonNode& k) { return p.point(k); });
       return keys;
     };
     float scale = 1;
@@ -505,13 +512,14 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
         keys.fail("the file's triangles use " + std::to_string(file.parts.size()) +
                   " materials; position keys need a mesh of one");
       LocalMesh& m = file.parts[0];
-      m.positionKeys = parseKeys<std::vector<Vec3d>>(keys, [&](const JsonNode& k) {
-        std::vector<Vec3d> key = parsePoints(k, 3);
-        if (key.size() != m.positions.size())
-          k.fail("has " + std::to_string(key.size()) + " positions; the mesh has " +
-                 std::to_string(m.positions.size()));
-        return key;
-      });
+      m.positionKeys = parseKeys<std::vector<Vec3d>>(
+          keys, b.scene.animation.has_value(), [&](const JsonNode& k) {
+            std::vector<Vec3d> key = parsePoints(k, 3);
+            if (key.size() != m.positions.size())
+              k.fail("has " + std::to_string(key.size()) + " positions; the mesh has " +
+                     std::to_string(m.positions.size()));
+            return key;
+          });
       m.positions = m.positionKeys[0];
       if (m.positionKeys.size() == 1) m.positionKeys.clear();  // equal keys: no deformation
     }
@@ -544,8 +552,9 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
           .fail(
               "objects inside groups cannot carry transform keys: move the "
               "instance that places the group");
-    transformKeys = parseKeys<TrsKey>(
-        motion->at("transform"), [&](const JsonNode& k) { return parseTrsKey(k, s.worldOrigin); });
+    transformKeys =
+        parseKeys<TrsKey>(motion->at("transform"), s.animation.has_value(),
+                          [&](const JsonNode& k) { return parseTrsKey(k, s.worldOrigin); });
   }
   const Placement place = [&] {
     const Affine local = obj.has("transform") ? parseTransform(obj.at("transform")) : Affine{};
