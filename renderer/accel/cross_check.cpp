@@ -41,6 +41,9 @@ std::string rayProblem(const Ray& r) {
       std::fabs(r.o.z) > kMaxRayOrigin)
     return "the origin lies more than 1e18 from 0 along an axis (Embree's limit)";
   if (!finite(r.d)) return "the direction is not finite";
+  if (std::fabs(r.d.x) > kMaxRayOrigin || std::fabs(r.d.y) > kMaxRayOrigin ||
+      std::fabs(r.d.z) > kMaxRayOrigin)
+    return "the direction has a component past 1e18 (Embree's limit; its length does not matter)";
   if (r.d.x == 0 && r.d.y == 0 && r.d.z == 0) return "the direction is zero";
   if (!(r.tMin >= 0)) return "tmin must be ≥ 0";
   if (!(r.tMax >= r.tMin)) return "tmax must be ≥ tmin";

@@ -64,16 +64,12 @@ class CrossCheck final : public Accelerator {
 std::string formatRay(const Ray& ray);
 bool parseRay(const std::string& text, Ray& ray);
 // Why Embree must not be given `ray` (its debug checks abort the process), or "" if it may:
-// origin and direction finite, direction not zero, 0 ≤ tMin ≤ tMax (tMax may be infinite), time
-// in [0, 1].
+// origin and direction finite and within ±kMaxRayOrigin (core/ray.h), direction not zero,
+// 0 ≤ tMin ≤ tMax (tMax may be infinite), time in [0, 1].
 std::string rayProblem(const Ray& ray);
 std::string formatHit(const Hit& hit);
 
 class Scene;
-// The farthest a ray's origin may lie from 0 along an axis: Embree 3.13 asserts (aborting the
-// process) past about 1.8e18.
-inline constexpr float kMaxRayOrigin = 1e18f;
-
 // Where random rays start: the scene's bounds grown by 10 %, kept within ±1e18, where Embree
 // takes ray origins (beyond 1.8e18 its checks abort; a scene may hold geometry farther out).
 Bounds3f randomRayOrigins(const Scene& scene);

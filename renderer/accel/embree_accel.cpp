@@ -8,12 +8,15 @@
 
 #include "accel/cutout_hits.h"
 #include "core/error.h"
+#include "core/motion.h"
 #include "geometry/shape_lanes.h"
 #include "scene/scene.h"
 
 #include <embree3/rtcore_quaternion.h>
 
 namespace glint {
+
+static_assert(kMaxMotionKeys == RTC_MAX_TIME_STEP_COUNT, "the loader's limit is Embree's");
 
 namespace {
 
@@ -237,7 +240,38 @@ void csgOccluded(const RTCOccludedFunctionNArguments* args) {
 
 }  // namespace
 
-EmbreeAccel::EmbreeAccel(const Scene& scene) : scene_(scene) {
+EmbreeAccel::RayRange embreeRayRange(const Scene& scene) {
+  // Rounding in Embree's own transform of the ray: a few ulps, far inside 1 %.
+  const float limit = 0.99f * kEmbreeMaxRayCoordinate;
+  float growth = 1, shift = 0;  // |inverse · x|∞ ≤ growth · |x|∞ + shift
+  for (const Instance& inst : scene.instances) {
+    if (inst.motion.empty()) {
+      const Mat4& inv = inst.worldFromObject.inverseMatrix();
+      for (int r = 0; r < 3; ++r) {
+        growth =
+            std::max(growth, std::fabs(inv(r, 0)) + std::fabs(inv(r, 1)) + std::fabs(inv(r, 2)));
+        shift = std::max(shift, std::fabs(inv(r, 3)));
+      }
+      continue;
+    }
+    // S⁻¹ R⁻¹ (x − t) at each key: a rotation grows a coordinate by at most √3; scale is
+    // interpolated between keys, so its smallest magnitude at a key bounds it.
+    for (const TrsKey& k : inst.motion) {
+      const float s = std::min({std::fabs(k.scale.x), std::fabs(k.scale.y), std::fabs(k.scale.z)});
+      const float g = std::sqrt(3.0f) / s;
+      const float t = std::max(
+          {std::fabs(k.translation.x), std::fabs(k.translation.y), std::fabs(k.translation.z)});
+      growth = std::max(growth, g);
+      shift = std::max(shift, g * t);
+    }
+  }
+  EmbreeAccel::RayRange range;
+  range.direction = std::isfinite(growth) ? limit / growth : 0;
+  range.origin = std::isfinite(growth) && shift < limit ? (limit - shift) / growth : 0;
+  return range;
+}
+
+EmbreeAccel::EmbreeAccel(const Scene& scene) : scene_(scene), range_(embreeRayRange(scene)) {
   const auto start = std::chrono::steady_clock::now();
   const int64_t bytesBefore = embreeMemoryBytes();
   groupScenes_.assign(scene.groups.size(), nullptr);
@@ -376,14 +410,17 @@ void EmbreeAccel::addGeometries(RTCScene rtcScene, uint32_t groupId) {
 
 namespace {
 
-RTCRay toRtcRay(const Ray& ray) {
+// Every ray Embree is given passes here: one outside `range` becomes an empty segment
+// (tnear 1 > tfar 0), which Embree accepts and which hits nothing and blocks nothing.
+RTCRay toRtcRay(const Ray& ray, const EmbreeAccel::RayRange& range) {
+  if (!range.takes(ray)) return {0, 0, 0, 1, 0, 0, 1, 0, 0, ~0u, 0, 0};
   return {ray.o.x, ray.o.y,  ray.o.z,  ray.tMin, ray.d.x, ray.d.y,
           ray.d.z, ray.time, ray.tMax, ~0u,      0,       0};
 }
 
-RTCRayHit toRtcRayHit(const Ray& ray) {
+RTCRayHit toRtcRayHit(const Ray& ray, const EmbreeAccel::RayRange& range) {
   RTCRayHit rh;
-  rh.ray = toRtcRay(ray);
+  rh.ray = toRtcRay(ray, range);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   return rh;
@@ -400,7 +437,7 @@ Hit fromRtcRayHit(const RTCRayHit& rh) {
 Hit EmbreeAccel::intersect(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh = toRtcRayHit(ray);
+  RTCRayHit rh = toRtcRayHit(ray, range_);
   rtcIntersect1(groupScenes_[0], &context, &rh);
   Hit hit = fromRtcRayHit(rh);
   intersectPlanes(scene_, ray, hit);
@@ -416,7 +453,7 @@ void EmbreeAccel::intersectStream(const Ray* rays, Hit* hits, size_t n, bool coh
   RTCRayHit rh[kChunk];
   for (size_t begin = 0; begin < n; begin += kChunk) {
     const size_t count = std::min(kChunk, n - begin);
-    for (size_t i = 0; i < count; ++i) rh[i] = toRtcRayHit(rays[begin + i]);
+    for (size_t i = 0; i < count; ++i) rh[i] = toRtcRayHit(rays[begin + i], range_);
     rtcIntersect1M(groupScenes_[0], &context, rh, static_cast<unsigned>(count), sizeof(RTCRayHit));
     for (size_t i = 0; i < count; ++i) {
       hits[begin + i] = fromRtcRayHit(rh[i]);
@@ -443,7 +480,7 @@ void EmbreeAccel::occludedCoherent(const Ray* rays, bool* blocked, size_t n) con
       blocked[i] = occludedByPlanes(scene_, rays[i]);
       if (blocked[i]) continue;
       index[m] = static_cast<uint32_t>(i);
-      rh[m++] = toRtcRayHit(rays[i]);
+      rh[m++] = toRtcRayHit(rays[i], range_);
     }
     if (m == 0) continue;
     rtcIntersect1M(groupScenes_[0], &context, rh, m, sizeof(RTCRayHit));
@@ -456,7 +493,7 @@ bool EmbreeAccel::occluded(const Ray& ray) const {
   if (occludedByPlanes(scene_, ray)) return true;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay r = toRtcRay(ray);
+  RTCRay r = toRtcRay(ray, range_);
   rtcOccluded1(groupScenes_[0], &context, &r);
   return r.tfar < 0;
 }

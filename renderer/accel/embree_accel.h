@@ -5,6 +5,7 @@
 // material has an opacity cut-out pass over hits in its holes (filter functions for triangles).
 #include <embree3/rtcore.h>
 
+#include <cmath>
 #include <vector>
 
 #include "accel/accelerator.h"
@@ -42,6 +43,21 @@ class EmbreeAccel final : public Accelerator {
 
   struct UserShape;  // what a user-geometry or cut-out filter callback needs, owned here
 
+  // The rays Embree is given: each coordinate of the origin and direction within these, in the
+  // world and, carried by the scene's instances, in every instance's space (core/ray.h says
+  // what Embree asserts). A ray outside them is not traced by Embree (it misses what Embree
+  // holds); the loaders keep every ray a scene makes inside them.
+  struct RayRange {
+    float origin = kEmbreeMaxRayCoordinate, direction = kEmbreeMaxRayCoordinate;
+    bool takes(const Ray& r) const {
+      return std::fabs(r.o.x) <= origin && std::fabs(r.o.y) <= origin &&
+             std::fabs(r.o.z) <= origin && std::fabs(r.d.x) <= direction &&
+             std::fabs(r.d.y) <= direction && std::fabs(r.d.z) <= direction && r.tMin >= 0 &&
+             r.tMax <= kInfinity && r.time >= 0 && r.time <= 1;
+    }
+  };
+  const RayRange& rayRange() const { return range_; }
+
  private:
   RTCScene buildGroup(uint32_t groupId);
   void addGeometries(RTCScene rtcScene, uint32_t groupId);
@@ -51,6 +67,12 @@ class EmbreeAccel final : public Accelerator {
   std::vector<std::unique_ptr<UserShape>> userShapes_;
   double buildSeconds_ = 0;
   int64_t bytes_ = 0;
+  RayRange range_;
 };
+
+// The range of rays Embree accepts for `scene`: kEmbreeMaxRayCoordinate with a margin for
+// rounding, divided by the most any instance's inverse transform (at any key) can grow a
+// coordinate, less what its translation adds.
+EmbreeAccel::RayRange embreeRayRange(const Scene& scene);
 
 }  // namespace glint

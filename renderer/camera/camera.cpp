@@ -1,7 +1,10 @@
 #include "camera/camera.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
+#include <string>
 
 #include "core/sampling.h"
 
@@ -40,9 +43,39 @@ Camera::Camera(const CameraDesc& desc, int width, int height) : desc_(desc) {
   u_ = normalize(right);
   v_ = cross(w_, u_);
   window_ = desc.imageWindow(width, height);
+  checkRayRange();
   // Per ray, a multiply instead of a division.
   uPerPixel_ = (window_.r - window_.l) / static_cast<float>(width);
   vPerPixel_ = (window_.t - window_.b) / static_cast<float>(height);
+}
+
+void Camera::checkRayRange() const {
+  // Every number a camera ray is made of stays within kMaxRayOrigin (core/ray.h), so that no
+  // ray reaches Embree's assertions and no length overflows: each window value (an orthographic
+  // ray starts at eye + s_u·u + s_v·v, a perspective one points along s_u·u + s_v·v + d), the
+  // eye, the lens and the focus distance.
+  const auto far = [](float x) { return !(std::fabs(x) <= kMaxRayOrigin); };
+  if (far(window_.l) || far(window_.r) || far(window_.b) || far(window_.t)) {
+    char text[160];
+    std::snprintf(text, sizeof text, "[%g, %g, %g, %g]", double(window_.l), double(window_.r),
+                  double(window_.b), double(window_.t));
+    throw std::invalid_argument(std::string("the image window ") + text +
+                                " reaches past ±1e18, beyond the range of rays Glint traces");
+  }
+  const float eye =
+      std::max({std::fabs(desc_.eye.x), std::fabs(desc_.eye.y), std::fabs(desc_.eye.z)});
+  const float lensReach = hasLens() ? desc_.apertureRadius : 0.0f;
+  const float windowReach = desc_.projection == Projection::Orthographic
+                                ? std::fabs(window_.l) + std::fabs(window_.r) +
+                                      std::fabs(window_.b) + std::fabs(window_.t)
+                                : 0.0f;
+  if (far(eye + lensReach + windowReach))
+    throw std::invalid_argument(
+        "camera rays would start more than 1e18 from the origin (the eye, plus the lens or the "
+        "orthographic window), beyond the range of rays Glint traces");
+  if (hasLens() && !(desc_.focusDistance <= kMaxRayOrigin * 1e-3f))
+    throw std::invalid_argument(
+        "focus_distance is past 1e15, beyond the range of rays Glint traces");
 }
 
 void Camera::generateRay(float x, float y, Vec2f lens, Ray& ray) const {

@@ -44,7 +44,8 @@ class Camera {
  public:
   Camera() = default;
   // Throws std::invalid_argument when eye == look_at, up is parallel to the image plane's
-  // normal, or the image plane is (nearly) parallel to the view direction.
+  // normal, the image plane is (nearly) parallel to the view direction, or its rays would leave
+  // the range Glint traces (core/ray.h kMaxRayOrigin: the window, eye, lens, focus distance).
   Camera(const CameraDesc& desc, int width, int height);
 
   // A ray through film position (x, y) in pixels, y down from the top edge; `lens` in [0, 1)²
@@ -73,6 +74,8 @@ class Camera {
   Vec3f viewDirection() const { return view_; }
 
  private:
+  void checkRayRange() const;
+
   CameraDesc desc_;
   // Right, up and backwards: w is the image plane's normal turned towards the eye (without an
   // oblique plane, eye − look_at normalised), u = up × w, v = w × u.

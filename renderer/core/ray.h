@@ -18,6 +18,14 @@ struct Ray {
   Vec3f at(float t) const { return o + t * d; }
 };
 
+// Embree 3.13 asserts (an abort, in Debian's build) on a ray whose origin or direction has a
+// coordinate past FLT_LARGE = 1.844e18, whose tnear is below 0 or NaN, tfar NaN, or time outside
+// [0, 1] (kernels/common/ray.h RayK::valid, asserted by every BVH traversal, an instance's
+// object-space ray included). Glint keeps what it builds within 1e18 of 0 in render space:
+// geometry, camera rays, the rays of `validate` (accel/embree_accel.cpp guards the rest).
+inline constexpr float kEmbreeMaxRayCoordinate = 1.844e18f;
+inline constexpr float kMaxRayOrigin = 1e18f;
+
 // γ(n) = nε/(1 − nε), ε = 2⁻²⁴: the relative error bound of n float operations (Higham;
 // pbrt-v4 §6.8). Error bounds on computed points are built from it.
 constexpr float gamma(int n) {

@@ -130,9 +130,10 @@ class Counter {
   const Copies& visit(size_t i, int depth, const std::string& parent) {
     const std::string where = "nodes[" + std::to_string(i) + "]";
     if (!nodes_ || i >= nodes_->size())
-      fail(parent + " names " + where + ", which does not exist (" +
-           std::to_string(nodeCount()) + " nodes)");
-    if (state_[i] == State::OnPath) fail(where + " is its own ancestor (the node tree has a cycle)");
+      fail(parent + " names " + where + ", which does not exist (" + std::to_string(nodeCount()) +
+           " nodes)");
+    if (state_[i] == State::OnPath)
+      fail(where + " is its own ancestor (the node tree has a cycle)");
     if (depth + height_[i] > kMaxGltfNodeDepth || depth > kMaxGltfNodeDepth)
       fail("the node tree is deeper than " + std::to_string(kMaxGltfNodeDepth) + " levels");
     if (state_[i] == State::Done) return below_[i];

@@ -21,7 +21,6 @@ namespace {
 
 using nlohmann::json;
 
-
 class Reader {
  public:
   Reader(std::string path, json doc) : path_(std::move(path)), doc_(std::move(doc)) {}

@@ -1,5 +1,6 @@
 #include "io/scene_loader.h"
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 
@@ -51,6 +52,13 @@ ImageWindow parseWindow(const JsonNode& n) {
   const ImageWindow w{n[0].number(), n[1].number(), n[2].number(), n[3].number()};
   if (!(w.l < w.r)) n.fail("l must be less than r");
   if (!(w.b < w.t)) n.fail("b must be less than t");
+  // Within ±kMaxRayOrigin every span (r − l, t − b) is a float and every ray it makes is one
+  // Embree takes (camera/camera.cpp checks the derived rays again).
+  for (size_t i = 0; i < 4; ++i)
+    if (!(std::fabs(n[i].number()) <= kMaxRayOrigin))
+      n[i].fail(
+          "window values must lie within ±1e18 (the range of rays Glint traces; r − l "
+          "and t − b must be floats)");
   return w;
 }
 
