@@ -17,15 +17,26 @@ namespace glint {
 // a few GB.
 inline constexpr uint64_t kMaxMeshFileBytes = uint64_t{1} << 30;
 
+// Distinct material names an OBJ file may use (`usemtl`) or its material libraries define
+// (`newmtl`): Assimp builds a material of about 30 properties for each, every property key a
+// 1 kB string, and looks each name up linearly: time grows with the square of the names and
+// memory with their number (docs/hardening.md). Real files use a few dozen.
+inline constexpr size_t kMaxObjMaterials = 4096;
+
 // The mesh extensions of io/scene_formats.h's table (any case, with the dot).
 bool isMeshExtension(const std::string& extension);
 // "OBJ (.obj), PLY (.ply) and glTF 2.0 (.gltf, .glb)", for messages.
 std::string meshFormatList();
 
 // Throws GlintError naming `path` when its extension is not one of the above, it is larger
-// than kMaxMeshFileBytes, or a PLY header does not end or declares more elements than the
-// bytes after it can hold.
+// than kMaxMeshFileBytes, an OBJ file names too many materials, or a PLY header does not end or
+// declares more elements than the bytes after it can hold.
 void checkMeshFileBeforeImport(const std::string& path);
+
+// The OBJ check alone: throws GlintError naming `path` (or the material library) when the file
+// and the libraries its `mtllib` lines name use or define more than kMaxObjMaterials distinct
+// material names.
+void checkObjMaterialCount(const std::string& path);
 
 // The PLY check alone, on a file's bytes (`fileSize` is the whole file's size, `head` its first
 // bytes, at least the header): throws GlintError naming `path` when the header is not PLY
