@@ -17,6 +17,7 @@
 #include "app/option_arity.h"
 #include "app/scene_source.h"
 #include "core/error.h"
+#include "core/memory.h"
 #include "film/atomic_file.h"
 #include "render/render_job.h"
 
@@ -70,6 +71,14 @@ int runValidate(const ValidateArgs& a) {
     return kExitOk;
   }
 
+  // Every comparison where both backends hit keeps its |Δt| (CrossCheckStats::relDt), and the
+  // 99.9th percentile sorts a copy: checked against the memory there is before any ray is cast.
+  const double needed = 2.0 * double(a.rays) * double(others.size()) * sizeof(float);
+  if (const uint64_t available = availableMemoryBytes(); available != 0 && needed > available)
+    throw UsageError("--rays " + std::to_string(a.rays) + ": comparing " +
+                     std::to_string(others.size()) + " backends with Embree keeps about " +
+                     gigabytes(needed) + " of distances; " + gigabytes(double(available)) +
+                     " is available: cast fewer rays (or several runs with other --seed values)");
   const CrossCheck check(embree, others);
   // --spp 0: random rays only. The renderer needs at least one sample (a sampler of 0 samples
   // divided by zero: SIGFPE, found by the CLI number table, tests/app/cli_numbers_test.cpp).

@@ -8,8 +8,10 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <array>
 #include <assimp/Importer.hpp>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -194,6 +196,65 @@ void checkFlattenedTriangles(const std::string& path, const aiScene& s) {
                    "come through the nodes " + pathText(nodes));
 }
 
+// Refuses a node whose transform, composed with its parents' (in double, as a 1e38 scale
+// under another overflows float), places its meshes past ±kMaxRayOrigin or outside the float
+// range, naming the node: Assimp's pre-transformation would make such vertices infinite, and
+// the error would surface only as a camera that cannot frame them.
+void checkNodePlacements(const std::string& path, const aiScene& s) {
+  std::vector<std::pair<aiVector3D, aiVector3D>> boxes(s.mNumMeshes);
+  for (unsigned mi = 0; mi < s.mNumMeshes; ++mi) {
+    const aiMesh& m = *s.mMeshes[mi];
+    aiVector3D lo(kInfinity), hi(-kInfinity);
+    for (unsigned v = 0; v < m.mNumVertices; ++v)
+      for (int a = 0; a < 3; ++a) {
+        lo[a] = std::min(lo[a], m.mVertices[v][a]);
+        hi[a] = std::max(hi[a], m.mVertices[v][a]);
+      }
+    boxes[mi] = {lo, hi};
+  }
+  using Matrix = std::array<double, 12>;  // rows of a 3 × 4 affine transform
+  const auto visit = [&](const auto& self, const aiNode& node, const Matrix& parent,
+                         int depth) -> void {
+    const aiMatrix4x4& l = node.mTransformation;
+    const double local[12] = {l.a1, l.a2, l.a3, l.a4, l.b1, l.b2,
+                              l.b3, l.b4, l.c1, l.c2, l.c3, l.c4};
+    Matrix world{};
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c)
+        world[size_t(4 * r + c)] =
+            parent[size_t(4 * r)] * local[c] + parent[size_t(4 * r + 1)] * local[4 + c] +
+            parent[size_t(4 * r + 2)] * local[8 + c] + (c == 3 ? parent[size_t(4 * r + 3)] : 0.0);
+    for (unsigned i = 0; i < node.mNumMeshes; ++i) {
+      if (node.mMeshes[i] >= s.mNumMeshes || s.mMeshes[node.mMeshes[i]]->mNumVertices == 0)
+        continue;
+      const auto& [lo, hi] = boxes[node.mMeshes[i]];
+      for (int corner = 0; corner < 8; ++corner) {
+        const double p[3] = {corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y,
+                             corner & 4 ? hi.z : lo.z};
+        for (int r = 0; r < 3; ++r) {
+          const double x = world[size_t(4 * r)] * p[0] + world[size_t(4 * r + 1)] * p[1] +
+                           world[size_t(4 * r + 2)] * p[2] + world[size_t(4 * r + 3)];
+          if (std::fabs(x) <= double(kMaxRayOrigin)) continue;
+          double scale = 0;
+          for (int k = 0; k < 3; ++k) scale = std::max(scale, std::fabs(world[size_t(4 * r + k)]));
+          char text[200];
+          std::snprintf(text, sizeof text,
+                        "places a vertex at %g along an axis (its transform composed with its "
+                        "parents' scales by up to %g and moves by %g)",
+                        x, scale, world[size_t(4 * r + 3)]);
+          throw UsageError("mesh " + path + ": node " + inQuotes(excerpt(node.mName.C_Str())) +
+                           " " + text +
+                           "; Glint's geometry must lie within ±1e18, the range of "
+                           "rays it traces");
+        }
+      }
+    }
+    for (unsigned c = 0; c < node.mNumChildren && depth < 1024; ++c)
+      self(self, *node.mChildren[c], world, depth + 1);
+  };
+  visit(visit, *s.mRootNode, Matrix{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, 0);
+}
+
 MeshFile readMeshFile(const std::string& path, bool readTextures) {
   checkInputFile(path, kMaxMeshFileBytes, "mesh");
   checkMeshFileBeforeImport(path);
@@ -272,6 +333,7 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
                                    aiProcess_SortByPType);
   if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
   checkFlattenedTriangles(path, *s);
+  checkNodePlacements(path, *s);
   s = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices |
                                    aiProcess_PreTransformVertices);
   if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());

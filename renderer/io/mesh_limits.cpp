@@ -32,8 +32,9 @@ std::string headOf(const std::string& path, size_t bytes) {
 // Adds the names that follow `keyword` at the start of a line of `file` to `names`, and the
 // material libraries its `mtllib` lines name to `libraries` (when given); throws past
 // kMaxObjMaterials, naming `file`.
-void collectObjNames(const std::filesystem::path& file, const char* keyword,
-                     std::set<std::string>& names, std::vector<std::string>* libraries) {
+void collectObjNames(const std::string& mesh, const std::filesystem::path& file,
+                     const char* keyword, std::set<std::string>& names,
+                     std::vector<std::string>* libraries) {
   std::ifstream in(file, std::ios::binary);
   const std::string key = std::string(keyword) + " ";
   for (std::string line; std::getline(in, line);) {
@@ -48,9 +49,10 @@ void collectObjNames(const std::filesystem::path& file, const char* keyword,
     if (line.compare(at, key.size(), key) == 0) {
       names.insert(rest(key.size()));
       if (names.size() > kMaxObjMaterials)
-        throw GlintError("mesh " + file.string() + " names more than " +
-                         std::to_string(kMaxObjMaterials) + " materials (\"" + keyword +
-                         "\" lines with distinct names); Glint reads at most " +
+        throw GlintError("mesh " + mesh +
+                         (file == mesh ? "" : ": its material library " + file.string()) +
+                         " names more than " + std::to_string(kMaxObjMaterials) + " materials (\"" +
+                         keyword + "\" lines with distinct names); Glint reads at most " +
                          std::to_string(kMaxObjMaterials) + " from one OBJ file");
     } else if (libraries && line.compare(at, 7, "mtllib ") == 0) {
       libraries->push_back(rest(7));
@@ -63,14 +65,14 @@ void collectObjNames(const std::filesystem::path& file, const char* keyword,
 void checkObjMaterialCount(const std::string& path) {
   std::set<std::string> used, defined;
   std::vector<std::string> libraries;
-  collectObjNames(path, "usemtl", used, &libraries);
+  collectObjNames(path, path, "usemtl", used, &libraries);
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
   for (const std::string& library : libraries) {
     std::error_code ec;
     const std::filesystem::path file = dir / library;
     // Assimp opens only regular files a mesh names (io/mesh_io.cpp); so does this count.
     if (std::filesystem::is_regular_file(file, ec))
-      collectObjNames(file, "newmtl", defined, nullptr);
+      collectObjNames(path, file, "newmtl", defined, nullptr);
   }
 }
 

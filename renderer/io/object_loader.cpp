@@ -32,6 +32,17 @@ uint32_t materialOf(SceneBuilder& b, const JsonNode& obj) {
          (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
 }
 
+namespace {
+
+// Whether every coordinate of `p` is within ±kMaxRayOrigin of the camera (render space): hits
+// there start rays Embree takes (core/ray.h). False for NaN.
+bool withinRayRange(const Vec3f& p) {
+  return std::fabs(p.x) <= kMaxRayOrigin && std::fabs(p.y) <= kMaxRayOrigin &&
+         std::fabs(p.z) <= kMaxRayOrigin;
+}
+
+}  // namespace
+
 uint32_t push(Scene& s, uint32_t groupId, GeomKind kind, uint32_t index, uint32_t material,
               uint32_t objectId) {
   auto& geoms = s.groups[groupId].geometries;
@@ -310,8 +321,10 @@ void addInstance(SceneBuilder& b, uint32_t groupId, const Transform& xf, std::ve
         inst.motion.empty() ? inst.worldFromObject : inst.motion[k].toTransform();
     // Corner by corner, not transformBox: a NaN corner (inf − inf) would vanish from a box.
     for (int c = 0; c < 8; ++c)
-      if (!isFinite(placed.point(box.corner(c))))
-        placement.fail("the placed instance's bounds are not finite (beyond the float range)");
+      if (!withinRayRange(placed.point(box.corner(c))))
+        placement.fail(
+            "the placed instance reaches past ±1e18 from the camera, beyond the range of rays "
+            "Glint traces (or the float range)");
   }
   s.instances.push_back(std::move(inst));
   push(s, 0, GeomKind::Instance, static_cast<uint32_t>(s.instances.size() - 1), 0, objectId);
@@ -598,7 +611,14 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
     addInstance(b, g, Transform{}, std::move(transformKeys), objectId, motion->at("transform"));
     return;
   }
+  const size_t before = s.groups[0].geometries.size();
   addShape(b, obj, type, groupId, objectId, place, motion);
+  // What lies in the world (a group's contents are checked where an instance places them).
+  for (size_t i = before; groupId == 0 && i < s.groups[0].geometries.size(); ++i) {
+    const Bounds3f box = s.geometryBounds(s.groups[0].geometries[i]);
+    if (!box.empty() && !(withinRayRange(box.lo) && withinRayRange(box.hi)))
+      obj.fail("reaches past ±1e18 from the camera, beyond the range of rays Glint traces");
+  }
 }
 
 }  // namespace glint

@@ -328,40 +328,43 @@ Vec3f Scene::smoothNormal(const TriangleMesh& m, const Hit& hit, const Transform
 
 Bounds3f Scene::groupBounds(uint32_t groupId) const {
   Bounds3f b;
-  for (const Geometry& g : groups[groupId].geometries) {
-    switch (g.kind) {
-      case GeomKind::Mesh:
-        b.extend(meshes[g.index].bounds());
-        break;
-      case GeomKind::Sphere:
-        b.extend(bounds(spheres[g.index]));
-        for (const Vec3f& c : sphereCenterKeys[g.index])
-          b.extend(bounds(Sphere{c, spheres[g.index].radius}));
-        break;
-      case GeomKind::Quad:
-        b.extend(bounds(quads[g.index]));
-        break;
-      case GeomKind::Disk:
-        b.extend(bounds(disks[g.index]));
-        break;
-      case GeomKind::Csg:
-        b.extend(csgs[g.index].box());
-        break;
-      case GeomKind::Plane:
-        break;
-      case GeomKind::Instance: {
-        // Bounds at the keys: exact for static instances; for moving ones an estimate (slerp can
-        // sweep outside the key boxes), enough for what worldBounds is used for.
-        const Instance& inst = instances[g.index];
-        const Bounds3f ob = groupBounds(inst.groupId);
-        if (ob.empty()) break;
-        const size_t keys = std::max<size_t>(1, inst.motion.size());
-        for (size_t k = 0; k < keys; ++k) {
-          b.extend(
-              transformBox(inst.transformAt(keys == 1 ? 0.0f : float(k) / float(keys - 1)), ob));
-        }
-        break;
+  for (const Geometry& g : groups[groupId].geometries) b.extend(geometryBounds(g));
+  return b;
+}
+
+Bounds3f Scene::geometryBounds(const Geometry& g) const {
+  Bounds3f b;
+  switch (g.kind) {
+    case GeomKind::Mesh:
+      b.extend(meshes[g.index].bounds());
+      break;
+    case GeomKind::Sphere:
+      b.extend(bounds(spheres[g.index]));
+      for (const Vec3f& c : sphereCenterKeys[g.index])
+        b.extend(bounds(Sphere{c, spheres[g.index].radius}));
+      break;
+    case GeomKind::Quad:
+      b.extend(bounds(quads[g.index]));
+      break;
+    case GeomKind::Disk:
+      b.extend(bounds(disks[g.index]));
+      break;
+    case GeomKind::Csg:
+      b.extend(csgs[g.index].box());
+      break;
+    case GeomKind::Plane:
+      break;
+    case GeomKind::Instance: {
+      // Bounds at the keys: exact for static instances; for moving ones an estimate (slerp can
+      // sweep outside the key boxes), enough for what worldBounds is used for.
+      const Instance& inst = instances[g.index];
+      const Bounds3f ob = groupBounds(inst.groupId);
+      if (ob.empty()) break;
+      const size_t keys = std::max<size_t>(1, inst.motion.size());
+      for (size_t k = 0; k < keys; ++k) {
+        b.extend(transformBox(inst.transformAt(keys == 1 ? 0.0f : float(k) / float(keys - 1)), ob));
       }
+      break;
     }
   }
   return b;

@@ -125,6 +125,7 @@ class Scene {
   // Bounds of everything finite in the world (planes excluded).
   Bounds3f worldBounds() const;
   Bounds3f groupBounds(uint32_t groupId) const;
+  Bounds3f geometryBounds(const Geometry& g) const;  // empty for a plane
   size_t triangleCount() const;
   // Triangles, spheres, quads, disks, planes and CSG solids (instances not counted).
   size_t primitiveCount() const {

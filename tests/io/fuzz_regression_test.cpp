@@ -67,12 +67,16 @@ TEST(FuzzRegression, KeysAndNamesAreLimitedTo256Characters) {
 TEST(FuzzRegression, ReferenceBvhSeparatesCentroidsNearTheFloatLimit) {
   // Spheres at x = ±3e38: the centroid extent 6e38 overflows float. The build once cast the NaN
   // bin of (c − lo)·B/∞ to int and wrote outside its bins. The camera's central ray from z = 5
-  // must still hit the unit sphere at the origin at t = 5 − 1 = 4.
-  const Scene scene = test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
+  // must still hit the unit sphere at the origin at t = 5 − 1 = 4. The loader now refuses
+  // geometry past ±1e18 (next test), so the far spheres are moved there after loading: the BVH
+  // must survive any Scene, not only those the loader makes.
+  Scene scene = test::sceneFromText(R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
     "materials": {"m": {"type": "phong"}}, "objects": [
-      {"type": "sphere", "center": [3e38, 0, 0], "radius": 1, "material": "m"},
-      {"type": "sphere", "center": [-3e38, 0, 0], "radius": 1, "material": "m"},
+      {"type": "sphere", "center": [3, 0, 0], "radius": 1, "material": "m"},
+      {"type": "sphere", "center": [-3, 0, 0], "radius": 1, "material": "m"},
       {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})");
+  scene.spheres[0].center.x = 3e38f;
+  scene.spheres[1].center.x = -3e38f;
   const ReferenceBvh bvh(scene);
   EXPECT_EQ(bvh.checkInvariants(), "");
   // The camera's central ray, in whatever frame the loader placed the scene.

@@ -302,26 +302,27 @@ TEST(SceneError, PlacedGeometryBeyondTheFloatRangeAndNonRegularMeshFiles) {
     "material": "m", "transform": {"translate": [3e38,0,0]}}]})"),
             "scene.json:2: objects[0]: the placed plane is not finite (beyond the float range)");
   // Instances: Embree bounds them by their group's box, placed at every key; an overflowing box
-  // made Embree miss the instance while the reference BVH hit it (a silent wrong image).
-  const std::string group = R"(], "groups": {"g": [{"type": "box", "min": [-1e30,-1,-1],
-    "max": [1e30,1,1], "material": "m"}]}})";
+  // made Embree miss the instance while the reference BVH hit it (a silent wrong image). A box
+  // past ±1e18 is refused too: rays leaving it would start beyond Embree's range (core/ray.h).
+  const std::string group = R"(], "groups": {"g": [{"type": "box", "min": [-1e9,-1,-1],
+    "max": [1e9,1,1], "material": "m"}]}})";
+  const std::string beyond =
+      "the placed instance reaches past ±1e18 from the camera, beyond the range of rays Glint "
+      "traces (or the float range)";
   EXPECT_EQ(test::sceneErrorOf(head + R"({"type": "instance", "group": "g",
     "transform": {"scale": [1e10,1,1]}})" +
                                group),
-            "scene.json:3: objects[0].transform: the placed instance's bounds are not finite "
-            "(beyond the float range)");
+            "scene.json:3: objects[0].transform: " + beyond);
   EXPECT_EQ(test::sceneErrorOf(head + R"({"type": "instance", "group": "g", "motion":
     {"transform": [{"scale": [1,1,1]}, {"scale": [1e10,1,1]}]}})" +
                                group),
-            "scene.json:3: objects[0].motion.transform: the placed instance's bounds are not "
-            "finite (beyond the float range)");
-  EXPECT_EQ(test::sceneErrorOf(head + R"({"type": "box", "min": [-1e30,-1,-1], "max": [1e30,1,1],
+            "scene.json:3: objects[0].motion.transform: " + beyond);
+  EXPECT_EQ(test::sceneErrorOf(head + R"({"type": "box", "min": [-1e9,-1,-1], "max": [1e9,1,1],
     "material": "m", "motion": {"transform": [{}, {"scale": [1e10,1,1]}]}}]})"),
-            "scene.json:3: objects[0].motion.transform: the placed instance's bounds are not "
-            "finite (beyond the float range)");
+            "scene.json:3: objects[0].motion.transform: " + beyond);
   EXPECT_NO_THROW(test::sceneFromText(head + R"({"type": "instance", "group": "g",
     "transform": {"scale": [1e8,1,1]}})" +
-                                      group));  // 1e38: still a float
+                                      group));  // 1e17: within the range
   // /dev/zero never ends: only regular files are read as meshes.
   EXPECT_EQ(
       test::sceneErrorOf(head + R"({"type": "mesh", "file": "/dev/zero", "material": "m"}]})"),
