@@ -203,14 +203,18 @@ TEST(Cli, EverySceneArgumentPassesTheInputFileCheck) {
 }
 
 TEST(Cli, NoInputReachesAnEmbreeAssertion) {
-  // Embree aborts (exit 134) on a ray with a negative tmin, a NaN, or an origin beyond 1.8e18:
-  // validate's --ray is checked first, and its random rays start within ±1e18 even when the
-  // scene holds geometry farther out (which render handles).
-  for (const std::string bad : {"0 1 5 0 0 -1 -1 100 0", "nan 1 5 0 0 -1 0 100 0",
-                                "0 1 5 0 0 0 0 100 0", "0 1 5 0 0 -1 0 100 2"}) {
+  // Embree aborts (exit 134) on a ray with a negative tmin, a NaN, a time outside [0, 1], or an
+  // origin or direction coordinate past 1.844e18: validate's --ray is checked first (a
+  // direction of -1e19 once aborted).
+  for (const std::string bad :
+       {"0 1 5 0 0 -1 -1 100 0", "nan 1 5 0 0 -1 0 100 0", "0 1 5 0 0 0 0 100 0",
+        "0 1 5 0 0 -1 0 100 2", "0 0 5 0 0 -1e19 0 inf 0"}) {
     const auto r = runGlint("validate --ray \"" + bad + "\"");
     EXPECT_EQ(r.exitCode, 2) << bad << ": " << r.output;
   }
+  // Geometry past ±1e18 from the camera (rays leaving it would start past Embree's range) and
+  // a camera window whose span is not a float (its rays were NaN: render, validate, bench and
+  // converge aborted) are scene errors, exit 2, before any ray is traced.
   const std::string far =
       test::writeTemp("far.json", R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]},
       "materials": {"m": {"type": "phong"}},
@@ -218,7 +222,22 @@ TEST(Cli, NoInputReachesAnEmbreeAssertion) {
                   {"type": "quad", "corner": [1e19,0,0], "edge1": [1,0,0], "edge2": [0,1,0],
                    "material": "m"}]})");
   const auto v = runGlint("validate " + far + " --rays 2000");
-  EXPECT_EQ(v.exitCode, 0) << v.output;
+  EXPECT_EQ(v.exitCode, 2) << v.output;
+  EXPECT_NE(v.output.find("far.json:4: objects[1]: reaches past ±1e18 from the camera"),
+            std::string::npos)
+      << v.output;
+  const std::string window = test::writeTemp("window.json", R"({"camera": {"eye": [0,0,5],
+      "look_at": [0,0,0], "window": [-2e38, 2e38, -1, 1]}, "materials": {"m": {"type": "phong"}},
+      "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})");
+  const std::string out = (test::tempDir() / "window.exr").string();
+  for (const std::string command : {"render " + window + " -o " + out, "validate " + window,
+                                    "bench " + window, "converge " + window + " --spp 1,2"}) {
+    const auto r = runGlint(command);
+    EXPECT_EQ(r.exitCode, 2) << command << ": " << r.output;
+    EXPECT_NE(r.output.find("window.json:1: camera.window[0]: window values must lie within ±1e18"),
+              std::string::npos)
+        << command << ": " << r.output;
+  }
 }
 
 TEST(Cli, FramesRenderARangeInOneProcessNumberedEitherWay) {
