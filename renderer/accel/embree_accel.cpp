@@ -1,9 +1,12 @@
 #include "accel/embree_accel.h"
 
+#include <algorithm>
 #include <atomic>
 #include <bit>
 #include <chrono>
+#include <cstdio>
 #include <mutex>
+#include <optional>
 #include <string>
 
 #include "accel/cutout_hits.h"
@@ -272,6 +275,42 @@ EmbreeAccel::RayRange embreeRayRange(const Scene& scene) {
 }
 
 EmbreeAccel::EmbreeAccel(const Scene& scene) : scene_(scene), range_(embreeRayRange(scene)) {
+  // Rays start on the scene's surfaces (and at the camera, the origin of render space), which
+  // the loader keeps within kMaxRayOrigin: where instances shrink the range below that, an
+  // instance whose inverse grows coordinates so much that Embree could not take rays from the
+  // scene's surfaces would have them dropped, so the scene is refused instead.
+  if (range_.origin < kMaxRayOrigin) {
+    std::vector<std::optional<Bounds3f>> groupBox(scene.groups.size());
+    Bounds3f box;
+    for (const Geometry& g : scene.groups[0].geometries) {
+      if (g.kind != GeomKind::Instance) {
+        box.extend(scene.geometryBounds(g));
+        continue;
+      }
+      const Instance& inst = scene.instances[g.index];
+      std::optional<Bounds3f>& ob = groupBox[inst.groupId];
+      if (!ob) ob = scene.groupBounds(inst.groupId);
+      if (ob->empty()) continue;
+      const size_t keys = std::max<size_t>(1, inst.motion.size());
+      for (size_t k = 0; k < keys; ++k)
+        box.extend(
+            transformBox(inst.transformAt(keys == 1 ? 0.0f : float(k) / float(keys - 1)), *ob));
+    }
+    const float extent =
+        box.empty() ? 0.0f
+                    : std::max({std::fabs(box.lo.x), std::fabs(box.lo.y), std::fabs(box.lo.z),
+                                std::fabs(box.hi.x), std::fabs(box.hi.y), std::fabs(box.hi.z)});
+    if (!(extent <= range_.origin)) {
+      char text[300];
+      std::snprintf(text, sizeof text,
+                    "the scene reaches %g from the camera, but its instances' transforms shrink "
+                    "so much that Embree takes rays only from within %g (in an instance's space "
+                    "they would pass Embree's 1.844e18): scale instances less or bring the scene "
+                    "closer",
+                    double(extent), double(range_.origin));
+      throw UsageError(text);
+    }
+  }
   const auto start = std::chrono::steady_clock::now();
   const int64_t bytesBefore = embreeMemoryBytes();
   groupScenes_.assign(scene.groups.size(), nullptr);

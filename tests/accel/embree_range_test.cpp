@@ -6,6 +6,7 @@
 
 #include "accel/cross_check.h"
 #include "accel/embree_accel.h"
+#include "core/error.h"
 #include "test_util.h"
 
 namespace glint {
@@ -45,6 +46,25 @@ TEST(EmbreeRange, AnInstanceThatShrinksItsGroupShrinksTheRange) {
   EXPECT_NEAR(embree.rayRange().origin, 0.99 * 1.844e18 / 1e6, 1e7);
   EXPECT_NEAR(embree.intersect(Ray{{0, 0, 5}, {0, 0, -1}}).t, 5.0f, 1e-5f);
   EXPECT_FALSE(embree.intersect(Ray{{0, 0, 1e13f}, {0, 0, -1}}));
+}
+
+TEST(EmbreeRange, InstancesShrinkingTheRangeBelowTheSceneAreRefused) {
+  // Scaled by 1e-12, the inverse grows coordinates 1e12 times: Embree then takes rays only from
+  // within 0.99 · 1.844e18 / 1e12 ≈ 1.83e6 of the origin, but a sphere at x = 1e7 starts rays
+  // from there. Dropping them would be a silent wrong image: the accelerator refuses the scene.
+  const Scene scene = test::sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-1]},
+    "materials": {"m": {"type": "phong"}},
+    "objects": [{"type": "instance", "group": "g", "transform": {"scale": [1e-12, 1e-12, 1e-12]}},
+                {"type": "sphere", "center": [1e7, 0, 0], "radius": 1, "material": "m"}],
+    "groups": {"g": [{"type": "box", "min": [-1,-1,-1], "max": [1,1,1], "material": "m"}]}})");
+  try {
+    const EmbreeAccel embree(scene);
+    ADD_FAILURE() << "built";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("the scene reaches 1e+07 from the camera, but"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace

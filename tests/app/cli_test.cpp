@@ -234,7 +234,7 @@ TEST(Cli, NoInputReachesAnEmbreeAssertion) {
                                     "bench " + window, "converge " + window + " --spp 1,2"}) {
     const auto r = runGlint(command);
     EXPECT_EQ(r.exitCode, 2) << command << ": " << r.output;
-    EXPECT_NE(r.output.find("window.json:1: camera.window[0]: window values must lie within ±1e18"),
+    EXPECT_NE(r.output.find("window.json:2: camera.window[0]: window values must lie within ±1e18"),
               std::string::npos)
         << command << ": " << r.output;
   }
