@@ -437,6 +437,8 @@ TEST(MeshFile, AnObjMaterialLibraryThatIsAFifoIsLeftOutUnopened) {
   for (const TriangleMesh& part : mesh.parts) triangles += part.indices.size() / 3;
   EXPECT_EQ(triangles, 1u);
   ::alarm(0);
+}
+
 TEST(MeshFile, AnObjNamingMoreThan4096MaterialsIsRefusedBeforeAssimpReadsIt) {
   // Assimp builds a material for each distinct usemtl name it cannot find and looks names up
   // linearly: 20 000 names took 23 s and 740 MB. 4096 distinct names load (one triangle each);
