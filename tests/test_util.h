@@ -18,6 +18,20 @@
 
 namespace glint::test {
 
+// Whether the tests run under AddressSanitizer, which reserves terabytes of address space for
+// its shadow memory (no process runs below an address-space limit) and makes tracing ~10x slower.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kAddressSanitizer = true;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+inline constexpr bool kAddressSanitizer = true;
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
+
 inline std::filesystem::path tempDir() {
   static const std::filesystem::path dir = [] {
     auto d = std::filesystem::temp_directory_path() / ("glint-test-" + std::to_string(::getpid()));

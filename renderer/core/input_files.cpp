@@ -32,15 +32,6 @@ bool isControl(char c) {
   return u < 0x20 || u == 0x7f;
 }
 
-const char* kindOf(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
 std::string mib(uint64_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
 
 // Opens `path` for reading without waiting (a FIFO without a writer would block open()), then
@@ -62,7 +53,7 @@ struct stat statInput(const std::string& path, uint64_t maxBytes, const std::str
   }
   if (!S_ISREG(st.st_mode) && !(pipes && S_ISFIFO(st.st_mode)))
     throw UsageError(
-        what + " " + path + " is " + kindOf(st.st_mode) +
+        what + " " + path + " is " + fileKind(st.st_mode) +
         (pipes ? "; it must be a regular file or a pipe" : "; it must be a regular file"));
   if (S_ISREG(st.st_mode) && uint64_t(st.st_size) > maxBytes)
     throw UsageError(what + " " + path + " is " + std::to_string(st.st_size) +
@@ -104,6 +95,16 @@ uint64_t checkInputFile(const std::string& path, uint64_t maxBytes, const std::s
   ::close(fd);
   noteInputFile(path);
   return uint64_t(st.st_size);
+}
+
+const char* fileKind(mode_t mode) {
+  if (S_ISLNK(mode)) return "a symbolic link";
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
 }
 
 void noteInputFile(const std::string& path) {

@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <string>
 
+#include <sys/types.h>
+
 namespace glint {
 
 // For checkInputFile: no limit on the size (the reader bounds what it allocates itself).
@@ -29,6 +31,9 @@ std::string printablePath(const std::string& path);
 // it can be opened for reading. Throws UsageError naming `what` and the file. Notes the file
 // (below) and returns its size.
 uint64_t checkInputFile(const std::string& path, uint64_t maxBytes, const std::string& what);
+
+// What a file that is not a regular one is, for messages ("a FIFO"), from its st_mode.
+const char* fileKind(mode_t mode);
 
 // Remembers `path`'s file (by device and inode, so other names of it count too). Paths that
 // cannot be stat'ed are ignored: reading them fails with its own error.

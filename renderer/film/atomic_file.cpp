@@ -74,24 +74,14 @@ void removeStaleTemporaries(const fs::path& dir) {
   }
 }
 
-const char* kindOf(mode_t mode) {
-  if (S_ISLNK(mode)) return "a symbolic link";
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
 // An output may replace only a regular file that this run did not read: renaming over a
 // device, a link or a directory entry the user did not mean would destroy it.
 void checkReplaceable(const std::string& finalPath) {
   struct stat st {};
   if (::lstat(finalPath.c_str(), &st) != 0) return;  // nothing there yet
   if (!S_ISREG(st.st_mode))
-    throw UsageError("refusing to write " + finalPath + ": it exists and is " + kindOf(st.st_mode) +
-                     ", which an output never replaces");
+    throw UsageError("refusing to write " + finalPath + ": it exists and is " +
+                     fileKind(st.st_mode) + ", which an output never replaces");
   if (isInputFile(finalPath))
     throw UsageError("refusing to write " + finalPath + ": it is one of this run's inputs");
   // Renaming over a file needs only the directory's permission: a file the user may not write

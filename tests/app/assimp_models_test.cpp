@@ -18,17 +18,7 @@ const fs::path kModels = "/usr/share/assimp/models";
 
 // AddressSanitizer reserves terabytes of address space for its shadow, so under it the memory
 // bound is left out (its own allocator limits still end a runaway allocation).
-#if defined(__SANITIZE_ADDRESS__)
-constexpr const char* kMemoryLimit = "";
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr const char* kMemoryLimit = "";
-#else
-constexpr const char* kMemoryLimit = "ulimit -v 4000000; ";
-#endif
-#else
-constexpr const char* kMemoryLimit = "ulimit -v 4000000; ";
-#endif
+constexpr const char* kMemoryLimit = test::kAddressSanitizer ? "" : "ulimit -v 4000000; ";
 
 struct Outcome {
   int status = -1;  // exit status; 124 or 137 for a hang, 128 + N for signal N

@@ -15,22 +15,8 @@
 namespace glint {
 namespace {
 
-// AddressSanitizer reserves terabytes of address space for its shadow memory: under it no
-// process runs below an address-space limit.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-
 #define SKIP_UNDER_ASAN()                                                                      \
-  if (kAddressSanitizer)                                                                       \
+  if (test::kAddressSanitizer)                                                                 \
   GTEST_SKIP() << "AddressSanitizer's shadow memory needs terabytes of address space: no run " \
                   "fits an address-space limit"
 

@@ -17,25 +17,12 @@
 #include "core/memory.h"
 #include "core/memory_sources.h"
 #include "core/out_of_memory.h"
+#include "test_util.h"
 
 namespace glint {
 namespace {
 
 constexpr uint64_t kMB = uint64_t{1} << 20;
-
-// AddressSanitizer reserves terabytes of address space for its shadow memory, so a process under
-// it cannot run below an address-space limit at all.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSanitizer = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSanitizer = true;
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
-#else
-constexpr bool kAddressSanitizer = false;
-#endif
 
 TEST(MemoryBudget, TheLeastSourceSetsTheBudgetAndIsNamed) {
   MemoryReadings r;
@@ -122,7 +109,7 @@ TEST(MemoryBudget, CgroupDirectoriesComeFromProcSelfCgroupAndMountinfo) {
 }
 
 TEST(MemoryBudget, TheAddressSpaceLimitOfTheProcessIsHonoured) {
-  if (kAddressSanitizer)
+  if (test::kAddressSanitizer)
     GTEST_SKIP() << "under AddressSanitizer a process cannot run below an address-space limit";
   // A child limited to what it has mapped plus 64 MB: its budget is at most those 64 MB (what it
   // maps meanwhile comes off), set by the address space; 512 MB is refused naming that limit.

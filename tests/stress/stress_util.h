@@ -22,17 +22,7 @@ namespace glint::stress {
 
 // Random rays per agreement check: issue 25's 10⁶; under AddressSanitizer, which makes them 10×
 // slower, a tenth (enough to catch a traversal fault).
-#if defined(__SANITIZE_ADDRESS__)
-constexpr int kAgreementRays = 100000;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr int kAgreementRays = 100000;
-#else
-constexpr int kAgreementRays = 1000000;
-#endif
-#else
-constexpr int kAgreementRays = 1000000;
-#endif
+constexpr int kAgreementRays = test::kAddressSanitizer ? 100000 : 1000000;
 
 // `check`'s agreement over `rays` random rays through `s`: hit/miss and occlusion ≥ 1 − 10⁻⁶
 // (issue 25's bar). Hits at a ray's origin count as ties (CrossCheck::kOriginTolerance), but at
