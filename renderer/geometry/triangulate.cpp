@@ -57,8 +57,11 @@ class ReflexGrid {
   }
 
  private:
-  int column(float x) const { return std::clamp(int((x - box_.lo.x) * scaleX_), 0, cells_ - 1); }
-  int row(float y) const { return std::clamp(int((y - box_.lo.y) * scaleY_), 0, cells_ - 1); }
+  int column(float x) const { return cellIndex((x - box_.lo.x) * scaleX_); }
+  int row(float y) const { return cellIndex((y - box_.lo.y) * scaleY_); }
+  // Clamped in float before the conversion, which is undefined for NaN (a grid of no reflex
+  // vertices has an empty box: ∞ · 0) and past int's range.
+  int cellIndex(float t) const { return t > 0 ? int(std::min(t, float(cells_ - 1))) : 0; }
   size_t cellOf(Vec2f q) const { return size_t(row(q.y)) * size_t(cells_) + size_t(column(q.x)); }
 
   const std::vector<Vec2f>& p_;
