@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/input_files.h"
 #include "core/sampler.h"
 #include "film/exr_input.h"
 #include "film/exr_output.h"
@@ -24,6 +25,8 @@ namespace glint::fuzz {
 // not.
 inline std::string nonFiniteValueIn(const std::string& path) {
   const auto file = openExr(path);
+  // Reading it makes it an input of this process, and the next input's merge writes it again.
+  allowReplacingInput(path);
   std::vector<ExrSlice> slices;
   const Imf::ChannelList& channels = file->header(0).channels();
   for (auto c = channels.begin(); c != channels.end(); ++c)
