@@ -66,7 +66,7 @@ RaySets makeRays(const Scene& scene, const Accelerator* accel, int randomCount) 
     const ShadingPoint sp = scene.shadingPoint(r, h);
     const Vec3f target = scene.lights.empty()
                              ? sp.p + Vec3f{0, 1e3f, 0}
-                             : sampleLight(scene.lights[0], sp.p, {0.5f, 0.5f}).target;
+                             : sampleLight(scene.lights[0], sp.p, sp.ng, {0.5f, 0.5f}).target;
     sets.shadow.push_back(spawnShadowRay(sp, true, target, 0));
   }
   const Bounds3f b = randomRayOrigins(scene);

@@ -41,6 +41,7 @@ namespace {
 struct RenderArgs {
   std::string scenePath;
   std::string camera;                // a glTF file's camera, by name
+  std::string environment;           // an image lighting a mesh file (--environment)
   std::vector<std::string> outputs;  // one, or one per --crop when several are given
   std::string display;
   DisplaySettings ocio;
@@ -382,7 +383,7 @@ ResumeState readResumable(const RenderArgs& a, const Scene& scene, const PassPla
 // numbered when the scene is animated; with several --crop, each crop to its own -o, from one
 // scene load and one acceleration structure. Returns the exit code.
 int renderFrame(const RenderArgs& a, std::optional<int> frame) {
-  Scene scene = loadSceneOrDefault(a.scenePath, frame, a.camera);
+  Scene scene = loadSceneOrDefault(a.scenePath, frame, a.camera, a.environment);
   applyOverrides(a, scene);
   // How renderScene will spend the samples (it makes the same plan): for the metadata and
   // --resume, and to refuse contradictory bounds before anything is built.
@@ -595,7 +596,7 @@ int runRender(const RenderArgs& given) {
   if (a.statsJson == "-" && several)
     throw UsageError("--stats-json - with several --frames: give a numbered file instead");
   // The whole range must be the scene's, found before the first frame is spent.
-  const Scene first = loadSceneOrDefault(a.scenePath, range.first, a.camera);
+  const Scene first = loadSceneOrDefault(a.scenePath, range.first, a.camera, a.environment);
   if (range.last > first.animation->last)
     throw UsageError("--frames " + a.frames + " is outside the scene's frames " +
                      std::to_string(first.animation->first) + "-" +
@@ -662,6 +663,9 @@ CommandRunner addRenderCommand(CLI::App& app) {
                       "NAME.%04d.exr numbers the file");
   cmd->add_option("--camera", args->camera,
                   "A camera of a glTF scene, by name (default: its first)");
+  cmd->add_option("--environment", args->environment,
+                  "A lat-long image (EXR, .hdr) lighting a mesh-file scene as an environment "
+                  "light, in place of its default light");
   cmd->add_option("--frames", args->frames,
                   "Frames A-B of an animated scene, one after another in this process")
       ->excludes(frame);

@@ -7,8 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/input_files.h"
 #include "core/log.h"
 #include "core/out_of_memory.h"
+#include "film/texture_file.h"
 #include "io/gltf_scene.h"
 #include "io/scene_formats.h"
 #include "io/scene_loader.h"
@@ -48,19 +50,27 @@ nlohmann::json gltfLight(const GltfLight& l) {
 // it; otherwise a directional light from above, front and left with a little ambient light,
 // and a camera that frames its bounds from the front, right and above (+y up, +z towards the
 // viewer, as glTF and most OBJ files have it). docs/scene-format.md, "A mesh file as the scene".
+// With `environment`, that image lights it instead of the default light and ambient light, and
+// rays that miss see it.
 Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
-                      const std::string& cameraName) {
+                      const std::string& cameraName, const std::string& environment) {
   const std::filesystem::path file = std::filesystem::absolute(path);
   const GltfSceneInfo gltf = sceneFileKind(path) == SceneFileKind::Gltf
                                  ? readGltfSceneInfo(file.string())
                                  : GltfSceneInfo{};
   nlohmann::json lights = nlohmann::json::array();
   for (const GltfLight& l : gltf.lights) lights.push_back(gltfLight(l));
-  if (lights.empty())
+  nlohmann::json render = {{"ambient", {0.1, 0.1, 0.1}}, {"background", {0.18, 0.18, 0.2}}};
+  if (!environment.empty()) {
+    lights.push_back(
+        {{"type", "environment"}, {"image", std::filesystem::absolute(environment).string()}});
+    render = nlohmann::json::object();
+  } else if (lights.empty()) {
     lights.push_back(
         {{"type", "directional"}, {"direction", {-0.4, -1, -0.6}}, {"intensity", {1, 1, 1}}});
+  }
   const nlohmann::json scene = {
-      {"render", {{"ambient", {0.1, 0.1, 0.1}}, {"background", {0.18, 0.18, 0.2}}}},
+      {"render", render},
       // Placed at the origin for loading (render space is then world space); aimed below.
       {"camera", {{"eye", {0, 0, 0}}, {"look_at", {0, 0, -1}}, {"vfov", 40}}},
       {"lights", lights},
@@ -122,17 +132,33 @@ std::string sceneArgumentHelp() {
 }
 
 Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame,
-                         const std::string& cameraName) {
+                         const std::string& cameraName, const std::string& environment) {
   // Refused by its extension before anything is read.
   const bool glintScene = path.empty() || sceneFileKind(path) == SceneFileKind::GlintScene;
   if (!cameraName.empty() && glintScene)
     throw UsageError("--camera names a camera of a glTF file; " +
                      (path.empty() ? std::string("the default scene") : path) +
                      " has the one camera its \"camera\" gives");
+  if (!environment.empty()) {
+    if (glintScene)
+      throw UsageError("--environment " + environment +
+                       ": adds an environment light to a mesh-file scene; " +
+                       (path.empty() ? std::string("the default scene") : path) +
+                       " declares its lights itself (a \"lights\" entry {\"type\": "
+                       "\"environment\", \"image\": FILE})");
+    try {
+      checkInputFile(environment, kMaxTextureFileBytes, "environment image");
+    } catch (const OutOfMemoryError&) {
+      throw;
+    } catch (const GlintError& e) {
+      throw UsageError("--environment " + environment + ": " + e.what());
+    }
+  }
   if (path.empty())
     return loadSceneText(kDefaultSceneJson, "<default scene>", kDefaultSceneDir, frame);
   return out_of_memory::whileDoing("reading scene " + path, [&] {
-    return glintScene ? loadSceneFile(path, frame) : meshFileAsScene(path, frame, cameraName);
+    return glintScene ? loadSceneFile(path, frame)
+                      : meshFileAsScene(path, frame, cameraName, environment);
   });
 }
 

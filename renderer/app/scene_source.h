@@ -15,7 +15,10 @@ namespace glint {
 // The SCENE argument's help, from the table of formats (io/scene_formats.h).
 std::string sceneArgumentHelp();
 
+// `environment`: an image file (`--environment`) that lights a mesh file in place of its
+// default light and ambient light, as an environment light; a scene file declares its own, and
+// is refused with it (UsageError).
 Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame = std::nullopt,
-                         const std::string& cameraName = "");
+                         const std::string& cameraName = "", const std::string& environment = "");
 
 }  // namespace glint

@@ -79,6 +79,7 @@ const Module& module() {
       symbol(m.texture.openMemory, kGlintOiioTextureOpenMemorySymbol);
       symbol(m.texture.lookup, kGlintOiioTextureLookupSymbol);
       symbol(m.texture.load, kGlintOiioTextureLoadSymbol);
+      symbol(m.texture.texels, kGlintOiioTextureTexelsSymbol);
       if (!m.error.empty()) m.writeImage = nullptr, m.texture = {};
       return m;  // loaded for the rest of the process
     }

@@ -24,6 +24,7 @@ struct TextureFunctions {
   GlintOiioTextureOpenMemory openMemory = nullptr;
   GlintOiioTextureLookup lookup = nullptr;
   GlintOiioTextureLoad load = nullptr;
+  GlintOiioTextureTexels texels = nullptr;
 };
 const TextureFunctions& textureFunctions(const std::string& path);
 

@@ -33,6 +33,11 @@ using GlintOiioTextureLoad = int (*)(void* handle, int channels, char* error, si
 // axes (dsdx, dtdx, dsdy, dtdy), repeating outside [0, 1]; returns 0 on success.
 using GlintOiioTextureLookup = int (*)(void* handle, const float* st, const float* axes,
                                        int firstChannel, int channels, float* out);
+// The unfiltered texels of rows [y0, y1) of an opened texture's full-resolution level, `channels`
+// floats each from channel 0, into out (width × (y1 − y0) × channels); returns 0 on success,
+// else nonzero with OpenImageIO's message.
+using GlintOiioTextureTexels = int (*)(void* handle, int width, int y0, int y1, int channels,
+                                       float* out, char* error, size_t errorSize);
 }
 
 inline constexpr const char* kGlintOiioModuleName = "libglint_oiio.so";
@@ -41,3 +46,4 @@ inline constexpr const char* kGlintOiioTextureOpenSymbol = "glint_oiio_texture_o
 inline constexpr const char* kGlintOiioTextureOpenMemorySymbol = "glint_oiio_texture_open_memory";
 inline constexpr const char* kGlintOiioTextureLookupSymbol = "glint_oiio_texture_lookup";
 inline constexpr const char* kGlintOiioTextureLoadSymbol = "glint_oiio_texture_load";
+inline constexpr const char* kGlintOiioTextureTexelsSymbol = "glint_oiio_texture_texels";

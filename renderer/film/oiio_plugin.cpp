@@ -183,6 +183,27 @@ extern "C" __attribute__((visibility("default"))) int glint_oiio_texture_lookup(
 }
 static_assert(std::is_same_v<decltype(&glint_oiio_texture_lookup), GlintOiioTextureLookup>);
 
+extern "C" __attribute__((visibility("default"))) int glint_oiio_texture_texels(
+    void* handle, int width, int y0, int y1, int channels, float* out, char* error,
+    size_t errorSize) {
+  try {
+    OIIO::TextureSystem& ts = textureSystem();
+    thread_local OIIO::TextureSystem::Perthread* const perThread = ts.get_perthread_info();
+    ts.geterror();
+    OIIO::TextureOpt options;
+    if (ts.get_texels(static_cast<OIIO::TextureSystem::TextureHandle*>(handle), perThread, options,
+                      0, 0, width, y0, y1, 0, 1, 0, channels, OIIO::TypeFloat, out))
+      return 0;
+    const std::string message = ts.geterror();
+    std::snprintf(error, errorSize, "%s",
+                  message.empty() ? "OpenImageIO could not read its texels" : message.c_str());
+  } catch (const std::exception& e) {
+    std::snprintf(error, errorSize, "%s", e.what());
+  }
+  return 1;
+}
+static_assert(std::is_same_v<decltype(&glint_oiio_texture_texels), GlintOiioTextureTexels>);
+
 extern "C" __attribute__((visibility("default"))) int glint_oiio_texture_load(void* handle,
                                                                               int channels,
                                                                               char* error,

@@ -1,5 +1,6 @@
 #include "film/texture_file.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <new>
 #include <stdexcept>
@@ -20,6 +21,8 @@ namespace {
 // What reading a texture takes, in multiples of its texels in their own type (above).
 constexpr double kTextureCopies = 3;
 
+void throwIfOutOfMemory(const char* error);
+
 class TextureFile final : public ImageTexture {
  public:
   TextureFile(std::string path, void* handle, const GlintOiioTextureInfo& info,
@@ -27,8 +30,11 @@ class TextureFile final : public ImageTexture {
       : path_(std::move(path)),
         handle_(handle),
         channels_(info.channels),
+        width_(info.width),
+        height_(info.height),
         toRendering_(colorspace),
-        lookup_(functions.lookup) {}
+        lookup_(functions.lookup),
+        texels_(functions.texels) {}
 
   Rgb color(const ImageFootprint& at) const override {
     float texel[3] = {0, 0, 0};
@@ -50,6 +56,38 @@ class TextureFile final : public ImageTexture {
 
   const std::string& path() const override { return path_; }
 
+  LatLongImage texels(double bytesPerTexel) const {
+    const double count = double(width_) * double(height_);
+    checkMemoryFits(count * bytesPerTexel, "image " + path_ + " (" + std::to_string(width_) + "x" +
+                                               std::to_string(height_) + ", read whole)");
+    LatLongImage image;
+    image.width = width_;
+    image.height = height_;
+    image.texels.resize(static_cast<size_t>(count));
+    const int colorChannels = channels_ >= 3 ? 3 : 1;
+    // A band of rows at a time: the floats in the file's layout are never all held at once.
+    constexpr int kBandRows = 16;
+    std::vector<float> band(static_cast<size_t>(width_) * kBandRows *
+                            static_cast<size_t>(colorChannels));
+    size_t next = 0;
+    for (int y0 = 0; y0 < height_; y0 += kBandRows) {
+      const int y1 = std::min(height_, y0 + kBandRows);
+      char error[512] = "";
+      if (texels_(handle_, width_, y0, y1, colorChannels, band.data(), error, sizeof error) != 0) {
+        throwIfOutOfMemory(error);
+        throw GlintError("cannot read image " + path_ + ": " + excerpt(error));
+      }
+      const size_t n = static_cast<size_t>(width_) * static_cast<size_t>(y1 - y0);
+      for (size_t i = 0; i < n; ++i) {
+        const float* f = band.data() + i * static_cast<size_t>(colorChannels);
+        float texel[3] = {f[0], colorChannels == 3 ? f[1] : f[0], colorChannels == 3 ? f[2] : f[0]};
+        if (!toRendering_.isIdentity()) toRendering_.apply(texel);
+        image.texels[next++] = {texel[0], texel[1], texel[2]};
+      }
+    }
+    return image;
+  }
+
  private:
   bool read(const ImageFootprint& at, int first, int count, float* out) const {
     const float st[2] = {at.st.x, at.st.y};
@@ -61,9 +99,10 @@ class TextureFile final : public ImageTexture {
 
   std::string path_;
   void* handle_;
-  int channels_;
+  int channels_, width_, height_;
   ToRenderingSpace toRendering_;
   GlintOiioTextureLookup lookup_;
+  GlintOiioTextureTexels texels_;
 };
 
 }  // namespace
@@ -152,6 +191,13 @@ std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
                                                      const std::string& colorspace) {
   return out_of_memory::whileDoing("reading texture " + path,
                                    [&] { return openTextureFile(path, colorspace); });
+}
+
+LatLongImage readTexels(const ImageTexture& texture, double bytesPerTexel) {
+  const auto* file = dynamic_cast<const TextureFile*>(&texture);
+  if (!file) throw GlintError("texture " + texture.path() + " is not read from an image file");
+  return out_of_memory::whileDoing("reading image " + texture.path(),
+                                   [&] { return file->texels(bytesPerTexel); });
 }
 
 std::shared_ptr<const ImageTexture> openImageTextureInMemory(const std::string& name,

@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <vector>
 
+#include "lights/environment.h"
 #include "materials/image_texture.h"
 
 namespace glint {
@@ -31,5 +33,11 @@ std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
 // `name` says where it came from in messages and ends in the format's extension (".png").
 std::shared_ptr<const ImageTexture> openImageTextureInMemory(const std::string& name,
                                                              const std::string& bytes);
+
+// The texels of an opened texture's full-resolution image, unfiltered, converted to the
+// rendering space as color() converts them (grey to all three channels), row 0 at the top: what
+// an environment light samples. Checks first that width × height × bytesPerTexel fit the memory
+// budget (core/memory.h); throws GlintError naming the file when OpenImageIO cannot read them.
+LatLongImage readTexels(const ImageTexture& texture, double bytesPerTexel);
 
 }  // namespace glint

@@ -82,7 +82,7 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
     Rgb& local = sum.local;
     // Trace(r, d) returns the background past the depth limit, before it looks for a hit.
     if (pastDepthLimit) {
-      local = scene_.render.background;
+      local = scene_.background(rays[i].d);
       sum.inMedium = false;
       sum.childEnd = gen.children;
       continue;
@@ -97,7 +97,7 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
           scene_.materials[branch.media.innermostMaterial()].dielectric.absorption.transmittance(
               hit.t * length(ray.d));
     if (!hit) {
-      local = scene_.render.background;
+      local = scene_.background(ray.d);
       sum.childEnd = gen.children;
       continue;
     }

@@ -166,7 +166,7 @@ class BatchedKernel {
   template <class Queue>
   [[gnu::always_inline]] void queueSample(const LitPoint& pt, const Light& light, Vec2f u,
                                           Queue& queue) const {
-    const LightSample ls = sampleLight(light, pt.sp.p, u);
+    const LightSample ls = sampleLight(light, pt.sp.p, pt.at.n, u);
     if (!facesLight(pt.at, ls.wi) || ls.intensity.isBlack()) return;
     const Rgb f = reflectedLight(pt.material->surface, pt.at, ls.wi);
     const int q = queue.size++;

@@ -21,10 +21,10 @@ Radiance ReferenceIntegrator::radiance(const Ray& cameraRay, const SampleKey& ke
 Rgb ReferenceIntegrator::trace(const Ray& r, const Hit& q, const Branch& branch,
                                RayCounters& counters) const {
   const RenderSettings& settings = scene_.render;
-  if (branch.depth > settings.maxDepth) return settings.background;
+  if (branch.depth > settings.maxDepth) return scene_.background(r.d);
   Rgb c;
   if (!q) {
-    c = settings.background;
+    c = scene_.background(r.d);
   } else {
     const ShadingPoint sp = scene_.shadingPoint(r, q);
     const Material& m = scene_.materials[sp.materialId];
@@ -81,7 +81,7 @@ Rgb ReferenceIntegrator::accLightSource(const Material& m, const ShadingPoint& q
     Rgb sum;
     for (int j = 0; j < samples; ++j) {
       const Vec2f u = delta ? Vec2f{0.5f, 0.5f} : branch.key->get2D(pattern, j, samples);
-      const LightSample ls = sampleLight(light, q.p, u);
+      const LightSample ls = sampleLight(light, q.p, at.n, u);
       if (!facesLight(at, ls.wi) || ls.intensity.isBlack()) continue;
       const Rgb f = reflectedLight(m.surface, at, ls.wi);  // diffuse and highlight
       const Ray shadow = spawnShadowRay(q, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target, time);

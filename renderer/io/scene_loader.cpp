@@ -281,8 +281,48 @@ Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode&
   return m;
 }
 
-Light parseLight(const SceneBuilder& b, const JsonNode& n) {
-  const std::string type = n.at("type").choice({"point", "spot", "directional", "quad", "disk"});
+// {"type": "environment", "radiance": [r, g, b]}, or {"image": FILE, "colorspace": NAME,
+// "intensity": s, "rotation": degrees}; either with "samples" (lights/environment.h).
+EnvironmentLight parseEnvironment(SceneBuilder& b, const JsonNode& n) {
+  n.checkKeys({"type", "radiance", "image", "colorspace", "intensity", "rotation", "samples"});
+  const int samples = n.has("samples") ? n.at("samples").integer(1, 1 << 16) : 16;
+  if (n.has("radiance") == n.has("image"))
+    n.fail(std::string(n.has("image") ? "has both" : "needs one of") +
+           " \"radiance\" (a uniform sky) and \"image\" (a lat-long image)");
+  if (n.has("radiance")) {
+    for (const char* key : {"colorspace", "intensity", "rotation"})
+      if (n.has(key)) n.at(key).fail("applies to an environment \"image\" only");
+    return EnvironmentLight(n.at("radiance").color(), samples);
+  }
+  const float intensity = n.has("intensity") ? n.at("intensity").number(0, 3.4e38f) : 1.0f;
+  const float rotation = n.has("rotation") ? n.at("rotation").number(-1e6f, 1e6f) : 0.0f;
+  const std::shared_ptr<const ImageTexture> texture = parseImageFile(b, n);
+  const JsonNode file = n.at("image");
+  LatLongImage image;
+  try {
+    image = readTexels(*texture, EnvironmentLight::bytesFor(1));
+  } catch (const OutOfMemoryError&) {
+    throw;  // the machine's failure, not the file's
+  } catch (const GlintError& e) {
+    file.fail(e.what());
+  }
+  // Radiance is finite and not negative (an EXR may hold anything): a NaN or a negative texel
+  // would poison the sampling distribution and every pixel that sees it.
+  for (size_t i = 0; i < image.texels.size(); ++i) {
+    const Rgb& t = image.texels[i];
+    if (t.isFinite() && t.r >= 0 && t.g >= 0 && t.b >= 0) continue;
+    const size_t w = static_cast<size_t>(image.width);
+    file.fail("texel (" + std::to_string(i % w) + ", " + std::to_string(i / w) + ") is (" +
+              formatNumber(t.r) + ", " + formatNumber(t.g) + ", " + formatNumber(t.b) +
+              "): an environment's radiance must be finite and >= 0");
+  }
+  return EnvironmentLight(std::move(image), intensity, rotation, samples);
+}
+
+Light parseLight(SceneBuilder& b, const JsonNode& n) {
+  const std::string type =
+      n.at("type").choice({"point", "spot", "directional", "quad", "disk", "environment"});
+  if (type == "environment") return parseEnvironment(b, n);
   if (type == "point" || type == "spot") {
     std::vector<std::string> keys = {"type", "position", "intensity", "falloff"};
     if (type == "spot") keys.insert(keys.end(), {"direction", "inner_angle", "outer_angle"});
@@ -374,6 +414,28 @@ void addLightSurfaces(Scene& s, uint32_t objectCount) {
   }
 }
 
+// The lights, at most one of them an environment, which replaces render.background.
+void parseLights(SceneBuilder& b, const JsonNode& root, const JsonNode& lights) {
+  Scene& s = b.scene;
+  std::string environmentAt;
+  for (const JsonNode& l : lights.elements()) {
+    const std::optional<JsonNode> type = l.isObject() ? l.get("type") : std::nullopt;
+    const bool environment = type && type->isString() && type->string() == "environment";
+    // Refused before the second image is read.
+    if (environment && !environmentAt.empty())
+      l.fail("a second environment light: a scene has at most one (" + environmentAt + ")");
+    s.lights.push_back(parseLight(b, l));
+    if (!environment) continue;
+    environmentAt = l.path();
+    s.environment = std::get<EnvironmentLight>(s.lights.back());
+    // Both would say what rays that leave the scene see.
+    if (auto render = root.get("render"); render && render->has("background"))
+      render->at("background")
+          .fail("rays that miss see the environment (" + environmentAt +
+                "); remove \"background\", or the environment");
+  }
+}
+
 void parseScene(SceneBuilder& b, const JsonNode& root, std::optional<int> frame) {
   root.checkKeys({"animation", "render", "camera", "materials", "lights", "objects", "groups"});
   Scene& s = b.scene;
@@ -386,8 +448,7 @@ void parseScene(SceneBuilder& b, const JsonNode& root, std::optional<int> frame)
       b.materialIds[name] = static_cast<uint32_t>(s.materials.size());
       s.materials.push_back(parseMaterial(b, name, mats->at(name)));
     }
-  if (auto lights = root.get("lights"))
-    for (const JsonNode& l : lights->elements()) s.lights.push_back(parseLight(b, l));
+  if (auto lights = root.get("lights")) parseLights(b, root, *lights);
 
   s.groups.push_back({"", {}});
   // Groups are registered before objects so instances can name them in any order.

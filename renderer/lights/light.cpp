@@ -22,6 +22,7 @@ DiskLight::DiskLight(const Vec3f& center, const Vec3f& normal, float radius)
 int lightSampleCount(const Light& light) {
   if (const auto* q = std::get_if<QuadLight>(&light)) return q->samples;
   if (const auto* d = std::get_if<DiskLight>(&light)) return d->samples;
+  if (const auto* e = std::get_if<EnvironmentLight>(&light)) return e->samples;
   return 1;
 }
 

@@ -7,14 +7,17 @@
 //    cosine at the light and inverse-square distance, so lit surfaces show k_d × irradiance.
 // An area light with "visible": true is also a surface of the scene that camera, reflected and
 // refracted rays see (the loader adds it, with the radiance emittedRadiance gives); otherwise
-// area lights only light surfaces.
+// area lights only light surfaces. The environment (lights/environment.h) is a light at
+// infinity that rays leaving the scene see.
 #include <algorithm>
 #include <cmath>
 #include <variant>
+#include <vector>
 
 #include "core/rgb.h"
 #include "core/sampling.h"
 #include "core/vec.h"
+#include "lights/environment.h"
 
 namespace glint {
 
@@ -105,7 +108,7 @@ class DiskLight : public AreaEmission {
   float radius_, area_;
 };
 
-using Light = std::variant<PointLight, DirectionalLight, QuadLight, DiskLight>;
+using Light = std::variant<PointLight, DirectionalLight, QuadLight, DiskLight, EnvironmentLight>;
 
 // What one light sample delivers at a point: direction to it, where the shadow ray must reach,
 // and the intensity arriving there (falloff and, in radiance mode, the geometry term applied).
@@ -117,6 +120,13 @@ struct LightSample {
 };
 
 // A delta light (point or directional): one shadow ray, and no sample drawn on it.
+// The scene's environment among its lights (at most one), or null.
+inline const EnvironmentLight* findEnvironment(const std::vector<Light>& lights) {
+  for (const Light& l : lights)
+    if (const auto* env = std::get_if<EnvironmentLight>(&l)) return env;
+  return nullptr;
+}
+
 inline bool isDeltaLight(const Light& light) {
   return std::holds_alternative<PointLight>(light) ||
          std::holds_alternative<DirectionalLight>(light);
@@ -154,10 +164,14 @@ inline Rgb meanOverSamples(const Rgb& sum, int count) {
   return s;
 }
 
-// `u` in [0, 1)² picks the point on an area light; ignored by delta lights. Inline: out of
+// `u` in [0, 1)² picks the point on an area light, or the direction of the environment, which
+// a uniform sky draws about n, the point's unit shading normal; delta lights ignore both. An
+// environment's sample arrives from infinity with radiance / pdf as its intensity: times k_d·cos θ
+// it estimates k_d × E, E = ∫ L cos θ dω, as a radiance-mode area light's does. Inline: out of
 // line, every sample came back through memory, a 40-byte struct stored field by field and
 // loaded in 16-byte moves, which stalls the load (store forwarding).
-[[gnu::always_inline]] inline LightSample sampleLight(const Light& light, const Vec3f& p, Vec2f u) {
+[[gnu::always_inline]] inline LightSample sampleLight(const Light& light, const Vec3f& p,
+                                                      const Vec3f& n, Vec2f u) {
   if (const auto* pl = std::get_if<PointLight>(&light)) {
     LightSample s =
         lightSampleFrom(p, pl->position, pl->intensity, pl->falloff, Emission::Seed, {}, 0);
@@ -173,8 +187,16 @@ inline Rgb meanOverSamples(const Rgb& sum, int count) {
     return lightSampleFrom(p, d->center() + disk.x * d->axisX() + disk.y * d->axisY(), d->intensity,
                            d->falloff, d->emission, d->normal(), d->area());
   }
-  const auto& dl = std::get<DirectionalLight>(light);
   LightSample s;
+  if (const auto* env = std::get_if<EnvironmentLight>(&light)) [[unlikely]] {
+    const EnvironmentSample e = env->sample(n, u);
+    s.wi = e.wi;
+    s.target = p + s.wi;
+    s.atInfinity = true;
+    s.intensity = e.radianceOverPdf;
+    return s;
+  }
+  const auto& dl = std::get<DirectionalLight>(light);
   s.wi = -dl.direction;
   s.target = p + s.wi;
   s.atInfinity = true;

@@ -13,6 +13,7 @@ std::vector<std::pair<const char*, bool>> table(const Features& f) {
           {"point_lights", f.pointLights},
           {"directional_lights", f.directionalLights},
           {"area_lights", f.areaLights},
+          {"environment_light", f.environment},
           {"motion_blur", f.motion},
           {"depth_of_field", f.depthOfField},
           {"gloss", f.gloss},
@@ -49,6 +50,7 @@ Features computeFeatures(const Scene& scene) {
     if (std::holds_alternative<DirectionalLight>(l)) f.directionalLights = true;
     if (std::holds_alternative<QuadLight>(l) || std::holds_alternative<DiskLight>(l))
       f.areaLights = true;
+    if (std::holds_alternative<EnvironmentLight>(l)) f.environment = true;
   }
   f.shadows = !scene.lights.empty();
   f.ambient = !scene.render.ambient.isBlack();

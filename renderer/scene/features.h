@@ -15,6 +15,7 @@ struct Features {
   bool pointLights = false;
   bool directionalLights = false;
   bool areaLights = false;
+  bool environment = false;  // an environment light: misses see it, and it lights surfaces
   bool depthOfField = false;
   bool motion = false;  // some object has keys (time steps for Embree, a time sample)
   bool gloss = false;   // glossy reflection or blurred translucency

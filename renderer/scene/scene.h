@@ -92,6 +92,9 @@ class Scene {
   Vec3d worldOrigin;
   std::vector<Material> materials;
   std::vector<Light> lights;
+  // The environment among the lights, copied (it shares its image): what rays that leave the
+  // scene see in place of render.background.
+  std::optional<EnvironmentLight> environment;
 
   std::vector<Group> groups;  // groups[0] is the world
   // Per object id (Geometry::objectId of a world entry) the name compositors see in Cryptomatte:
@@ -112,6 +115,12 @@ class Scene {
   std::vector<Instance> instances;
 
   Features features;
+
+  // What a ray leaving the scene along d (any length) sees (Trace's background): the
+  // environment, else the background colour.
+  Rgb background(const Vec3f& d) const {
+    return environment ? environment->radiance(d) : render.background;
+  }
 
   // Rebuilds the world-space surface point of a hit (DESIGN.md §3). Shared by all backends.
   ShadingPoint shadingPoint(const Ray& ray, const Hit& hit) const {

@@ -12,14 +12,14 @@ namespace {
 TEST(Lights, PointLightFallsOffOnlyWhenAsked) {
   // A light at (1, 2, 0) seen from the origin: r² = 5, direction (1, 2, 0)/√5.
   const PointLight plain{{1, 2, 0}, {3, 3, 3}, Falloff::None};
-  const LightSample s = sampleLight(plain, {0, 0, 0}, {});
+  const LightSample s = sampleLight(plain, {0, 0, 0}, {0, 0, 1}, {});
   EXPECT_NEAR(s.wi.x, 1 / std::sqrt(5.0f), 1e-7);
   EXPECT_NEAR(s.wi.y, 2 / std::sqrt(5.0f), 1e-7);
   EXPECT_EQ(s.target, (Vec3f{1, 2, 0}));
   EXPECT_FALSE(s.atInfinity);
   EXPECT_EQ(s.intensity, (Rgb{3, 3, 3}));
   const PointLight falling{{1, 2, 0}, {3, 3, 3}, Falloff::InverseSquare};
-  EXPECT_NEAR(sampleLight(falling, {0, 0, 0}, {}).intensity.r, 3.0f / 5, 1e-7);
+  EXPECT_NEAR(sampleLight(falling, {0, 0, 0}, {0, 0, 1}, {}).intensity.r, 3.0f / 5, 1e-7);
 }
 
 TEST(Lights, SpotLightShinesFullyInsideItsInnerConeAndFadesToItsOuter) {
@@ -32,7 +32,7 @@ TEST(Lights, SpotLightShinesFullyInsideItsInnerConeAndFadesToItsOuter) {
   ASSERT_TRUE(spot.isSpot());
   const auto at = [&](float degrees) {  // a point on the unit sphere `degrees` off the axis
     const float a = degrees * kPi / 180;
-    return sampleLight(spot, Vec3f{std::sin(a), 1 - std::cos(a), 0}, {}).intensity.r;
+    return sampleLight(spot, Vec3f{std::sin(a), 1 - std::cos(a), 0}, {0, 0, 1}, {}).intensity.r;
   };
   EXPECT_FLOAT_EQ(at(0), 2);   // on the axis
   EXPECT_FLOAT_EQ(at(19), 2);  // inside the inner cone
@@ -46,7 +46,7 @@ TEST(Lights, SpotLightShinesFullyInsideItsInnerConeAndFadesToItsOuter) {
 
 TEST(Lights, DirectionalLightIsAtInfinity) {
   const DirectionalLight sun{{0, -1, 0}, {0.5f, 0.5f, 0.5f}};
-  const LightSample s = sampleLight(sun, {7, 3, -2}, {});
+  const LightSample s = sampleLight(sun, {7, 3, -2}, {0, 0, 1}, {});
   EXPECT_TRUE(s.atInfinity);
   EXPECT_EQ(s.wi, (Vec3f{0, 1, 0}));  // towards the light: against its travel
   EXPECT_EQ(s.intensity, (Rgb{0.5f, 0.5f, 0.5f}));
@@ -60,14 +60,14 @@ TEST(Lights, QuadInRadianceModeCarriesItsGeometryTerm) {
   q.emission = Emission::Radiance;
   EXPECT_EQ(q.normal(), (Vec3f{0, -1, 0}));
   EXPECT_EQ(q.area(), 4.0f);
-  const LightSample centre = sampleLight(Light{q}, {0, 0, 0}, {0.5f, 0.5f});
+  const LightSample centre = sampleLight(Light{q}, {0, 0, 0}, {0, 0, 1}, {0.5f, 0.5f});
   EXPECT_EQ(centre.target, (Vec3f{0, 2, 0}));
   EXPECT_NEAR(centre.intensity.r, 3.0f, 1e-6);
   // Behind the emitting side nothing arrives.
-  EXPECT_TRUE(sampleLight(Light{q}, {0, 4, 0}, {0.5f, 0.5f}).intensity.isBlack());
+  EXPECT_TRUE(sampleLight(Light{q}, {0, 4, 0}, {0, 0, 1}, {0.5f, 0.5f}).intensity.isBlack());
   // In seed mode a sample is a point light of the light's intensity.
   q.emission = Emission::Seed;
-  EXPECT_EQ(sampleLight(Light{q}, {0, 4, 0}, {0.25f, 0.75f}).intensity, (Rgb{3, 3, 3}));
+  EXPECT_EQ(sampleLight(Light{q}, {0, 4, 0}, {0, 0, 1}, {0.25f, 0.75f}).intensity, (Rgb{3, 3, 3}));
 }
 
 TEST(Lights, DiskSamplesLieOnTheDisk) {
@@ -75,7 +75,7 @@ TEST(Lights, DiskSamplesLieOnTheDisk) {
   const DiskLight d({1, 5, 2}, normal, 0.75f);
   for (float ux = 0; ux < 1; ux += 1.0f / 7)
     for (float uy = 0; uy < 1; uy += 1.0f / 7) {
-      const Vec3f y = sampleLight(Light{d}, {0, 0, 0}, {ux, uy}).target - d.center();
+      const Vec3f y = sampleLight(Light{d}, {0, 0, 0}, {0, 0, 1}, {ux, uy}).target - d.center();
       EXPECT_NEAR(dot(y, normal), 0, 1e-6);       // in the disk's plane
       EXPECT_LE(length(y), 0.75f * (1 + 1e-6f));  // within its radius
     }

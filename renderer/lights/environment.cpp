@@ -1,0 +1,157 @@
+#include "lights/environment.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/frame.h"
+#include "core/sampling.h"
+
+namespace glint {
+
+namespace {
+
+// Rec. 709 luminance: what the eye, and a grey surface, take of a colour.
+double luminance(const Rgb& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
+
+// The cell i of a cumulative table cdf[0..n] (cdf[0] = 0, cdf[n] = 1) with cdf[i] ≤ u <
+// cdf[i + 1], and where u falls within it, in [0, 1). Cells of zero probability are never
+// chosen: no u lies in them.
+int findCell(const float* cdf, int n, float u, float& within) {
+  const float* above = std::upper_bound(cdf + 1, cdf + n + 1, u);
+  const int i = std::clamp(static_cast<int>(above - cdf) - 1, 0, n - 1);
+  const float width = cdf[i + 1] - cdf[i];
+  within = width > 0 ? std::clamp((u - cdf[i]) / width, 0.0f, 0x1.fffffep-1f) : 0.5f;
+  return i;
+}
+
+// Builds a cumulative table of `n` non-negative weights, normalised to end at exactly 1;
+// returns their total (0: all zero, and the table stays 0).
+double cumulate(const double* weight, int n, float* cdf) {
+  double total = 0;
+  cdf[0] = 0;
+  for (int i = 0; i < n; ++i) total += weight[i];
+  double running = 0;
+  for (int i = 0; i < n; ++i) {
+    running += weight[i];
+    cdf[i + 1] = total > 0 ? static_cast<float>(running / total) : 0.0f;
+  }
+  if (total > 0) cdf[n] = 1;
+  return total;
+}
+
+}  // namespace
+
+// The image and a 2-D piecewise-constant distribution over its (u, v) square: a row (θ) from
+// the marginal table, then a texel (φ) from that row's conditional table.
+struct EnvironmentLight::Map {
+  LatLongImage image;           // scaled by intensity
+  float rotation = 0;           // radians about +Y
+  std::vector<float> rowCdf;    // height + 1
+  std::vector<float> texelCdf;  // per row, width + 1
+  // Per texel, the density over the (u, v) square with which it is drawn: its weight over the
+  // mean weight (0 everywhere when the image is black).
+  std::vector<float> density;
+
+  const Rgb& texel(int x, int y) const {
+    return image
+        .texels[static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x)];
+  }
+  // The texel a direction falls in, for unit-or-not d.
+  void texelOf(const Vec3f& d, int& x, int& y) const {
+    const float phi = std::atan2(d.x, -d.z) + rotation;  // 0 at the image's centre
+    float u = phi * (0.5f / kPi) + 0.5f;
+    u -= std::floor(u);
+    const float len = length(d);
+    const float cosTheta = len > 0 ? std::clamp(d.y / len, -1.0f, 1.0f) : 1.0f;
+    const float v = std::acos(cosTheta) / kPi;
+    x = std::clamp(static_cast<int>(u * static_cast<float>(image.width)), 0, image.width - 1);
+    y = std::clamp(static_cast<int>(v * static_cast<float>(image.height)), 0, image.height - 1);
+  }
+};
+
+EnvironmentLight::EnvironmentLight(const Rgb& radiance, int n) : samples(n), uniform_(radiance) {}
+
+EnvironmentLight::EnvironmentLight(LatLongImage image, float intensity, float rotationDegrees,
+                                   int n)
+    : samples(n) {
+  auto map = std::make_shared<Map>();
+  const int w = image.width, h = image.height;
+  map->image = std::move(image);
+  for (Rgb& t : map->image.texels) t = t * intensity;
+  map->rotation = rotationDegrees * (kPi / 180);
+  map->rowCdf.resize(static_cast<size_t>(h) + 1);
+  map->texelCdf.resize(static_cast<size_t>(h) * (static_cast<size_t>(w) + 1));
+  map->density.assign(static_cast<size_t>(w) * static_cast<size_t>(h), 0.0f);
+  // A texel's weight is its luminance times the solid angle its row spans per unit of v
+  // (sin θ at the row's centre): bright texels, and texels nearer the horizon, which cover
+  // more of the sphere, are drawn more often.
+  std::vector<double> weight(static_cast<size_t>(w));
+  std::vector<double> rowWeight(static_cast<size_t>(h));
+  for (int y = 0; y < h; ++y) {
+    const double sinTheta = std::sin(kPi * (y + 0.5) / h);
+    for (int x = 0; x < w; ++x)
+      weight[static_cast<size_t>(x)] = luminance(map->texel(x, y)) * sinTheta;
+    rowWeight[static_cast<size_t>(y)] =
+        cumulate(weight.data(), w, map->texelCdf.data() + static_cast<size_t>(y) * (w + 1));
+  }
+  const double total = cumulate(rowWeight.data(), h, map->rowCdf.data());
+  if (total > 0) {
+    const double mean = total / (double(w) * double(h));
+    for (int y = 0; y < h; ++y) {
+      const double sinTheta = std::sin(kPi * (y + 0.5) / h);
+      for (int x = 0; x < w; ++x)
+        map->density[static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)] =
+            static_cast<float>(luminance(map->texel(x, y)) * sinTheta / mean);
+    }
+  }
+  map_ = std::move(map);
+}
+
+Rgb EnvironmentLight::radiance(const Vec3f& d) const {
+  if (!map_) return uniform_;
+  int x, y;
+  map_->texelOf(d, x, y);
+  return map_->texel(x, y);
+}
+
+EnvironmentSample EnvironmentLight::sample(const Vec3f& n, Vec2f u) const {
+  EnvironmentSample s;
+  if (!map_) {
+    // Cosine-weighted about n: pdf cos θ/π, so L/pdf·cos θ is π·L whatever u is.
+    const Vec2f disk = squareToDiskConcentric(u);
+    const float z = std::sqrt(std::max(0.0f, 1 - disk.x * disk.x - disk.y * disk.y));
+    Vec3f t, b;
+    orthonormalBasis(n, t, b);
+    s.wi = normalize(disk.x * t + disk.y * b + z * n);
+    if (z > 0) s.radianceOverPdf = uniform_ * (kPi / z);
+    return s;
+  }
+  const Map& m = *map_;
+  const int w = m.image.width, h = m.image.height;
+  float withinRow, withinTexel;
+  const int y = findCell(m.rowCdf.data(), h, u.y, withinRow);
+  const int x = findCell(m.texelCdf.data() + static_cast<size_t>(y) * (w + 1), w, u.x, withinTexel);
+  const float theta = kPi * (static_cast<float>(y) + withinRow) / static_cast<float>(h);
+  const float phi =
+      2 * kPi * ((static_cast<float>(x) + withinTexel) / static_cast<float>(w) - 0.5f) - m.rotation;
+  const float sinTheta = std::sin(theta);
+  s.wi = {sinTheta * std::sin(phi), std::cos(theta), -sinTheta * std::cos(phi)};
+  const float density = m.density[static_cast<size_t>(y) * static_cast<size_t>(w) + x];
+  // The (u, v) square maps onto the sphere with dω = 2π² sin θ du dv.
+  if (density > 0 && sinTheta > 0)
+    s.radianceOverPdf = m.texel(x, y) * (2 * kPi * kPi * sinTheta / density);
+  return s;
+}
+
+float EnvironmentLight::pdf(const Vec3f& n, const Vec3f& d) const {
+  if (!map_) return std::max(0.0f, dot(n, d)) / kPi;
+  int x, y;
+  map_->texelOf(d, x, y);
+  const float sinTheta = std::sqrt(std::max(0.0f, 1 - d.y * d.y));
+  if (!(sinTheta > 0)) return 0;
+  return map_->density[static_cast<size_t>(y) * static_cast<size_t>(map_->image.width) +
+                       static_cast<size_t>(x)] /
+         (2 * kPi * kPi * sinTheta);
+}
+
+}  // namespace glint
