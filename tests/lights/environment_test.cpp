@@ -46,12 +46,13 @@ TEST(Environment, RotationTurnsCounterClockwiseSeenFromAbove) {
   // 90° about +Y: what was seen along −Z (the centre, columns 3 and 4) is seen along −X, and
   // what was seen along +X (columns 5 and 6) along −Z.
   const EnvironmentLight env(image(8, 2, columnColour), 1, 90, 1);
-  EXPECT_EQ(env.radiance({-1, 0.1f, 0.1f}), (Rgb{5, 1, 0}));   // was (0.1, 0.1, −1)
-  EXPECT_EQ(env.radiance({-1, 0.1f, -0.1f}), (Rgb{4, 1, 0}));  // was (−0.1, 0.1, −1)
+  // A right-handed turn about +Y: (x, z) → (x cos α + z sin α, −x sin α + z cos α).
+  EXPECT_EQ(env.radiance({-1, 0.1f, -0.1f}), (Rgb{5, 1, 0}));  // was (0.1, 0.1, −1)
+  EXPECT_EQ(env.radiance({-1, 0.1f, 0.1f}), (Rgb{4, 1, 0}));   // was (−0.1, 0.1, −1)
   EXPECT_EQ(env.radiance({0.1f, 0.1f, -1}), (Rgb{7, 1, 0}));   // was (1, 0.1, 0.1)
   // −90° the other way: the centre is seen along +X.
   const EnvironmentLight back(image(8, 2, columnColour), 1, -90, 1);
-  EXPECT_EQ(back.radiance({1, 0.1f, -0.1f}), (Rgb{5, 1, 0}));
+  EXPECT_EQ(back.radiance({1, 0.1f, 0.1f}), (Rgb{5, 1, 0}));  // was (0.1, 0.1, −1)
 }
 
 TEST(Environment, IntensityScalesTheImage) {
@@ -100,7 +101,7 @@ TEST(Environment, SamplesCarryRadianceOverTheirDensity) {
   // recomputed from the direction: 1e-3 relative).
   const EnvironmentLight env(image(64, 32, sunAndSky), 1, 30, 1);
   for (int k = 0; k < 64; ++k) {
-    const Vec2f u{(k % 8 + 0.37f) / 8, (k / 8 + 0.61f) / 8};
+    const Vec2f u{(float(k % 8) + 0.37f) / 8, (float(k / 8) + 0.61f) / 8};
     const EnvironmentSample s = env.sample({0, 1, 0}, u);
     EXPECT_NEAR(length(s.wi), 1, 1e-6);
     const float expected = env.radiance(s.wi).r / env.pdf({0, 1, 0}, s.wi);
@@ -122,7 +123,7 @@ TEST(Environment, ASunIsFoundWithFarLessVarianceThanByUniformDirections) {
   double sumI = 0, sumI2 = 0, sumU = 0, sumU2 = 0;
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
-      const Vec2f u{(i + 0.5f) / n, (j + 0.5f) / n};
+      const Vec2f u{(float(i) + 0.5f) / n, (float(j) + 0.5f) / n};
       const EnvironmentSample s = env.sample(up, u);
       const double xi = s.radianceOverPdf.r * std::max(0.0f, dot(up, s.wi));
       sumI += xi, sumI2 += xi * xi;
@@ -147,7 +148,7 @@ TEST(Environment, UniformSkyIsDrawnByCosineSoDiffuseReadsPiL) {
   const EnvironmentLight env(Rgb{0.2f, 0.5f, 1}, 1);
   for (const Vec3f n : {Vec3f{0, 1, 0}, normalize(Vec3f{1, -2, 0.5f})})
     for (int k = 0; k < 16; ++k) {
-      const Vec2f u{(k % 4 + 0.3f) / 4, (k / 4 + 0.8f) / 4};
+      const Vec2f u{(float(k % 4) + 0.3f) / 4, (float(k / 4) + 0.8f) / 4};
       const LightSample s = sampleLight(Light{env}, {1, 2, 3}, n, u);
       EXPECT_TRUE(s.atInfinity);
       const float cosTheta = dot(n, s.wi);
