@@ -152,14 +152,14 @@ TEST(Environment, SceneMistakesNameTheirPlace) {
     return test::sceneErrorOf(std::string(kHead) + render + "\"lights\": [\n" + lights + "]}");
   };
   EXPECT_EQ(error(R"({"type": "environment", "image": "no_such_sky.exr"})"),
-            "scene.json:3: lights[0].image: cannot read texture " + std::string(GLINT_SCENES_DIR) +
-                "/no_such_sky.exr: no such file");
+            "scene.json:3: lights[0].image: texture not found: " + std::string(GLINT_SCENES_DIR) +
+                "/no_such_sky.exr");
   EXPECT_EQ(error("{\"type\": \"environment\", \"radiance\": [1, 1, 1]},\n"
                   "{\"type\": \"environment\", \"radiance\": [1, 1, 1]}"),
             "scene.json:4: lights[1]: a second environment light: a scene has at most one "
             "(lights[0])");
   EXPECT_EQ(error(R"({"type": "environment", "radiance": [1, -1, 1]})"),
-            "scene.json:3: lights[0].radiance: ");
+            "scene.json:3: lights[0].radiance[1]: must be >= 0, got -1");
   EXPECT_EQ(error(R"({"type": "environment"})"),
             "scene.json:3: lights[0]: needs one of \"radiance\" (a uniform sky) and \"image\" (a "
             "lat-long image)");
