@@ -92,8 +92,8 @@ class Scene {
   Vec3d worldOrigin;
   std::vector<Material> materials;
   std::vector<Light> lights;
-  // The environment among the lights, copied (it shares its image): what rays that leave the
-  // scene see in place of render.background.
+  // The environment among the lights, copied (it shares its image) by the loader, which allows
+  // one: what rays that leave the scene see in place of render.background.
   std::optional<EnvironmentLight> environment;
 
   std::vector<Group> groups;  // groups[0] is the world
