@@ -119,7 +119,6 @@ struct LightSample {
   bool atInfinity = false;
 };
 
-// A delta light (point or directional): one shadow ray, and no sample drawn on it.
 // The scene's environment among its lights (at most one), or null.
 inline const EnvironmentLight* findEnvironment(const std::vector<Light>& lights) {
   for (const Light& l : lights)
@@ -127,6 +126,7 @@ inline const EnvironmentLight* findEnvironment(const std::vector<Light>& lights)
   return nullptr;
 }
 
+// A delta light (point or directional): one shadow ray, and no sample drawn on it.
 inline bool isDeltaLight(const Light& light) {
   return std::holds_alternative<PointLight>(light) ||
          std::holds_alternative<DirectionalLight>(light);
