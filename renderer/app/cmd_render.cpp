@@ -117,6 +117,16 @@ nlohmann::json passesJson(const std::vector<PassRecord>& passes) {
   return list;
 }
 
+// The objects of the world by id (the objectid AOV's id, objects' id + 1) and name, as the
+// manifests list them.
+std::vector<std::pair<uint32_t, std::string>> worldObjects(const Scene& scene) {
+  const std::vector<bool> inWorld = scene.objectIdsInWorld();
+  std::vector<std::pair<uint32_t, std::string>> objects;
+  for (uint32_t i = 0; i < inWorld.size(); ++i)
+    if (inWorld[i]) objects.emplace_back(i + 1, scene.objectName(i));
+  return objects;
+}
+
 nlohmann::json statsJson(const Scene& scene, const RenderStats& st, uint64_t clampedValues) {
   nlohmann::json j;
   j["seconds"] = st.seconds;
@@ -129,6 +139,11 @@ nlohmann::json statsJson(const Scene& scene, const RenderStats& st, uint64_t cla
   j["clamped_values"] = clampedValues;  // beyond the EXR channel type's range (writeExr)
   j["features_used"] = scene.features.used();
   j["features_left_out"] = scene.features.leftOut();
+  j["objects"] = nlohmann::json::array();
+  for (const auto& [id, name] : worldObjects(scene))
+    j["objects"].push_back({{"id", id}, {"name", name}});
+  j["lights"] = nlohmann::json::array();
+  for (size_t k = 0; k < scene.lights.size(); ++k) j["lights"].push_back(scene.lightName(k));
   j["integrator"] = st.integrator == IntegratorKind::Reference ? "reference" : "production";
   j["sampler"] = samplerName(st.sampler);
   // The estimates of the frame's error from its own samples (docs/validation.md).
@@ -170,6 +185,19 @@ void printStats(const Scene& scene, const RenderStats& st) {
   std::printf("peak memory      %.1f MB (resident)\n", double(peakResidentBytes()) * 1e-6);
   std::printf("features used    %s\n", join(scene.features.used()).c_str());
   std::printf("left out         %s\n", join(scene.features.leftOut()).c_str());
+  // The first names of long lists: --stats-json has them all.
+  const auto names = [](const std::vector<std::string>& all) {
+    constexpr size_t kShown = 8;
+    std::string s;
+    for (size_t i = 0; i < all.size() && i < kShown; ++i) s += (i ? ", " : "") + excerpt(all[i]);
+    if (all.size() > kShown) s += " and " + std::to_string(all.size() - kShown) + " more";
+    return std::to_string(all.size()) + (all.empty() ? "" : ": " + s);
+  };
+  std::vector<std::string> objects, lights;
+  for (const auto& [id, name] : worldObjects(scene)) objects.push_back(name);
+  for (size_t k = 0; k < scene.lights.size(); ++k) lights.push_back(scene.lightName(k));
+  std::printf("objects          %s\n", names(objects).c_str());
+  std::printf("lights           %s\n", names(lights).c_str());
   std::printf("integrator       %s\n", st.integrator == IntegratorKind::Reference
                                            ? "reference (depth first, the oracle)"
                                            : "production (batched)");

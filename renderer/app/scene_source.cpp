@@ -3,8 +3,10 @@
 #include <default_scene.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <set>
 
 #include "core/error.h"
 #include "core/input_files.h"
@@ -12,6 +14,7 @@
 #include "core/out_of_memory.h"
 #include "film/texture_file.h"
 #include "io/gltf_scene.h"
+#include "io/object_names.h"
 #include "io/scene_formats.h"
 #include "io/scene_loader.h"
 
@@ -59,7 +62,21 @@ Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
                                  ? readGltfSceneInfo(file.string())
                                  : GltfSceneInfo{};
   nlohmann::json lights = nlohmann::json::array();
-  for (const GltfLight& l : gltf.lights) lights.push_back(gltfLight(l));
+  std::set<std::string> lightNames;
+  for (const GltfLight& l : gltf.lights) {
+    lights.push_back(gltfLight(l));
+    // Scene names are unique: a repeated one is numbered as Blender numbers its copies
+    // ("Lamp.001"); a name no scene may give (empty, "lights[0]") leaves the light unnamed.
+    if (!objectNameProblem(l.name).empty()) continue;
+    std::string name = l.name;
+    for (int copy = 1; lightNames.count(name); ++copy) {
+      char suffix[16];
+      std::snprintf(suffix, sizeof suffix, ".%03d", copy);
+      name = l.name + suffix;
+    }
+    lightNames.insert(name);
+    lights.back()["name"] = name;
+  }
   nlohmann::json render = {{"ambient", {0.1, 0.1, 0.1}}, {"background", {0.18, 0.18, 0.2}}};
   if (!environment.empty()) {
     lights.push_back(

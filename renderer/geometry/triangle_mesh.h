@@ -26,6 +26,10 @@ struct TriangleMesh {
   std::vector<Vec2f> uvs;
   // Per-vertex colours (linear RGB), empty when the mesh has none.
   std::vector<Rgb> colors;
+  // Per triangle, the object it belongs to, where a mesh file's parts name several (a file's
+  // nodes merged per material): in a Scene the object id (Scene::objectNames), in a MeshFile
+  // the index of the name in MeshFile::objectNames. Empty: the whole mesh is one object.
+  std::vector<uint32_t> objectIds;
 
   bool deforming() const { return !positionKeys.empty(); }
   bool smooth() const { return !normals.empty(); }

@@ -268,10 +268,8 @@ void BatchedKernel::recordAov(const Ray& ray, const Hit& hit, const Material& m,
   aov.depth = dot(sp.p - ray.o, aov.viewAxis);
   aov.normal = sp.shadingNormalFacing(-ray.d);
   aov.position = toFloat(toDouble(sp.p) + scene_.worldOrigin);  // world, not render space
-  // The top-level object: for a hit inside an instance, the instance's entry in `objects`.
-  const Geometry& top =
-      scene_.groups[0].geometries[hit.instId != kInvalidId ? hit.instId : hit.geomId];
-  aov.objectId = top.objectId + 1;
+  // The object: for a hit inside an instance, the instance's.
+  aov.objectId = scene_.objectId(hit) + 1;
   aov.materialId = scene_.materialId(hit);
   aov.albedo = albedo(m, at);
 }

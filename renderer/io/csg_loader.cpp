@@ -239,7 +239,7 @@ class CsgReader {
 
 void addCsg(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t objectId,
             const Placement& place) {
-  obj.checkKeys({"type", "op", "operands", "material", "transform", "motion"});
+  obj.checkKeys({"type", "name", "op", "operands", "material", "transform", "motion"});
   CsgReader reader(b);
   reader.node(obj, place.affine(), true, std::nullopt, false, 0);
   CsgSolid solid = reader.finish();

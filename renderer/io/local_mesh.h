@@ -2,6 +2,7 @@
 // The loader's meshes before they are placed, and the parsing shared by plain objects
 // (object_loader.cpp) and CSG operands (csg_loader.cpp). Internal to io/.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "io/scene_builder.h"
@@ -16,12 +17,16 @@ struct LocalMesh {
   std::vector<Rgb> colors;                       // per vertex colours; may be empty
   std::vector<std::vector<Vec3d>> positionKeys;  // a deforming mesh's vertices per motion key
   std::vector<uint32_t> indices;
+  // Per triangle, its object (TriangleMesh::objectIds); empty: one object.
+  std::vector<uint32_t> objectIds;
 };
 
-// A mesh file's parts (one per material its triangles use) and their materials.
+// A mesh file's parts (one per material its triangles use), their materials and the names
+// the parts' objectIds index (MeshFile::objectNames).
 struct FileMesh {
   std::vector<LocalMesh> parts;
   std::vector<Material> materials;
+  std::vector<std::string> objectNames;
 };
 
 // The material named by obj's "material" (an error naming the nearest name when there is none).

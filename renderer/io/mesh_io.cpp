@@ -31,6 +31,7 @@
 #include "io/gltf_subset.h"
 #include "io/mesh_limits.h"
 #include "io/mesh_materials.h"
+#include "io/object_names.h"
 #include "io/ply_reader.h"
 
 namespace glint {
@@ -255,6 +256,68 @@ void checkNodePlacements(const std::string& path, const aiScene& s) {
   visit(visit, *s.mRootNode, Matrix{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0}, 0);
 }
 
+// Assimp's vertex format of a mesh (GetMeshVFormatUnique of its ProcessHelper): the vertex
+// components it has. PreTransformVertices merges the meshes of one material and one format.
+unsigned vertexFormat(const aiMesh& m) {
+  unsigned format = 1;
+  if (m.HasNormals()) format |= 0x2;
+  if (m.HasTangentsAndBitangents()) format |= 0x4;
+  for (unsigned p = 0; p < AI_MAX_NUMBER_OF_TEXTURECOORDS && m.HasTextureCoords(p); ++p) {
+    format |= 0x100u << p;
+    if (m.mNumUVComponents[p] == 3) format |= 0x10000u << p;
+  }
+  for (unsigned p = 0; p < AI_MAX_NUMBER_OF_COLOR_SETS && m.HasVertexColors(p); ++p)
+    format |= 0x1000000u << p;
+  return format;
+}
+
+// The names of the faces of the meshes Assimp's PreTransformVertices makes, read from the node
+// tree before it flattens it. It merges, per material and vertex format, the faces of every
+// mesh each node places, node by node in depth-first order (its CollectData); the same walk
+// gives each run of faces its node's name (else its mesh's: object_names.h).
+class FaceNames {
+ public:
+  explicit FaceNames(const aiScene& s) {
+    std::vector<const aiNode*> stack{s.mRootNode};
+    while (!stack.empty()) {
+      const aiNode* node = stack.back();
+      stack.pop_back();
+      const std::string nodeName = fileGivenName(node->mName.C_Str());
+      for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+        const aiMesh& m = *s.mMeshes[node->mMeshes[i]];
+        const std::string name = nodeName.empty() ? fileGivenName(m.mName.C_Str()) : nodeName;
+        runs_[{m.mMaterialIndex, vertexFormat(m)}].push_back({indexOf(name), m.mNumFaces});
+      }
+      for (unsigned c = node->mNumChildren; c-- > 0;) stack.push_back(node->mChildren[c]);
+    }
+  }
+
+  // Whether any face has a name.
+  bool any() const { return names_.size() > 1 || (names_.size() == 1 && !names_[0].empty()); }
+  const std::vector<std::string>& names() const { return names_; }
+
+  // The name index of each face of `merged`, one of PreTransformVertices' meshes; empty when
+  // its faces are not the ones the walk counted (then they go unnamed).
+  std::vector<uint32_t> of(const aiMesh& merged) const {
+    std::vector<uint32_t> out;
+    const auto it = runs_.find({merged.mMaterialIndex, vertexFormat(merged)});
+    if (it == runs_.end()) return out;
+    for (const auto& [name, faces] : it->second) out.insert(out.end(), faces, name);
+    if (out.size() != merged.mNumFaces) out.clear();
+    return out;
+  }
+
+ private:
+  uint32_t indexOf(const std::string& name) {
+    const auto [it, added] = index_.emplace(name, static_cast<uint32_t>(names_.size()));
+    if (added) names_.push_back(name);
+    return it->second;
+  }
+  std::map<std::pair<unsigned, unsigned>, std::vector<std::pair<uint32_t, unsigned>>> runs_;
+  std::map<std::string, uint32_t> index_;
+  std::vector<std::string> names_;
+};
+
 MeshFile readMeshFile(const std::string& path, bool readTextures) {
   checkInputFile(path, kMaxMeshFileBytes, "mesh");
   checkMeshFileBeforeImport(path);
@@ -334,6 +397,7 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
   if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
   checkFlattenedTriangles(path, *s);
   checkNodePlacements(path, *s);
+  const FaceNames faceNames(*s);
   s = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices |
                                    aiProcess_PreTransformVertices);
   if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
@@ -352,6 +416,7 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
       readTextures ? textureOpener(path, *s)
                    : [](const std::string&) { return std::shared_ptr<const ImageTexture>(); };
   std::vector<int> partOfMaterial(s->mNumMaterials, -1);
+  if (faceNames.any()) file.objectNames = faceNames.names();
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
     const aiMesh* m = s->mMeshes[mi];
     if (!(m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;  // points and lines
@@ -389,10 +454,23 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
         mesh.uvs.push_back(finite ? Vec2f{uv[v].x, uv[v].y} : Vec2f{0, 0});
       }
     }
+    const std::vector<uint32_t> names =
+        file.objectNames.empty() ? std::vector<uint32_t>() : faceNames.of(*m);
+    uint32_t unnamed = 0;
+    if (!file.objectNames.empty() && names.empty()) {
+      // Not expected of the Assimp Glint is built with; said rather than named wrongly.
+      log::warning("mesh " + path + ": the faces of mesh " + std::to_string(mi) +
+                   " could not be matched to the nodes that place them; they take the object's "
+                   "name");
+      const auto it = std::find(file.objectNames.begin(), file.objectNames.end(), "");
+      unnamed = static_cast<uint32_t>(it - file.objectNames.begin());
+      if (it == file.objectNames.end()) file.objectNames.push_back("");
+    }
     for (unsigned f = 0; f < m->mNumFaces; ++f) {
       const aiFace& face = m->mFaces[f];
       if (face.mNumIndices != 3) continue;
       for (int c = 0; c < 3; ++c) mesh.indices.push_back(base + face.mIndices[c]);
+      if (!file.objectNames.empty()) mesh.objectIds.push_back(names.empty() ? unnamed : names[f]);
     }
   }
   // A material whose meshes held only points and lines leaves an empty part.

@@ -3,7 +3,7 @@
 // checked before Assimp reads it (io/mesh_limits.h). The file's meshes are placed by their node
 // transforms and merged per material: one triangle mesh for each material its triangles use,
 // with that material mapped onto Glint's (io/mesh_materials.h); vertex normals are kept when
-// every mesh has them.
+// every mesh has them. Each triangle keeps the name of the node that placed it.
 #include <string>
 #include <vector>
 
@@ -15,6 +15,10 @@ namespace glint {
 struct MeshFile {
   std::vector<TriangleMesh> parts;  // at least one, each with triangles
   std::vector<Material> materials;  // materials[i] is parts[i]'s, named "FILE:NAME"
+  // The names the file gives its triangles, which parts[i].objectIds index: each triangle's
+  // node's name, else its mesh's (names a reader made up do not count: io/object_names.h), ""
+  // for a triangle without one. Empty, and the parts without objectIds, when none has a name.
+  std::vector<std::string> objectNames;
 };
 
 // Throws GlintError naming the path tried and the reason (Glint's or Assimp's).

@@ -68,6 +68,7 @@ void addMesh(SceneBuilder& b, const LocalMesh& local, const Placement& place, co
   mesh.indices = local.indices;
   mesh.uvs = local.uvs;
   mesh.colors = local.colors;
+  mesh.objectIds = local.objectIds;
   mesh.positions = placed(local.positions);
   for (const auto& key : local.positionKeys) mesh.positionKeys.push_back(placed(key));
   // Normals go through the inverse transpose, which keeps them outward under a mirroring
@@ -195,8 +196,10 @@ FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
       m.uvs = part.uvs;
       m.colors = part.colors;
       m.indices = part.indices;
+      m.objectIds = part.objectIds;
       out.parts.push_back(std::move(m));
     }
+    out.objectNames = std::move(loaded.objectNames);
     hashTextureFiles(b, loaded.materials);
     out.materials = std::move(loaded.materials);
     return out;
@@ -298,7 +301,7 @@ uint32_t addSphere(Scene& s, const Sphere& sphere, std::vector<Vec3f> centerKeys
 }
 
 uint32_t newImplicitGroup(Scene& s, const std::string& what, uint32_t objectId) {
-  s.groups.push_back({"<" + what + " objects[" + std::to_string(objectId) + "]>", {}});
+  s.groups.push_back({"<" + what + " " + s.objectName(objectId) + ">", {}});
   return static_cast<uint32_t>(s.groups.size() - 1);
 }
 
@@ -411,6 +414,23 @@ void checkFlattenedInstances(SceneBuilder& b, uint32_t groupId, const JsonNode& 
              " a scene may have; most come through " + pathText(names));
 }
 
+// Turns the file's part names (LocalMesh::objectIds: indices into file.objectNames) into the
+// object ids of a world-level object `objectId`: "PREFIX/PART" or "PART" (SceneBuilder::
+// partPrefix), the object's own id for triangles without a name. A group's member keeps none.
+void nameParts(SceneBuilder& b, FileMesh& file, uint32_t objectId) {
+  if (!b.partPrefix || file.objectNames.empty()) {
+    for (LocalMesh& part : file.parts) part.objectIds.clear();
+    return;
+  }
+  std::vector<uint32_t> ids;
+  for (const std::string& name : file.objectNames)
+    ids.push_back(name.empty()            ? objectId
+                  : b.partPrefix->empty() ? b.objectIdOf(name)
+                                          : b.objectIdOf(*b.partPrefix + "/" + name));
+  for (LocalMesh& part : file.parts)
+    for (uint32_t& id : part.objectIds) id = ids[id];
+}
+
 // Adds a shape (not an instance) under `xf`; `motion` may hold "center" (spheres) or
 // "positions" (meshes); "transform" motion has been taken care of by the caller.
 void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uint32_t groupId,
@@ -426,7 +446,7 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
   const bool fileMaterials = type == "mesh" && obj.has("file") && !obj.has("material");
   const uint32_t material = fileMaterials ? 0 : materialOf(b, obj);
   if (type == "sphere") {
-    obj.checkKeys({"type", "center", "radius", "material", "transform", "motion"});
+    obj.checkKeys({"type", "name", "center", "radius", "material", "transform", "motion"});
     const float radius = obj.at("radius").number(0, 3.4e38f, true);
     const auto centersPlacedBy = [&](const Placement& p) {
       std::vector<Vec3f> keys;
@@ -454,7 +474,7 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     push(s, g, GeomKind::Sphere, addSphere(s, sp, std::move(centers)), material, objectId);
     addInstance(b, g, xf, {}, objectId, obj.at("transform"));
   } else if (type == "plane") {
-    obj.checkKeys({"type", "point", "normal", "material", "transform"});
+    obj.checkKeys({"type", "name", "point", "normal", "material", "transform"});
     if (groupId != 0) obj.fail("planes are unbounded and cannot be placed in groups");
     const Vec3f n = obj.at("normal").direction();
     const Plane plane{place.point(obj.at("point")), normalize(xf.normal(n))};
@@ -465,7 +485,7 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
                                      static_cast<uint32_t>(s.planes.size() - 1), material,
                                      objectId));
   } else if (type == "quad") {
-    obj.checkKeys({"type", "corner", "edge1", "edge2", "material", "transform", "motion"});
+    obj.checkKeys({"type", "name", "corner", "edge1", "edge2", "material", "transform", "motion"});
     Quad q{place.point(obj.at("corner")), xf.vector(obj.at("edge1").vec3()),
            xf.vector(obj.at("edge2").vec3())};
     // Under a mirroring transform edge1 × edge2 would point the other way: swap the edges (the
@@ -478,13 +498,13 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     s.quads.push_back(q);
     push(s, groupId, GeomKind::Quad, static_cast<uint32_t>(s.quads.size() - 1), material, objectId);
   } else if (type == "box") {
-    obj.checkKeys({"type", "min", "max", "material", "transform", "motion"});
+    obj.checkKeys({"type", "name", "min", "max", "material", "transform", "motion"});
     const Vec3d lo = obj.at("min").vec3d(), hi = obj.at("max").vec3d();
     if (!(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z))
       obj.at("max").fail("must exceed min in x, y and z");
     addMesh(b, boxMesh(lo, hi), place, obj, groupId, material, objectId);
   } else if (type == "triangle") {
-    obj.checkKeys({"type", "vertices", "material", "transform", "motion"});
+    obj.checkKeys({"type", "name", "vertices", "material", "transform", "motion"});
     const JsonNode v = obj.at("vertices");
     if (v.size() != 3) v.fail("must hold exactly 3 points");
     LocalMesh m;
@@ -492,7 +512,7 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     m.indices = {0, 1, 2};
     addMesh(b, m, place, obj, groupId, material, objectId);
   } else if (type == "polygon") {
-    obj.checkKeys({"type", "vertices", "material", "transform", "motion"});
+    obj.checkKeys({"type", "name", "vertices", "material", "transform", "motion"});
     const JsonNode v = obj.at("vertices");
     LocalMesh m;
     m.positions = parsePoints(v, 3);
@@ -502,7 +522,7 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
       v.fail("cannot triangulate: the polygon is degenerate or self-intersecting");
     addMesh(b, m, place, obj, groupId, material, objectId);
   } else {  // mesh
-    obj.checkKeys({"type", "file", "positions", "normals", "uvs", "indices", "material",
+    obj.checkKeys({"type", "name", "file", "positions", "normals", "uvs", "indices", "material",
                    "transform", "motion"});
     for (const char* key : {"normals", "uvs"})
       if (obj.has("file") && obj.has(key))
@@ -536,13 +556,22 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
       m.positions = m.positionKeys[0];
       if (m.positionKeys.size() == 1) m.positionKeys.clear();  // equal keys: no deformation
     }
+    nameParts(b, file, objectId);
     for (size_t i = 0; i < file.parts.size(); ++i) {
       uint32_t partMaterial = material;
       if (fileMaterials) {
         s.materials.push_back(file.materials[i]);
         partMaterial = static_cast<uint32_t>(s.materials.size() - 1);
       }
-      addMesh(b, file.parts[i], place, obj, groupId, partMaterial, objectId);
+      const uint32_t partObject =
+          file.parts[i].objectIds.empty() ? objectId : file.parts[i].objectIds[0];
+      // A part of one object needs no table, except inside the implicit instance of a moving
+      // object, whose hits count for the instance's object unless their triangles say.
+      if (groupId == 0 &&
+          std::all_of(file.parts[i].objectIds.begin(), file.parts[i].objectIds.end(),
+                      [&](uint32_t id) { return id == partObject; }))
+        file.parts[i].objectIds.clear();
+      addMesh(b, file.parts[i], place, obj, groupId, partMaterial, partObject);
     }
   }
 }
@@ -579,7 +608,7 @@ void addObject(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t 
   }();
 
   if (type == "instance") {
-    obj.checkKeys({"type", "group", "transform", "motion"});
+    obj.checkKeys({"type", "name", "group", "transform", "motion"});
     if (motion && (motion->has("center") || motion->has("positions")))
       motion->fail("instances move by \"transform\" keys only");
     const JsonNode g = obj.at("group");

@@ -2,6 +2,7 @@
 // State shared by the parts of the loader while a Scene is assembled (internal to io/).
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,15 @@ struct SceneBuilder {
   std::map<uint32_t, std::vector<NestedInstance>> nested;
   // The world-level instances placing each group creates, once counted (io/object_loader.cpp).
   std::map<uint32_t, uint64_t> flattenedInstances;
+  // Object names (Scene::objectNames) → their ids.
+  std::map<std::string, uint32_t> objectIds;
+  // The "name"s of objects and lights given so far → where each was given, for the error a
+  // second one gets.
+  std::map<std::string, std::string> givenNames;
+  // While a world-level object is added: its "name", or "" when it has none. A mesh file's
+  // named parts become objects of their own, "NAME/PART" (or "PART" for an unnamed object).
+  // Unset for a group's members: the instance that places the group names them.
+  std::optional<std::string> partPrefix;
   // Image textures by file and colour space: a file several materials use is opened once.
   std::map<std::pair<std::string, std::string>, std::shared_ptr<const ImageTexture>> textures;
 
@@ -36,6 +46,17 @@ struct SceneBuilder {
   // (film/texture_file.h; throws as openImageTexture does).
   std::shared_ptr<const ImageTexture> texture(const std::string& path,
                                               const std::string& colorspace);
+
+  // The object id of `name`, a new one the first time it is asked for.
+  uint32_t objectIdOf(const std::string& name) {
+    const auto [it, added] =
+        objectIds.emplace(name, static_cast<uint32_t>(scene.objectNames.size()));
+    if (added) scene.objectNames.push_back(name);
+    return it->second;
+  }
+  // The checked "name" at `n` (io/object_names.h); a name given before is refused, naming
+  // where.
+  std::string claimName(const JsonNode& n);
 
   // World → render space (io/placement.h); set from the camera before anything is placed.
   Vec3f toRender(const JsonNode& worldPoint) const {

@@ -11,6 +11,7 @@
 #include "core/sampler.h"
 #include "film/texture_file.h"
 #include "io/animation.h"
+#include "io/object_names.h"
 #include "io/scene_builder.h"
 
 namespace glint {
@@ -26,6 +27,16 @@ std::shared_ptr<const ImageTexture> SceneBuilder::texture(const std::string& pat
   scene.sourceHash =
       hashCombine(scene.sourceHash, hashBytes(std::string(std::istreambuf_iterator<char>(in), {})));
   return slot;
+}
+
+std::string SceneBuilder::claimName(const JsonNode& n) {
+  const std::string name = parseObjectName(n);
+  const auto [it, added] =
+      givenNames.emplace(name, n.path() + " (line " + std::to_string(n.loc().line) + ")");
+  if (!added)
+    n.fail(inQuotes(excerpt(name)) + " is already the name of " + it->second +
+           "; names of objects and lights must be unique");
+  return name;
 }
 
 namespace {
@@ -284,7 +295,8 @@ Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode&
 // {"type": "environment", "radiance": [r, g, b]}, or {"image": FILE, "colorspace": NAME,
 // "intensity": s, "rotation": degrees}; either with "samples" (lights/environment.h).
 EnvironmentLight parseEnvironment(SceneBuilder& b, const JsonNode& n) {
-  n.checkKeys({"type", "radiance", "image", "colorspace", "intensity", "rotation", "samples"});
+  n.checkKeys(
+      {"type", "name", "radiance", "image", "colorspace", "intensity", "rotation", "samples"});
   const int samples = n.has("samples") ? n.at("samples").integer(1, 1 << 16) : 16;
   if (n.has("radiance") == n.has("image"))
     n.fail(std::string(n.has("image") ? "has both" : "needs one of") +
@@ -324,7 +336,7 @@ Light parseLight(SceneBuilder& b, const JsonNode& n) {
       n.at("type").choice({"point", "spot", "directional", "quad", "disk", "environment"});
   if (type == "environment") return parseEnvironment(b, n);
   if (type == "point" || type == "spot") {
-    std::vector<std::string> keys = {"type", "position", "intensity", "falloff"};
+    std::vector<std::string> keys = {"type", "name", "position", "intensity", "falloff"};
     if (type == "spot") keys.insert(keys.end(), {"direction", "inner_angle", "outer_angle"});
     n.checkKeys(keys);
     PointLight l;
@@ -344,7 +356,7 @@ Light parseLight(SceneBuilder& b, const JsonNode& n) {
     return l;
   }
   if (type == "directional") {
-    n.checkKeys({"type", "direction", "intensity"});
+    n.checkKeys({"type", "name", "direction", "intensity"});
     DirectionalLight l;
     l.direction = n.at("direction").direction();
     l.intensity = n.color("intensity", l.intensity);
@@ -363,8 +375,8 @@ Light parseLight(SceneBuilder& b, const JsonNode& n) {
     if (auto v = n.get("visible")) l.visible = v->boolean();
   };
   if (type == "quad") {
-    n.checkKeys({"type", "corner", "edge1", "edge2", "intensity", "samples", "falloff", "emission",
-                 "visible"});
+    n.checkKeys({"type", "name", "corner", "edge1", "edge2", "intensity", "samples", "falloff",
+                 "emission", "visible"});
     const Vec3f corner = b.toRender(n.at("corner"));
     const Vec3f edge1 = n.at("edge1").vec3(), edge2 = n.at("edge2").vec3();
     if (!(length(cross(edge1, edge2)) > 0))
@@ -373,8 +385,8 @@ Light parseLight(SceneBuilder& b, const JsonNode& n) {
     common(l);
     return l;
   }
-  n.checkKeys({"type", "center", "normal", "radius", "intensity", "samples", "falloff", "emission",
-               "visible"});
+  n.checkKeys({"type", "name", "center", "normal", "radius", "intensity", "samples", "falloff",
+               "emission", "visible"});
   // Named before the constructor call: its arguments have no order of evaluation, and which
   // bad field is reported first should not depend on the compiler.
   const Vec3f center = b.toRender(n.at("center"));
@@ -386,8 +398,9 @@ Light parseLight(SceneBuilder& b, const JsonNode& n) {
 
 // A visible area light is also a surface of the world: a quad or disk where the light is, whose
 // material emits the light's radiance (AreaEmission::emittedRadiance) and reflects nothing. Its
-// object id follows the objects' (objects.size() + the light's index).
-void addLightSurfaces(Scene& s, uint32_t objectCount) {
+// object is named by the light (Scene::lightName).
+void addLightSurfaces(SceneBuilder& b) {
+  Scene& s = b.scene;
   for (size_t li = 0; li < s.lights.size(); ++li) {
     const auto* quad = std::get_if<QuadLight>(&s.lights[li]);
     const auto* disk = std::get_if<DiskLight>(&s.lights[li]);
@@ -401,7 +414,7 @@ void addLightSurfaces(Scene& s, uint32_t objectCount) {
         e->emission == Emission::Radiance ? EmissionSides::Front : EmissionSides::Both;
     const auto materialId = static_cast<uint32_t>(s.materials.size());
     s.materials.push_back(std::move(m));
-    Geometry g{GeomKind::Quad, 0, materialId, objectCount + static_cast<uint32_t>(li)};
+    Geometry g{GeomKind::Quad, 0, materialId, b.objectIdOf(s.lightName(li))};
     if (quad) {
       g.index = static_cast<uint32_t>(s.quads.size());
       s.quads.push_back({quad->corner(), quad->edge1(), quad->edge2()});
@@ -425,6 +438,7 @@ void parseLights(SceneBuilder& b, const JsonNode& root, const JsonNode& lights) 
     if (environment && !environmentAt.empty())
       l.fail("a second environment light: a scene has at most one (" + environmentAt + ")");
     s.lights.push_back(parseLight(b, l));
+    s.lightNames.push_back(l.has("name") ? b.claimName(l.at("name")) : "");
     if (!environment) continue;
     environmentAt = l.path();
     s.environment = std::get<EnvironmentLight>(s.lights.back());
@@ -434,6 +448,26 @@ void parseLights(SceneBuilder& b, const JsonNode& root, const JsonNode& lights) 
           .fail("rays that miss see the environment (" + environmentAt +
                 "); remove \"background\", or the environment");
   }
+}
+
+// Drops the ids of names nothing in the world shows (an object whose mesh file names every
+// triangle), so that the ids the objectid AOV writes run 1, 2, 3 ... without gaps.
+void dropUnshownObjectIds(Scene& s) {
+  const std::vector<bool> shown = s.objectIdsInWorld();
+  std::vector<uint32_t> newId(shown.size(), 0);
+  std::vector<std::string> names;
+  for (size_t i = 0; i < shown.size(); ++i)
+    if (shown[i]) {
+      newId[i] = static_cast<uint32_t>(names.size());
+      names.push_back(s.objectNames[i]);
+    }
+  if (names.size() == s.objectNames.size()) return;
+  // An entry whose id nothing shows is a mesh whose triangles carry theirs (or an instance of
+  // one): its own is never read.
+  for (Geometry& g : s.groups[0].geometries) g.objectId = newId[g.objectId];
+  for (TriangleMesh& m : s.meshes)
+    for (uint32_t& id : m.objectIds) id = newId[id];
+  s.objectNames = std::move(names);
 }
 
 void parseScene(SceneBuilder& b, const JsonNode& root, std::optional<int> frame) {
@@ -461,18 +495,28 @@ void parseScene(SceneBuilder& b, const JsonNode& root, std::optional<int> frame)
   if (groups)
     for (const std::string& name : groups->keys()) {
       const JsonNode members = groups->at(name);
-      for (size_t i = 0; i < members.size(); ++i)
+      for (size_t i = 0; i < members.size(); ++i) {
+        if (members[i].isObject() && members[i].has("name"))
+          members[i].at("name").fail(
+              "a group's members have no names of their own: each instance of the group is one "
+              "object, named by the instance's \"name\"");
         addObject(b, members[i], b.groupIds[name], static_cast<uint32_t>(i));
+      }
     }
+  // Ids follow the order names are first met; an unnamed object is "objects[i]", the path
+  // Glint's errors use, which stays the same from frame to frame.
   const JsonNode objects = root.at("objects");
-  for (size_t i = 0; i < objects.size(); ++i) addObject(b, objects[i], 0, static_cast<uint32_t>(i));
-  addLightSurfaces(s, static_cast<uint32_t>(objects.size()));
-  // Named by their place in the file, as the objectid AOV numbers them (objects[i] is id i + 1):
-  // objects have no name key, and a generated name stays the same from frame to frame.
-  for (size_t i = 0; i < objects.size(); ++i)
-    s.objectNames.push_back("objects[" + std::to_string(i) + "]");
-  for (size_t li = 0; li < s.lights.size(); ++li)
-    s.objectNames.push_back("lights[" + std::to_string(li) + "]");
+  for (size_t i = 0; i < objects.size(); ++i) {
+    const JsonNode obj = objects[i];
+    const std::string given =
+        obj.isObject() && obj.has("name") ? b.claimName(obj.at("name")) : std::string();
+    const uint32_t id = b.objectIdOf(given.empty() ? "objects[" + std::to_string(i) + "]" : given);
+    b.partPrefix = given;
+    addObject(b, obj, 0, id);
+    b.partPrefix.reset();
+  }
+  addLightSurfaces(b);
+  dropUnshownObjectIds(s);
   // An animated scene's keys span its frames: keep just this frame's shutter of them.
   if (s.animation) resampleMotionToFrame(s, *s.animation);
   s.features = computeFeatures(s);

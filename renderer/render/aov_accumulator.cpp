@@ -1,6 +1,9 @@
 #include "render/aov_accumulator.h"
 
 #include <algorithm>
+#include <cctype>
+#include <nlohmann/json.hpp>
+#include <set>
 
 #include "core/error.h"
 #include "film/cryptomatte.h"
@@ -9,20 +12,23 @@ namespace glint {
 
 namespace {
 
-// The Cryptomatte names of the scene's object ids (Scene::objectNames), and whether each has
-// an entry in the world (the ids of lights without a surface have none).
+// The names of the scene's object ids, and whether each is shown by something in the world
+// (an id registered for an object whose triangles all name others shows nothing).
 std::vector<std::string> objectNamesOf(const Scene& scene, std::vector<bool>& inWorld) {
-  const std::vector<Geometry> none;
-  const std::vector<Geometry>& world = scene.groups.empty() ? none : scene.groups[0].geometries;
-  uint32_t count = 0;
-  for (const Geometry& g : world) count = std::max(count, g.objectId + 1);
-  inWorld.assign(count, false);
-  for (const Geometry& g : world) inWorld[g.objectId] = true;
-  std::vector<std::string> names(count);
-  for (uint32_t i = 0; i < count; ++i)
-    names[i] =
-        i < scene.objectNames.size() ? scene.objectNames[i] : "objects[" + std::to_string(i) + "]";
+  inWorld = scene.objectIdsInWorld();
+  std::vector<std::string> names(inWorld.size());
+  for (uint32_t i = 0; i < names.size(); ++i) names[i] = scene.objectName(i);
   return names;
+}
+
+// The objectid AOV's manifest: {"ID": name} of every id in the world (ID = object id + 1, as
+// IndexOB.X holds it), in the ids' order.
+std::string objectIdManifest(const std::vector<std::string>& names,
+                             const std::vector<bool>& inWorld) {
+  nlohmann::ordered_json manifest = nlohmann::ordered_json::object();
+  for (size_t i = 0; i < names.size(); ++i)
+    if (inWorld[i]) manifest[std::to_string(i + 1)] = names[i];
+  return manifest.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 
 // Adds one Cryptomatte type: its layers, and its manifest of the names in `listed`.
@@ -39,6 +45,29 @@ size_t addCryptomatte(Film& film, const std::string& typeName,
 }
 
 }  // namespace
+
+std::vector<std::string> lightLayerNames(const Scene& scene) {
+  std::vector<std::string> layers;
+  std::set<std::string> taken;
+  for (size_t k = 0; k < scene.lights.size(); ++k) {
+    const bool named = k < scene.lightNames.size() && !scene.lightNames[k].empty();
+    std::string layer = named ? "light_" : "light" + std::to_string(k);
+    if (named) {
+      for (const char ch : scene.lightNames[k]) {
+        const auto c = static_cast<unsigned char>(ch);
+        if (std::isalnum(c) || c == '_' || c == '-')
+          layer += ch;
+        else if ((c & 0xc0) != 0x80)  // a UTF-8 character's continuation bytes add nothing
+          layer += '_';
+        if (layer.size() >= kMaxLightLayerName) break;
+      }
+      while (taken.count(layer)) layer += "_" + std::to_string(k);
+    }
+    taken.insert(layer);
+    layers.push_back(layer);
+  }
+  return layers;
+}
 
 AovLayout AovLayout::create(const AovSet& set, const Scene& scene, Film& film) {
   const size_t lightCount = scene.lights.size();
@@ -58,15 +87,15 @@ AovLayout AovLayout::create(const AovSet& set, const Scene& scene, Film& film) {
     // Blender's name for its object index pass (pass IndexOB, channel X), which its EXR reader
     // and compositor take as a float pass; a channel it cannot name it drops, and a part left
     // with none stops its reading of the parts after it.
-    uint64_t ids = 0;
-    if (!scene.groups.empty())
-      for (const Geometry& g : scene.groups[0].geometries)
-        ids = std::max(ids, uint64_t{g.objectId} + 1);
+    std::vector<bool> inWorld;
+    const std::vector<std::string> names = objectNamesOf(scene, inWorld);
+    const uint64_t ids = names.size();
     if (ids > kMaxObjectIdAov)
       throw UsageError("--aov objectid: the scene has " + std::to_string(ids) +
                        " object ids; the float channel holds ids up to " +
                        std::to_string(kMaxObjectIdAov) + " exactly (use --aov cryptomatte)");
     l.objectId = film.addPlane("objectid", {"IndexOB.X"});
+    film.addAttribute("glint:objectid_manifest", objectIdManifest(names, inWorld));
   }
   if (set.has(Aov::Direct)) l.direct = film.addPlane("direct", rgb("direct"));
   if (set.has(Aov::Indirect)) l.indirect = film.addPlane("indirect", rgb("indirect"));
@@ -75,10 +104,16 @@ AovLayout AovLayout::create(const AovSet& set, const Scene& scene, Film& film) {
       throw UsageError("--aov lights: the scene has " + std::to_string(lightCount) +
                        " lights; per-light AOVs support at most " +
                        std::to_string(AovSet::kMaxLights));
+    const std::vector<std::string> layers = lightLayerNames(scene);
+    nlohmann::ordered_json names = nlohmann::ordered_json::object();
     for (size_t i = 0; i < lightCount; ++i) {
-      const size_t p = film.addPlane("light" + std::to_string(i), rgb("light" + std::to_string(i)));
+      const size_t p = film.addPlane(layers[i], rgb(layers[i]));
       if (i == 0) l.firstLight = p;
+      names[layers[i]] = scene.lightName(i);
     }
+    // Which light each layer is, by its full name (the layer's is sanitised).
+    film.addAttribute("glint:light_layers",
+                      names.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   }
   if (set.has(Aov::Variance)) l.variance = film.addPlane("variance", rgb("Variance"));
   if (set.has(Aov::Cryptomatte)) {

@@ -11,6 +11,7 @@
 // (depth: the nearest hit so far, 0 for none) and AovTables the id counts; resolveAovs turns
 // them into the planes written out.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "film/film.h"
@@ -31,6 +32,16 @@ inline constexpr double kBackgroundDepth = 1e10;
 // The largest object id written (objects[] index + 1): every integer up to 2^24 is exact in the
 // float channel that Blender's IndexOB pass is.
 inline constexpr uint32_t kMaxObjectIdAov = uint32_t{1} << 24;
+
+// The longest light layer name made from a light's name: OpenEXR cuts channel names at 255
+// bytes, and a layer name is typed in compositors.
+inline constexpr size_t kMaxLightLayerName = 64;
+
+// The layer of each light's AOV (docs/output.md): "light_NAME" for a light with a name, the
+// name cut to kMaxLightLayerName bytes with each character but ASCII letters, digits, '_' and
+// '-' made one '_' (so that every EXR reader splits LAYER.R where Glint does); "lightK" for an
+// unnamed light K. A layer another light already has takes "_K" until it is unique.
+std::vector<std::string> lightLayerNames(const Scene& scene);
 
 struct AovLayout {
   AovSet set;

@@ -63,6 +63,29 @@ const Geometry& Scene::geometry(const Hit& hit) const {
   return groups[instances[inst.index].groupId].geometries[hit.geomId];
 }
 
+std::vector<bool> Scene::objectIdsInWorld() const {
+  std::vector<bool> shown(objectNames.size());
+  const auto show = [&](uint32_t id) {
+    if (id >= shown.size()) shown.resize(size_t(id) + 1);
+    shown[id] = true;
+  };
+  const auto showMesh = [&](const Geometry& g) {
+    if (g.kind != GeomKind::Mesh || meshes[g.index].objectIds.empty()) return false;
+    for (uint32_t id : meshes[g.index].objectIds) show(id);
+    return true;
+  };
+  if (groups.empty()) return shown;
+  for (const Geometry& g : groups[0].geometries) {
+    if (showMesh(g)) continue;
+    bool named = false;  // an implicit instance of one mesh file whose triangles name objects
+    if (g.kind == GeomKind::Instance)
+      for (const Geometry& member : groups[instances[g.index].groupId].geometries)
+        named = showMesh(member) || named;
+    if (!named) show(g.objectId);
+  }
+  return shown;
+}
+
 Transform Instance::transformAt(float time) const {
   if (motion.empty()) return worldFromObject;
   size_t seg;

@@ -30,7 +30,9 @@ struct Geometry {
   GeomKind kind = GeomKind::Mesh;
   uint32_t index = 0;       // into the scene's array for `kind`
   uint32_t materialId = 0;  // unused for instances; a CSG solid's surfaces carry their own
-  uint32_t objectId = 0;    // the `objects[i]` (or `groups.NAME[i]`) entry it came from
+  // A world entry: its object id (Scene::objectNames). A group's member: its place in the
+  // group (a hit inside an instance counts for the instance's object).
+  uint32_t objectId = 0;
 };
 
 struct Instance {
@@ -95,11 +97,15 @@ class Scene {
   // The environment among the lights, copied (it shares its image) by the loader, which allows
   // one: what rays that leave the scene see in place of render.background.
   std::optional<EnvironmentLight> environment;
+  // Per light, its "name" (a glTF light's own), empty when it has none; may be shorter than
+  // `lights` in scenes built in code. lightName gives the name with its default.
+  std::vector<std::string> lightNames;
 
   std::vector<Group> groups;  // groups[0] is the world
-  // Per object id (Geometry::objectId of a world entry) the name compositors see in Cryptomatte:
-  // "objects[i]", then "lights[K]" for the surface of visible light K. Scenes built in code may
-  // leave it empty (render/aov_accumulator.cpp names such objects "objects[i]" too).
+  // Per object id, the object's name, which Cryptomatte, the objectid manifest and --stats
+  // show (docs/scene-format.md, Names): an object's "name", else "objects[i]"; a mesh file's
+  // named parts; a visible light's surface. Names are unique: one name, one id. Scenes built
+  // in code may leave it empty (objectName then names id i "objects[i]").
   std::vector<std::string> objectNames;
   std::vector<TriangleMesh> meshes;
   std::vector<Sphere> spheres;
@@ -156,6 +162,25 @@ class Scene {
   }
 
   const Geometry& geometry(const Hit& hit) const;
+  // The object id of a hit: the top-level entry's (an instance's for a hit inside it), or the
+  // triangle's where its mesh names its triangles' objects (TriangleMesh::objectIds).
+  uint32_t objectId(const Hit& hit) const {
+    const Geometry& g = geometry(hit);
+    if (g.kind == GeomKind::Mesh && !meshes[g.index].objectIds.empty()) [[unlikely]]
+      return meshes[g.index].objectIds[hit.primId];
+    return groups[0].geometries[hit.instId != kInvalidId ? hit.instId : hit.geomId].objectId;
+  }
+  // Whether each object id is shown by something in the world (an id can be registered for an
+  // object whose every triangle names another).
+  std::vector<bool> objectIdsInWorld() const;
+  std::string objectName(uint32_t id) const {
+    return id < objectNames.size() ? objectNames[id] : "objects[" + std::to_string(id) + "]";
+  }
+  // Light K's "name", else "lights[K]".
+  std::string lightName(size_t k) const {
+    return k < lightNames.size() && !lightNames[k].empty() ? lightNames[k]
+                                                           : "lights[" + std::to_string(k) + "]";
+  }
   // The material of the surface hit: the geometry's, or on a CSG solid its operand's.
   uint32_t materialId(const Hit& hit) const {
     const Geometry& g = geometry(hit);
