@@ -282,10 +282,10 @@ class FaceNames {
     while (!stack.empty()) {
       const aiNode* node = stack.back();
       stack.pop_back();
-      const std::string nodeName = fileGivenName(node->mName.C_Str());
+      const std::string nodeName = usableName(node->mName);
       for (unsigned i = 0; i < node->mNumMeshes; ++i) {
         const aiMesh& m = *s.mMeshes[node->mMeshes[i]];
-        const std::string name = nodeName.empty() ? fileGivenName(m.mName.C_Str()) : nodeName;
+        const std::string name = nodeName.empty() ? usableName(m.mName) : nodeName;
         runs_[{m.mMaterialIndex, vertexFormat(m)}].push_back({indexOf(name), m.mNumFaces});
       }
       for (unsigned c = node->mNumChildren; c-- > 0;) stack.push_back(node->mChildren[c]);
@@ -312,6 +312,12 @@ class FaceNames {
     const auto [it, added] = index_.emplace(name, static_cast<uint32_t>(names_.size()));
     if (added) names_.push_back(name);
     return it->second;
+  }
+  // The file's name, or "" for one Assimp made up or one no scene may give (a control
+  // character, "objects[2]": io/object_names.h).
+  static std::string usableName(const aiString& name) {
+    std::string given = fileGivenName(name.C_Str());
+    return objectNameProblem(given).empty() ? given : std::string();
   }
   std::map<std::pair<unsigned, unsigned>, std::vector<std::pair<uint32_t, unsigned>>> runs_;
   std::map<std::string, uint32_t> index_;

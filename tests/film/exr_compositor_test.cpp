@@ -41,17 +41,19 @@ const char* kAllAovs =
 // centre): pixel (x, y) sees the point (x − 1.5, 0, y − 1.5). A Lambert quad at y = 0 covers
 // x ≤ 1, so columns 0–2 hit it and column 3 sees nothing (transparent film). Light 0 is
 // directional along (0,−1,−1)/√2 (cos θ = 1/√2), light 1 a point light at (0, 2, 0) of
-// intensity 2 without falloff (cos θ = 2/√(x² + z² + 4)).
+// intensity 2 without falloff (cos θ = 2/√(x² + z² + 4)). The quad is named "Floor" and light 0
+// "Sun Lamp", so the readers see names where Glint writes them: Cryptomatte's manifest and the
+// light's layer (light_Sun_Lamp).
 const char* kScene = R"({
   "render": {"width": 4, "height": 4, "spp": 1, "sampler": "regular",
              "transparent_background": true},
   "camera": {"type": "orthographic", "eye": [0,5,0], "look_at": [0,0,0], "up": [0,0,-1],
              "height": 4},
   "materials": {"m": {"type": "phong", "kd": [0.5,0.4,0.2], "ka": [0,0,0]}},
-  "lights": [{"type": "directional", "direction": [0,-1,-1]},
+  "lights": [{"type": "directional", "name": "Sun Lamp", "direction": [0,-1,-1]},
              {"type": "point", "position": [0,2,0], "intensity": [2,2,2]}],
-  "objects": [{"type": "quad", "corner": [-2,0,-2], "edge1": [0,0,4], "edge2": [3,0,0],
-               "material": "m"}]})";
+  "objects": [{"type": "quad", "name": "Floor", "corner": [-2,0,-2], "edge1": [0,0,4],
+               "edge2": [3,0,0], "material": "m"}]})";
 
 // Every channel's value at pixel (x, y), worked out from the scene above.
 std::map<std::string, double> expectedAt(int x, int y) {
@@ -67,7 +69,7 @@ std::map<std::string, double> expectedAt(int x, int y) {
     v[rgb[c]] = l0 + l1;  // the beauty is all direct light
     v[std::string("direct.") + rgb[c]] = l0 + l1;
     v[std::string("indirect.") + rgb[c]] = 0;
-    v[std::string("light0.") + rgb[c]] = l0;
+    v[std::string("light_Sun_Lamp.") + rgb[c]] = l0;
     v[std::string("light1.") + rgb[c]] = l1;
     v[std::string("Albedo.") + rgb[c]] = hit ? kd[c] : 0;
     v[std::string("Variance.") + rgb[c]] = 0;  // one sample: no estimate
@@ -78,10 +80,9 @@ std::map<std::string, double> expectedAt(int x, int y) {
   v["P.Y"] = 0;
   v["P.Z"] = hit ? pz : 0;
   v["Z"] = hit ? 5 : 1e10;       // the far value where nothing was hit
-  v["IndexOB.X"] = hit ? 1 : 0;  // objects[0] + 1
+  v["IndexOB.X"] = hit ? 1 : 0;  // Floor, the first object
   // Rank 0 is the one object (or material) with all the coverage; the other ranks are empty.
-  for (const auto& [type, name] :
-       {std::pair{"CryptoObject", "objects[0]"}, {"CryptoMaterial", "m"}})
+  for (const auto& [type, name] : {std::pair{"CryptoObject", "Floor"}, {"CryptoMaterial", "m"}})
     for (int layer = 0; layer < 3; ++layer)
       for (const char* c : {"R", "G", "B", "A"}) {
         const std::string channel = type + std::string("0") + std::to_string(layer) + "." + c;
@@ -180,15 +181,15 @@ void checkWithOpenExr(const std::string& single, const std::string& multipart) {
   std::string manifest;
   expectTheScenesValues(readEveryPart(single, &parts, &manifest), single);
   EXPECT_EQ(parts.size(), 1u);
-  // The objectid pass and Cryptomatte name an object alike: id i + 1 is objects[i], which the
-  // manifest lists with its Cryptomatte ID.
+  // The objectid pass and Cryptomatte name an object alike: id 1 is Floor, which the manifest
+  // lists with its Cryptomatte ID.
   const nlohmann::json objects = nlohmann::json::parse(manifest);
-  EXPECT_EQ(objects.value("objects[0]", ""), cryptomatteHex(cryptomatteId("objects[0]")));
+  EXPECT_EQ(objects.value("Floor", ""), cryptomatteHex(cryptomatteId("Floor")));
   parts.clear();
   expectTheScenesValues(readEveryPart(multipart, &parts), multipart);
   EXPECT_EQ(parts,
             (std::vector<std::string>{"rgba", "depth", "normal", "albedo", "position", "objectid",
-                                      "direct", "indirect", "light0", "light1", "variance",
+                                      "direct", "indirect", "light_Sun_Lamp", "light1", "variance",
                                       "CryptoObject00", "CryptoObject01", "CryptoObject02",
                                       "CryptoMaterial00", "CryptoMaterial01", "CryptoMaterial02"}));
 }
@@ -277,7 +278,7 @@ TEST(ExrCompositor, BlenderReadsEveryLayerOfSingleAndMultipartFrames) {
                                          "IndexOB",
                                          "direct",
                                          "indirect",
-                                         "light0",
+                                         "light_Sun_Lamp",  // the light named "Sun Lamp"
                                          "light1",
                                          "Variance",
                                          "CryptoObject00",

@@ -158,6 +158,10 @@ TEST(ObjectNames, AnObjsTrianglesKeepTheirObjectAndGroupNames) {
   const MeshFile plain =
       loadMeshFile(test::writeTemp("plain.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), false);
   EXPECT_TRUE(plain.objectNames.empty());
+  // A name no scene may give (one of the defaults' shape) is no name either.
+  const MeshFile reserved = loadMeshFile(
+      test::writeTemp("reserved.obj", "o objects[1]\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), false);
+  EXPECT_TRUE(reserved.objectNames.empty());
 }
 
 TEST(ObjectNames, AColladasNodeNamesComeThroughAssimpsNodes) {
