@@ -14,6 +14,7 @@
 #include "core/out_of_memory.h"
 #include "film/texture_file.h"
 #include "io/gltf_scene.h"
+#include "io/mesh_io.h"
 #include "io/object_names.h"
 #include "io/scene_formats.h"
 #include "io/scene_loader.h"
@@ -27,18 +28,18 @@ namespace {
 // so a physically lit Lambert surface of albedo k_d is matched by I / π.
 constexpr double kGltfIntensityToGlint = 1 / M_PI;
 
-nlohmann::json gltfLight(const GltfLight& l) {
-  const double s = l.intensity * kGltfIntensityToGlint;
+nlohmann::json fileLight(const FileLight& l) {
+  const double s = l.intensity * (l.photometric ? kGltfIntensityToGlint : 1);
   const nlohmann::json intensity = {l.color.r * s, l.color.g * s, l.color.b * s};
-  if (l.type == GltfLight::Type::Directional)
+  if (l.type == FileLight::Type::Directional)
     return {{"type", "directional"},
             {"direction", {l.direction.x, l.direction.y, l.direction.z}},
             {"intensity", intensity}};
   nlohmann::json light = {{"type", "point"},
                           {"position", {l.position.x, l.position.y, l.position.z}},
                           {"intensity", intensity},
-                          {"falloff", "inverse_square"}};
-  if (l.type == GltfLight::Type::Spot) {
+                          {"falloff", l.inverseSquare ? "inverse_square" : "none"}};
+  if (l.type == FileLight::Type::Spot) {
     light["type"] = "spot";
     light["direction"] = {l.direction.x, l.direction.y, l.direction.z};
     // In degrees; outer ≤ 90 exactly, whatever π/2 · 180/π rounds to.
@@ -49,8 +50,9 @@ nlohmann::json gltfLight(const GltfLight& l) {
 }
 
 // A mesh file given in place of a scene: the file with its own materials. A glTF file's own
-// lights (KHR_lights_punctual) light it and its own camera (`cameraName`, else its first) sees
-// it; otherwise a directional light from above, front and left with a little ambient light,
+// lights (KHR_lights_punctual), or those of a Collada, FBX, ... file (io/scene_formats.h's
+// MeshScene kind), light it and its own camera (`cameraName`, else its first) sees it;
+// otherwise a directional light from above, front and left with a little ambient light,
 // and a camera that frames its bounds from the front, right and above (+y up, +z towards the
 // viewer, as glTF and most OBJ files have it). docs/scene-format.md, "A mesh file as the scene".
 // With `environment`, that image lights it instead of the default light and ambient light, and
@@ -58,13 +60,15 @@ nlohmann::json gltfLight(const GltfLight& l) {
 Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
                       const std::string& cameraName, const std::string& environment) {
   const std::filesystem::path file = std::filesystem::absolute(path);
-  const GltfSceneInfo gltf = sceneFileKind(path) == SceneFileKind::Gltf
-                                 ? readGltfSceneInfo(file.string())
-                                 : GltfSceneInfo{};
+  const SceneFileKind kind = sceneFileKind(path);
+  const FileSceneInfo own = kind == SceneFileKind::Gltf ? readGltfSceneInfo(file.string())
+                            : kind == SceneFileKind::MeshScene
+                                ? readMeshFileSceneInfo(file.string())
+                                : FileSceneInfo{};
   nlohmann::json lights = nlohmann::json::array();
   std::set<std::string> lightNames;
-  for (const GltfLight& l : gltf.lights) {
-    lights.push_back(gltfLight(l));
+  for (const FileLight& l : own.lights) {
+    lights.push_back(fileLight(l));
     // Scene names are unique: a repeated one is numbered as Blender numbers its copies
     // ("Lamp.001"); a name no scene may give (empty, "lights[0]") leaves the light unnamed.
     if (!objectNameProblem(l.name).empty()) continue;
@@ -93,12 +97,12 @@ Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
       {"lights", lights},
       {"objects", {{{"type", "mesh"}, {"file", file.filename().string()}}}}};
   Scene s = loadSceneText(scene.dump(), path, file.parent_path().string(), frame);
-  if (!cameraName.empty() || !gltf.cameras.empty()) {
-    const GltfCamera* chosen = gltf.cameras.empty() ? nullptr : &gltf.cameras[0];
+  if (!cameraName.empty() || !own.cameras.empty()) {
+    const FileCamera* chosen = own.cameras.empty() ? nullptr : &own.cameras[0];
     if (!cameraName.empty()) {
       chosen = nullptr;
       std::string names;
-      for (const GltfCamera& c : gltf.cameras) {
+      for (const FileCamera& c : own.cameras) {
         if (c.name == cameraName && !chosen) chosen = &c;
         names += (names.empty() ? "" : ", ") + inQuotes(c.name);
       }
@@ -119,6 +123,12 @@ Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
       c.orthoHeight = float(2 * chosen->ymag);
       c.window = ImageWindow{float(-chosen->xmag), float(chosen->xmag), float(-chosen->ymag),
                              float(chosen->ymag)};
+    } else if (chosen->xfovDegrees > 0) {
+      // Only the horizontal angle is known: the vertical one follows the image's aspect.
+      c.vfovDegrees = float(
+          2 *
+          std::atan(std::tan(chosen->xfovDegrees * M_PI / 360) * s.render.height / s.render.width) *
+          180 / M_PI);
     } else {
       c.vfovDegrees = float(chosen->yfovDegrees);
     }
@@ -144,8 +154,8 @@ Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
 
 std::string sceneArgumentHelp() {
   return "Scene: " + sceneFormatList() +
-         "; a mesh file gets a default camera and light (a glTF file its own); omitted: the "
-         "default scene";
+         "; a mesh file gets a default camera and light (a glTF, Collada, FBX, 3DS or AC3D file "
+         "its own); omitted: the default scene";
 }
 
 Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame,
@@ -153,7 +163,7 @@ Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame,
   // Refused by its extension before anything is read.
   const bool glintScene = path.empty() || sceneFileKind(path) == SceneFileKind::GlintScene;
   if (!cameraName.empty() && glintScene)
-    throw UsageError("--camera names a camera of a glTF file; " +
+    throw UsageError("--camera names a camera of a glTF, Collada, FBX, 3DS or AC3D file; " +
                      (path.empty() ? std::string("the default scene") : path) +
                      " has the one camera its \"camera\" gives");
   if (!environment.empty()) {

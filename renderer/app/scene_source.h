@@ -10,9 +10,9 @@
 namespace glint {
 
 // `frame`: the frame of an animated scene (default: its first); see io/animation.h.
-// `cameraName`: a camera of a glTF file (`--camera`); empty: the file's first camera, or the
-// framing default.
-// The SCENE argument's help, from the table of formats (io/scene_formats.h).
+// `cameraName`: a camera of a glTF, Collada, FBX, 3DS or AC3D file (`--camera`); empty: the file's
+// first camera, or the framing default. The SCENE argument's help, from the table of formats
+// (io/scene_formats.h).
 std::string sceneArgumentHelp();
 
 // `environment`: an image file (`--environment`) that lights a mesh file in place of its

@@ -25,7 +25,7 @@ class Reader {
  public:
   Reader(std::string path, json doc) : path_(std::move(path)), doc_(std::move(doc)) {}
 
-  GltfSceneInfo read() {
+  FileSceneInfo read() {
     const json* nodes = array("nodes");
     if (!nodes) return info_;
     const json* scenes = array("scenes");
@@ -168,7 +168,7 @@ class Reader {
     if (!cameras || i >= cameras->size()) fail(where + " does not exist");
     const json& c = (*cameras)[i];
     if (!c.is_object()) fail(where + " is not an object");
-    GltfCamera cam;
+    FileCamera cam;
     cam.name = c.contains("name") && c["name"].is_string() ? c["name"].get<std::string>()
                : !nodeName.empty()                         ? nodeName
                                    : "camera " + std::to_string(info_.cameras.size());
@@ -210,17 +210,17 @@ class Reader {
     if (!lights || i >= lights->size()) fail(where + " does not exist");
     const json& l = (*lights)[i];
     if (!l.is_object()) fail(where + " is not an object");
-    GltfLight light;
+    FileLight light;
     light.name =
         l.contains("name") && l["name"].is_string() ? l["name"].get<std::string>() : nodeName;
     const std::string type =
         l.contains("type") && l["type"].is_string() ? l["type"].get<std::string>() : "";
     if (type == "directional")
-      light.type = GltfLight::Type::Directional;
+      light.type = FileLight::Type::Directional;
     else if (type == "point")
-      light.type = GltfLight::Type::Point;
+      light.type = FileLight::Type::Point;
     else if (type == "spot") {
-      light.type = GltfLight::Type::Spot;
+      light.type = FileLight::Type::Spot;
       // spot.innerConeAngle, outerConeAngle: 0 ≤ inner < outer ≤ π/2 (the specification).
       const auto spot = l.find("spot");
       if (spot != l.end() && !spot->is_object()) fail(where + ".spot is not an object");
@@ -247,12 +247,12 @@ class Reader {
 
   std::string path_;
   json doc_;
-  GltfSceneInfo info_;
+  FileSceneInfo info_;
 };
 
 }  // namespace
 
-GltfSceneInfo readGltfSceneInfo(const std::string& path) {
+FileSceneInfo readGltfSceneInfo(const std::string& path) {
   // The same check as every mesh file's: a FIFO named .gltf blocked here, /dev/zero was read
   // until memory ran out.
   checkInputFile(path, kMaxMeshFileBytes, "glTF file");

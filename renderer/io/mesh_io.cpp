@@ -26,6 +26,7 @@
 #include "core/log.h"
 #include "core/out_of_memory.h"
 #include "film/texture_file.h"
+#include "io/assimp_scene_info.h"
 #include "io/expansion_limits.h"
 #include "io/gltf_indices.h"
 #include "io/gltf_subset.h"
@@ -324,6 +325,20 @@ class FaceNames {
   std::vector<std::string> names_;
 };
 
+// Assimp's reading of `path` with no processing but its own validation, or a GlintError.
+const aiScene* importOrThrow(Assimp::Importer& importer, const BoundedFiles& files,
+                             const std::string& path) {
+  const aiScene* s = importer.ReadFile(path, aiProcess_ValidateDataStructure);
+  // Assimp catches every exception of its readers and keeps only its text: a failed allocation
+  // is the machine's failure (exit 1, named by loadMeshFile), not the file's.
+  if (!s && std::string_view(importer.GetErrorString()) == std::bad_alloc().what())
+    throw std::bad_alloc();
+  if (!s || !s->mRootNode)
+    throw GlintError("cannot read mesh " + path + ": " + excerpt(importer.GetErrorString()) +
+                     (files.refusal().empty() ? "" : " (" + files.refusal() + ")"));
+  return s;
+}
+
 MeshFile readMeshFile(const std::string& path, bool readTextures) {
   checkInputFile(path, kMaxMeshFileBytes, "mesh");
   checkMeshFileBeforeImport(path);
@@ -350,14 +365,7 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
   // Read with no processing but Assimp's own validation: its post-processing steps index
   // vertices through the faces before any check of ours, and a face naming a vertex that does
   // not exist made them read and write out of bounds.
-  const aiScene* s = importer.ReadFile(path, aiProcess_ValidateDataStructure);
-  // Assimp catches every exception of its readers and keeps only its text: a failed allocation
-  // is the machine's failure (exit 1, named by loadMeshFile), not the file's.
-  if (!s && std::string_view(importer.GetErrorString()) == std::bad_alloc().what())
-    throw std::bad_alloc();
-  if (!s || !s->mRootNode)
-    throw GlintError("cannot read mesh " + path + ": " + excerpt(importer.GetErrorString()) +
-                     (files->refusal().empty() ? "" : " (" + files->refusal() + ")"));
+  const aiScene* s = importOrThrow(importer, *files, path);
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
     // The importer's own scene, not const: the primitive types its readers declare are replaced
     // by those of the faces. Assimp's triangulation asserts (an abort, in Debian's build) when a
@@ -413,9 +421,10 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi)
     if (s->mMeshes[mi]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)
       smooth = smooth && s->mMeshes[mi]->mNormals != nullptr;
-  const MeshFileFormat format = ext == ".ply"   ? MeshFileFormat::Ply
-                                : ext == ".obj" ? MeshFileFormat::Obj
-                                                : MeshFileFormat::Gltf;
+  const MeshFileFormat format = ext == ".ply"                     ? MeshFileFormat::Ply
+                                : ext == ".obj"                   ? MeshFileFormat::Obj
+                                : ext == ".gltf" || ext == ".glb" ? MeshFileFormat::Gltf
+                                                                  : MeshFileFormat::Other;
   const std::string fileName = std::filesystem::path(path).filename().string();
   MeshFile file;
   const TextureOpener openTexture =
@@ -503,6 +512,27 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
 MeshFile loadMeshFile(const std::string& path, bool readTextures) {
   return out_of_memory::whileDoing("reading mesh " + path,
                                    [&] { return readMeshFile(path, readTextures); });
+}
+
+FileSceneInfo readMeshFileSceneInfo(const std::string& path) {
+  return out_of_memory::whileDoing("reading mesh " + path, [&] {
+    try {
+      checkInputFile(path, kMaxMeshFileBytes, "mesh");
+      checkMeshFileBeforeImport(path);
+      Assimp::Importer importer;
+      auto* files = new BoundedFiles(path);
+      importer.SetIOHandler(files);  // the importer owns it
+      checkAnImporterOfTheExtensionReadsIt(importer, path);
+      return sceneInfoFromAssimp(*importOrThrow(importer, *files, path), path);
+    } catch (const OutOfMemoryError&) {
+      throw;
+    } catch (const UsageError&) {
+      throw;
+    } catch (const GlintError& e) {
+      // The file's fault, as the same error is where a scene names the file (exit 2).
+      throw UsageError(e.what());
+    }
+  });
 }
 
 }  // namespace glint

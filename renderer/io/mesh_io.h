@@ -1,13 +1,15 @@
 #pragma once
-// Triangle meshes from files through Assimp: OBJ, PLY and glTF 2.0 (.gltf, .glb) only, each
-// checked before Assimp reads it (io/mesh_limits.h). The file's meshes are placed by their node
-// transforms and merged per material: one triangle mesh for each material its triangles use,
-// with that material mapped onto Glint's (io/mesh_materials.h); vertex normals are kept when
-// every mesh has them. Each triangle keeps the name of the node that placed it.
+// Triangle meshes from files through Assimp (or Glint's PLY reader): the mesh formats of
+// io/scene_formats.h's table only, each checked before Assimp reads it (io/mesh_limits.h). The
+// file's meshes are placed by their node transforms and merged per material: one triangle mesh
+// for each material its triangles use, with that material mapped onto Glint's
+// (io/mesh_materials.h); vertex normals are kept when every mesh has them. Each triangle keeps
+// the name of the node that placed it.
 #include <string>
 #include <vector>
 
 #include "geometry/triangle_mesh.h"
+#include "io/file_scene_info.h"
 #include "materials/material.h"
 
 namespace glint {
@@ -25,5 +27,10 @@ struct MeshFile {
 // `readTextures` false leaves the image textures materials name unread (their slots keep their
 // factors): the mesh fuzzer tests Glint's and Assimp's readers, not OpenImageIO's decoders.
 MeshFile loadMeshFile(const std::string& path, bool readTextures = true);
+
+// The cameras and lights of a mesh file of the table's MeshScene kind (Collada, FBX, ...), read
+// through Assimp with the same checks (io/assimp_scene_info.h); throws UsageError naming the
+// path and what is wrong.
+FileSceneInfo readMeshFileSceneInfo(const std::string& path);
 
 }  // namespace glint

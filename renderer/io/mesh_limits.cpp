@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/collada_limits.h"
 #include "io/ply_header.h"
 #include "io/scene_formats.h"
 
@@ -60,7 +61,38 @@ void collectObjNames(const std::string& mesh, const std::filesystem::path& file,
   }
 }
 
+// The last `bytes` bytes of `path`.
+std::string tailOf(const std::string& path, uint64_t size, size_t bytes) {
+  std::ifstream in(path, std::ios::binary);
+  const uint64_t from = size > bytes ? size - bytes : 0;
+  in.seekg(static_cast<std::streamoff>(from));
+  std::string tail(size - from, '\0');
+  in.read(tail.data(), static_cast<std::streamsize>(tail.size()));
+  tail.resize(static_cast<size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+  return tail;
+}
+
 }  // namespace
+
+void checkStlEnds(const std::string& path, uint64_t size) {
+  const std::string head = headOf(path, 84);
+  if (head.size() == 84) {
+    const auto* b = reinterpret_cast<const unsigned char*>(head.data() + 80);
+    const uint64_t faces = b[0] | uint64_t{b[1]} << 8 | uint64_t{b[2]} << 16 | uint64_t{b[3]} << 24;
+    if (84 + 50 * faces == size) return;  // binary, whole (Assimp's test, before ASCII's)
+  }
+  const size_t start = head.find_first_not_of(" \t\r\n");
+  if (start == std::string::npos || lower(head.substr(start, 5)) != "solid") return;
+  std::string tail = tailOf(path, size, 1024);
+  while (!tail.empty() && std::isspace(static_cast<unsigned char>(tail.back()))) tail.pop_back();
+  const size_t lineStart = tail.find_last_of("\r\n");
+  const std::string last = tail.substr(lineStart == std::string::npos ? 0 : lineStart + 1);
+  const size_t word = last.find_first_not_of(" \t");
+  if (word == std::string::npos || lower(last.substr(word, 8)) != "endsolid")
+    throw GlintError("mesh " + path +
+                     " is an ASCII STL file that does not end with an endsolid line (is it cut "
+                     "short?); Assimp would read the facets before the cut without a word");
+}
 
 void checkObjMaterialCount(const std::string& path) {
   std::set<std::string> used, defined;
@@ -103,6 +135,8 @@ void checkMeshFileBeforeImport(const std::string& path) {
   if (lower(p.extension().string()) == ".obj") checkObjMaterialCount(path);
   if (lower(p.extension().string()) == ".ply")
     checkPlyCounts(path, headOf(path, kMaxPlyHeaderBytes), size);
+  if (lower(p.extension().string()) == ".dae") checkColladaCounts(path, headOf(path, size));
+  if (lower(p.extension().string()) == ".stl") checkStlEnds(path, size);
 }
 
 }  // namespace glint

@@ -5,7 +5,7 @@
 // documented extension but foreign content, reached one of its 40 importers. So Glint reads only
 // the formats it documents, files of bounded size, and PLY files whose element counts fit in
 // the file (docs/scene-format.md, docs/hardening.md). PLY files are read by Glint's own reader
-// (io/ply_reader.h), which keeps these checks.
+// (io/ply_reader.h), which keeps these checks; Collada files pass io/collada_limits.h's.
 #include <cstdint>
 #include <string>
 
@@ -25,18 +25,24 @@ inline constexpr size_t kMaxObjMaterials = 4096;
 
 // The mesh extensions of io/scene_formats.h's table (any case, with the dot).
 bool isMeshExtension(const std::string& extension);
-// "OBJ (.obj), PLY (.ply) and glTF 2.0 (.gltf, .glb)", for messages.
+// "OBJ (.obj), PLY (.ply), glTF 2.0 (.gltf, .glb), ...", for messages.
 std::string meshFormatList();
 
 // Throws GlintError naming `path` when its extension is not one of the above, it is larger
-// than kMaxMeshFileBytes, an OBJ file names too many materials, or a PLY header does not end or
-// declares more elements than the bytes after it can hold.
+// than kMaxMeshFileBytes, an OBJ file names too many materials, a PLY header does not end or
+// declares more elements than the bytes after it can hold, a Collada file fails
+// checkColladaCounts, or an ASCII STL file fails checkStlEnds.
 void checkMeshFileBeforeImport(const std::string& path);
 
 // The OBJ check alone: throws GlintError naming `path` (or the material library) when the file
 // and the libraries its `mtllib` lines name use or define more than kMaxObjMaterials distinct
 // material names.
 void checkObjMaterialCount(const std::string& path);
+
+// Throws GlintError naming `path` (`size` bytes) when it is an ASCII STL file (it starts with
+// "solid" and its size is not that of the binary file its header describes) whose last line is
+// not `endsolid`: Assimp's reader takes a file cut short for the facets before the cut.
+void checkStlEnds(const std::string& path, uint64_t size);
 
 // The PLY check alone, on a file's bytes (`fileSize` is the whole file's size, `head` its first
 // bytes, at least the header): throws GlintError naming `path` when the header is not PLY

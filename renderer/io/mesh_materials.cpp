@@ -93,17 +93,25 @@ Cutout gltfCutout(const aiMaterial& src, const TextureOpener& open, const std::s
 bool illumReflects(int illum) { return illum == 3 || illum == 5 || illum == 8; }
 bool illumRefracts(int illum) { return illum == 4 || illum == 6 || illum == 7 || illum == 9; }
 
-Material fromMtl(const aiMaterial& src, const TextureOpener& open) {
+// An OBJ's MTL, or another format's common keys (`format` Other). MTL's map_Kd multiplies Kd
+// (the OBJ specification); in Collada a <diffuse> holds a colour or a texture, and an FBX or 3DS
+// texture takes the colour's place while the file keeps the colour its tool last showed (a
+// grey): there the texture replaces the colour.
+Material fromMtl(const aiMaterial& src, const TextureOpener& open, MeshFileFormat format) {
   int illum = 2;
-  src.Get(AI_MATKEY_OBJ_ILLUM, illum);
+  if (format == MeshFileFormat::Obj) src.Get(AI_MATKEY_OBJ_ILLUM, illum);
   Material m =
       defaultMaterial(illumRefracts(illum) ? MaterialKind::Dielectric : MaterialKind::Phong);
   Surface& s = m.surface;
   const Rgb ks = colour(src, AI_MATKEY_COLOR_SPECULAR, {0, 0, 0});
   // Glass takes its colour from the light it refracts, not from a diffuse Kd.
+  const bool mapReplacesColour =
+      format != MeshFileFormat::Obj && src.GetTextureCount(aiTextureType_DIFFUSE) > 0;
   if (!m.refracts())
-    s.kd = textured(src, aiTextureType_DIFFUSE,
-                    colour(src, AI_MATKEY_COLOR_DIFFUSE, {0.5f, 0.5f, 0.5f}), open);
+    s.kd = textured(
+        src, aiTextureType_DIFFUSE,
+        mapReplacesColour ? Rgb{1, 1, 1} : colour(src, AI_MATKEY_COLOR_DIFFUSE, {0.5f, 0.5f, 0.5f}),
+        open);
   s.ka = ColorTexture::uniform(colour(src, AI_MATKEY_COLOR_AMBIENT, {0, 0, 0}));
   s.ambientFollowsDiffuse = false;
   s.ks = textured(src, aiTextureType_SPECULAR, ks, open);
@@ -195,11 +203,12 @@ Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
   Material m = own == AI_DEFAULT_MATERIAL_NAME || format == MeshFileFormat::Ply
                    ? defaultMaterial(MaterialKind::Phong)
                : format == MeshFileFormat::Gltf ? fromGltf(source, openTexture, gltf)
-                                                : fromMtl(source, openTexture);
+                                                : fromMtl(source, openTexture, format);
   m.name = fileName + ":" + own;
   if (format == MeshFileFormat::Gltf)
     m.cutout = gltfCutout(source, openTexture, m.name, gltf.baseColorUv);
-  if (format == MeshFileFormat::Obj) m.cutout = mtlCutout(source, openTexture, m);
+  if (format == MeshFileFormat::Obj || format == MeshFileFormat::Other)
+    m.cutout = mtlCutout(source, openTexture, m);
   return m;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The materials of mesh files, mapped onto Glint's surface model (materials/): an OBJ's MTL
-// (Kd, Ks, Ns, Ka, Ke, Ni, illum) and glTF 2.0's metallic-roughness factors with
+// (Kd, Ks, Ns, Ka, Ke, Ni, illum), the same common keys of the other formats Assimp reads, and
+// glTF 2.0's metallic-roughness factors with
 // KHR_materials_transmission, _ior, _volume and _emissive_strength, with their image textures
 // (map_Kd, map_Ks, map_Ke; glTF's base colour and emissive textures, with their
 // KHR_texture_transform). The table is in docs/scene-format.md ("Materials from mesh files").
@@ -16,7 +17,9 @@ struct aiMaterial;
 
 namespace glint {
 
-enum class MeshFileFormat { Obj, Ply, Gltf };
+// Other: any other format Assimp reads (Collada, FBX, 3DS, ...), through Assimp's common
+// material keys (diffuse, specular, shininess, emissive, opacity and their textures).
+enum class MeshFileFormat { Obj, Ply, Gltf, Other };
 
 // Opens a texture a material names, its path as the file spells it; null where it cannot be
 // read (the opener says why).

@@ -12,6 +12,7 @@ enum class SceneFileKind {
   GlintScene,  // Glint's JSON scene (docs/scene-format.md)
   Mesh,        // a mesh file, read through Assimp or Glint's PLY reader, framed by defaults
   Gltf,        // a glTF 2.0 file: a mesh file whose own cameras and lights are used
+  MeshScene,   // a mesh file whose own cameras and lights Assimp reads (io/mesh_io.h)
 };
 
 struct SceneFormat {
@@ -26,6 +27,15 @@ inline constexpr SceneFormat kSceneFormats[] = {
     {".ply", "PLY", SceneFileKind::Mesh},
     {".gltf", "glTF 2.0", SceneFileKind::Gltf},
     {".glb", "glTF 2.0", SceneFileKind::Gltf},
+    // Assimp's readers that held under Glint's hostile-input checks (docs/hardening.md, "Mesh
+    // formats": which were left out, and why).
+    {".dae", "Collada", SceneFileKind::MeshScene},
+    {".fbx", "FBX", SceneFileKind::MeshScene},
+    {".3ds", "3DS", SceneFileKind::MeshScene},
+    {".ac", "AC3D", SceneFileKind::MeshScene},
+    {".stl", "STL", SceneFileKind::Mesh},
+    {".ms3d", "Milkshape 3D", SceneFileKind::Mesh},
+    {".x3d", "X3D", SceneFileKind::Mesh},
 };
 
 // The format of `path` by its extension (any case); nullptr when the table has none.
@@ -36,7 +46,7 @@ const SceneFormat* findSceneFormat(const std::string& path);
 // UsageError naming the file and what Glint reads.
 SceneFileKind sceneFileKind(const std::string& path);
 
-// "Glint scenes (.json), OBJ (.obj), PLY (.ply) and glTF 2.0 (.gltf, .glb)"; with
+// "Glint scenes (.json), OBJ (.obj), PLY (.ply), glTF 2.0 (.gltf, .glb), ..."; with
 // `meshesOnly`, the formats a scene's mesh "file" may have.
 std::string sceneFormatList(bool meshesOnly = false);
 

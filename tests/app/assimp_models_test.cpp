@@ -83,7 +83,9 @@ TEST(AssimpModels, OutOfMemoryOffIsRefusedByItsFormat) {
     GTEST_SKIP() << "assimp-testmodels is not installed; tools/lib.sh installs it";
   const Outcome o = renderMesh(kModels / "invalid/OutOfMemory.off");
   EXPECT_EQ(o.status, 2);
-  EXPECT_NE(o.output.find("Glint reads OBJ (.obj), PLY (.ply) and glTF 2.0 (.gltf, .glb)"),
+  EXPECT_NE(o.output.find("Glint reads OBJ (.obj), PLY (.ply), glTF 2.0 (.gltf, .glb), Collada "
+                          "(.dae), FBX (.fbx), 3DS (.3ds), AC3D (.ac), STL (.stl), Milkshape 3D "
+                          "(.ms3d) and X3D (.x3d)"),
             std::string::npos)
       << o.output;
 }

@@ -65,13 +65,16 @@ TEST(CommandPromises, OptionsOfSeveralValuesSayWhatTheyGot) {
 }
 
 TEST(CommandPromises, ScenesOfFormatsGlintDoesNotReadAreNamedByEveryCommand) {
-  const std::string dae = test::writeTemp("duck.dae", "<?xml version=\"1.0\"?><COLLADA/>");
+  // LightWave: one of Assimp's readers Glint leaves out (docs/hardening.md, "Mesh formats").
+  const std::string lwo = test::writeTemp("wuson.lwo", "FORM LWO2");
   for (const std::string command : {"render", "validate", "converge", "bench", "plan", "info"}) {
-    const auto r = runGlint(command + " " + dae);
+    const auto r = runGlint(command + " " + lwo);
     EXPECT_EQ(r.exitCode, 2) << command << "\n" << r.output;
-    EXPECT_TRUE(contains(r.output, dae + ": Glint does not read .dae files; it reads Glint "
-                                         "scenes (.json), OBJ (.obj), PLY (.ply) and glTF 2.0 "
-                                         "(.gltf, .glb)"))
+    EXPECT_TRUE(contains(r.output, lwo + ": Glint does not read .lwo files; it reads Glint "
+                                         "scenes (.json), OBJ (.obj), PLY (.ply), glTF 2.0 "
+                                         "(.gltf, .glb), Collada (.dae), FBX (.fbx), 3DS (.3ds), "
+                                         "AC3D (.ac), STL (.stl), Milkshape 3D (.ms3d) and X3D "
+                                         "(.x3d)"))
         << command << "\n"
         << r.output;
   }

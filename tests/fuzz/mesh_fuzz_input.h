@@ -1,11 +1,14 @@
 #pragma once
 // The input form and the oracle of glint_fuzz_mesh, shared with its regression test
 // (tests/io/input_fuzz_regression_test.cpp). An input is a format byte, a mesh file and
-// optionally kPartSeparator and a second file the mesh may name: byte % 4 picks m.ply, m.obj
-// (+ m.mtl), m.gltf (+ m.bin) or m.glb (+ m.bin).
+// optionally kPartSeparator and a second file the mesh may name: byte % 11 picks m.ply, m.obj
+// (+ m.mtl), m.gltf (+ m.bin), m.glb (+ m.bin), or a file of Assimp's other formats Glint reads
+// (io/scene_formats.h): m.dae, m.fbx, m.3ds, m.stl, m.ac, m.ms3d or m.x3d (+ m.bin, which none of
+// them names, but a mutated one may).
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 #include <string_view>
 
@@ -26,9 +29,11 @@ inline std::filesystem::path writeMeshInput(const std::filesystem::path& dir,
     const char *mesh, *part;
   };
   static constexpr Format kFormats[] = {
-      {"m.ply", "m.bin"}, {"m.obj", "m.mtl"}, {"m.gltf", "m.bin"}, {"m.glb", "m.bin"}};
+      {"m.ply", "m.bin"}, {"m.obj", "m.mtl"},  {"m.gltf", "m.bin"}, {"m.glb", "m.bin"},
+      {"m.dae", "m.bin"}, {"m.fbx", "m.bin"},  {"m.3ds", "m.bin"},  {"m.stl", "m.bin"},
+      {"m.ac", "m.bin"},  {"m.ms3d", "m.bin"}, {"m.x3d", "m.bin"}};
   if (input.empty()) return {};
-  const Format& format = kFormats[static_cast<unsigned char>(input[0]) % 4];
+  const Format& format = kFormats[static_cast<unsigned char>(input[0]) % std::size(kFormats)];
   const std::string_view rest = input.substr(1);
   const size_t split = rest.find(kPartSeparator);
   const auto write = [](const fs::path& path, std::string_view bytes) {

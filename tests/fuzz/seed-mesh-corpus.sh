@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Makes tests/fuzz/corpus-mesh/ from small files of Debian's assimp-testmodels (BSD-3-Clause,
 # third_party_notes.md) in glint_fuzz_mesh's input form: a format byte (0 PLY, 1 OBJ, 2 glTF,
-# 3 GLB), the file, and for an OBJ's material library or a glTF's buffer the separator and that
-# file, renamed m.mtl / m.bin (the names the fuzzer writes them under). Run once; the output is
-# checked in.
+# 3 GLB, 4 Collada, 5 FBX, 6 3DS, 7 STL, 8 AC3D, 9 Milkshape 3D, 10 X3D), the file, and for an
+# OBJ's material library or a glTF's buffer the separator and that file, renamed m.mtl / m.bin
+# (the names the fuzzer writes them under). Run once; the output is checked in.
 set -euo pipefail
 models=/usr/share/assimp/models
 out="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)/corpus-mesh"
@@ -52,4 +52,15 @@ for f in BoxTextured-glTF-Binary/BoxTextured.glb BoxWithInfinites-glTF-Binary/Bo
   BoxBadNormals-glTF-Binary/BoxBadNormals.glb; do
   seed 03 "$models/glTF2/$f"
 done
+seed 04 "$models/Collada/cameras.dae"
+seed 04 "$models/Collada/cube_triangulate.dae"
+seed 05 "$models/FBX/box.fbx"
+seed 06 "$models/3DS/CameraRollAnim.3ds"
+seed 06 "$models/3DS/RotatingCube.3DS"
+seed 07 "$models/STL/triangle.stl"
+seed 07 "$models/STL/triangle_with_two_solids.stl"
+seed 08 "$models/AC/closedLine.ac"
+seed 08 "$models/AC/SphereWithLight_UTF8BOM.ac"
+seed 09 "$models/MS3D/twospheres.ms3d"
+seed 0a "$models/X3D/ComputerKeyboard.x3d"
 echo "$(ls "$out" | wc -l) seeds, $(du -sb "$out" | cut -f1) bytes in $out"

@@ -69,7 +69,7 @@ std::array<double, 3> centre(const std::string& file, const std::string& camera)
 
 TEST(GltfScene, CamerasAndLightsAreReadAndPlacedByTheNodeTree) {
   const std::string file = test::writeTemp("quad_scene.gltf", quadScene(kNodes));
-  const GltfSceneInfo info = readGltfSceneInfo(file);
+  const FileSceneInfo info = readGltfSceneInfo(file);
   ASSERT_EQ(info.cameras.size(), 2u);
   EXPECT_EQ(info.cameras[0].name, "front");
   EXPECT_NEAR(info.cameras[0].eye.z, 3, 1e-12);
@@ -80,7 +80,7 @@ TEST(GltfScene, CamerasAndLightsAreReadAndPlacedByTheNodeTree) {
   EXPECT_NEAR(info.cameras[1].eye.x, 3, 1e-9);
   EXPECT_NEAR(info.cameras[1].lookAt.x - info.cameras[1].eye.x, -1, 1e-6);
   ASSERT_EQ(info.lights.size(), 1u);
-  EXPECT_EQ(info.lights[0].type, GltfLight::Type::Directional);
+  EXPECT_EQ(info.lights[0].type, FileLight::Type::Directional);
   EXPECT_NEAR(info.lights[0].direction.z, -1, 1e-12);
 }
 
