@@ -689,9 +689,8 @@ CommandRunner addRenderCommand(CLI::App& app) {
       cmd->add_option("--frame", args->frame,
                       "Frame of an animated scene (default: its first); -o NAME.####.exr or "
                       "NAME.%04d.exr numbers the file");
-  cmd->add_option(
-      "--camera", args->camera,
-      "A camera of a glTF, Collada, FBX, 3DS or AC3D scene, by name (default: its first)");
+  cmd->add_option("--camera", args->camera,
+                  "A camera of a glTF, Collada, FBX or AC3D scene, by name (default: its first)");
   cmd->add_option("--environment", args->environment,
                   "A lat-long image (EXR, .hdr) lighting a mesh-file scene as an environment "
                   "light, in place of its default light");

@@ -154,7 +154,7 @@ Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
 
 std::string sceneArgumentHelp() {
   return "Scene: " + sceneFormatList() +
-         "; a mesh file gets a default camera and light (a glTF, Collada, FBX, 3DS or AC3D file "
+         "; a mesh file gets a default camera and light (a glTF, Collada, FBX or AC3D file "
          "its own); omitted: the default scene";
 }
 
@@ -163,7 +163,7 @@ Scene loadSceneOrDefault(const std::string& path, std::optional<int> frame,
   // Refused by its extension before anything is read.
   const bool glintScene = path.empty() || sceneFileKind(path) == SceneFileKind::GlintScene;
   if (!cameraName.empty() && glintScene)
-    throw UsageError("--camera names a camera of a glTF, Collada, FBX, 3DS or AC3D file; " +
+    throw UsageError("--camera names a camera of a glTF, Collada, FBX or AC3D file; " +
                      (path.empty() ? std::string("the default scene") : path) +
                      " has the one camera its \"camera\" gives");
   if (!environment.empty()) {

@@ -10,7 +10,7 @@
 namespace glint {
 
 // `frame`: the frame of an animated scene (default: its first); see io/animation.h.
-// `cameraName`: a camera of a glTF, Collada, FBX, 3DS or AC3D file (`--camera`); empty: the file's
+// `cameraName`: a camera of a glTF, Collada, FBX or AC3D file (`--camera`); empty: the file's
 // first camera, or the framing default. The SCENE argument's help, from the table of formats
 // (io/scene_formats.h).
 std::string sceneArgumentHelp();

@@ -96,15 +96,14 @@ FileCamera camera(const aiCamera& c, const Placer& place) {
 
 // Assimp's attenuation 1 / (c + l·d + q·d²) as Glint's falloffs: none (scaled by 1/c) or 1/r²
 // (scaled by 1/q); a linear term, or a constant beside a quadratic one, has no match.
-void attenuation(const aiLight& l, FileLight& light, const std::string& what) {
+void attenuation(const aiLight& l, FileLight& light, const std::string& where) {
   const float c = l.mAttenuationConstant, lin = l.mAttenuationLinear, q = l.mAttenuationQuadratic;
   const auto positive = [](float v) { return std::isfinite(v) && v > 0; };
   light.inverseSquare = positive(q);
   light.intensity = positive(q) ? 1 / double(q) : positive(c) ? 1 / double(c) : 1;
   if (positive(lin) || (positive(q) && positive(c)))
-    log::warning("mesh light " + what + ": attenuation (constant " + std::to_string(c) +
-                 ", linear " + std::to_string(lin) + ", quadratic " + std::to_string(q) +
-                 ") rendered as " +
+    log::warning(where + ": attenuation (constant " + std::to_string(c) + ", linear " +
+                 std::to_string(lin) + ", quadratic " + std::to_string(q) + ") rendered as " +
                  (light.inverseSquare ? "quadratic alone (1/r²)" : "constant (no falloff)") +
                  "; Glint's lights fall off with 1/r² or not at all");
 }
@@ -146,7 +145,7 @@ FileSceneInfo sceneInfoFromAssimp(const aiScene& s, const std::string& path) {
     const Affine& world = place.node(l.mName, what);
     if (light.type != FileLight::Type::Directional) {
       light.position = place.point(world, l.mPosition, what);
-      attenuation(l, light, what);
+      attenuation(l, light, "mesh " + path + ": " + what);
     }
     if (light.type != FileLight::Type::Point)
       light.direction = place.direction(world, l.mDirection, what);

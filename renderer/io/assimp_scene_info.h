@@ -1,5 +1,5 @@
 #pragma once
-// The cameras and lights of a file Assimp read (aiScene::mCameras, mLights: a Collada, FBX, 3DS or
+// The cameras and lights of a file Assimp read (aiScene::mCameras, mLights: a Collada, FBX or
 // AC3D file's), in world space: each is placed by the node of its name, through the
 // node's parents, as Assimp's readers define them (a camera looks along mLookAt with mUp up in
 // its node's frame; mHorizontalFOV is the full horizontal angle, as every reader of Assimp 5.2

@@ -3,6 +3,7 @@
 #include <assimp/BaseImporter.h>
 #include <assimp/DefaultIOSystem.h>
 #include <assimp/MemoryIOWrapper.h>
+#include <assimp/config.h>
 #include <assimp/importerdesc.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
@@ -151,6 +152,10 @@ TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
       for (const auto& entry : std::filesystem::directory_iterator(file.parent_path(), ec))
         if (lowerCase(entry.path().filename().string()) == lower) file = entry.path();
     }
+    // A path of the machine that wrote the file (an FBX's "D:\projects\wood.jpg"): the image
+    // of that name beside the mesh, where there is one.
+    if (!std::filesystem::exists(file, ec) && std::filesystem::exists(dir / file.filename(), ec))
+      file = dir / file.filename();
     try {
       slot = openImageTexture(file.lexically_normal().string());
     } catch (const OutOfMemoryError&) {
@@ -328,6 +333,9 @@ class FaceNames {
 // Assimp's reading of `path` with no processing but its own validation, or a GlintError.
 const aiScene* importOrThrow(Assimp::Importer& importer, const BoundedFiles& files,
                              const std::string& path) {
+  // A file without meshes (a Collada file of cameras alone) would get Assimp's stand-in pyramids
+  // at its nodes, which Glint would render as if they were the file's.
+  importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
   const aiScene* s = importer.ReadFile(path, aiProcess_ValidateDataStructure);
   // Assimp catches every exception of its readers and keeps only its text: a failed allocation
   // is the machine's failure (exit 1, named by loadMeshFile), not the file's.

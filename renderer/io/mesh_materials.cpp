@@ -48,11 +48,12 @@ ColorTexture textured(const aiMaterial& m, aiTextureType type, const Rgb& factor
   return t;
 }
 
-// MTL's dissolve: map_d (its alpha, else its grey) times d makes a cut-out at one half. A
-// dissolve without a map would blend the surface with what is behind it, which Glint does not
-// render (materials/cutout.h): the surface stays opaque, with a warning (not for glass, whose
-// dissolve exporters write for the transparency Glint renders by refraction).
-Cutout mtlCutout(const aiMaterial& src, const TextureOpener& open, const Material& m) {
+// MTL's dissolve (another format's opacity, `obj` false): map_d (its alpha, else its grey)
+// times d makes a cut-out at one half. A dissolve without a map would blend the surface with
+// what is behind it, which Glint does not render (materials/cutout.h): the surface stays
+// opaque, with a warning (not for glass, whose dissolve exporters write for the transparency
+// Glint renders by refraction).
+Cutout mtlCutout(const aiMaterial& src, const TextureOpener& open, const Material& m, bool obj) {
   Cutout c;
   const float d = number(src, AI_MATKEY_OPACITY, 1.0f);
   c.image = firstTexture(src, aiTextureType_OPACITY, open);
@@ -60,8 +61,9 @@ Cutout mtlCutout(const aiMaterial& src, const TextureOpener& open, const Materia
     c.coverage = std::clamp(d, 0.0f, 1.0f);
     c.channel = Cutout::Channel::AlphaElseGrey;
   } else if (d < 1 && !m.refracts()) {
-    log::warning("material " + m.name + ": dissolve d " + std::to_string(d) +
-                 " without map_d is not rendered (Glint cuts out, it does not blend): opaque");
+    log::warning("material " + m.name + ": " + (obj ? "dissolve d " : "opacity ") +
+                 std::to_string(d) + (obj ? " without map_d" : " without an opacity texture") +
+                 " is not rendered (Glint cuts out, it does not blend): opaque");
   }
   return c;
 }
@@ -208,7 +210,7 @@ Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
   if (format == MeshFileFormat::Gltf)
     m.cutout = gltfCutout(source, openTexture, m.name, gltf.baseColorUv);
   if (format == MeshFileFormat::Obj || format == MeshFileFormat::Other)
-    m.cutout = mtlCutout(source, openTexture, m);
+    m.cutout = mtlCutout(source, openTexture, m, format == MeshFileFormat::Obj);
   return m;
 }
 

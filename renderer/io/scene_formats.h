@@ -31,7 +31,7 @@ inline constexpr SceneFormat kSceneFormats[] = {
     // formats": which were left out, and why).
     {".dae", "Collada", SceneFileKind::MeshScene},
     {".fbx", "FBX", SceneFileKind::MeshScene},
-    {".3ds", "3DS", SceneFileKind::MeshScene},
+    {".3ds", "3DS", SceneFileKind::Mesh},
     {".ac", "AC3D", SceneFileKind::MeshScene},
     {".stl", "STL", SceneFileKind::Mesh},
     {".ms3d", "Milkshape 3D", SceneFileKind::Mesh},

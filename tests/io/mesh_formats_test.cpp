@@ -91,6 +91,18 @@ TEST(MeshFormats, ColladaCameraAndLightArePlaced) {
   EXPECT_FLOAT_EQ(l.color.g, 0.25f);
 }
 
+TEST(MeshFormats, AFileWithoutMeshesHasNoTriangles) {
+  // Collada cameras and a light alone: Assimp would stand pyramids at the nodes in place of
+  // meshes (its skeleton meshes); Glint asks it not to, and the file has nothing to render.
+  std::string doc = test::colladaDocument();
+  const size_t node = doc.find("<node id=\"shape\"");
+  doc.erase(node, doc.find("</node>", node) + 7 - node);
+  const std::string file = test::writeTemp("cameras_only.dae", doc);
+  const std::string message = test::meshLoadError("cameras_only.dae", doc);
+  EXPECT_NE(message, "(loaded)");
+  EXPECT_EQ(readMeshFileSceneInfo(file).cameras.size(), 1u);
+}
+
 TEST(MeshFormats, AsciiStl) {
   // Two facets of the unit square in z = 0.
   const std::string stl =

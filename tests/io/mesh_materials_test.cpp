@@ -1,13 +1,16 @@
 // Materials of mesh files mapped onto Glint's surface model (io/mesh_materials.h; the table in
 // docs/scene-format.md): each material group of a file becomes its own part with its own
 // material, and a scene's "material" overrides them all.
+#include <assimp/material.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 
+#include "film/texture_file.h"
 #include "io/mesh_io.h"
+#include "io/mesh_materials.h"
 #include "test_util.h"
 
 namespace glint {
@@ -192,6 +195,38 @@ TEST(MeshMaterials, ASceneMaterialOverridesTheFilesAndWithoutOneTheFileKeepsItsO
   ASSERT_EQ(overridden.groups[0].geometries.size(), 4u);
   for (const Geometry& g : overridden.groups[0].geometries)
     EXPECT_EQ(overridden.materials[g.materialId].name, "grey");
+}
+
+TEST(MeshMaterials, OtherFormatsLetTheDiffuseTextureReplaceTheColour) {
+  // An FBX or 3DS material keeps the grey its tool showed beside its texture; an MTL's map_Kd
+  // multiplies Kd (the OBJ specification). The same Assimp material, read as each.
+  aiMaterial src;
+  const aiColor3D grey(0.6f, 0.6f, 0.6f);
+  src.AddProperty(&grey, 1, AI_MATKEY_COLOR_DIFFUSE);
+  const aiString name("wood"), texture("half_matte.png");
+  src.AddProperty(&name, AI_MATKEY_NAME);
+  src.AddProperty(&texture, AI_MATKEY_TEXTURE_DIFFUSE(0));
+  const std::string png = test::writeHalfMatte();
+  const TextureOpener open = [&](const std::string&) { return openImageTexture(png); };
+  const Material other = materialFromMeshFile(src, MeshFileFormat::Other, "box.fbx", open);
+  EXPECT_EQ(other.name, "box.fbx:wood");
+  EXPECT_EQ(other.surface.kd.pattern, TexturePattern::Image);
+  EXPECT_EQ(uniform(other.surface.kd).r, 1.0f);
+  const Material mtl = materialFromMeshFile(src, MeshFileFormat::Obj, "box.obj", open);
+  EXPECT_EQ(mtl.surface.kd.pattern, TexturePattern::Image);
+  EXPECT_FLOAT_EQ(uniform(mtl.surface.kd).r, 0.6f);
+}
+
+TEST(MeshMaterials, ATexturePathOfAnotherMachineFindsTheImageBesideTheMesh) {
+  // Exporters write the path the texture had where the file was made (assimp-testmodels'
+  // spider.fbx: "D:\\projects\\...\\drkwood2.jpg"); the image of that name beside the mesh is used.
+  const std::string png = test::writeHalfMatte();
+  const std::string dir = std::filesystem::path(png).parent_path().string();
+  test::writeTemp("elsewhere.mtl", "newmtl m\nKd 1 1 1\nmap_Kd D:\\art\\half_matte.png\n");
+  const MeshFile f = loadMeshFile(test::writeTemp(
+      "elsewhere.obj", "mtllib elsewhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n"));
+  ASSERT_EQ(f.materials.size(), 1u);
+  EXPECT_EQ(f.materials[0].surface.kd.pattern, TexturePattern::Image) << dir;
 }
 
 }  // namespace

@@ -40,6 +40,8 @@ TEST(SceneFormats, TheTableDecidesWhatEachFileIs) {
   EXPECT_EQ(sceneFileKind("duck.DAE"), SceneFileKind::MeshScene);
   EXPECT_EQ(sceneFileKind("rig.fbx"), SceneFileKind::MeshScene);
   EXPECT_EQ(sceneFileKind("part.stl"), SceneFileKind::Mesh);
+  // Assimp misplaces 3DS cameras (docs/scene-format.md): a 3DS file is framed by default.
+  EXPECT_EQ(sceneFileKind("room.3DS"), SceneFileKind::Mesh);
   // A scene piped in (`<(generator)` is /dev/fd/63) has no extension: read as a Glint scene.
   EXPECT_EQ(sceneFileKind("/dev/fd/63"), SceneFileKind::GlintScene);
   // The mesh loader's list is the table's, less Glint's own scenes.
