@@ -151,7 +151,7 @@ TEST(AssimpFormats, TruncatedAndGarbledFilesEndInACleanError) {
     for (const double keep : {0.3, 0.7}) {
       const std::string path = test::writeTemp(
           "cut" + std::to_string(int(keep * 10)) + "-" + name,
-          name == "hang.dae" ? bytes : bytes.substr(0, size_t(keep * bytes.size())));
+          name == "hang.dae" ? bytes : bytes.substr(0, size_t(keep * double(bytes.size()))));
       const Outcome o = renderBounded(path);
       EXPECT_EQ(o.status, 2) << path << "\n" << o.output;
       EXPECT_NE(o.output.find(path), std::string::npos) << o.output;
