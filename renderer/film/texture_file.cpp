@@ -38,11 +38,14 @@ class TextureFile final : public ImageTexture {
 
   Rgb color(const ImageFootprint& at) const override {
     float texel[3] = {0, 0, 0};
-    // Grey (and grey-alpha) images give their one colour channel to all three.
-    const int colorChannels = channels_ >= 3 ? 3 : 1;
-    if (!read(at, 0, colorChannels, texel)) return {};
-    if (colorChannels == 1) texel[1] = texel[2] = texel[0];
+    if (!readRgb(at, texel)) return {};
     if (!toRendering_.isIdentity()) toRendering_.apply(texel);
+    return {texel[0], texel[1], texel[2]};
+  }
+
+  Rgb data(const ImageFootprint& at) const override {
+    float texel[3] = {0, 0, 0};
+    if (!readRgb(at, texel)) return {};
     return {texel[0], texel[1], texel[2]};
   }
 
@@ -89,6 +92,13 @@ class TextureFile final : public ImageTexture {
   }
 
  private:
+  // Grey (and grey-alpha) images give their one colour channel to all three.
+  bool readRgb(const ImageFootprint& at, float* texel) const {
+    const int colorChannels = channels_ >= 3 ? 3 : 1;
+    if (!read(at, 0, colorChannels, texel)) return false;
+    if (colorChannels == 1) texel[1] = texel[2] = texel[0];
+    return true;
+  }
   bool read(const ImageFootprint& at, int first, int count, float* out) const {
     const float st[2] = {at.st.x, at.st.y};
     const float axes[4] = {at.axisA.x, at.axisA.y, at.axisB.x, at.axisB.y};

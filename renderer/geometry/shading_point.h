@@ -27,6 +27,11 @@ struct ShadingPoint {
   // them out.
   Vec2f uv;
   Vec3f dpdu, dpdv;
+  // The tangent frame normal maps are read in (materials/normal_map.h), filled only in scenes
+  // with normal maps (Features::normalMaps): the tangent along +u (a mesh's interpolated vertex
+  // tangent, else dp/du) and the sign that turns ns × tangent towards +v.
+  Vec3f tangent;
+  float tangentSign = 1;
   // The mesh's interpolated vertex colour (white for other shapes), filled only in scenes whose
   // materials use vertex colours (Features::vertexColors).
   Rgb vertexColor;

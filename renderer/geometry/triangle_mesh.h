@@ -30,6 +30,16 @@ struct TriangleMesh {
   // nodes merged per material): in a Scene the object id (Scene::objectNames), in a MeshFile
   // the index of the name in MeshFile::objectNames. Empty: the whole mesh is one object.
   std::vector<uint32_t> objectIds;
+  // Per triangle corner (3 per triangle, as `indices`), the tangent normal maps are read in:
+  // unit, along +u, in the mesh's space, with the sign that turns normal × tangent towards +v
+  // (glTF's TANGENT w). From the file, or generated (geometry/tangents.h) for a mesh under a
+  // normal map; empty otherwise. Per corner, not per vertex: generated tangents split where
+  // the texture coordinates are mirrored or cut.
+  struct Tangent {
+    Vec3f direction;
+    float sign = 1;
+  };
+  std::vector<Tangent> tangents;
 
   bool deforming() const { return !positionKeys.empty(); }
   bool smooth() const { return !normals.empty(); }

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <string_view>
@@ -103,6 +104,7 @@ bool texturesAreWellFormed(const json& doc) {
              (info->is_object() && info->contains("index") && indexBelow(*info, "index", textures));
     };
     if (!textureInfoOk(m, "emissiveTexture")) return false;
+    if (!textureInfoOk(m, "normalTexture")) return false;
     if (const auto pbr = m.find("pbrMetallicRoughness"); pbr != m.end() && pbr->is_object())
       if (!textureInfoOk(*pbr, "baseColorTexture")) return false;
   }
@@ -118,6 +120,16 @@ json textureTransformOf(const json& owner, const char* key) {
   if (extensions == info->end() || !extensions->is_object()) return nullptr;
   const auto transform = extensions->find("KHR_texture_transform");
   return transform == extensions->end() ? json() : *transform;
+}
+
+// normalTexture.scale: 1 where it is absent or not a finite number.
+float normalTextureScale(const json& material) {
+  const auto info = material.find("normalTexture");
+  if (info == material.end() || !info->is_object()) return 1;
+  const auto scale = info->find("scale");
+  if (scale == info->end() || !scale->is_number()) return 1;
+  const double v = scale->get<double>();
+  return std::isfinite(v) && std::fabs(v) <= 1e6 ? static_cast<float>(v) : 1.0f;
 }
 
 constexpr std::string_view kMaterialTag = "glint:gltf-material:";
@@ -189,9 +201,11 @@ std::string gltfSubset(const std::string& path, const std::string& text,
   // The materials' names, each then replaced by its tag, and their textures' transforms (read
   // once the textures are known to be well formed, below).
   std::vector<std::pair<json, json>> baseColorAndEmissiveTransforms;
+  std::vector<json> normalTransforms;
   if (materials) {
     materials->assign(countOf(doc, "materials"), {});
     baseColorAndEmissiveTransforms.resize(materials->size());
+    normalTransforms.resize(materials->size());
     for (size_t i = 0; i < materials->size(); ++i) {
       json& material = doc["materials"][i];
       if (!material.is_object()) continue;
@@ -202,6 +216,8 @@ std::string gltfSubset(const std::string& path, const std::string& text,
       baseColorAndEmissiveTransforms[i] = {
           textureTransformOf(pbr != material.end() ? *pbr : json(), "baseColorTexture"),
           textureTransformOf(material, "emissiveTexture")};
+      normalTransforms[i] = textureTransformOf(material, "normalTexture");
+      (*materials)[i].normalScale = normalTextureScale(material);
     }
   }
   // Materials as their factors and the base colour and emission textures (io/mesh_materials.h),
@@ -211,9 +227,10 @@ std::string gltfSubset(const std::string& path, const std::string& text,
   };
   forEachIn(doc, "materials", [&](json& material) {
     keepOnly(material, {"name", "pbrMetallicRoughness", "emissiveFactor", "emissiveTexture",
-                        "alphaMode", "alphaCutoff", "extensions"});
+                        "alphaMode", "alphaCutoff", "extensions", "normalTexture"});
     if (!material.is_object()) return;
     keepTextureInfo(material, "emissiveTexture");
+    keepTextureInfo(material, "normalTexture");
     if (const auto pbr = material.find("pbrMetallicRoughness"); pbr != material.end()) {
       keepOnly(*pbr, {"baseColorFactor", "baseColorTexture", "metallicFactor", "roughnessFactor"});
       if (pbr->is_object()) keepTextureInfo(*pbr, "baseColorTexture");
@@ -253,7 +270,7 @@ std::string gltfSubset(const std::string& path, const std::string& text,
     forEachIn(mesh, "primitives", [](json& primitive) {
       keepOnly(primitive, {"attributes", "indices", "mode", "material", "extensions"});
       if (const auto a = primitive.find("attributes"); a != primitive.end())
-        keepOnly(*a, {"POSITION", "NORMAL", "TEXCOORD_0", "COLOR_0"});
+        keepOnly(*a, {"POSITION", "NORMAL", "TANGENT", "TEXCOORD_0", "COLOR_0"});
     });
   });
   forEachIn(doc, "textures", [](json& texture) { keepOnly(texture, {"source", "sampler"}); });
@@ -275,6 +292,7 @@ std::string gltfSubset(const std::string& path, const std::string& text,
     forEachIn(doc, "materials", [](json& material) {
       if (!material.is_object()) return;
       material.erase("emissiveTexture");
+      material.erase("normalTexture");
       if (const auto pbr = material.find("pbrMetallicRoughness");
           pbr != material.end() && pbr->is_object())
         pbr->erase("baseColorTexture");
@@ -288,6 +306,7 @@ std::string gltfSubset(const std::string& path, const std::string& text,
         gltfTextureTransform(baseColorAndEmissiveTransforms[i].first, where + " baseColorTexture");
     m.emissiveUv =
         gltfTextureTransform(baseColorAndEmissiveTransforms[i].second, where + " emissiveTexture");
+    m.normalUv = gltfTextureTransform(normalTransforms[i], where + " normalTexture");
   }
   try {
     return doc.dump();

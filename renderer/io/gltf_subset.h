@@ -1,9 +1,9 @@
 #pragma once
 // The part of a glTF 2.0 file Glint reads, and nothing else, for Assimp to import: the scene's
-// nodes with their transforms, each primitive's POSITION, NORMAL, TEXCOORD_0, indices and
-// material, the accessors, buffer views and buffers behind them, the materials' factors (base
+// nodes with their transforms, each primitive's POSITION, NORMAL, TANGENT, TEXCOORD_0, indices
+// and material, the accessors, buffer views and buffers behind them, the materials' factors (base
 // colour, metallic, roughness, emission; transmission, ior, volume and emissive strength
-// extensions) and their base colour and emissive textures with the textures, images and
+// extensions) and their base colour, emissive and normal textures with the textures, images and
 // samplers behind them. Skins, animations, morph targets, cameras and lights (which Glint reads
 // itself, io/gltf_scene.h) are removed before Assimp sees the file, so its readers for them never
 // run: Assimp 5.2.5 dereferenced a null pointer on a skin without inverseBindMatrices (found by
@@ -20,10 +20,13 @@ namespace glint {
 
 // What Glint reads from one of a glTF file's materials itself: its name as the file gives it
 // (empty when it has none), and its base colour and emissive textures' KHR_texture_transform
-// in Glint's (u, v) (the identity where there is none).
+// in Glint's (u, v) (the identity where there is none), and its normal texture's transform and
+// scale.
 struct GltfMaterialInfo {
   std::string name;
   UvTransform baseColorUv, emissiveUv;
+  UvTransform normalUv;   // normalTexture's
+  float normalScale = 1;  // normalTexture.scale
 };
 
 // The name a glTF file's material `index` reaches Assimp with, and back (nullopt for a name that

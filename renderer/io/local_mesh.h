@@ -15,6 +15,7 @@ struct LocalMesh {
   std::vector<Vec3d> normals;                    // per vertex, for smooth shading; empty: flat
   std::vector<Vec2f> uvs;                        // per vertex texture coordinates; may be empty
   std::vector<Rgb> colors;                       // per vertex colours; may be empty
+  std::vector<TriangleMesh::Tangent> tangents;   // per corner, from the file; may be empty
   std::vector<std::vector<Vec3d>> positionKeys;  // a deforming mesh's vertices per motion key
   std::vector<uint32_t> indices;
   // Per triangle, its object (TriangleMesh::objectIds); empty: one object.

@@ -440,6 +440,7 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
                    : [](const std::string&) { return std::shared_ptr<const ImageTexture>(); };
   std::vector<int> partOfMaterial(s->mNumMaterials, -1);
   if (faceNames.any()) file.objectNames = faceNames.names();
+  std::vector<bool> partWithoutTangents(s->mNumMaterials, false);
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
     const aiMesh* m = s->mMeshes[mi];
     if (!(m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;  // points and lines
@@ -489,13 +490,37 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
       unnamed = static_cast<uint32_t>(it - file.objectNames.begin());
       if (it == file.objectNames.end()) file.objectNames.push_back("");
     }
+    // The file's tangents (glTF's TANGENT: Assimp gives xyz, and the bitangent normal × xyz
+    // times w, whose side recovers w), per corner; a part where one mesh has none has none
+    // (they are generated for it where a normal map needs them).
+    const bool tangents = m->mTangents && m->mBitangents && m->mNormals &&
+                          mesh.tangents.size() == mesh.indices.size();
+    if (!tangents) mesh.tangents.clear();
+    const auto tangentOf = [&](unsigned v) -> TriangleMesh::Tangent {
+      const aiVector3D& t = m->mTangents[v];
+      const Vec3f direction{t.x, t.y, t.z};
+      const float len = length(direction);
+      if (!(len > 0 && std::isfinite(len))) return {};  // generated tangents replace it
+      const aiVector3D side = m->mNormals[v] ^ t;
+      return {direction / len, side * m->mBitangents[v] < 0 ? -1.0f : 1.0f};
+    };
+    bool tangentsUsable = tangents;
     for (unsigned f = 0; f < m->mNumFaces; ++f) {
       const aiFace& face = m->mFaces[f];
       if (face.mNumIndices != 3) continue;
-      for (int c = 0; c < 3; ++c) mesh.indices.push_back(base + face.mIndices[c]);
+      for (int c = 0; c < 3; ++c) {
+        mesh.indices.push_back(base + face.mIndices[c]);
+        if (!tangents) continue;
+        mesh.tangents.push_back(tangentOf(face.mIndices[c]));
+        tangentsUsable = tangentsUsable && length(mesh.tangents.back().direction) > 0;
+      }
       if (!file.objectNames.empty()) mesh.objectIds.push_back(names.empty() ? unnamed : names[f]);
     }
+    if (!tangentsUsable) mesh.tangents.clear();
+    if (!tangents || !tangentsUsable) partWithoutTangents[size_t(part)] = true;
   }
+  for (size_t i = 0; i < file.parts.size(); ++i)
+    if (partWithoutTangents[i]) file.parts[i].tangents.clear();
   // A material whose meshes held only points and lines leaves an empty part.
   for (size_t i = file.parts.size(); i-- > 0;)
     if (file.parts[i].indices.empty()) {

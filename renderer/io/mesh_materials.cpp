@@ -90,6 +90,27 @@ Cutout gltfCutout(const aiMaterial& src, const TextureOpener& open, const std::s
   return c;
 }
 
+// The normal and bump maps of a mesh file's material: glTF's normalTexture (Assimp's NORMALS)
+// with its scale and transform; MTL's norm (NORMALS) and bump / map_Bump (HEIGHT), each with its
+// -bm multiplier as the scale (a height map's in the mesh's units). Null where it has neither
+// (or they do not open).
+std::shared_ptr<const ShadingMaps> shadingMaps(const aiMaterial& src, MeshFileFormat format,
+                                               const TextureOpener& open,
+                                               const GltfMaterialInfo& gltf) {
+  auto maps = std::make_shared<ShadingMaps>();
+  maps->normal.image = firstTexture(src, aiTextureType_NORMALS, open);
+  if (format == MeshFileFormat::Gltf) {
+    maps->normal.scale = gltf.normalScale;
+    maps->normal.uvTransform = gltf.normalUv;
+  } else {
+    maps->normal.scale = number(src, AI_MATKEY_OBJ_BUMPMULT_NORMALS(0), 1.0f);
+    maps->bump.image = firstTexture(src, aiTextureType_HEIGHT, open);
+    maps->bump.scale = number(src, AI_MATKEY_OBJ_BUMPMULT_HEIGHT(0), 1.0f);
+  }
+  if (!maps->normal.image && !maps->bump.image) return nullptr;
+  return maps;
+}
+
 // MTL's illumination models (the OBJ specification's `illum`): 3, 5 and 8 trace reflections,
 // whose colour is Ks; 4, 6, 7 and 9 are glass, refracting with index Ni.
 bool illumReflects(int illum) { return illum == 3 || illum == 5 || illum == 8; }
@@ -207,6 +228,8 @@ Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
                : format == MeshFileFormat::Gltf ? fromGltf(source, openTexture, gltf)
                                                 : fromMtl(source, openTexture, format);
   m.name = fileName + ":" + own;
+  if (format != MeshFileFormat::Ply)
+    m.surface.maps = shadingMaps(source, format, openTexture, gltf);
   if (format == MeshFileFormat::Gltf)
     m.cutout = gltfCutout(source, openTexture, m.name, gltf.baseColorUv);
   if (format == MeshFileFormat::Obj || format == MeshFileFormat::Other)

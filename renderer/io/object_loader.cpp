@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/input_files.h"
+#include "geometry/tangents.h"
 #include "geometry/triangulate.h"
 #include "io/expansion_limits.h"
 #include "io/local_mesh.h"
@@ -81,15 +82,31 @@ void addMesh(SceneBuilder& b, const LocalMesh& local, const Placement& place, co
       // where the interpolated normal vanishes, so a zero stays zero.
       mesh.normals.push_back(len > 0 && std::isfinite(len) ? placedNormal / len : Vec3f{});
     }
+  // The file's tangents go as directions; a mirroring transform turns the bitangent they
+  // carry against normal × tangent (Scene::tangentFrame), so it flips their sign.
+  const bool mirrors = place.transform().determinant() < 0;
+  if (local.tangents.size() == local.indices.size())
+    for (const TriangleMesh::Tangent& t : local.tangents) {
+      const Vec3f placedTangent = place.transform().vector(t.direction);
+      const float len = length(placedTangent);
+      mesh.tangents.push_back({len > 0 && std::isfinite(len) ? placedTangent / len : Vec3f{},
+                               mirrors ? -t.sign : t.sign});
+    }
   // A mirroring transform (negative determinant) reverses the winding, which would turn the
   // geometric normals inward; swap two corners to keep them outward.
-  if (place.transform().determinant() < 0)
-    for (size_t i = 0; i < mesh.indices.size(); i += 3)
+  if (mirrors)
+    for (size_t i = 0; i < mesh.indices.size(); i += 3) {
       std::swap(mesh.indices[i + 1], mesh.indices[i + 2]);
+      if (!mesh.tangents.empty()) std::swap(mesh.tangents[i + 1], mesh.tangents[i + 2]);
+    }
   for (uint32_t idx : mesh.indices)
     if (idx >= mesh.positions.size())
       where.fail("index " + std::to_string(idx) + " is out of range (" +
                  std::to_string(mesh.positions.size()) + " vertices)");
+  // Under a normal map, a mesh without tangents of its own gets glTF's (geometry/tangents.h).
+  const std::shared_ptr<const ShadingMaps>& maps = b.scene.materials[material].surface.maps;
+  if (mesh.tangents.empty() && maps && maps->normal.image) mesh.tangents = generateTangents(mesh);
+  if (!(maps && maps->normal.image)) mesh.tangents.clear();  // nothing reads them
   mesh.padForEmbree();
   b.scene.meshes.push_back(std::move(mesh));
   push(b.scene, groupId, GeomKind::Mesh, static_cast<uint32_t>(b.scene.meshes.size() - 1), material,
@@ -163,6 +180,8 @@ void hashTextureFiles(SceneBuilder& b, const std::vector<Material>& materials) {
     for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke})
       if (t->image) paths.insert(t->image->path());
     if (m.cutout.image) paths.insert(m.cutout.image->path());
+    if (s.maps && s.maps->normal.image) paths.insert(s.maps->normal.image->path());
+    if (s.maps && s.maps->bump.image) paths.insert(s.maps->bump.image->path());
   }
   for (const std::string& path : paths) {
     std::error_code ec;
@@ -195,6 +214,7 @@ FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
       for (const Vec3f& n : part.normals) m.normals.push_back(toDouble(n));
       m.uvs = part.uvs;
       m.colors = part.colors;
+      m.tangents = part.tangents;
       m.indices = part.indices;
       m.objectIds = part.objectIds;
       out.parts.push_back(std::move(m));

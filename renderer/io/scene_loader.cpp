@@ -222,6 +222,28 @@ Cutout parseCutout(SceneBuilder& b, const JsonNode& material) {
   return c;
 }
 
+// "normal_map" / "bump_map": {"image": FILE, "scale": s, "uv_scale", "uv_offset", "uv_rotate"}.
+// The image is data (materials/normal_map.h): no "colorspace", its texels are read as stored.
+template <class Map>
+Map parseShadingMap(SceneBuilder& b, const JsonNode& n, float defaultScale) {
+  if (!n.isObject()) n.fail("must be an object {\"image\": FILE, \"scale\": s}");
+  n.checkKeys({"image", "scale", "uv_scale", "uv_offset", "uv_rotate"});
+  Map map;
+  map.scale = n.has("scale") ? n.at("scale").number(-1e6f, 1e6f) : defaultScale;
+  map.uvTransform = parseUvTransform(n);
+  map.image = parseImageFile(b, n);
+  return map;
+}
+
+// A material's normal and bump maps; null when it has neither.
+std::shared_ptr<const ShadingMaps> parseShadingMaps(SceneBuilder& b, const JsonNode& material) {
+  if (!material.has("normal_map") && !material.has("bump_map")) return nullptr;
+  auto maps = std::make_shared<ShadingMaps>();
+  if (auto v = material.get("normal_map")) maps->normal = parseShadingMap<NormalMap>(b, *v, 1);
+  if (auto v = material.get("bump_map")) maps->bump = parseShadingMap<BumpMap>(b, *v, 1);
+  return maps;
+}
+
 ColorTexture parseColorTexture(SceneBuilder& b, const JsonNode& n) {
   if (n.isArray()) return ColorTexture::uniform(n.color());
   if (n.has("image")) return parseImageTexture(b, n);
@@ -253,7 +275,9 @@ Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode&
                                    "specular_model",
                                    "gloss",
                                    "opacity",
-                                   "opacity_cutoff"};
+                                   "opacity_cutoff",
+                                   "normal_map",
+                                   "bump_map"};
   if (kind == MaterialKind::Dielectric)
     keys.insert(keys.end(), {"ior", "attenuation", "fresnel", "blur"});
   n.checkKeys(keys);
@@ -273,6 +297,7 @@ Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode&
     s.specularModel =
         v->choice({"blinn", "phong"}) == "blinn" ? SpecularModel::BlinnPhong : SpecularModel::Phong;
   if (auto v = n.get("gloss")) s.gloss = v->number(0, 3.4e38f);
+  s.maps = parseShadingMaps(b, n);
   if (n.has("opacity"))
     m.cutout = parseCutout(b, n);
   else if (auto v = n.get("opacity_cutoff"))

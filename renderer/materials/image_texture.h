@@ -25,6 +25,10 @@ class ImageTexture {
   // The image's scene-linear colour filtered over the footprint; the image repeats outside
   // [0, 1]².
   virtual Rgb color(const ImageFootprint& at) const = 0;
+  // The image's first three channels as the file stores them, filtered likewise but never
+  // colour-converted (a grey image gives its one channel to all three): data such as normal and
+  // height maps, whose texels are not colours and must not be sRGB-decoded.
+  virtual Rgb data(const ImageFootprint& at) const = 0;
   // The image as one number, as the file stores it (no colour conversion), filtered likewise:
   // its alpha channel; for an image without one, its first channel when `greyWithoutAlpha` (a
   // matte), else 1 (opaque). Opacity cut-outs read it (materials/cutout.h).

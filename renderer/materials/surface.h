@@ -16,6 +16,7 @@
 #include "core/vec.h"
 #include "geometry/shading_point.h"
 #include "materials/gloss.h"
+#include "materials/normal_map.h"
 #include "materials/texture.h"
 
 namespace glint {
@@ -35,6 +36,9 @@ struct Surface {
   SpecularModel specularModel = SpecularModel::BlinnPhong;
   float gloss = 0;
   EmissionSides emissionSides = EmissionSides::Both;
+  // Normal and bump maps; null for a surface without (nearly all): then no hit or light sample
+  // reads them.
+  std::shared_ptr<const ShadingMaps> maps;
 
   // Whether AccLightSource's loop over the lights can add anything (k_d or k_s not black).
   [[gnu::always_inline]] bool reflectsLights() const { return !kd.isBlack() || !ks.isBlack(); }
@@ -44,7 +48,8 @@ struct Surface {
 
 // A surface at one hit, seen from one direction: its textures looked up there, once.
 struct SurfacePoint {
-  Vec3f n;          // unit shading normal, on the viewer's side
+  Vec3f n;          // unit shading normal, on the viewer's side (bent by the surface's maps)
+  Vec3f unmapped;   // with maps only: n before they bent it, on the viewer's side
   Vec3f wo;         // unit, towards the viewer
   float footprint;  // the width of the pixel's footprint here (image textures filter over it)
   Rgb kd, ks, km;
@@ -58,6 +63,11 @@ struct SurfacePoint {
                                                   const Vec3d& worldOrigin) {
   SurfacePoint at;
   at.n = sp.shadingNormalFacing(wo);
+  if (s.maps) [[unlikely]] {
+    at.unmapped = at.n;
+    const Vec3f mapped = mappedNormal(*s.maps, sp, wo, footprint);
+    at.n = dot(sp.ng, wo) < 0 ? -mapped : mapped;  // the viewer's side, as shadingNormalFacing
+  }
   at.wo = wo;
   at.footprint = footprint;
   at.kd = s.kd.eval(sp, wo, footprint, worldOrigin);
@@ -115,13 +125,17 @@ inline float specularPower(float cosine, float exponent) {
 }
 
 // What the surface reflects towards the viewer of a light of unit intensity arriving along
-// unit wi: diffuse plus the highlight. Black for light from behind the surface.
+// unit wi: diffuse plus the highlight. Black for light from behind the surface. Under a normal
+// or bump map, faded by the bump shadowing term (materials/normal_map.h) so that the bent
+// normal brings back no shadow terminator.
 [[gnu::always_inline]] inline Rgb reflectedLight(const Surface& s, const SurfacePoint& at,
                                                  const Vec3f& wi) {
   const float cosL = dot(at.n, wi);
   if (cosL <= 0) return {};
   Rgb f = at.kd * cosL;                                         // diffuse: Lambert's cosine
   if (!at.ks.isBlack()) f += at.ks * highlightLobe(s, at, wi);  // the highlight
+  if (s.maps) [[unlikely]]
+    f = f * bumpShadowing(at.unmapped, at.n, wi);
   return f;
 }
 

@@ -25,6 +25,7 @@ std::vector<std::pair<const char*, bool>> table(const Features& f) {
           {"textures", f.textures},
           {"image_textures", f.surfaceCoordinates},
           {"vertex_colors", f.vertexColors},
+          {"normal_bump_maps", f.normalMaps},
           {"opacity_cutouts", f.cutouts},
           {"emission", f.emission},
           {"ambient", f.ambient},
@@ -65,6 +66,7 @@ Features computeFeatures(const Scene& scene) {
     f.gloss |= s.reflectsCoherently() && s.gloss > 0;
     f.emission |= s.emits();
     f.cutouts |= m.cutout.active();
+    f.normalMaps |= s.maps != nullptr;
     for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke}) {
       f.textures |= t->pattern != TexturePattern::Constant;
       f.surfaceCoordinates |= t->pattern == TexturePattern::Image;
@@ -76,6 +78,7 @@ Features computeFeatures(const Scene& scene) {
       f.gloss |= m.dielectric.blur > 0;
     }
   }
+  f.surfaceCoordinates |= f.normalMaps;
   f.transparentShadows = scene.render.transparentShadows && f.refraction && f.shadows;
   return f;
 }

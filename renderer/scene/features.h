@@ -29,6 +29,9 @@ struct Features {
   // carry the width of their pixel's footprint to filter the image over.
   bool surfaceCoordinates = false;
   bool vertexColors = false;  // some slot multiplies by a mesh's vertex colours
+  // Some material has a normal or bump map: hits compute their surface coordinates and tangent
+  // frame (ShadingPoint::tangent), and meshes under a normal map carry vertex tangents.
+  bool normalMaps = false;
   // Some material has an opacity cut-out: backends test candidate hits against it
   // (Scene::cutAway), and Embree gets filter functions for those geometries only.
   bool cutouts = false;

@@ -246,6 +246,28 @@ void Scene::surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p
   sp.uv = uvAt(g, hit, p, time, &dpdu, &dpdv);
   sp.dpdu = worldFromObject ? worldFromObject->vector(dpdu) : dpdu;
   sp.dpdv = worldFromObject ? worldFromObject->vector(dpdv) : dpdv;
+  if (features.normalMaps) [[unlikely]]
+    tangentFrame(g, hit, worldFromObject, sp);
+}
+
+void Scene::tangentFrame(const Geometry& g, const Hit& hit, const Transform* worldFromObject,
+                         ShadingPoint& sp) const {
+  const TriangleMesh* m = g.kind == GeomKind::Mesh ? &meshes[g.index] : nullptr;
+  if (!m || m->tangents.empty()) {
+    // dp/du, and the side of ns × dp/du that dp/dv lies on (a mirrored mapping turns it).
+    sp.tangent = sp.dpdu;
+    sp.tangentSign = dot(cross(sp.ns, sp.dpdu), sp.dpdv) < 0 ? -1.0f : 1.0f;
+    return;
+  }
+  const TriangleMesh::Tangent* corner = &m->tangents[3 * size_t(hit.primId)];
+  const float b0 = 1 - hit.u - hit.v;
+  const Vec3f t =
+      b0 * corner[0].direction + hit.u * corner[1].direction + hit.v * corner[2].direction;
+  const float sign = b0 * corner[0].sign + hit.u * corner[1].sign + hit.v * corner[2].sign;
+  sp.tangent = worldFromObject ? worldFromObject->vector(t) : t;
+  // A mirroring instance turns the bitangent it carries against ns × tangent.
+  const bool mirrored = worldFromObject && worldFromObject->determinant() < 0;
+  sp.tangentSign = (sign < 0) != mirrored ? -1.0f : 1.0f;
 }
 
 Vec2f Scene::uvAt(const Geometry& g, const Hit& hit, const Vec3f& p, float time, Vec3f* dpdu,

@@ -201,6 +201,9 @@ class Scene {
   // sp's texture coordinates and tangents for a hit at object-space point p (ShadingPoint::uv).
   void surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p, float time,
                           const Transform* worldFromObject, ShadingPoint& sp) const;
+  // sp's tangent frame for normal maps (ShadingPoint::tangent), after its tangents dp/du, dp/dv.
+  void tangentFrame(const Geometry& g, const Hit& hit, const Transform* worldFromObject,
+                    ShadingPoint& sp) const;
   // The (u, v) of a hit at object-space point p, and the object-space tangents dp/du, dp/dv
   // where `dpdu` is not null.
   Vec2f uvAt(const Geometry& g, const Hit& hit, const Vec3f& p, float time, Vec3f* dpdu,
