@@ -168,7 +168,7 @@ class BatchedKernel {
                                           Queue& queue) const {
     const LightSample ls = sampleLight(light, pt.sp.p, pt.at.n, u);
     if (!facesLight(pt.at, ls.wi) || ls.intensity.isBlack()) return;
-    const Rgb f = reflectedLight(pt.material->surface, pt.at, ls.wi);
+    const Rgb f = reflectedLight(pt.material->surface, pt.sp, pt.at, ls.wi);
     const int q = queue.size++;
     spawnShadowRayInto(queue.rays[q], pt.sp, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target,
                        pt.time);

@@ -83,7 +83,7 @@ Rgb ReferenceIntegrator::accLightSource(const Material& m, const ShadingPoint& q
       const Vec2f u = delta ? Vec2f{0.5f, 0.5f} : branch.key->get2D(pattern, j, samples);
       const LightSample ls = sampleLight(light, q.p, at.n, u);
       if (!facesLight(at, ls.wi) || ls.intensity.isBlack()) continue;
-      const Rgb f = reflectedLight(m.surface, at, ls.wi);  // diffuse and highlight
+      const Rgb f = reflectedLight(m.surface, q, at, ls.wi);  // diffuse and highlight
       const Ray shadow = spawnShadowRay(q, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target, time);
       const Rgb term = f * ls.intensity;
       if (scene_.render.transparentShadows) {

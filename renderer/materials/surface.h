@@ -49,7 +49,6 @@ struct Surface {
 // A surface at one hit, seen from one direction: its textures looked up there, once.
 struct SurfacePoint {
   Vec3f n;          // unit shading normal, on the viewer's side (bent by the surface's maps)
-  Vec3f unmapped;   // with maps only: n before they bent it, on the viewer's side
   Vec3f wo;         // unit, towards the viewer
   float footprint;  // the width of the pixel's footprint here (image textures filter over it)
   Rgb kd, ks, km;
@@ -64,7 +63,6 @@ struct SurfacePoint {
   SurfacePoint at;
   at.n = sp.shadingNormalFacing(wo);
   if (s.maps) [[unlikely]] {
-    at.unmapped = at.n;
     const Vec3f mapped = mappedNormal(*s.maps, sp, wo, footprint);
     at.n = dot(sp.ng, wo) < 0 ? -mapped : mapped;  // the viewer's side, as shadingNormalFacing
   }
@@ -127,15 +125,16 @@ inline float specularPower(float cosine, float exponent) {
 // What the surface reflects towards the viewer of a light of unit intensity arriving along
 // unit wi: diffuse plus the highlight. Black for light from behind the surface. Under a normal
 // or bump map, faded by the bump shadowing term (materials/normal_map.h) so that the bent
-// normal brings back no shadow terminator.
-[[gnu::always_inline]] inline Rgb reflectedLight(const Surface& s, const SurfacePoint& at,
-                                                 const Vec3f& wi) {
+// normal brings back no shadow terminator: `sp`, the point `at` was looked up at, has the
+// unmapped normal.
+[[gnu::always_inline]] inline Rgb reflectedLight(const Surface& s, const ShadingPoint& sp,
+                                                 const SurfacePoint& at, const Vec3f& wi) {
   const float cosL = dot(at.n, wi);
   if (cosL <= 0) return {};
   Rgb f = at.kd * cosL;                                         // diffuse: Lambert's cosine
   if (!at.ks.isBlack()) f += at.ks * highlightLobe(s, at, wi);  // the highlight
   if (s.maps) [[unlikely]]
-    f = f * bumpShadowing(at.unmapped, at.n, wi);
+    f = f * bumpShadowing(sp.shadingNormalFacing(at.wo), at.n, wi);
   return f;
 }
 

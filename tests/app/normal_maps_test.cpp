@@ -78,6 +78,23 @@ TEST(NormalMaps, ANormalMapTiltedThirtyDegreesReadsOneOverCos30OfThePlainSquare)
   EXPECT_NEAR(mapped.pixel(1, 6)[1] / plain.pixel(1, 6)[1], 1 / kCos30, 1e-4);  // everywhere
 }
 
+TEST(NormalMaps, ABentNormalDoesNotLightTheSurfaceFromBelowItsHorizon) {
+  // Chiang et al.'s shadowing term (materials/normal_map.h) on the same square, the normal bent
+  // 30° towards +u. Light 80° off the vertical on the +u side: the bent normal sees it at 50°,
+  // and g = cos 80° / (cos 50° · cos 30°) = 0.3119 fades it to −g³ + g² + g = 0.3789, so the
+  // square reads cos 50° · 0.3789 = 0.2436 (0.6428 without the term: the hard terminator the
+  // term removes). Light 100° off the vertical, below the square's horizon, still 70° from the
+  // bent normal: g < 0, black (cos 70° = 0.34 without the term, lit from behind). Tolerance:
+  // the 16-bit map's normal error, 1e-4, times the slopes here, 1e-3.
+  writeConstantImage("tilt_u_low.png", encoded(0.5, 0, kCos30));
+  const std::string maps = R"(, "normal_map": {"image": "tilt_u_low.png"})";
+  const double g = std::cos(80 * M_PI / 180) / (std::cos(50 * M_PI / 180) * kCos30);
+  const Film grazing = render(squareScene(maps, "[-0.98480775, -0.17364818, 0]"), "grazing.json");
+  EXPECT_NEAR(grazing.pixel(4, 4)[0], std::cos(50 * M_PI / 180) * (-g * g * g + g * g + g), 1e-3);
+  const Film below = render(squareScene(maps, "[-0.98480775, 0.17364818, 0]"), "below.json");
+  EXPECT_EQ(below.pixel(4, 4)[0], 0);
+}
+
 TEST(NormalMaps, GreenTiltsTowardsPlusV) {
   // The same with the tilt in green, towards +v (−z, the image's top), and the light from that
   // side: a bitangent turned the wrong way (a DirectX-style map read as glTF's, or a sign lost)

@@ -55,7 +55,7 @@ TEST(Surface, LambertIsKdTimesTheCosine) {
   s.kd = ColorTexture::uniform({0.6f, 0.3f, 0.1f});
   const SurfacePoint p = lookUp(s, pointFacing(), at(10), 0, {});
   // Light at 60° from the normal: k_d·cos 60° = k_d / 2.
-  const Rgb f = reflectedLight(s, p, at(-60));
+  const Rgb f = reflectedLight(s, pointFacing(), p, at(-60));
   EXPECT_NEAR(f.r, 0.3f, 1e-7);
   EXPECT_NEAR(f.g, 0.15f, 1e-7);
   EXPECT_NEAR(f.b, 0.05f, 1e-7);
@@ -64,30 +64,31 @@ TEST(Surface, LambertIsKdTimesTheCosine) {
 TEST(Surface, BlinnPhongPeakAndAngle) {
   const Surface s = glossyPaint(SpecularModel::BlinnPhong);
   // Light at 45° on one side, viewer at 45° on the other: h = n, so f = k_d cos 45° + k_s.
-  EXPECT_NEAR(reflectedLight(s, lookUp(s, pointFacing(), at(45), 0, {}), at(-45)).r,
+  EXPECT_NEAR(reflectedLight(s, pointFacing(), lookUp(s, pointFacing(), at(45), 0, {}), at(-45)).r,
               0.2f * std::sqrt(0.5f) + 0.5f, 1e-6);
   // Viewer at 60°: h sits at (60° − 45°)/2 = 7.5° from n → k_s·cos(7.5°)^10.
-  EXPECT_NEAR(reflectedLight(s, lookUp(s, pointFacing(), at(60), 0, {}), at(-45)).r,
+  EXPECT_NEAR(reflectedLight(s, pointFacing(), lookUp(s, pointFacing(), at(60), 0, {}), at(-45)).r,
               0.2f * std::sqrt(0.5f) + 0.5f * std::pow(std::cos(7.5f * kPi / 180), 10.0f), 1e-6);
 }
 
 TEST(Surface, PhongPeakAndAngle) {
   // Phong uses r·v, r the mirror image of the light direction (45°): 15° off at a 60° viewer.
   const Surface s = glossyPaint(SpecularModel::Phong);
-  EXPECT_NEAR(reflectedLight(s, lookUp(s, pointFacing(), at(45), 0, {}), at(-45)).r,
+  EXPECT_NEAR(reflectedLight(s, pointFacing(), lookUp(s, pointFacing(), at(45), 0, {}), at(-45)).r,
               0.2f * std::sqrt(0.5f) + 0.5f, 1e-6);
-  EXPECT_NEAR(reflectedLight(s, lookUp(s, pointFacing(), at(60), 0, {}), at(-45)).r,
+  EXPECT_NEAR(reflectedLight(s, pointFacing(), lookUp(s, pointFacing(), at(60), 0, {}), at(-45)).r,
               0.2f * std::sqrt(0.5f) + 0.5f * std::pow(std::cos(15 * kPi / 180), 10.0f), 1e-6);
 }
 
 TEST(Surface, NoLightFromBehindAndTwoSidedNormals) {
   const Surface s = glossyPaint(SpecularModel::BlinnPhong);
   // A light below the surface adds nothing, highlight included.
-  EXPECT_TRUE(reflectedLight(s, lookUp(s, pointFacing(), at(0), 0, {}), at(120)).isBlack());
+  EXPECT_TRUE(
+      reflectedLight(s, pointFacing(), lookUp(s, pointFacing(), at(0), 0, {}), at(120)).isBlack());
   // Seen from below, the shading normal turns to the viewer and a light below lights it.
   const SurfacePoint below = lookUp(s, pointFacing(), at(180), 0, {});
   EXPECT_EQ(below.n, (Vec3f{0, -1, 0}));
-  EXPECT_NEAR(reflectedLight(s, below, at(180)).r, 0.2f + 0.5f, 1e-6);
+  EXPECT_NEAR(reflectedLight(s, pointFacing(), below, at(180)).r, 0.2f + 0.5f, 1e-6);
 }
 
 TEST(Surface, AmbientAndEmission) {
