@@ -3,8 +3,10 @@
 #include <mikktspace/mikktspace.h>
 
 #include <new>
+#include <string>
 
 #include "core/frame.h"
+#include "core/memory.h"
 
 namespace glint {
 
@@ -59,6 +61,13 @@ void setTangent(const SMikkTSpaceContext* context, const float tangent[], const 
 }  // namespace
 
 std::vector<TriangleMesh::Tangent> generateTangents(const TriangleMesh& mesh) {
+  // MikkTSpace's working arrays (its triangle records, welding tables, groups and per-corner
+  // frames) come to about 400 bytes a triangle, and the result to 48 more: checked before any
+  // is allocated, as other loads are (core/memory.h), since under overcommit its malloc would
+  // not fail.
+  checkMemoryFits(
+      512.0 * double(mesh.triangleCount()),
+      "generating tangents for a mesh of " + std::to_string(mesh.triangleCount()) + " triangles");
   std::vector<TriangleMesh::Tangent> out(mesh.indices.size());
   MeshAccess data{mesh, out};
   SMikkTSpaceInterface callbacks{};

@@ -13,6 +13,7 @@ namespace glint {
 // deforming mesh), its vertex normals (the triangles' own where it has none) and its texture
 // coordinates (each triangle's (0,0), (1,0), (0,1) where it has none, as Scene reads it). A
 // corner of a degenerate triangle takes its neighbours' frame, or any tangent across its normal.
+// Throws OutOfMemoryError (core/error.h) when MikkTSpace's working memory would not fit.
 std::vector<TriangleMesh::Tangent> generateTangents(const TriangleMesh& mesh);
 
 }  // namespace glint

@@ -107,6 +107,33 @@ TEST(NormalMaps, GreenTiltsTowardsPlusV) {
   EXPECT_NEAR(mapped.pixel(4, 4)[0] / plain.pixel(4, 4)[0], 1 / kCos30, 1e-4);
 }
 
+TEST(NormalMaps, AMirroringInstanceKeepsGreenTowardsPlusV) {
+  // The square as a mesh (u along +x, v along −z, generated tangents) placed by an instance
+  // that mirrors x: the tangent turns to −x with the surface, and +v stays −z, now on the other
+  // side of normal × tangent, so the bitangent's sign must flip (Scene::tangentFrame). Green
+  // tilted 30° towards +v under a light from that side reads 1/cos 30° of the plain square; a
+  // sign left as it was would lean the normal 60° from the light (0.577).
+  writeConstantImage("tilt_v_mirror.png", encoded(0, 0.5, kCos30));
+  const auto scene = [](const std::string& maps) {
+    return R"({
+    "render": {"width": 8, "height": 8, "spp": 1, "sampler": "regular"},
+    "camera": {"type": "orthographic", "eye": [0, 5, 0], "look_at": [0, 0, 0], "up": [0, 0, -1],
+               "height": 2},
+    "materials": {"m": {"type": "phong", "kd": [1, 1, 1], "ka": [0, 0, 0])" +
+           maps + R"(}},
+    "lights": [{"type": "directional", "direction": [0, -0.8660254, 0.5],
+                "intensity": [1, 1, 1]}],
+    "groups": {"square": [{"type": "mesh", "material": "m",
+      "positions": [[-1, 0, 1], [1, 0, 1], [1, 0, -1], [-1, 0, -1]],
+      "uvs": [[0, 0], [1, 0], [1, 1], [0, 1]], "indices": [[0, 1, 2], [0, 2, 3]]}]},
+    "objects": [{"type": "instance", "group": "square", "transform": {"scale": [-1, 1, 1]}}]})";
+  };
+  const Film plain = render(scene(""), "mirror_plain.json");
+  const Film mapped =
+      render(scene(R"(, "normal_map": {"image": "tilt_v_mirror.png"})"), "mirror_mapped.json");
+  EXPECT_NEAR(mapped.pixel(4, 4)[0] / plain.pixel(4, 4)[0], 1 / kCos30, 1e-4);
+}
+
 TEST(NormalMaps, ABumpMapRampTiltsTheNormalByItsSlope) {
   // Heights rise linearly along +u: texel i of 64 holds (i + 0.5)/64 (16-bit), so the filtered
   // image is s itself away from the edges, and h = scale · u over the square's 2 units of u:
