@@ -266,7 +266,7 @@ void BatchedKernel::recordAov(const Ray& ray, const Hit& hit, const Material& m,
                               AovSample& aov) const {
   aov.hit = true;
   aov.depth = dot(sp.p - ray.o, aov.viewAxis);
-  aov.normal = sp.shadingNormalFacing(-ray.d);
+  aov.normal = at.n;  // the normal the surface is lit with: facing the camera, bent by maps
   aov.position = toFloat(toDouble(sp.p) + scene_.worldOrigin);  // world, not render space
   // The object: for a hit inside an instance, the instance's.
   aov.objectId = scene_.objectId(hit) + 1;

@@ -17,12 +17,13 @@ namespace {
 
 const double kCos30 = std::sqrt(3.0) / 2;
 
-Film render(const std::string& sceneText, const std::string& name) {
+Film render(const std::string& sceneText, const std::string& name, const std::string& aovs = "") {
   const std::string path = test::writeTemp(name, sceneText);
   const Scene scene = loadSceneText(sceneText, path, test::tempDir().string());
   const auto accel = makeAccelerator(AccelKind::Embree, scene);
   RenderOptions opt;
   opt.progress = false;
+  if (!aovs.empty()) opt.aovs = AovSet::parse(aovs);
   return renderScene(scene, *accel, opt).film;
 }
 
@@ -72,10 +73,17 @@ TEST(NormalMaps, ANormalMapTiltedThirtyDegreesReadsOneOverCos30OfThePlainSquare)
   const Film plain = render(squareScene("", light), "plain_u.json");
   const Film mapped =
       render(squareScene(R"(, "normal_map": {"image": "tilt_u.png", "scale": 1.0})", light),
-             "tilt_u.json");
+             "tilt_u.json", "normal");
   EXPECT_NEAR(plain.pixel(4, 4)[0], kCos30, 1e-5);  // Lambert's cosine, float rounding
   EXPECT_NEAR(mapped.pixel(4, 4)[0] / plain.pixel(4, 4)[0], 1 / kCos30, 1e-4);
   EXPECT_NEAR(mapped.pixel(1, 6)[1] / plain.pixel(1, 6)[1], 1 / kCos30, 1e-4);  // everywhere
+  // The normal AOV shows the bent normal, (sin 30°, cos 30°, 0) in the world (pixel (4, 4) of
+  // the 8 × 8 plane).
+  ASSERT_EQ(mapped.planes().size(), 1u);
+  const double* n = &mapped.planes()[0].values[(4 * 8 + 4) * 3];
+  EXPECT_NEAR(n[0], 0.5, 1e-4);
+  EXPECT_NEAR(n[1], kCos30, 1e-4);
+  EXPECT_NEAR(n[2], 0, 1e-4);
 }
 
 TEST(NormalMaps, ABentNormalDoesNotLightTheSurfaceFromBelowItsHorizon) {
