@@ -92,8 +92,8 @@ Cutout gltfCutout(const aiMaterial& src, const TextureOpener& open, const std::s
 
 // The normal and bump maps of a mesh file's material: glTF's normalTexture (Assimp's NORMALS)
 // with its scale and transform; MTL's norm (NORMALS) and bump / map_Bump (HEIGHT), each with its
-// -bm multiplier as the scale (a height map's in the mesh's units). Null where it has neither
-// (or they do not open).
+// -bm multiplier as the scale (a height map's in the mesh's units), and the other formats'
+// NORMALS and HEIGHT textures alike (scale 1). Null where it has neither (or they do not open).
 std::shared_ptr<const ShadingMaps> shadingMaps(const aiMaterial& src, MeshFileFormat format,
                                                const TextureOpener& open,
                                                const GltfMaterialInfo& gltf) {
