@@ -291,7 +291,7 @@ class FaceNames {
       const std::string nodeName = usableName(node->mName);
       for (unsigned i = 0; i < node->mNumMeshes; ++i) {
         const aiMesh& m = *s.mMeshes[node->mMeshes[i]];
-        const std::string name = nodeName.empty() ? usableName(m.mName) : nodeName;
+        const std::string name = nodeName.empty() ? meshName(s, m) : nodeName;
         runs_[{m.mMaterialIndex, vertexFormat(m)}].push_back({indexOf(name), m.mNumFaces});
       }
       for (unsigned c = node->mNumChildren; c-- > 0;) stack.push_back(node->mChildren[c]);
@@ -318,6 +318,14 @@ class FaceNames {
     const auto [it, added] = index_.emplace(name, static_cast<uint32_t>(names_.size()));
     if (added) names_.push_back(name);
     return it->second;
+  }
+  // A mesh's name, or "" where Assimp gave it its material's: the OBJ reader names a mesh by
+  // its `g` group, else by the `usemtl` that started it, which names no object.
+  static std::string meshName(const aiScene& s, const aiMesh& m) {
+    if (m.mMaterialIndex < s.mNumMaterials &&
+        s.mMaterials[m.mMaterialIndex]->GetName() == m.mName)
+      return "";
+    return usableName(m.mName);
   }
   // The file's name, or "" for one Assimp made up or one no scene may give (a control
   // character, "objects[2]": io/object_names.h).
