@@ -46,6 +46,14 @@ class TextureFile final : public ImageTexture {
     return {texel[0], texel[1], texel[2]};
   }
 
+  Rgb data(const ImageFootprint& at) const override {
+    float texel[3] = {0, 0, 0};
+    const int channels = std::min(channels_, 3);
+    if (!read(at, 0, channels, texel)) return {};
+    if (channels < 3) texel[2] = texel[1] = texel[0];
+    return {texel[0], texel[1], texel[2]};
+  }
+
   float coverage(const ImageFootprint& at, bool greyWithoutAlpha) const override {
     // RGBA's fourth channel, grey-alpha's second; else the first, or opaque.
     const int channel = channels_ == 4 ? 3 : channels_ == 2 ? 1 : greyWithoutAlpha ? 0 : -1;
@@ -92,9 +100,16 @@ class TextureFile final : public ImageTexture {
   bool read(const ImageFootprint& at, int first, int count, float* out) const {
     const float st[2] = {at.st.x, at.st.y};
     const float axes[4] = {at.axisA.x, at.axisA.y, at.axisB.x, at.axisB.y};
+    const int wrap[2] = {oiioWrap(at.wrapS), oiioWrap(at.wrapT)};
     // A file that fails mid-render (it was read whole when opened, so only a cache eviction
     // and a changed file could) gives black: the per-ray path never throws.
-    return lookup_(handle_, st, axes, first, count, out) == 0;
+    return lookup_(handle_, st, axes, wrap, first, count, out) == 0;
+  }
+
+  static int oiioWrap(TextureWrap w) {
+    return w == TextureWrap::ClampToEdge      ? kGlintOiioWrapClamp
+           : w == TextureWrap::MirroredRepeat ? kGlintOiioWrapMirror
+                                              : kGlintOiioWrapRepeat;
   }
 
   std::string path_;

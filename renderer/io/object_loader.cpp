@@ -67,6 +67,7 @@ void addMesh(SceneBuilder& b, const LocalMesh& local, const Placement& place, co
   TriangleMesh mesh;
   mesh.indices = local.indices;
   mesh.uvs = local.uvs;
+  mesh.uvs1 = local.uvs1;
   mesh.colors = local.colors;
   mesh.objectIds = local.objectIds;
   mesh.positions = placed(local.positions);
@@ -194,6 +195,7 @@ FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
       for (const Vec3f& p : part.positions) m.positions.push_back(toDouble(p));
       for (const Vec3f& n : part.normals) m.normals.push_back(toDouble(n));
       m.uvs = part.uvs;
+      m.uvs1 = part.uvs1;
       m.colors = part.colors;
       m.indices = part.indices;
       m.objectIds = part.objectIds;

@@ -10,6 +10,7 @@ namespace {
 class RampImage final : public ImageTexture {
  public:
   Rgb color(const ImageFootprint&) const override { return {}; }
+  Rgb data(const ImageFootprint&) const override { return {}; }
   float coverage(const ImageFootprint& at, bool greyWithoutAlpha) const override {
     lastSt = at.st;
     lastGrey = greyWithoutAlpha;
