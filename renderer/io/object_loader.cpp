@@ -164,6 +164,9 @@ void hashTextureFiles(SceneBuilder& b, const std::vector<Material>& materials) {
     for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke})
       if (t->image) paths.insert(t->image->path());
     if (m.cutout.image) paths.insert(m.cutout.image->path());
+    if (s.maps)
+      for (const auto* image : {s.maps->metallicRoughness.get(), s.maps->occlusion.get()})
+        if (image) paths.insert(image->path());
   }
   for (const std::string& path : paths) {
     std::error_code ec;

@@ -4,6 +4,8 @@
 // one warning that names what a file holds and Glint does not render.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -35,7 +37,6 @@ std::string square(const std::string& materials, const Corners& uv0,
   std::string buffer(reinterpret_cast<const char*>(positions), sizeof positions);
   buffer.append(reinterpret_cast<const char*>(uv0.data()), 32);
   buffer.append(reinterpret_cast<const char*>(indices), sizeof indices);
-  buffer.append(2, '\0');  // the next view starts 4-byte aligned
   if (uv1) buffer.append(reinterpret_cast<const char*>(uv1->data()), 32);
   const std::string attributes = uv1 ? R"({"POSITION": 0, "TEXCOORD_0": 1, "TEXCOORD_1": 3})"
                                      : R"({"POSITION": 0, "TEXCOORD_0": 1})";
@@ -243,6 +244,39 @@ TEST(GltfMaterials, ATextureWithTexCoordOneReadsTheSecondSet) {
             << "texCoord " << set << " quadrant " << q << " channel " << c;
     }
   }
+}
+
+TEST(GltfMaterials, HostileTextureInfosAndSamplersAreWarnedAboutNotTrusted) {
+  // A metallic-roughness or occlusion texture past the file's textures makes every texture go
+  // (Assimp's reader trusts the indices), as a base colour texture's does.
+  for (const char* slot : {R"("pbrMetallicRoughness": {"metallicRoughnessTexture": {"index": 3}})",
+                           R"("occlusionTexture": {"index": 3})"}) {
+    testing::internal::CaptureStderr();
+    const nlohmann::json subset = nlohmann::json::parse(gltfSubset(
+        "hostile.gltf", std::string(R"({"asset": {"version": "2.0"}, "materials": [{)") + slot +
+                            R"(}], "textures": [{"source": 0}], "images": [{"uri": "a.png"}]})"));
+    const std::string warnings = testing::internal::GetCapturedStderr();
+    EXPECT_NE(warnings.find("its textures are malformed"), std::string::npos) << warnings;
+    EXPECT_FALSE(subset.contains("textures")) << subset.dump();
+    EXPECT_EQ(subset.dump().find("Texture"), std::string::npos) << subset.dump();
+  }
+  // A wrap mode glTF does not define, and texCoord 7, are named and read as REPEAT and set 0.
+  testing::internal::CaptureStderr();
+  std::vector<GltfMaterialInfo> materials;
+  gltfSubset("hostile.gltf", R"({"asset": {"version": "2.0"},
+    "materials": [{"emissiveTexture": {"index": 0, "texCoord": 7}}],
+    "textures": [{"source": 0, "sampler": 0}], "images": [{"uri": "a.png"}],
+    "samplers": [{"wrapS": 12345, "wrapT": "clamp"}]})",
+             &materials);
+  const std::string warnings = testing::internal::GetCapturedStderr();
+  EXPECT_NE(warnings.find("wrapS 12345 is not a glTF wrap mode"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("wrapT \"clamp\" is not a glTF wrap mode"), std::string::npos)
+      << warnings;
+  EXPECT_NE(warnings.find("texCoord 7 is not read"), std::string::npos) << warnings;
+  ASSERT_EQ(materials.size(), 1u);
+  EXPECT_EQ(materials[0].emissiveUv.wrapS, TextureWrap::Repeat);
+  EXPECT_EQ(materials[0].emissiveUv.wrapT, TextureWrap::Repeat);
+  EXPECT_EQ(materials[0].emissiveUv.uvSet, 0);
 }
 
 // The warnings loading `path` gives.
