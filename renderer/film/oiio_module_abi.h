@@ -33,8 +33,7 @@ using GlintOiioTextureLoad = int (*)(void* handle, int channels, char* error, si
 // axes (dsdx, dtdx, dsdy, dtdy); outside [0, 1] the image continues along s and t as wrap[0]
 // and wrap[1] say (kGlintOiioWrap...); returns 0 on success.
 using GlintOiioTextureLookup = int (*)(void* handle, const float* st, const float* axes,
-                                       const int* wrap, int firstChannel, int channels,
-                                       float* out);
+                                       const int* wrap, int firstChannel, int channels, float* out);
 enum { kGlintOiioWrapRepeat = 0, kGlintOiioWrapClamp = 1, kGlintOiioWrapMirror = 2 };
 // The unfiltered texels of rows [y0, y1) of an opened texture's full-resolution level, `channels`
 // floats each from channel 0, into out (width × (y1 − y0) × channels); returns 0 on success,
