@@ -30,9 +30,11 @@ using GlintOiioTextureOpenMemory = void* (*)(const char* name, const void* bytes
 // error while reading (a failed read must stop the load, not render black or wait for ever).
 using GlintOiioTextureLoad = int (*)(void* handle, int channels, char* error, size_t errorSize);
 // Filtered lookup of `channels` channels from `firstChannel` at st[0], st[1] over the footprint
-// axes (dsdx, dtdx, dsdy, dtdy), repeating outside [0, 1]; returns 0 on success.
+// axes (dsdx, dtdx, dsdy, dtdy); outside [0, 1] the image continues along s and t as wrap[0]
+// and wrap[1] say (kGlintOiioWrap...); returns 0 on success.
 using GlintOiioTextureLookup = int (*)(void* handle, const float* st, const float* axes,
-                                       int firstChannel, int channels, float* out);
+                                       const int* wrap, int firstChannel, int channels, float* out);
+enum { kGlintOiioWrapRepeat = 0, kGlintOiioWrapClamp = 1, kGlintOiioWrapMirror = 2 };
 // The unfiltered texels of rows [y0, y1) of an opened texture's full-resolution level, `channels`
 // floats each from channel 0, into out (width × (y1 − y0) × channels); returns 0 on success,
 // else nonzero with OpenImageIO's message.

@@ -170,11 +170,18 @@ static_assert(
     std::is_same_v<decltype(&glint_oiio_texture_open_memory), GlintOiioTextureOpenMemory>);
 
 extern "C" __attribute__((visibility("default"))) int glint_oiio_texture_lookup(
-    void* handle, const float* st, const float* axes, int firstChannel, int channels, float* out) {
+    void* handle, const float* st, const float* axes, const int* wrap, int firstChannel,
+    int channels, float* out) {
   OIIO::TextureSystem& ts = textureSystem();
   thread_local OIIO::TextureSystem::Perthread* const perThread = ts.get_perthread_info();
+  const auto oiioWrap = [](int w) {
+    return w == kGlintOiioWrapClamp    ? OIIO::TextureOpt::WrapClamp
+           : w == kGlintOiioWrapMirror ? OIIO::TextureOpt::WrapMirror
+                                       : OIIO::TextureOpt::WrapPeriodic;
+  };
   OIIO::TextureOpt options;
-  options.swrap = options.twrap = OIIO::TextureOpt::WrapPeriodic;
+  options.swrap = oiioWrap(wrap[0]);
+  options.twrap = oiioWrap(wrap[1]);
   options.firstchannel = firstChannel;
   return ts.texture(static_cast<OIIO::TextureSystem::TextureHandle*>(handle), perThread, options,
                     st[0], st[1], axes[0], axes[1], axes[2], axes[3], channels, out)
@@ -213,7 +220,9 @@ extern "C" __attribute__((visibility("default"))) int glint_oiio_texture_load(vo
     ts.geterror();  // the messages of earlier textures are theirs
     float texel[4] = {0, 0, 0, 0};
     const float st[2] = {0.5f, 0.5f}, axes[4] = {0, 0, 0, 0};
-    const int looked = glint_oiio_texture_lookup(handle, st, axes, 0, std::min(channels, 4), texel);
+    const int wrap[2] = {kGlintOiioWrapRepeat, kGlintOiioWrapRepeat};
+    const int looked =
+        glint_oiio_texture_lookup(handle, st, axes, wrap, 0, std::min(channels, 4), texel);
     const std::string message = ts.geterror();
     if (looked == 0 && message.empty()) return 0;
     std::snprintf(error, errorSize, "%s",

@@ -102,9 +102,16 @@ class TextureFile final : public ImageTexture {
   bool read(const ImageFootprint& at, int first, int count, float* out) const {
     const float st[2] = {at.st.x, at.st.y};
     const float axes[4] = {at.axisA.x, at.axisA.y, at.axisB.x, at.axisB.y};
+    const int wrap[2] = {oiioWrap(at.wrapS), oiioWrap(at.wrapT)};
     // A file that fails mid-render (it was read whole when opened, so only a cache eviction
     // and a changed file could) gives black: the per-ray path never throws.
-    return lookup_(handle_, st, axes, first, count, out) == 0;
+    return lookup_(handle_, st, axes, wrap, first, count, out) == 0;
+  }
+
+  static int oiioWrap(TextureWrap w) {
+    return w == TextureWrap::ClampToEdge      ? kGlintOiioWrapClamp
+           : w == TextureWrap::MirroredRepeat ? kGlintOiioWrapMirror
+                                              : kGlintOiioWrapRepeat;
   }
 
   std::string path_;

@@ -32,6 +32,10 @@ struct ShadingPoint {
   // tangent, else dp/du) and the sign that turns ns × tangent towards +v.
   Vec3f tangent;
   float tangentSign = 1;
+  // The same for a mesh's second set (glTF's TEXCOORD_1), filled only in scenes with a texture
+  // that reads it (Features::secondUvSet); a surface without one has its first set here.
+  Vec2f uv1;
+  Vec3f dpdu1, dpdv1;
   // The mesh's interpolated vertex colour (white for other shapes), filled only in scenes whose
   // materials use vertex colours (Features::vertexColors).
   Rgb vertexColor;

@@ -24,6 +24,9 @@ struct TriangleMesh {
   // Per-vertex texture coordinates (u, v), origin at the image's bottom left; empty when the
   // mesh has none (its triangles then map (0,0), (1,0), (0,1) to their corners).
   std::vector<Vec2f> uvs;
+  // A second set (glTF's TEXCOORD_1), as many as `uvs`, where the file has one; empty
+  // otherwise (textures that ask for it then read the first).
+  std::vector<Vec2f> uvs1;
   // Per-vertex colours (linear RGB), empty when the mesh has none.
   std::vector<Rgb> colors;
   // Per triangle, the object it belongs to, where a mesh file's parts name several (a file's

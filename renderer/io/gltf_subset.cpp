@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -11,6 +13,7 @@
 #include "core/error.h"
 #include "core/input_files.h"
 #include "core/log.h"
+#include "io/gltf_dropped.h"
 #include "io/gltf_expansion.h"
 #include "io/gltf_texture_transform.h"
 
@@ -103,23 +106,66 @@ bool texturesAreWellFormed(const json& doc) {
       return info == owner.end() ||
              (info->is_object() && info->contains("index") && indexBelow(*info, "index", textures));
     };
-    if (!textureInfoOk(m, "emissiveTexture")) return false;
-    if (!textureInfoOk(m, "normalTexture")) return false;
+    if (!textureInfoOk(m, "emissiveTexture") || !textureInfoOk(m, "occlusionTexture") ||
+        !textureInfoOk(m, "normalTexture"))
+      return false;
     if (const auto pbr = m.find("pbrMetallicRoughness"); pbr != m.end() && pbr->is_object())
-      if (!textureInfoOk(*pbr, "baseColorTexture")) return false;
+      if (!textureInfoOk(*pbr, "baseColorTexture") ||
+          !textureInfoOk(*pbr, "metallicRoughnessTexture"))
+        return false;
   }
   return true;
 }
 
-// The KHR_texture_transform of the textureInfo `owner[key]`; null where there is none.
-json textureTransformOf(const json& owner, const char* key) {
+// The textureInfo `owner[key]`; null where there is none.
+json textureInfoOf(const json& owner, const char* key) {
   if (!owner.is_object()) return nullptr;
   const auto info = owner.find(key);
-  if (info == owner.end() || !info->is_object()) return nullptr;
-  const auto extensions = info->find("extensions");
-  if (extensions == info->end() || !extensions->is_object()) return nullptr;
-  const auto transform = extensions->find("KHR_texture_transform");
-  return transform == extensions->end() ? json() : *transform;
+  return info == owner.end() || !info->is_object() ? json() : *info;
+}
+
+// The textures Glint reads of a material, in GltfMaterialInfo's order.
+enum Slot { BaseColor, Emissive, MetallicRoughness, Occlusion, Normal, kSlots };
+
+// How the well-formed textureInfo `info` (JSON null: none) of the reduced `doc` reads the
+// surface: its KHR_texture_transform, its texCoord (0 or 1; another is warned about and read as
+// 0) and its texture's sampler's wrap modes (a value glTF does not define is warned about and
+// read as REPEAT). Messages name `where`.
+UvTransform textureReading(const json& doc, const json& info, const std::string& where) {
+  if (info.is_null()) return {};
+  int set = 0;
+  if (const auto texCoord = info.find("texCoord"); texCoord != info.end()) {
+    if (texCoord->is_number_unsigned() && texCoord->get<uint64_t>() <= 1)
+      set = texCoord->get<int>();
+    else
+      log::warning(where + "'s texCoord " + excerpt(texCoord->dump()) +
+                   " is not read (Glint reads TEXCOORD_0 and TEXCOORD_1): TEXCOORD_0 is");
+  }
+  json transform;
+  if (const auto extensions = info.find("extensions");
+      extensions != info.end() && extensions->is_object())
+    if (const auto t = extensions->find("KHR_texture_transform"); t != extensions->end())
+      transform = *t;
+  UvTransform reading = gltfTextureTransform(transform, where, set);
+  const json& texture = doc["textures"][info["index"].get<size_t>()];
+  const auto sampler = texture.find("sampler");
+  if (sampler == texture.end()) return reading;
+  const json& wraps = doc["samplers"][sampler->get<size_t>()];
+  const auto wrapOf = [&](const char* key) {
+    const auto w = wraps.is_object() ? wraps.find(key) : wraps.end();
+    if (w == wraps.end()) return TextureWrap::Repeat;
+    // OpenGL's enums, as glTF's sampler gives them.
+    if (*w == 33071) return TextureWrap::ClampToEdge;
+    if (*w == 33648) return TextureWrap::MirroredRepeat;
+    if (*w != 10497)
+      log::warning(where + ": its sampler's " + key + " " + excerpt(w->dump()) +
+                   " is not a glTF wrap mode (33071 CLAMP_TO_EDGE, 33648 MIRRORED_REPEAT, 10497 "
+                   "REPEAT): it repeats");
+    return TextureWrap::Repeat;
+  };
+  reading.wrapS = wrapOf("wrapS");
+  reading.wrapT = wrapOf("wrapT");
+  return reading;
 }
 
 // normalTexture.scale: 1 where it is absent or not a finite number.
@@ -163,6 +209,8 @@ std::string gltfSubset(const std::string& path, const std::string& text,
     throw UsageError("mesh " + path + ": not glTF JSON: " + excerpt(e.what()));
   }
   if (!doc.is_object()) throw UsageError("mesh " + path + ": not glTF: not a JSON object");
+  // Named before anything is removed (io/gltf_dropped.h), warned about once the file is taken.
+  const std::vector<std::string> dropped = gltfDroppedFeatures(doc);
   // glTF 1.0 files give their version as "1.0" or as the number 1 (Cesium's exporters), and
   // keep nodes, meshes and the rest in objects keyed by name where glTF 2.0 has arrays: named
   // here rather than reported as "nodes is not an array".
@@ -198,14 +246,12 @@ std::string gltfSubset(const std::string& path, const std::string& text,
   keepOnly(doc,
            {"asset", "scene", "scenes", "nodes", "meshes", "materials", "accessors", "bufferViews",
             "buffers", "textures", "images", "samplers", "extensionsUsed", "extensionsRequired"});
-  // The materials' names, each then replaced by its tag, and their textures' transforms (read
-  // once the textures are known to be well formed, below).
-  std::vector<std::pair<json, json>> baseColorAndEmissiveTransforms;
-  std::vector<json> normalTransforms;
+  // The materials' names, each then replaced by its tag, and the textureInfos Glint reads
+  // (read once the textures are known to be well formed, below).
+  std::vector<std::array<json, kSlots>> textureInfos;
   if (materials) {
     materials->assign(countOf(doc, "materials"), {});
-    baseColorAndEmissiveTransforms.resize(materials->size());
-    normalTransforms.resize(materials->size());
+    textureInfos.resize(materials->size());
     for (size_t i = 0; i < materials->size(); ++i) {
       json& material = doc["materials"][i];
       if (!material.is_object()) continue;
@@ -213,27 +259,46 @@ std::string gltfSubset(const std::string& path, const std::string& text,
         (*materials)[i].name = name->get<std::string>();
       material["name"] = gltfMaterialTag(i);
       const auto pbr = material.find("pbrMetallicRoughness");
-      baseColorAndEmissiveTransforms[i] = {
-          textureTransformOf(pbr != material.end() ? *pbr : json(), "baseColorTexture"),
-          textureTransformOf(material, "emissiveTexture")};
-      normalTransforms[i] = textureTransformOf(material, "normalTexture");
+      const json& pbrOrNull = pbr != material.end() ? *pbr : json();
+      textureInfos[i][BaseColor] = textureInfoOf(pbrOrNull, "baseColorTexture");
+      textureInfos[i][Emissive] = textureInfoOf(material, "emissiveTexture");
+      textureInfos[i][MetallicRoughness] = textureInfoOf(pbrOrNull, "metallicRoughnessTexture");
+      textureInfos[i][Occlusion] = textureInfoOf(material, "occlusionTexture");
+      textureInfos[i][Normal] = textureInfoOf(material, "normalTexture");
       (*materials)[i].normalScale = normalTextureScale(material);
+      if (const json& occlusion = textureInfos[i][Occlusion]; occlusion.is_object())
+        if (const auto strength = occlusion.find("strength");
+            strength != occlusion.end() && strength->is_number() &&
+            std::isfinite(strength->get<double>()))
+          (*materials)[i].occlusionStrength = std::clamp(strength->get<float>(), 0.0f, 1.0f);
+      if (const auto ext = material.find("extensions"); ext != material.end() && ext->is_object())
+        if (const auto e = ext->find("KHR_materials_emissive_strength");
+            e != ext->end() && e->is_object())
+          if (const auto strength = e->find("emissiveStrength");
+              strength != e->end() && strength->is_number() &&
+              std::isfinite(strength->get<double>()) && strength->get<double>() <= 3.4e38)
+            (*materials)[i].emissiveStrength = std::max(strength->get<float>(), 0.0f);
     }
   }
-  // Materials as their factors and the base colour and emission textures (io/mesh_materials.h),
-  // read from the first texture coordinates.
+  // Materials as their factors and textures (io/mesh_materials.h).
   const auto keepTextureInfo = [](json& object, const char* key) {
     if (const auto info = object.find(key); info != object.end()) keepOnly(*info, {"index"});
   };
   forEachIn(doc, "materials", [&](json& material) {
     keepOnly(material, {"name", "pbrMetallicRoughness", "emissiveFactor", "emissiveTexture",
-                        "alphaMode", "alphaCutoff", "extensions", "normalTexture"});
+                        "occlusionTexture", "alphaMode", "alphaCutoff", "extensions",
+                        "normalTexture"});
     if (!material.is_object()) return;
     keepTextureInfo(material, "emissiveTexture");
+    keepTextureInfo(material, "occlusionTexture");
     keepTextureInfo(material, "normalTexture");
     if (const auto pbr = material.find("pbrMetallicRoughness"); pbr != material.end()) {
-      keepOnly(*pbr, {"baseColorFactor", "baseColorTexture", "metallicFactor", "roughnessFactor"});
-      if (pbr->is_object()) keepTextureInfo(*pbr, "baseColorTexture");
+      keepOnly(*pbr, {"baseColorFactor", "baseColorTexture", "metallicFactor", "roughnessFactor",
+                      "metallicRoughnessTexture"});
+      if (pbr->is_object()) {
+        keepTextureInfo(*pbr, "baseColorTexture");
+        keepTextureInfo(*pbr, "metallicRoughnessTexture");
+      }
     }
     if (const auto ext = material.find("extensions"); ext != material.end()) {
       keepOnly(*ext, {"KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
@@ -270,7 +335,7 @@ std::string gltfSubset(const std::string& path, const std::string& text,
     forEachIn(mesh, "primitives", [](json& primitive) {
       keepOnly(primitive, {"attributes", "indices", "mode", "material", "extensions"});
       if (const auto a = primitive.find("attributes"); a != primitive.end())
-        keepOnly(*a, {"POSITION", "NORMAL", "TANGENT", "TEXCOORD_0", "COLOR_0"});
+        keepOnly(*a, {"POSITION", "NORMAL", "TANGENT", "TEXCOORD_0", "TEXCOORD_1", "COLOR_0"});
     });
   });
   forEachIn(doc, "textures", [](json& texture) { keepOnly(texture, {"source", "sampler"}); });
@@ -292,21 +357,31 @@ std::string gltfSubset(const std::string& path, const std::string& text,
     forEachIn(doc, "materials", [](json& material) {
       if (!material.is_object()) return;
       material.erase("emissiveTexture");
+      material.erase("occlusionTexture");
       material.erase("normalTexture");
       if (const auto pbr = material.find("pbrMetallicRoughness");
-          pbr != material.end() && pbr->is_object())
+          pbr != material.end() && pbr->is_object()) {
         pbr->erase("baseColorTexture");
+        pbr->erase("metallicRoughnessTexture");
+      }
     });
   }
   for (size_t i = 0; materials && texturesKept && i < materials->size(); ++i) {
     GltfMaterialInfo& m = (*materials)[i];
     const std::string where = "mesh " + path + ": material " + std::to_string(i) +
                               (m.name.empty() ? "" : " " + inQuotes(excerpt(m.name)));
-    m.baseColorUv =
-        gltfTextureTransform(baseColorAndEmissiveTransforms[i].first, where + " baseColorTexture");
-    m.emissiveUv =
-        gltfTextureTransform(baseColorAndEmissiveTransforms[i].second, where + " emissiveTexture");
-    m.normalUv = gltfTextureTransform(normalTransforms[i], where + " normalTexture");
+    m.baseColorUv = textureReading(doc, textureInfos[i][BaseColor], where + " baseColorTexture");
+    m.emissiveUv = textureReading(doc, textureInfos[i][Emissive], where + " emissiveTexture");
+    m.metallicRoughnessUv = textureReading(doc, textureInfos[i][MetallicRoughness],
+                                           where + " metallicRoughnessTexture");
+    m.occlusionUv = textureReading(doc, textureInfos[i][Occlusion], where + " occlusionTexture");
+    m.normalUv = textureReading(doc, textureInfos[i][Normal], where + " normalTexture");
+  }
+  if (!dropped.empty()) {
+    std::string list;
+    for (const std::string& feature : dropped) list += (list.empty() ? "" : "; ") + feature;
+    log::warning("mesh " + path + ": Glint does not render " + list +
+                 " (the rest of the file is rendered without them)");
   }
   try {
     return doc.dump();

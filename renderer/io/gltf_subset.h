@@ -1,15 +1,17 @@
 #pragma once
 // The part of a glTF 2.0 file Glint reads, and nothing else, for Assimp to import: the scene's
-// nodes with their transforms, each primitive's POSITION, NORMAL, TANGENT, TEXCOORD_0, indices
-// and material, the accessors, buffer views and buffers behind them, the materials' factors (base
-// colour, metallic, roughness, emission; transmission, ior, volume and emissive strength
-// extensions) and their base colour, emissive and normal textures with the textures, images and
-// samplers behind them. Skins, animations, morph targets, cameras and lights (which Glint reads
-// itself, io/gltf_scene.h) are removed before Assimp sees the file, so its readers for them never
-// run: Assimp 5.2.5 dereferenced a null pointer on a skin without inverseBindMatrices (found by
-// glint_fuzz_mesh). Geometry-compression extensions stay. The textures' KHR_texture_transform
-// is read by Glint (io/gltf_texture_transform.h), not by Assimp (whose reader of it indexes the
-// offset and scale arrays without checking their sizes).
+// nodes with their transforms, each primitive's POSITION, NORMAL, TANGENT, TEXCOORD_0,
+// TEXCOORD_1, indices and material, the accessors, buffer views and buffers behind them, the
+// materials' factors (base colour, metallic, roughness, emission; transmission, ior, volume and
+// emissive strength extensions) and their base colour, metallic-roughness, occlusion, emissive
+// and normal textures with the textures, images and samplers behind them. What else the file
+// holds that would change how it looks is named in one warning (io/gltf_dropped.h). Skins,
+// animations, morph targets, cameras and lights (which Glint reads itself, io/gltf_scene.h) are
+// removed before Assimp sees the file, so its readers for them never run: Assimp 5.2.5
+// dereferenced a null pointer on a skin without inverseBindMatrices (found by glint_fuzz_mesh).
+// Geometry-compression extensions stay. The textures' KHR_texture_transform, texCoord and
+// samplers are read by Glint (io/gltf_texture_transform.h), not by Assimp (whose reader of the
+// transform indexes the offset and scale arrays without checking their sizes).
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,13 +21,17 @@
 namespace glint {
 
 // What Glint reads from one of a glTF file's materials itself: its name as the file gives it
-// (empty when it has none), and its base colour and emissive textures' KHR_texture_transform
-// in Glint's (u, v) (the identity where there is none), and its normal texture's transform and
-// scale.
+// (empty when it has none); how each texture it reads reads the surface (materials/
+// image_texture.h): its KHR_texture_transform in Glint's (u, v) (the identity where there is
+// none), its texCoord set (0 or 1) and its sampler's wrapS and wrapT; its occlusion texture's
+// strength (clamped to [0, 1]), its normal texture's scale, and its
+// KHR_materials_emissive_strength (a finite number, at least 0; Assimp 5.2.5's reader does not
+// read the extension).
 struct GltfMaterialInfo {
   std::string name;
-  UvTransform baseColorUv, emissiveUv;
-  UvTransform normalUv;   // normalTexture's
+  UvTransform baseColorUv, emissiveUv, metallicRoughnessUv, occlusionUv, normalUv;
+  float occlusionStrength = 1;
+  float emissiveStrength = 1;
   float normalScale = 1;  // normalTexture.scale
 };
 

@@ -48,12 +48,14 @@ UvTransform uvTransformFromGltf(Vec2f offset, float rotation, Vec2f scale) {
   return t;
 }
 
-UvTransform gltfTextureTransform(const json& extension, const std::string& where) {
-  if (extension.is_null()) return {};
+UvTransform gltfTextureTransform(const json& extension, const std::string& where, int uvSet) {
+  UvTransform identity;
+  identity.uvSet = uint8_t(uvSet);
+  if (extension.is_null()) return identity;
   const std::string what = where + ": KHR_texture_transform";
   const auto ignored = [&](const std::string& why) {
     log::warning(what + " ignored (the texture is read untransformed): " + why);
-    return UvTransform{};
+    return identity;
   };
   if (!extension.is_object()) return ignored("it is not a JSON object");
   const std::string bounded =
@@ -74,12 +76,18 @@ UvTransform gltfTextureTransform(const json& extension, const std::string& where
       return ignored("its rotation " + excerpt(it->dump()) + " is not a number " + bounded);
     rotation = float(*radians);
   }
-  if (const auto it = extension.find("texCoord");
-      it != extension.end() && !(it->is_number_integer() && *it == 0))
-    log::warning(what + "'s texCoord " + excerpt(it->dump()) +
-                 " is not read (Glint reads TEXCOORD_0 only): the transform applies to "
-                 "TEXCOORD_0");
-  return uvTransformFromGltf(offset, rotation, scale);
+  if (const auto it = extension.find("texCoord"); it != extension.end()) {
+    if (it->is_number_unsigned() && it->get<uint64_t>() <= 1)
+      uvSet = it->get<int>();
+    else
+      log::warning(what + "'s texCoord " + excerpt(it->dump()) +
+                   " is not read (Glint reads TEXCOORD_0 and TEXCOORD_1): the transform applies "
+                   "to TEXCOORD_" +
+                   std::to_string(uvSet));
+  }
+  UvTransform t = uvTransformFromGltf(offset, rotation, scale);
+  t.uvSet = uint8_t(uvSet);
+  return t;
 }
 
 }  // namespace glint

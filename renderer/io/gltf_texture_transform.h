@@ -25,10 +25,12 @@ UvTransform uvTransformFromGltf(Vec2f offset, float rotation, Vec2f scale);
 constexpr double kMaxGltfUvTransformValue = 1e4;
 
 // The transform the KHR_texture_transform object `extension` gives (JSON null where the
-// textureInfo has none: the identity). Malformed (not an object; offset or scale not two
-// numbers, rotation not a number; a value not finite or beyond kMaxGltfUvTransformValue), it is
-// warned about, naming `where`, and ignored: the identity. A texCoord other than 0 is warned
-// about and ignored (Glint reads TEXCOORD_0 only): the transform applies to TEXCOORD_0.
-UvTransform gltfTextureTransform(const nlohmann::json& extension, const std::string& where);
+// textureInfo has none: the identity), on the textureInfo's coordinate set `uvSet`. Malformed
+// (not an object; offset or scale not two numbers, rotation not a number; a value not finite or
+// beyond kMaxGltfUvTransformValue), it is warned about, naming `where`, and ignored: the
+// identity. Its texCoord 0 or 1 replaces the textureInfo's set (the extension's rule); another
+// is warned about and ignored (Glint reads TEXCOORD_0 and TEXCOORD_1).
+UvTransform gltfTextureTransform(const nlohmann::json& extension, const std::string& where,
+                                 int uvSet = 0);
 
 }  // namespace glint

@@ -14,6 +14,7 @@ struct LocalMesh {
   std::vector<Vec3d> positions;
   std::vector<Vec3d> normals;                    // per vertex, for smooth shading; empty: flat
   std::vector<Vec2f> uvs;                        // per vertex texture coordinates; may be empty
+  std::vector<Vec2f> uvs1;                       // a second set (glTF TEXCOORD_1); may be empty
   std::vector<Rgb> colors;                       // per vertex colours; may be empty
   std::vector<TriangleMesh::Tangent> tangents;   // per corner, from the file; may be empty
   std::vector<std::vector<Vec3d>> positionKeys;  // a deforming mesh's vertices per motion key

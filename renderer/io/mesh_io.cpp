@@ -291,7 +291,7 @@ class FaceNames {
       const std::string nodeName = usableName(node->mName);
       for (unsigned i = 0; i < node->mNumMeshes; ++i) {
         const aiMesh& m = *s.mMeshes[node->mMeshes[i]];
-        const std::string name = nodeName.empty() ? usableName(m.mName) : nodeName;
+        const std::string name = nodeName.empty() ? meshName(s, m) : nodeName;
         runs_[{m.mMaterialIndex, vertexFormat(m)}].push_back({indexOf(name), m.mNumFaces});
       }
       for (unsigned c = node->mNumChildren; c-- > 0;) stack.push_back(node->mChildren[c]);
@@ -318,6 +318,14 @@ class FaceNames {
     const auto [it, added] = index_.emplace(name, static_cast<uint32_t>(names_.size()));
     if (added) names_.push_back(name);
     return it->second;
+  }
+  // A mesh's name, or "" where Assimp gave it its material's: the OBJ reader names a mesh by
+  // its `g` group, else by the `usemtl` that started it, which names no object.
+  static std::string meshName(const aiScene& s, const aiMesh& m) {
+    if (m.mMaterialIndex < s.mNumMaterials &&
+        s.mMaterials[m.mMaterialIndex]->GetName() == m.mName)
+      return "";
+    return usableName(m.mName);
   }
   // The file's name, or "" for one Assimp made up or one no scene may give (a control
   // character, "objects[2]": io/object_names.h).
@@ -367,7 +375,7 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
       checkGltfIndices(path, glbJsonChunk(path, bytes), glbBinaryChunk(bytes));
   }
   checkAnImporterOfTheExtensionReadsIt(importer, path);
-  // Positions, the file's vertex normals (smooth shading), its first texture coordinates and
+  // Positions, the file's vertex normals (smooth shading), its first two texture coordinates and
   // vertex colours, and its materials are kept.
   importer.SetPropertyInteger(AI_CONFIG_PP_RVC_FLAGS, 0);
   // Read with no processing but Assimp's own validation: its post-processing steps index
@@ -471,13 +479,16 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
       for (unsigned v = 0; v < m->mNumVertices; ++v)
         mesh.colors.push_back({channel(c[v].r), channel(c[v].g), channel(c[v].b)});
     }
-    if (const aiVector3D* uv = m->mTextureCoords[0]) {
-      mesh.uvs.resize(base, Vec2f{0, 0});
-      for (unsigned v = 0; v < m->mNumVertices; ++v) {
-        const bool finite = std::isfinite(uv[v].x) && std::isfinite(uv[v].y);
-        mesh.uvs.push_back(finite ? Vec2f{uv[v].x, uv[v].y} : Vec2f{0, 0});
+    // The second set (glTF's TEXCOORD_1) likewise, where a mesh of the part has one.
+    for (int set = 0; set < 2; ++set)
+      if (const aiVector3D* uv = m->mTextureCoords[set]) {
+        std::vector<Vec2f>& uvs = set == 0 ? mesh.uvs : mesh.uvs1;
+        uvs.resize(base, Vec2f{0, 0});
+        for (unsigned v = 0; v < m->mNumVertices; ++v) {
+          const bool finite = std::isfinite(uv[v].x) && std::isfinite(uv[v].y);
+          uvs.push_back(finite ? Vec2f{uv[v].x, uv[v].y} : Vec2f{0, 0});
+        }
       }
-    }
     const std::vector<uint32_t> names =
         file.objectNames.empty() ? std::vector<uint32_t>() : faceNames.of(*m);
     uint32_t unnamed = 0;
@@ -530,7 +541,10 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
   if (file.parts.empty()) throw GlintError("mesh " + path + " has no triangles");
   for (size_t i = 0; i < file.parts.size(); ++i) {
     TriangleMesh& part = file.parts[i];
+    // A second set without a first (no texture would read it as a first set) is dropped.
+    if (!part.hasUvs()) part.uvs1.clear();
     if (part.hasUvs()) part.uvs.resize(part.positions.size(), Vec2f{0, 0});
+    if (!part.uvs1.empty()) part.uvs1.resize(part.positions.size(), Vec2f{0, 0});
     // Vertex colours multiply the diffuse colour (glTF's COLOR_0 its base colour); a mesh of
     // the part without them is white.
     if (part.colors.empty()) continue;

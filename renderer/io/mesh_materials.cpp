@@ -155,8 +155,10 @@ Material fromMtl(const aiMaterial& src, const TextureOpener& open, MeshFileForma
 // glTF's metallic-roughness model on the general surface: the dielectric base reflects diffusely
 // (k_d = base × (1 − metallic)) with a 4 % highlight; the metal part mirrors its base colour
 // (k_m = base × metallic), blurred by its roughness (gloss); the highlight's exponent is
-// Blinn-Phong's match to the GGX width α = roughness², 2/α² − 2. The textures are read through
-// their KHR_texture_transform, which Glint reads itself (`own`).
+// Blinn-Phong's match to the GGX width α = roughness² (materials/surface_maps.h). A
+// metallic-roughness texture makes that split per texel (the surface's maps); an occlusion
+// texture darkens the ambient term, which is the diffuse colour's. The textures are read through
+// their KHR_texture_transform, texCoord and sampler, which Glint reads itself (`own`).
 Material fromGltf(const aiMaterial& src, const TextureOpener& open, const GltfMaterialInfo& own) {
   const float transmission =
       std::clamp(number(src, AI_MATKEY_TRANSMISSION_FACTOR, 0.0f), 0.0f, 1.0f);
@@ -165,22 +167,39 @@ Material fromGltf(const aiMaterial& src, const TextureOpener& open, const GltfMa
   const Rgb base = colour(src, AI_MATKEY_BASE_COLOR, {1, 1, 1});
   const float metallic = std::clamp(number(src, AI_MATKEY_METALLIC_FACTOR, 1.0f), 0.0f, 1.0f);
   const float roughness = std::clamp(number(src, AI_MATKEY_ROUGHNESS_FACTOR, 1.0f), 0.0f, 1.0f);
-  const float alpha = std::max(roughness * roughness, 1e-2f);
+  // Assimp's glTF 2 reader gives metallicRoughnessTexture as aiTextureType_UNKNOWN and
+  // occlusionTexture as aiTextureType_LIGHTMAP.
+  auto metallicRoughness = m.refracts() ? nullptr : firstTexture(src, aiTextureType_UNKNOWN, open);
+  auto occlusion = firstTexture(src, aiTextureType_LIGHTMAP, open);
   // The base colour texture multiplies the base colour wherever it appears (baseColorTexture
-  // is aiTextureType_DIFFUSE in Assimp's glTF 2 reader).
+  // is aiTextureType_DIFFUSE in Assimp's glTF 2 reader). With a metallic-roughness map, k_d and
+  // k_s hold the base colour and the dielectric's highlight, which the map splits per texel.
+  const float diffusePart = metallicRoughness ? 1 : 1 - metallic;
   if (!m.refracts())
-    s.kd = textured(src, aiTextureType_DIFFUSE, base * (1 - metallic), open, own.baseColorUv);
-  s.ka = ColorTexture::uniform({0, 0, 0});
-  s.ambientFollowsDiffuse = false;
-  s.ks = ColorTexture::uniform(Rgb{0.04f, 0.04f, 0.04f} * (1 - metallic) + base * metallic);
-  s.exponent = std::clamp(2 / (alpha * alpha) - 2, 1.0f, 1e4f);
+    s.kd = textured(src, aiTextureType_DIFFUSE, base * diffusePart, open, own.baseColorUv);
+  s.ka = s.kd;
+  s.ambientFollowsDiffuse = true;
+  s.ks = ColorTexture::uniform(metallicRoughness
+                                   ? Rgb{0.04f, 0.04f, 0.04f}
+                                   : Rgb{0.04f, 0.04f, 0.04f} * (1 - metallic) + base * metallic);
+  s.exponent = blinnPhongExponent(roughness);
   s.km = metallic > 0 ? textured(src, aiTextureType_DIFFUSE, base * metallic, open, own.baseColorUv)
                       : ColorTexture::uniform({0, 0, 0});
   s.gloss = metallic > 0 ? roughness : 0;
+  if (metallicRoughness || occlusion) {
+    auto maps = std::make_shared<SurfaceMaps>();
+    maps->metallicRoughness = std::move(metallicRoughness);
+    maps->metallicRoughnessUv = own.metallicRoughnessUv;
+    maps->metallicFactor = metallic;
+    maps->roughnessFactor = roughness;
+    maps->occlusion = std::move(occlusion);
+    maps->occlusionUv = own.occlusionUv;
+    maps->occlusionStrength = own.occlusionStrength;
+    s.maps = std::move(maps);
+  }
   s.ke = textured(src, aiTextureType_EMISSIVE,
-                  colour(src, AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0}) *
-                      std::max(number(src, AI_MATKEY_EMISSIVE_INTENSITY, 1.0f), 0.0f),
-                  open, own.emissiveUv);
+                  colour(src, AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0}) * own.emissiveStrength, open,
+                  own.emissiveUv);
   if (m.refracts()) {
     const float ior = number(src, AI_MATKEY_REFRACTI, 1.5f);
     m.dielectric.ior = ior >= 1.0f && ior <= 10.0f ? ior : 1.5f;
@@ -229,7 +248,7 @@ Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
                                                 : fromMtl(source, openTexture, format);
   m.name = fileName + ":" + own;
   if (format != MeshFileFormat::Ply)
-    m.surface.maps = shadingMaps(source, format, openTexture, gltf);
+    m.surface.normalMaps = shadingMaps(source, format, openTexture, gltf);
   if (format == MeshFileFormat::Gltf)
     m.cutout = gltfCutout(source, openTexture, m.name, gltf.baseColorUv);
   if (format == MeshFileFormat::Obj || format == MeshFileFormat::Other)

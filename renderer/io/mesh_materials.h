@@ -3,10 +3,10 @@
 // (Kd, Ks, Ns, Ka, Ke, Ni, illum), the same common keys of the other formats Assimp reads, and
 // glTF 2.0's metallic-roughness factors with
 // KHR_materials_transmission, _ior, _volume and _emissive_strength, with their image textures
-// (map_Kd, map_Ks, map_Ke; glTF's base colour and emissive textures, with their
-// KHR_texture_transform), and their normal and bump maps (MTL norm, bump / map_Bump with -bm;
-// glTF's normalTexture with its scale). The table is in docs/scene-format.md ("Materials from mesh
-// files").
+// (map_Kd, map_Ks, map_Ke; glTF's base colour, metallic-roughness, occlusion and emissive
+// textures, with their KHR_texture_transform, texCoord and sampler), and their normal and bump
+// maps (MTL norm, bump / map_Bump with -bm; glTF's normalTexture with its scale). The table is
+// in docs/scene-format.md ("Materials from mesh files").
 #include <functional>
 #include <memory>
 #include <string>

@@ -68,6 +68,7 @@ void addMesh(SceneBuilder& b, const LocalMesh& local, const Placement& place, co
   TriangleMesh mesh;
   mesh.indices = local.indices;
   mesh.uvs = local.uvs;
+  mesh.uvs1 = local.uvs1;
   mesh.colors = local.colors;
   mesh.objectIds = local.objectIds;
   mesh.positions = placed(local.positions);
@@ -104,7 +105,7 @@ void addMesh(SceneBuilder& b, const LocalMesh& local, const Placement& place, co
       where.fail("index " + std::to_string(idx) + " is out of range (" +
                  std::to_string(mesh.positions.size()) + " vertices)");
   // Under a normal map, a mesh without tangents of its own gets glTF's (geometry/tangents.h).
-  const std::shared_ptr<const ShadingMaps>& maps = b.scene.materials[material].surface.maps;
+  const std::shared_ptr<const ShadingMaps>& maps = b.scene.materials[material].surface.normalMaps;
   if (mesh.tangents.empty() && maps && maps->normal.image) mesh.tangents = generateTangents(mesh);
   if (!(maps && maps->normal.image)) mesh.tangents.clear();  // nothing reads them
   mesh.padForEmbree();
@@ -180,8 +181,11 @@ void hashTextureFiles(SceneBuilder& b, const std::vector<Material>& materials) {
     for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke})
       if (t->image) paths.insert(t->image->path());
     if (m.cutout.image) paths.insert(m.cutout.image->path());
-    if (s.maps && s.maps->normal.image) paths.insert(s.maps->normal.image->path());
-    if (s.maps && s.maps->bump.image) paths.insert(s.maps->bump.image->path());
+    if (s.normalMaps && s.normalMaps->normal.image) paths.insert(s.normalMaps->normal.image->path());
+    if (s.normalMaps && s.normalMaps->bump.image) paths.insert(s.normalMaps->bump.image->path());
+    if (s.maps)
+      for (const auto* image : {s.maps->metallicRoughness.get(), s.maps->occlusion.get()})
+        if (image) paths.insert(image->path());
   }
   for (const std::string& path : paths) {
     std::error_code ec;
@@ -213,6 +217,7 @@ FileMesh fileMesh(SceneBuilder& b, const JsonNode& fileNode) {
       for (const Vec3f& p : part.positions) m.positions.push_back(toDouble(p));
       for (const Vec3f& n : part.normals) m.normals.push_back(toDouble(n));
       m.uvs = part.uvs;
+      m.uvs1 = part.uvs1;
       m.colors = part.colors;
       m.tangents = part.tangents;
       m.indices = part.indices;

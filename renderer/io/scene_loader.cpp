@@ -297,7 +297,7 @@ Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode&
     s.specularModel =
         v->choice({"blinn", "phong"}) == "blinn" ? SpecularModel::BlinnPhong : SpecularModel::Phong;
   if (auto v = n.get("gloss")) s.gloss = v->number(0, 3.4e38f);
-  s.maps = parseShadingMaps(b, n);
+  s.normalMaps = parseShadingMaps(b, n);
   if (n.has("opacity"))
     m.cutout = parseCutout(b, n);
   else if (auto v = n.get("opacity_cutoff"))

@@ -33,7 +33,7 @@ struct Cutout {
   bool holeAt(Vec2f uv) const {
     if (!image) return coverage < cutoff;
     const Vec2f st = uvTransform.point(uv);
-    const ImageFootprint at{{st.x, 1 - st.y}, {0, 0}, {0, 0}};
+    const ImageFootprint at{{st.x, 1 - st.y}, {0, 0}, {0, 0}, uvTransform.wrapS, uvTransform.wrapT};
     return coverage * image->coverage(at, channel == Channel::AlphaElseGrey) < cutoff;
   }
 };

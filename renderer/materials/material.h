@@ -51,10 +51,12 @@ template <class Send>
                                                       int depth, Send&& send) {
   // The surface's coherent reflection k_m·L(r).
   if (!at.km.isBlack()) {
+    // The sample is drawn wherever the surface can be glossy (its maps vary at.gloss below
+    // s.gloss): where it is drawn does not depend on the texel.
     const Surface& s = m.surface;
     const Vec2f u = s.gloss > 0 ? key.get2D(dimension(Dim::Gloss, depth)) : Vec2f{};
     Vec3f r;
-    if (mirrorDirection(d, at.n, s.gloss, u, r)) send(r, at.km, false);
+    if (mirrorDirection(d, at.n, at.gloss, u, r)) send(r, at.km, false);
   }
   if (!m.refracts()) return;
   // The interface: the normal is the geometric one turned against the ray, never the shading

@@ -10,6 +10,7 @@
 // so a white Lambert surface under a unit light at normal incidence reads 1 (docs/shading.md).
 // Surfaces are two-sided: the shading normal is turned towards the viewer.
 #include <cmath>
+#include <memory>
 
 #include "core/affine.h"
 #include "core/rgb.h"
@@ -17,6 +18,7 @@
 #include "geometry/shading_point.h"
 #include "materials/gloss.h"
 #include "materials/normal_map.h"
+#include "materials/surface_maps.h"
 #include "materials/texture.h"
 
 namespace glint {
@@ -38,7 +40,12 @@ struct Surface {
   EmissionSides emissionSides = EmissionSides::Both;
   // Normal and bump maps; null for a surface without (nearly all): then no hit or light sample
   // reads them.
-  std::shared_ptr<const ShadingMaps> maps;
+  std::shared_ptr<const ShadingMaps> normalMaps;
+  // Quantities that vary by image data where no slot holds them (materials/surface_maps.h);
+  // null for nearly every surface. With a metallic-roughness map, km, exponent and gloss hold
+  // their largest values (b times metallicFactor, roughnessFactor's gloss), which the scene's
+  // Features and the sampler's dimensions are decided by.
+  std::shared_ptr<const SurfaceMaps> maps;
 
   // Whether AccLightSource's loop over the lights can add anything (k_d or k_s not black).
   [[gnu::always_inline]] bool reflectsLights() const { return !kd.isBlack() || !ks.isBlack(); }
@@ -52,7 +59,14 @@ struct SurfacePoint {
   Vec3f wo;         // unit, towards the viewer
   float footprint;  // the width of the pixel's footprint here (image textures filter over it)
   Rgb kd, ks, km;
+  float exponent, gloss;  // the surface's, or its maps' here
 };
+
+// lookUp's part for a surface with a metallic-roughness map: at.kd holds the base colour, at.ks
+// the dielectric's highlight; they, km, exponent and gloss become the point's.
+void splitMetal(const SurfaceMaps& maps, const ShadingPoint& sp, SurfacePoint& at);
+// What the ambient term is multiplied by at the point: 1 without an occlusion map.
+float ambientOcclusion(const SurfaceMaps& maps, const ShadingPoint& sp, const SurfacePoint& at);
 
 // Always inlined (like forEachCoherentRay): out of line, their results came back through memory
 // (store forwarding; 7 % of a default render).
@@ -62,14 +76,20 @@ struct SurfacePoint {
                                                   const Vec3d& worldOrigin) {
   SurfacePoint at;
   at.n = sp.shadingNormalFacing(wo);
-  if (s.maps) [[unlikely]] {
-    const Vec3f mapped = mappedNormal(*s.maps, sp, wo, footprint);
+  if (s.normalMaps) [[unlikely]] {
+    const Vec3f mapped = mappedNormal(*s.normalMaps, sp, wo, footprint);
     at.n = dot(sp.ng, wo) < 0 ? -mapped : mapped;  // the viewer's side, as shadingNormalFacing
   }
   at.wo = wo;
   at.footprint = footprint;
   at.kd = s.kd.eval(sp, wo, footprint, worldOrigin);
   at.ks = s.ks.eval(sp, wo, footprint, worldOrigin);
+  at.exponent = s.exponent;
+  at.gloss = s.gloss;
+  if (s.maps && s.maps->metallicRoughness) [[unlikely]] {
+    splitMetal(*s.maps, sp, at);
+    return at;
+  }
   at.km = s.km.eval(sp, wo, footprint, worldOrigin);
   return at;
 }
@@ -80,7 +100,9 @@ struct SurfacePoint {
                                                      const ShadingPoint& sp,
                                                      const Rgb& ambientLight,
                                                      const Vec3d& worldOrigin) {
-  const Rgb ka = s.ambientFollowsDiffuse ? at.kd : s.ka.eval(sp, at.wo, at.footprint, worldOrigin);
+  Rgb ka = s.ambientFollowsDiffuse ? at.kd : s.ka.eval(sp, at.wo, at.footprint, worldOrigin);
+  if (s.maps) [[unlikely]]
+    ka = ka * ambientOcclusion(*s.maps, sp, at);
   Rgb c = ka * ambientLight;
   if (s.emits() && (s.emissionSides == EmissionSides::Both || dot(at.wo, sp.ng) > 0))
     c += s.ke.eval(sp, at.wo, at.footprint, worldOrigin);
@@ -113,7 +135,7 @@ inline float specularPower(float cosine, float exponent) {
   const float cosine = s.specularModel == SpecularModel::BlinnPhong
                            ? dot(at.n, normalize(wi + at.wo))
                            : dot(reflect(-wi, at.n), at.wo);
-  return specularPower(std::max(0.0f, cosine), s.exponent);
+  return specularPower(std::max(0.0f, cosine), at.exponent);
 }
 
 // Whether light arriving along unit wi reaches the side of the surface the viewer sees: from
@@ -133,7 +155,7 @@ inline float specularPower(float cosine, float exponent) {
   if (cosL <= 0) return {};
   Rgb f = at.kd * cosL;                                         // diffuse: Lambert's cosine
   if (!at.ks.isBlack()) f += at.ks * highlightLobe(s, at, wi);  // the highlight
-  if (s.maps) [[unlikely]]
+  if (s.normalMaps) [[unlikely]]
     f = f * bumpShadowing(sp.shadingNormalFacing(at.wo), at.n, wi);
   return f;
 }

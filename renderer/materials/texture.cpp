@@ -40,8 +40,11 @@ Rgb ColorTexture::patternAt(const TextureLookup& at) const {
 ImageFootprint imageFootprint(const ShadingPoint& sp, const Vec3f& wo, float width,
                               const UvTransform& transform) {
   ImageFootprint f;
-  const Vec2f uv = transform.point(sp.uv);
+  const bool second = transform.uvSet == 1;
+  const Vec2f uv = transform.point(second ? sp.uv1 : sp.uv);
   f.st = {uv.x, 1 - uv.y};
+  f.wrapS = transform.wrapS;
+  f.wrapT = transform.wrapT;
   // The footprint's axes on the surface: across the ray (length `width`), and along the ray's
   // trace on the surface, stretched by 1/cos θ (capped: at grazing angles OpenImageIO caps the
   // anisotropy anyway).
@@ -60,11 +63,13 @@ ImageFootprint imageFootprint(const ShadingPoint& sp, const Vec3f& wo, float wid
   const Vec3f axisB = along * (width / std::max(cosTheta, 1.0f / 32));
   // Solve du·dpdu + dv·dpdv = axis in the least-squares sense (the tangents need not be
   // orthogonal): the 2×2 normal equations.
-  const float a = dot(sp.dpdu, sp.dpdu), b = dot(sp.dpdu, sp.dpdv), c = dot(sp.dpdv, sp.dpdv);
+  const Vec3f& dpdu = second ? sp.dpdu1 : sp.dpdu;
+  const Vec3f& dpdv = second ? sp.dpdv1 : sp.dpdv;
+  const float a = dot(dpdu, dpdu), b = dot(dpdu, dpdv), c = dot(dpdv, dpdv);
   const float det = a * c - b * b;
   const auto toUv = [&](const Vec3f& axis) -> Vec2f {
     if (!(std::fabs(det) > 1e-20f)) return {0, 0};  // no tangents: filtered as a point
-    const float pu = dot(sp.dpdu, axis), pv = dot(sp.dpdv, axis);
+    const float pu = dot(dpdu, axis), pv = dot(dpdv, axis);
     const Vec2f d = transform.vector({(c * pu - b * pv) / det, (a * pv - b * pu) / det});
     return {d.x, -d.y};
   };

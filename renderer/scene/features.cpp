@@ -24,6 +24,7 @@ std::vector<std::pair<const char*, bool>> table(const Features& f) {
           {"absorption", f.absorption},
           {"textures", f.textures},
           {"image_textures", f.surfaceCoordinates},
+          {"second_uv_set", f.secondUvSet},
           {"vertex_colors", f.vertexColors},
           {"normal_bump_maps", f.normalMaps},
           {"opacity_cutouts", f.cutouts},
@@ -66,11 +67,25 @@ Features computeFeatures(const Scene& scene) {
     f.gloss |= s.reflectsCoherently() && s.gloss > 0;
     f.emission |= s.emits();
     f.cutouts |= m.cutout.active();
-    f.normalMaps |= s.maps != nullptr;
+    if (s.normalMaps) {
+      f.normalMaps = f.surfaceCoordinates = true;
+      f.secondUvSet |= s.normalMaps->normal.uvTransform.uvSet == 1 ||
+                       s.normalMaps->bump.uvTransform.uvSet == 1;
+    }
     for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke}) {
       f.textures |= t->pattern != TexturePattern::Constant;
       f.surfaceCoordinates |= t->pattern == TexturePattern::Image;
+      f.secondUvSet |= t->pattern == TexturePattern::Image && t->uvTransform.uvSet == 1;
       f.vertexColors |= t->pattern == TexturePattern::VertexColor || t->timesVertexColor;
+    }
+    if (s.maps) {
+      for (const auto& [image, uv] :
+           {std::pair{s.maps->metallicRoughness.get(), &s.maps->metallicRoughnessUv},
+            std::pair{s.maps->occlusion.get(), &s.maps->occlusionUv}})
+        if (image) {
+          f.textures = f.surfaceCoordinates = true;
+          f.secondUvSet |= uv->uvSet == 1;
+        }
     }
     if (m.refracts()) {
       f.refraction = f.reflection = true;

@@ -28,6 +28,8 @@ struct Features {
   // Some image texture: hits compute their (u, v) and tangents (ShadingPoint::uv), and rays
   // carry the width of their pixel's footprint to filter the image over.
   bool surfaceCoordinates = false;
+  // Some image texture reads a mesh's second coordinate set (ShadingPoint::uv1).
+  bool secondUvSet = false;
   bool vertexColors = false;  // some slot multiplies by a mesh's vertex colours
   // Some material has a normal or bump map: hits compute their surface coordinates and tangent
   // frame (ShadingPoint::tangent), and meshes under a normal map carry vertex tangents.

@@ -248,6 +248,11 @@ void Scene::surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p
   sp.dpdv = worldFromObject ? worldFromObject->vector(dpdv) : dpdv;
   if (features.normalMaps) [[unlikely]]
     tangentFrame(g, hit, worldFromObject, sp);
+  if (!features.secondUvSet) [[likely]]
+    return;
+  sp.uv1 = uvAt(g, hit, p, time, &dpdu, &dpdv, 1);
+  sp.dpdu1 = worldFromObject ? worldFromObject->vector(dpdu) : dpdu;
+  sp.dpdv1 = worldFromObject ? worldFromObject->vector(dpdv) : dpdv;
 }
 
 void Scene::tangentFrame(const Geometry& g, const Hit& hit, const Transform* worldFromObject,
@@ -271,7 +276,7 @@ void Scene::tangentFrame(const Geometry& g, const Hit& hit, const Transform* wor
 }
 
 Vec2f Scene::uvAt(const Geometry& g, const Hit& hit, const Vec3f& p, float time, Vec3f* dpdu,
-                  Vec3f* dpdv) const {
+                  Vec3f* dpdv, int set) const {
   Vec2f uv;
   Vec3f tu, tv;  // dp/du, dp/dv
   switch (g.kind) {
@@ -279,8 +284,9 @@ Vec2f Scene::uvAt(const Geometry& g, const Hit& hit, const Vec3f& p, float time,
       const TriangleMesh& m = meshes[g.index];
       Vec2f uv0{0, 0}, uv1{1, 0}, uv2{0, 1};  // a mesh without coordinates: the barycentrics
       if (m.hasUvs()) {
+        const std::vector<Vec2f>& uvs = set == 1 && !m.uvs1.empty() ? m.uvs1 : m.uvs;
         const uint32_t* tri = &m.indices[3 * size_t(hit.primId)];
-        uv0 = m.uvs[tri[0]], uv1 = m.uvs[tri[1]], uv2 = m.uvs[tri[2]];
+        uv0 = uvs[tri[0]], uv1 = uvs[tri[1]], uv2 = uvs[tri[2]];
       }
       const float b0 = 1 - hit.u - hit.v;
       uv = {b0 * uv0.x + hit.u * uv1.x + hit.v * uv2.x, b0 * uv0.y + hit.u * uv1.y + hit.v * uv2.y};
@@ -338,7 +344,7 @@ Vec2f Scene::uvAt(const Geometry& g, const Hit& hit, const Vec3f& p, float time,
 }
 
 Vec2f Scene::textureCoordinates(const Geometry& g, const Ray& ray, float t, uint32_t prim, float u,
-                                float v) const {
+                                float v, int set) const {
   const Hit hit{t, u, v, 0, prim, kInvalidId};
   // The point shadingPoint would find; a mesh's and a quad's (u, v) come from the hit alone.
   Vec3f p, unusedError;
@@ -354,7 +360,7 @@ Vec2f Scene::textureCoordinates(const Geometry& g, const Ray& ray, float t, uint
       projectOntoPlane(onRay, planes[g.index].point, planes[g.index].normal, p, unusedError);
     }
   }
-  return uvAt(g, hit, p, ray.time, nullptr, nullptr);
+  return uvAt(g, hit, p, ray.time, nullptr, nullptr, set);
 }
 
 Vec3f Scene::smoothNormal(const TriangleMesh& m, const Hit& hit, const Transform* worldFromObject,

@@ -154,7 +154,8 @@ class Scene {
   // the holes are.
   bool cutAway(const Geometry& g, const Ray& ray, float t, uint32_t prim, float u, float v) const {
     return hasCutout(g) &&
-           materials[g.materialId].cutout.holeAt(textureCoordinates(g, ray, t, prim, u, v));
+           materials[g.materialId].cutout.holeAt(textureCoordinates(
+               g, ray, t, prim, u, v, materials[g.materialId].cutout.uvTransform.uvSet));
   }
   // Whether g's material has a cut-out (only then do backends test its hits against it).
   bool hasCutout(const Geometry& g) const {
@@ -204,13 +205,14 @@ class Scene {
   // sp's tangent frame for normal maps (ShadingPoint::tangent), after its tangents dp/du, dp/dv.
   void tangentFrame(const Geometry& g, const Hit& hit, const Transform* worldFromObject,
                     ShadingPoint& sp) const;
-  // The (u, v) of a hit at object-space point p, and the object-space tangents dp/du, dp/dv
-  // where `dpdu` is not null.
+  // The (u, v) of a hit at object-space point p in the coordinate set `set` (1: a mesh's
+  // second set, where it has one; every other surface has only the first), and the object-space
+  // tangents dp/du, dp/dv where `dpdu` is not null.
   Vec2f uvAt(const Geometry& g, const Hit& hit, const Vec3f& p, float time, Vec3f* dpdu,
-             Vec3f* dpdv) const;
+             Vec3f* dpdv, int set = 0) const;
   // The (u, v) of a candidate hit (cutAway's arguments), without a ShadingPoint.
   Vec2f textureCoordinates(const Geometry& g, const Ray& ray, float t, uint32_t prim, float u,
-                           float v) const;
+                           float v, int set) const;
   // The interpolated vertex normal at a hit on a smooth mesh, in world space, unit, on the side
   // of the geometric normal `ng` (which secondary rays leave from: no shadow terminator).
   static Vec3f smoothNormal(const TriangleMesh& m, const Hit& hit, const Transform* worldFromObject,

@@ -153,11 +153,11 @@ TEST(NormalMaps, ABumpMapRampTiltsTheNormalByItsSlope) {
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 64; ++x)
       for (int c = 0; c < 3; ++c) codes.push_back(uint16_t(std::lround((x + 0.5) / 64 * 65535)));
-  writeRgbImage((test::tempDir() / "ramp.png").string(), 64, 4, 16, codes);
+  writeRgbImage((test::tempDir() / "bump_ramp.png").string(), 64, 4, 16, codes);
   const std::string light = "[0.5, -0.8660254, 0]";
   const Film plain = render(squareScene("", light), "plain_bump.json");
   const Film bumped =
-      render(squareScene(R"(, "bump_map": {"image": "ramp.png", "scale": 1.1547005})", light),
+      render(squareScene(R"(, "bump_map": {"image": "bump_ramp.png", "scale": 1.1547005})", light),
              "bumped.json");
   // Pixels 2 … 5 of 8 across: s in (0.25, 0.75), away from the ramp's wrap at s = 0 / 1.
   for (int x = 2; x <= 5; ++x)
@@ -230,7 +230,7 @@ TEST(NormalMaps, GltfTangentsAreReadWithTheirBitangentSign) {
       EXPECT_EQ(t.sign, w);  // w's sign survives Assimp's bitangent = normal × xyz · w
     }
     // normalTexture with its scale, read as a normal map.
-    const auto& maps = file.materials[0].surface.maps;
+    const auto& maps = file.materials[0].surface.normalMaps;
     ASSERT_TRUE(maps && maps->normal.image);
     EXPECT_EQ(maps->normal.scale, 0.5f);
   }
@@ -245,7 +245,7 @@ TEST(NormalMaps, MtlNormAndBumpWithBmBecomeNormalAndBumpMaps) {
                       "mtllib bumped.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
                       "usemtl b\nf 1/1 2/2 3/3\n");
   const MeshFile file = loadMeshFile(obj);
-  const auto& maps = file.materials[0].surface.maps;
+  const auto& maps = file.materials[0].surface.normalMaps;
   ASSERT_TRUE(maps);
   ASSERT_TRUE(maps->normal.image);
   EXPECT_NE(maps->normal.image->path().find("mtl_n.png"), std::string::npos);
@@ -258,7 +258,7 @@ TEST(NormalMaps, MtlNormAndBumpWithBmBecomeNormalAndBumpMaps) {
       test::writeTemp("bumped2.obj",
                       "mtllib bumped2.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
                       "usemtl b\nf 1/1 2/2 3/3\n");
-  const auto& maps2 = loadMeshFile(obj2).materials[0].surface.maps;
+  const auto& maps2 = loadMeshFile(obj2).materials[0].surface.normalMaps;
   ASSERT_TRUE(maps2 && maps2->bump.image);
   EXPECT_EQ(maps2->bump.scale, 2.0f);
 }

@@ -88,12 +88,13 @@ TEST(GltfScene, RendersWithItsOwnCameraLightAndBaseColour) {
   const std::string file = test::writeTemp("quad_render.gltf", quadScene(kNodes));
   // Seen head on by "front" (the first camera), lit head on by π lux, which Glint takes as
   // intensity 1: k_d = base colour, plus the dielectric highlight k_s = 0.04 with exponent 1
-  // (roughness 1) at n·h = 1, and no ambient term (k_a = 0 for glTF materials). The centre
-  // pixel's view is 0.2 mrad off the axis: n·h differs from 1 by under 1e-7.
+  // (roughness 1) at n·h = 1, plus the ambient term k_a·0.1 (a glTF material's k_a is its
+  // diffuse colour, which its occlusion texture would darken). The centre pixel's view is
+  // 0.2 mrad off the axis: n·h differs from 1 by under 1e-7.
   const std::array<double, 3> px = centre(file, "");
-  EXPECT_NEAR(px[0], 0.84, 1e-5);
-  EXPECT_NEAR(px[1], 0.24, 1e-5);
-  EXPECT_NEAR(px[2], 0.14, 1e-5);
+  EXPECT_NEAR(px[0], 0.8 + 0.04 + 0.08, 1e-5);
+  EXPECT_NEAR(px[1], 0.2 + 0.04 + 0.02, 1e-5);
+  EXPECT_NEAR(px[2], 0.1 + 0.04 + 0.01, 1e-5);
   // "side" sees the quad edge on: its centre pixel's ray runs in the quad's plane and shows
   // the background (the default scene's, 0.18, 0.18, 0.2).
   const std::array<double, 3> side = centre(file, "side");

@@ -132,16 +132,23 @@ TEST(GltfTextureTransform, MalformedOrAbsurdValuesAreWarnedAboutAndIgnored) {
   EXPECT_TRUE(isIdentity(t));
 }
 
-TEST(GltfTextureTransform, ASecondTextureCoordinateSetIsWarnedAboutAndTheTransformKept) {
-  // Glint reads TEXCOORD_0 only: texCoord 1 is ignored, the offset applies to TEXCOORD_0
-  // (offset (0.25, 0) → Glint's offset (0.25, 1 − 0 − 1) = (0.25, 0)).
+TEST(GltfTextureTransform, ItsTexCoordChoosesTheSetAndAThirdSetIsWarnedAbout) {
+  // The extension's texCoord replaces the textureInfo's: 1 reads TEXCOORD_1 quietly, with the
+  // offset (0.25, 0) → Glint's offset (0.25, 1 − 0 − 1) = (0.25, 0).
   UvTransform t;
-  const std::string warning = warningOf(R"({"offset": [0.25, 0], "texCoord": 1})", &t);
-  EXPECT_NE(warning.find("texCoord 1 is not read (Glint reads TEXCOORD_0 only)"), std::string::npos)
-      << warning;
+  EXPECT_EQ(warningOf(R"({"offset": [0.25, 0], "texCoord": 1})", &t), "");
+  EXPECT_EQ(t.uvSet, 1);
   EXPECT_FLOAT_EQ(t.offset.x, 0.25f);
   EXPECT_FLOAT_EQ(t.offset.y, 0.0f);
-  EXPECT_EQ(warningOf(R"({"offset": [0.25, 0], "texCoord": 0})"), "");
+  EXPECT_EQ(warningOf(R"({"offset": [0.25, 0], "texCoord": 0})", &t), "");
+  EXPECT_EQ(t.uvSet, 0);
+  // Glint reads two sets: texCoord 2 is ignored, the transform kept on the textureInfo's set.
+  const std::string warning = warningOf(R"({"offset": [0.25, 0], "texCoord": 2})", &t);
+  EXPECT_NE(warning.find("texCoord 2 is not read (Glint reads TEXCOORD_0 and TEXCOORD_1)"),
+            std::string::npos)
+      << warning;
+  EXPECT_EQ(t.uvSet, 0);
+  EXPECT_FLOAT_EQ(t.offset.x, 0.25f);
 }
 
 // A 32 × 32 RGB image of 4 × 4 regions of 8 × 8 texels, region (column c, row r) counted from

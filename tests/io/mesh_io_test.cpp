@@ -177,10 +177,11 @@ TEST(MeshFile, AFaceWithoutVerticesIsRefused) {
 
 TEST(MeshFile, GltfIsReducedToItsGeometryBeforeAssimpReadsIt) {
   // Skins, animations, cameras, morph targets and vertex attributes other than positions,
-  // normals and first texture coordinates never reach Assimp: its glTF 2 reader dereferenced a
-  // null pointer for a skin without inverseBindMatrices (SEGV;
+  // normals and the first two texture coordinate sets never reach Assimp: its glTF 2 reader
+  // dereferenced a null pointer for a skin without inverseBindMatrices (SEGV;
   // tests/fuzz/regressions-mesh/gltf-skin-*.bin). Materials reach it as factors and their base
-  // colour and emissive textures (by index alone); normal maps and other textures are dropped.
+  // colour, metallic-roughness, occlusion and emissive textures (by index alone); normal maps
+  // and other textures are dropped.
   // (This file's base colour texture names a texture that does not exist, so it goes too.)
   const std::string in = R"({"asset": {"version": "2.0"}, "scene": 0,
     "scenes": [{"nodes": [0]}], "skins": [{"joints": [0]}], "animations": [], "cameras": [{}],
@@ -197,7 +198,8 @@ TEST(MeshFile, GltfIsReducedToItsGeometryBeforeAssimpReadsIt) {
   EXPECT_EQ(nlohmann::json::parse(gltfSubset("m.gltf", in)), nlohmann::json::parse(R"({
     "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
     "nodes": [{"mesh": 0, "translation": [1, 2, 3]}],
-    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 5},
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 5,
+                                               "TEXCOORD_1": 6},
                                 "indices": 3, "material": 0}]}],
     "materials": [{"name": "m", "pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1]},
                    "extensions": {"KHR_materials_volume": {"attenuationDistance": 2}}}],
