@@ -285,9 +285,9 @@ std::string gltfSubset(const std::string& path, const std::string& text,
     if (const auto info = object.find(key); info != object.end()) keepOnly(*info, {"index"});
   };
   forEachIn(doc, "materials", [&](json& material) {
-    keepOnly(material, {"name", "pbrMetallicRoughness", "emissiveFactor", "emissiveTexture",
-                        "occlusionTexture", "alphaMode", "alphaCutoff", "extensions",
-                        "normalTexture"});
+    keepOnly(material,
+             {"name", "pbrMetallicRoughness", "emissiveFactor", "emissiveTexture",
+              "occlusionTexture", "alphaMode", "alphaCutoff", "extensions", "normalTexture"});
     if (!material.is_object()) return;
     keepTextureInfo(material, "emissiveTexture");
     keepTextureInfo(material, "occlusionTexture");

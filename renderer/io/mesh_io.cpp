@@ -322,8 +322,7 @@ class FaceNames {
   // A mesh's name, or "" where Assimp gave it its material's: the OBJ reader names a mesh by
   // its `g` group, else by the `usemtl` that started it, which names no object.
   static std::string meshName(const aiScene& s, const aiMesh& m) {
-    if (m.mMaterialIndex < s.mNumMaterials &&
-        s.mMaterials[m.mMaterialIndex]->GetName() == m.mName)
+    if (m.mMaterialIndex < s.mNumMaterials && s.mMaterials[m.mMaterialIndex]->GetName() == m.mName)
       return "";
     return usableName(m.mName);
   }

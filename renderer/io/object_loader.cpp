@@ -181,7 +181,8 @@ void hashTextureFiles(SceneBuilder& b, const std::vector<Material>& materials) {
     for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke})
       if (t->image) paths.insert(t->image->path());
     if (m.cutout.image) paths.insert(m.cutout.image->path());
-    if (s.normalMaps && s.normalMaps->normal.image) paths.insert(s.normalMaps->normal.image->path());
+    if (s.normalMaps && s.normalMaps->normal.image)
+      paths.insert(s.normalMaps->normal.image->path());
     if (s.normalMaps && s.normalMaps->bump.image) paths.insert(s.normalMaps->bump.image->path());
     if (s.maps)
       for (const auto* image : {s.maps->metallicRoughness.get(), s.maps->occlusion.get()})

@@ -69,8 +69,8 @@ Features computeFeatures(const Scene& scene) {
     f.cutouts |= m.cutout.active();
     if (s.normalMaps) {
       f.normalMaps = f.surfaceCoordinates = true;
-      f.secondUvSet |= s.normalMaps->normal.uvTransform.uvSet == 1 ||
-                       s.normalMaps->bump.uvTransform.uvSet == 1;
+      f.secondUvSet |=
+          s.normalMaps->normal.uvTransform.uvSet == 1 || s.normalMaps->bump.uvTransform.uvSet == 1;
     }
     for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke}) {
       f.textures |= t->pattern != TexturePattern::Constant;
