@@ -19,7 +19,7 @@ enum class Aov : uint32_t {
   ObjectId = 16,   // IndexOB.X: objects[] index + 1, 0 = background (float)
   Direct = 32,     // local shading at the first hit (ambient + lights)
   Indirect = 64,   // everything else: reflection and refraction
-  Lights = 128,    // direct light per light source (light0, light1, ...)
+  Lights = 128,    // direct light per light source (light_NAME, or lightK if unnamed)
   Variance = 256,  // variance of the beauty pixel estimate
   // Cryptomatte object and material layers: ranked (ID, coverage) pairs of the first hits
   Cryptomatte = 512,
