@@ -9,7 +9,7 @@ glint_ensure_packages
 # Configures (every time, so the options are always these) and builds one sanitized tree.
 glint_sanitized_build() {
   local dir="$1" sanitizers="$2"
-  cmake -S "$GLINT_ROOT" -B "$dir" -DCMAKE_CXX_COMPILER=clang++ \
+  cmake -S "$GLINT_ROOT" -B "$dir" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
     -DGLINT_SANITIZE="$sanitizers" >/dev/null
   GLINT_BUILD="$dir" glint_build

@@ -258,7 +258,8 @@ TEST(NormalMaps, MtlNormAndBumpWithBmBecomeNormalAndBumpMaps) {
       test::writeTemp("bumped2.obj",
                       "mtllib bumped2.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n"
                       "usemtl b\nf 1/1 2/2 3/3\n");
-  const auto& maps2 = loadMeshFile(obj2).materials[0].surface.normalMaps;
+  const std::shared_ptr<const ShadingMaps> maps2 =
+      loadMeshFile(obj2).materials[0].surface.normalMaps;
   ASSERT_TRUE(maps2 && maps2->bump.image);
   EXPECT_EQ(maps2->bump.scale, 2.0f);
 }
