@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "app/scene_source.h"
+#include "bounded_render.h"
 #include "collada_util.h"
 #include "core/error.h"
 #include "film/exr_output.h"
@@ -21,27 +22,9 @@ namespace fs = std::filesystem;
 
 const fs::path kModels = "/usr/share/assimp/models";
 
-// AddressSanitizer reserves terabytes of address space for its shadow: no memory bound there.
-constexpr const char* kMemoryLimit = test::kAddressSanitizer ? "" : "ulimit -v 4000000; ";
-
-struct Outcome {
-  int status = -1;  // exit status; 124 or 137 for a hang, 128 + N for signal N
-  std::string output;
-};
-
-// `glint render SCENE` of a tiny frame, in a shell with `timeout` and `ulimit -v`.
-Outcome renderBounded(const std::string& scene, const std::string& args = "") {
-  const std::string out = (test::tempDir() / "assimp-format.exr").string();
-  const std::string log = (test::tempDir() / "assimp-format.log").string();
-  const std::string cmd = "bash -c '" + std::string(kMemoryLimit) + "exec timeout -s KILL 20 " +
-                          std::string(GLINT_BINARY) + " render " + scene + " -o " + out +
-                          " --width 8 --height 8 --spp 1 --quiet " + args + "' > " + log + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  Outcome o;
-  o.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  std::ifstream in(log);
-  o.output.assign(std::istreambuf_iterator<char>(in), {});
-  return o;
+// `glint render SCENE` of an 8×8 frame, bounded in time and memory.
+test::BoundedOutcome renderBounded(const std::string& scene, const std::string& args = "") {
+  return test::renderBounded(scene, 8, args);
 }
 
 std::string readBytes(const fs::path& path) {
@@ -152,7 +135,7 @@ TEST(AssimpFormats, TruncatedAndGarbledFilesEndInACleanError) {
       const std::string path = test::writeTemp(
           "cut" + std::to_string(int(keep * 10)) + "-" + name,
           name == "hang.dae" ? bytes : bytes.substr(0, size_t(keep * double(bytes.size()))));
-      const Outcome o = renderBounded(path);
+      const test::BoundedOutcome o = renderBounded(path);
       EXPECT_EQ(o.status, 2) << path << "\n" << o.output;
       EXPECT_NE(o.output.find(path), std::string::npos) << o.output;
     }

@@ -6,6 +6,7 @@
 
 #include <filesystem>
 
+#include "bounded_render.h"
 #include "film/exr_output.h"
 #include "test_util.h"
 
@@ -16,37 +17,18 @@ namespace fs = std::filesystem;
 
 const fs::path kModels = "/usr/share/assimp/models";
 
-// AddressSanitizer reserves terabytes of address space for its shadow, so under it the memory
-// bound is left out (its own allocator limits still end a runaway allocation).
-constexpr const char* kMemoryLimit = test::kAddressSanitizer ? "" : "ulimit -v 4000000; ";
-
-struct Outcome {
-  int status = -1;  // exit status; 124 or 137 for a hang, 128 + N for signal N
-  std::string output;
-};
-
-// Renders a 4×4 frame of a scene holding `mesh`, in a shell with `timeout` and `ulimit -v`.
-Outcome renderMesh(const fs::path& mesh) {
+// Renders a 4×4 frame of a scene holding `mesh`, bounded in time and memory.
+test::BoundedOutcome renderMesh(const fs::path& mesh) {
   const std::string scene = test::writeTemp(
       "assimp-model.json",
       R"({"camera": {"eye": [0,0,5], "look_at": [0,0,0]}, "materials": {"m": {"type": "phong"}},
           "objects": [{"type": "mesh", "file": ")" +
           mesh.string() + R"(", "material": "m"}]})");
-  const std::string out = (test::tempDir() / "assimp-model.exr").string();
-  const std::string log = (test::tempDir() / "assimp-model.log").string();
-  const std::string cmd = "bash -c '" + std::string(kMemoryLimit) + "exec timeout -s KILL 20 " +
-                          std::string(GLINT_BINARY) + " render " + scene + " -o " + out +
-                          " --width 4 --height 4 --spp 1 --quiet' > " + log + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  Outcome o;
-  o.status = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-  std::ifstream in(log);
-  o.output.assign(std::istreambuf_iterator<char>(in), {});
-  return o;
+  return test::renderBounded(scene, 4);
 }
 
 void expectImageOrCleanError(const fs::path& mesh) {
-  const Outcome o = renderMesh(mesh);
+  const test::BoundedOutcome o = renderMesh(mesh);
   EXPECT_TRUE(o.status == 0 || o.status == 2) << mesh << ": exit " << o.status << "\n" << o.output;
   if (o.status == 2) {
     EXPECT_NE(o.output.find(mesh.string()), std::string::npos) << mesh << ": " << o.output;
@@ -81,7 +63,7 @@ TEST(AssimpModels, EveryBrokenGltfGivesAnImageOrACleanError) {
 TEST(AssimpModels, OutOfMemoryOffIsRefusedByItsFormat) {
   if (!fs::exists(kModels / "invalid/OutOfMemory.off"))
     GTEST_SKIP() << "assimp-testmodels is not installed; tools/lib.sh installs it";
-  const Outcome o = renderMesh(kModels / "invalid/OutOfMemory.off");
+  const test::BoundedOutcome o = renderMesh(kModels / "invalid/OutOfMemory.off");
   EXPECT_EQ(o.status, 2);
   EXPECT_NE(o.output.find("Glint reads OBJ (.obj), PLY (.ply), glTF 2.0 (.gltf, .glb), Collada "
                           "(.dae), FBX (.fbx), 3DS (.3ds), AC3D (.ac), STL (.stl), Milkshape 3D "
