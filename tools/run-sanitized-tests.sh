@@ -10,8 +10,8 @@ glint_ensure_packages
 glint_sanitized_build() {
   local dir="$1" sanitizers="$2"
   # A tree configured before Glint compiled C (MikkTSpace) has gcc as its C compiler; CMake
-  # cannot switch compilers in place, so such a cache is started afresh.
-  grep -qs '^CMAKE_C_COMPILER:.*clang' "$dir/CMakeCache.txt" || rm -f "$dir/CMakeCache.txt"
+  # cannot switch compilers in place (it drops the -D options), so such a tree is configured afresh.
+  grep -qs '^CMAKE_C_COMPILER:.*clang' "$dir/CMakeCache.txt" || rm -rf "$dir/CMakeCache.txt" "$dir/CMakeFiles"
   cmake -S "$GLINT_ROOT" -B "$dir" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
     -DGLINT_SANITIZE="$sanitizers" >/dev/null
