@@ -40,8 +40,13 @@ std::string writeConstantImage(const std::string& name, Rgb c) {
 // A 2 × 2 square in the plane y = 0 facing +y, u along +x and v along −z, seen from above by an
 // orthographic camera (the square fills the 8 × 8 frame, image up = −z = +v), lit by a unit
 // directional light travelling along `lightTravel`; kd 1, nothing else. `maps`: the material's
-// extra keys.
-std::string squareScene(const std::string& maps, const std::string& lightTravel) {
+// extra keys; `geometry`: the scene's objects (and groups) in place of the quad.
+constexpr const char* kSquareQuad =
+    R"("objects": [{"type": "quad", "corner": [-1, 0, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2],
+                 "material": "m"}])";
+
+std::string squareScene(const std::string& maps, const std::string& lightTravel,
+                        const std::string& geometry = kSquareQuad) {
   return R"({
     "render": {"width": 8, "height": 8, "spp": 1, "sampler": "regular"},
     "camera": {"type": "orthographic", "eye": [0, 5, 0], "look_at": [0, 0, 0], "up": [0, 0, -1],
@@ -49,9 +54,7 @@ std::string squareScene(const std::string& maps, const std::string& lightTravel)
     "materials": {"m": {"type": "phong", "kd": [1, 1, 1], "ka": [0, 0, 0])" +
          maps + R"(}},
     "lights": [{"type": "directional", "direction": )" +
-         lightTravel + R"(, "intensity": [1, 1, 1]}],
-    "objects": [{"type": "quad", "corner": [-1, 0, 1], "edge1": [2, 0, 0], "edge2": [0, 0, -2],
-                 "material": "m"}]})";
+         lightTravel + R"(, "intensity": [1, 1, 1]}], )" + geometry + "}";
 }
 
 // The texel that encodes tangent-space normal (x, y, z): (m + 1) / 2.
@@ -123,18 +126,11 @@ TEST(NormalMaps, AMirroringInstanceKeepsGreenTowardsPlusV) {
   // sign left as it was would lean the normal 60° from the light (0.577).
   writeConstantImage("tilt_v_mirror.png", encoded(0, 0.5, kCos30));
   const auto scene = [](const std::string& maps) {
-    return R"({
-    "render": {"width": 8, "height": 8, "spp": 1, "sampler": "regular"},
-    "camera": {"type": "orthographic", "eye": [0, 5, 0], "look_at": [0, 0, 0], "up": [0, 0, -1],
-               "height": 2},
-    "materials": {"m": {"type": "phong", "kd": [1, 1, 1], "ka": [0, 0, 0])" +
-           maps + R"(}},
-    "lights": [{"type": "directional", "direction": [0, -0.8660254, 0.5],
-                "intensity": [1, 1, 1]}],
+    return squareScene(maps, "[0, -0.8660254, 0.5]", R"(
     "groups": {"square": [{"type": "mesh", "material": "m",
       "positions": [[-1, 0, 1], [1, 0, 1], [1, 0, -1], [-1, 0, -1]],
       "uvs": [[0, 0], [1, 0], [1, 1], [0, 1]], "indices": [[0, 1, 2], [0, 2, 3]]}]},
-    "objects": [{"type": "instance", "group": "square", "transform": {"scale": [-1, 1, 1]}}]})";
+    "objects": [{"type": "instance", "group": "square", "transform": {"scale": [-1, 1, 1]}}])");
   };
   const Film plain = render(scene(""), "mirror_plain.json");
   const Film mapped =
