@@ -3,12 +3,12 @@
 64 x 64 RGBA lattice of wood-coloured bars (alpha 1) around 4 x 4 round holes (alpha 0), with
 the holes' rims anti-aliased as an image editor would (alpha between 0 and 1 over one texel).
 
-Usage: tools/make-cutout-texture.py [OUT.png]   (pure Python: zlib and struct only)
+Usage: tools/make-cutout-texture.py [OUT.png]   (pure Python; its PNGs by tools/png_writer.py)
 """
 import math
-import struct
 import sys
-import zlib
+
+from png_writer import png
 
 SIZE, CELLS, RADIUS = 64, 4, 5.5  # texels, holes per side, hole radius in texels
 
@@ -22,18 +22,8 @@ def texel(x, y):
     return rgb + [round(255 * alpha)]
 
 
-def png(width, height, rows):
-    def chunk(kind, data):
-        body = kind + data
-        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
-    raw = b"".join(b"\0" + bytes(row) for row in rows)
-    header = struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)  # 8-bit RGBA
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) +
-            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
-
-
 if __name__ == "__main__":
     out = sys.argv[1] if len(sys.argv) > 1 else "scenes/assets/cutouts/lattice.png"
     rows = [[v for x in range(SIZE) for v in texel(x, y)] for y in range(SIZE)]
     with open(out, "wb") as f:
-        f.write(png(SIZE, SIZE, rows))
+        f.write(png(SIZE, SIZE, rows, channels=4))

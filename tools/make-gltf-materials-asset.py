@@ -10,7 +10,7 @@ PNG textures:
   - decal: a base colour checker read through TEXCOORD_1 (texCoord 1), which tiles it 2 x 2,
     while TEXCOORD_0 spans the tile once.
 
-Usage: tools/make-gltf-materials-asset.py [OUT_DIR]   (pure Python: zlib, struct, json, base64)
+Usage: tools/make-gltf-materials-asset.py [OUT_DIR]   (pure Python; its PNGs by tools/png_writer.py)
 """
 import base64
 import json
@@ -18,19 +18,10 @@ import math
 import os
 import struct
 import sys
-import zlib
+
+from png_writer import png
 
 SIZE = 32  # texels per side of each texture
-
-
-def png(width, height, rows):
-    def chunk(kind, data):
-        body = kind + data
-        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
-    raw = b"".join(b"\0" + bytes(row) for row in rows)
-    header = struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)  # 8-bit RGB
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) +
-            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
 def image(texel):

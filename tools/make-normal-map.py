@@ -5,13 +5,13 @@ the height of 4 x 4 square tiles with bevelled edges and a mortar groove between
 convention (+X right, +Y up the image, +Z out of the surface; texel = (n + 1) / 2), so the two
 maps of one relief can be compared side by side.
 
-Usage: tools/make-normal-map.py [OUT_DIR]   (pure Python: zlib and struct only)
+Usage: tools/make-normal-map.py [OUT_DIR]   (pure Python; its PNGs by tools/png_writer.py)
 """
 import math
 import os
-import struct
 import sys
-import zlib
+
+from png_writer import png
 
 SIZE, TILES, BEVEL, GROOVE = 64, 4, 3.0, 1.0  # texels, tiles per side, bevel and groove widths
 DEPTH = 2.0  # texels of relief per unit of height, for the normal map's slopes
@@ -31,16 +31,6 @@ def normal(x, y):
     n = (-dhdu, -dhdv, 1.0)
     length = math.sqrt(sum(c * c for c in n))
     return [round(255 * (c / length + 1) / 2) for c in n]
-
-
-def png(width, height_, rows):
-    def chunk(kind, data):
-        body = kind + data
-        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body))
-    raw = b"".join(b"\0" + bytes(row) for row in rows)
-    header = struct.pack(">IIBBBBB", width, height_, 8, 2, 0, 0, 0)  # 8-bit RGB
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) +
-            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
 if __name__ == "__main__":
