@@ -12,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <variant>
-#include <vector>
 
 #include "core/rgb.h"
 #include "core/sampling.h"
@@ -118,13 +117,6 @@ struct LightSample {
   Vec3f target;  // the sampled point on the light (unused for directional lights)
   bool atInfinity = false;
 };
-
-// The scene's environment among its lights (at most one), or null.
-inline const EnvironmentLight* findEnvironment(const std::vector<Light>& lights) {
-  for (const Light& l : lights)
-    if (const auto* env = std::get_if<EnvironmentLight>(&l)) return env;
-  return nullptr;
-}
 
 // A delta light (point or directional): one shadow ray, and no sample drawn on it.
 inline bool isDeltaLight(const Light& light) {
