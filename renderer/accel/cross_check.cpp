@@ -37,12 +37,10 @@ std::string rayProblem(const Ray& r) {
   if (!finite(r.o)) return "the origin is not finite";
   // Embree asserts (an abort) on origins past about 1.8e18; random rays keep within kMaxOrigin
   // for the same reason (randomRayOrigins).
-  if (std::fabs(r.o.x) > kMaxRayOrigin || std::fabs(r.o.y) > kMaxRayOrigin ||
-      std::fabs(r.o.z) > kMaxRayOrigin)
+  if (!withinRayRange(r.o))
     return "the origin lies more than 1e18 from 0 along an axis (Embree's limit)";
   if (!finite(r.d)) return "the direction is not finite";
-  if (std::fabs(r.d.x) > kMaxRayOrigin || std::fabs(r.d.y) > kMaxRayOrigin ||
-      std::fabs(r.d.z) > kMaxRayOrigin)
+  if (!withinRayRange(r.d))
     return "the direction has a component past 1e18 (Embree's limit; its length does not matter)";
   if (r.d.x == 0 && r.d.y == 0 && r.d.z == 0) return "the direction is zero";
   if (!(r.tMin >= 0)) return "tmin must be ≥ 0";

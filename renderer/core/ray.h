@@ -26,6 +26,13 @@ struct Ray {
 inline constexpr float kEmbreeMaxRayCoordinate = 1.844e18f;
 inline constexpr float kMaxRayOrigin = 1e18f;
 
+// Whether every coordinate of `v` is within ±kMaxRayOrigin (false for NaN): a point that may
+// start rays, or a direction, that Embree takes.
+inline bool withinRayRange(const Vec3f& v) {
+  return std::fabs(v.x) <= kMaxRayOrigin && std::fabs(v.y) <= kMaxRayOrigin &&
+         std::fabs(v.z) <= kMaxRayOrigin;
+}
+
 // γ(n) = nε/(1 − nε), ε = 2⁻²⁴: the relative error bound of n float operations (Higham;
 // pbrt-v4 §6.8). Error bounds on computed points are built from it.
 constexpr float gamma(int n) {

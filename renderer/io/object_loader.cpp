@@ -33,17 +33,6 @@ uint32_t materialOf(SceneBuilder& b, const JsonNode& obj) {
          (hint.empty() ? "" : " (did you mean \"" + hint + "\"?)"));
 }
 
-namespace {
-
-// Whether every coordinate of `p` is within ±kMaxRayOrigin of the camera (render space): hits
-// there start rays Embree takes (core/ray.h). False for NaN.
-bool withinRayRange(const Vec3f& p) {
-  return std::fabs(p.x) <= kMaxRayOrigin && std::fabs(p.y) <= kMaxRayOrigin &&
-         std::fabs(p.z) <= kMaxRayOrigin;
-}
-
-}  // namespace
-
 uint32_t push(Scene& s, uint32_t groupId, GeomKind kind, uint32_t index, uint32_t material,
               uint32_t objectId) {
   auto& geoms = s.groups[groupId].geometries;
