@@ -24,7 +24,7 @@ import subprocess
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-STRUCTURES = ["embree", "bvh", "kdtree", "octree", "grid"]
+STRUCTURES = ["embree", "bvh", "kdtree", "octree", "grid", "octree-midplane"]
 
 
 def spheres_scene(n, rng):

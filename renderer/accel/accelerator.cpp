@@ -26,13 +26,15 @@ std::string_view accelName(AccelKind k) {
       return "octree";
     case AccelKind::KdTree:
       return "kdtree";
+    case AccelKind::OctreeMidPlane:
+      return "octree-midplane";
   }
   return "?";
 }
 
 bool parseAccelKind(std::string_view name, AccelKind& out) {
   for (auto k : {AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce, AccelKind::Grid,
-                 AccelKind::Octree, AccelKind::KdTree})
+                 AccelKind::Octree, AccelKind::KdTree, AccelKind::OctreeMidPlane})
     if (accelName(k) == name) {
       out = k;
       return true;
@@ -56,6 +58,8 @@ std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene) {
       return std::make_unique<Octree>(scene);
     case AccelKind::KdTree:
       return std::make_unique<KdTree>(scene);
+    case AccelKind::OctreeMidPlane:
+      return std::make_unique<Octree>(scene, 0, Octree::Walk::MidPlane);
   }
   return nullptr;
 }
