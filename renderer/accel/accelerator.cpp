@@ -26,15 +26,15 @@ std::string_view accelName(AccelKind k) {
       return "octree";
     case AccelKind::KdTree:
       return "kdtree";
-    case AccelKind::OctreeMidPlane:
-      return "octree-midplane";
+    case AccelKind::OctreeGenerateAndTest:
+      return "octree-generate-and-test";
   }
   return "?";
 }
 
 bool parseAccelKind(std::string_view name, AccelKind& out) {
   for (auto k : {AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce, AccelKind::Grid,
-                 AccelKind::Octree, AccelKind::KdTree, AccelKind::OctreeMidPlane})
+                 AccelKind::Octree, AccelKind::KdTree, AccelKind::OctreeGenerateAndTest})
     if (accelName(k) == name) {
       out = k;
       return true;
@@ -58,8 +58,8 @@ std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene) {
       return std::make_unique<Octree>(scene);
     case AccelKind::KdTree:
       return std::make_unique<KdTree>(scene);
-    case AccelKind::OctreeMidPlane:
-      return std::make_unique<Octree>(scene, 0, Octree::Walk::MidPlane);
+    case AccelKind::OctreeGenerateAndTest:
+      return std::make_unique<Octree>(scene, 0, Octree::Walk::GenerateAndTest);
   }
   return nullptr;
 }

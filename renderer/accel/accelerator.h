@@ -12,7 +12,7 @@ namespace glint {
 
 class Scene;
 
-enum class AccelKind { Embree, Bvh, BruteForce, Grid, Octree, KdTree, OctreeMidPlane };
+enum class AccelKind { Embree, Bvh, BruteForce, Grid, Octree, KdTree, OctreeGenerateAndTest };
 
 std::string_view accelName(AccelKind);
 bool parseAccelKind(std::string_view name, AccelKind& out);

@@ -58,9 +58,9 @@ class Builder {
       insideOctant.fill(inside);
       size_t listed = 0;
       for (int k = 0; k < 8; ++k) {
-        const Bounds3f box = octantBox(cell, center, k);
+        const Bounds3f box = paddedCell(octantBox(cell, center, k));
         for (uint32_t i : list) {
-          const CellContact contact = surfaceContact(scene_, groupId_, t_.prims[i], box);
+          const CellContact contact = paddedSurfaceContact(scene_, groupId_, t_.prims[i], box);
           if (contact == CellContact::Surface) octants[size_t(k)].push_back(i), ++listed;
           if (contact == CellContact::Inside) insideOctant[size_t(k)] = true;
         }

@@ -189,8 +189,12 @@ bool diskMeetsBox(const Vec3f& center, const Vec3f& normal, float radius, const 
 }
 
 CellContact surfaceContact(const Scene& scene, uint32_t groupId, const PrimitiveBox& p,
-                           const Bounds3f& unpadded) {
-  const Bounds3f cell = paddedCell(unpadded);
+                           const Bounds3f& cell) {
+  return paddedSurfaceContact(scene, groupId, p, paddedCell(cell));
+}
+
+CellContact paddedSurfaceContact(const Scene& scene, uint32_t groupId, const PrimitiveBox& p,
+                                 const Bounds3f& cell) {
   if (!overlaps(p.box, cell)) return CellContact::Apart;
   const auto meets = [](bool m) { return m ? CellContact::Surface : CellContact::Apart; };
   const Geometry& g = scene.groups[groupId].geometries[p.geom];

@@ -23,6 +23,10 @@ enum class CellContact {
 // (paddedCell) so that no hit the shared intersection routine reports inside the cell is lost.
 CellContact surfaceContact(const Scene& scene, uint32_t groupId, const PrimitiveBox& p,
                            const Bounds3f& cell);
+// The same for a cell already padded (a build that tests many primitives against one cell pads
+// it once).
+CellContact paddedSurfaceContact(const Scene& scene, uint32_t groupId, const PrimitiveBox& p,
+                                 const Bounds3f& padded);
 
 // `cell` grown on every side by 10⁻⁴ of its largest side and 2⁻¹⁸ of its largest coordinate.
 Bounds3f paddedCell(const Bounds3f& cell);

@@ -313,7 +313,7 @@ CommandRunner addBenchCommand(CLI::App& app) {
   cmd->add_option("scene", args->scenePath, sceneArgumentHelp())->check(CLI::ExistingFile);
   cmd->add_option("--accel", args->accels,
                   "Comma-separated backends (embree, bvh, brute, grid, octree, kdtree, "
-                  "octree-midplane)");
+                  "octree-generate-and-test)");
   // A heightfield beyond 2^28 triangles would not fit this machine's memory (80 B each).
   cmd->add_option("--procedural", args->procedural,
                   "Benchmark a generated heightfield of about this many triangles instead")

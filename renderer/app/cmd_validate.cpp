@@ -47,13 +47,13 @@ int runValidate(const ValidateArgs& a) {
   const ReferenceBvh bvh(scene);
   const UniformGrid grid(scene);
   const Octree octree(scene);
-  const Octree octreeMidPlane(scene, 0, Octree::Walk::MidPlane);
+  const Octree octreeGenerateAndTest(scene, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(scene);
   std::unique_ptr<BruteForce> brute;
   if (!a.noBrute && scene.primitiveCount() <= kBruteForceLimit)
     brute = std::make_unique<BruteForce>(scene);
   std::vector<const Accelerator*> others{&bvh, &grid, &octree, &kdtree};
-  others.push_back(&octreeMidPlane);
+  others.push_back(&octreeGenerateAndTest);
   if (brute) others.push_back(brute.get());
 
   if (!a.ray.empty()) {  // reproduce one ray from a report line
@@ -65,7 +65,7 @@ int runValidate(const ValidateArgs& a) {
     if (const std::string why = rayProblem(r); !why.empty()) throw UsageError("--ray: " + why);
     std::printf("ray %s\n", formatRay(r).c_str());
     for (const Accelerator* acc : std::vector<const Accelerator*>{
-             &embree, &bvh, &grid, &octree, &kdtree, &octreeMidPlane, brute.get()})
+             &embree, &bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, brute.get()})
       if (acc)
         std::printf("  %-7s %s\n", std::string(acc->name()).c_str(),
                     a.occludedRay ? (acc->occluded(r) ? "occluded" : "clear")
@@ -95,7 +95,7 @@ int runValidate(const ValidateArgs& a) {
 
   const CrossCheckStats& st = check.stats();
   const BvhStats& bs = bvh.stats();
-  std::printf("backends       embree, bvh, grid, octree, kdtree, octree-midplane%s\n",
+  std::printf("backends       embree, bvh, grid, octree, kdtree, octree-generate-and-test%s\n",
               brute ? ", brute" : " (brute force skipped: scene too large)");
   std::printf(
       "queries        %llu closest-hit, %llu occlusion (scene rays at %d spp + %d random)\n",

@@ -85,7 +85,7 @@ TEST(BackendAgreement, OctreeAndKdTreeMatchBruteForce) {
   for (int levels : {0, 1, 7}) {
     SCOPED_TRACE(levels);
     expectAgreesWithBruteForce(s, Octree(s, levels));
-    expectAgreesWithBruteForce(s, Octree(s, levels, Octree::Walk::MidPlane));
+    expectAgreesWithBruteForce(s, Octree(s, levels, Octree::Walk::GenerateAndTest));
   }
   expectAgreesWithBruteForce(s, KdTree(s));
 }

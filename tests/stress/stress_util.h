@@ -42,15 +42,17 @@ inline void expectAgreementOnRandomRays(const Scene& s, const CrossCheck& check,
 }
 
 // As `glint validate --no-brute` checks a scene: Embree against each of Glint's own structures
-// (the BVH, the grid, the octree, the k-d tree) on kAgreementRays random rays.
+// (the BVH, the grid, the octree by both walks, the k-d tree) on kAgreementRays random rays.
 inline void expectStructuresAgreeWithEmbree(const Scene& s) {
   const EmbreeAccel embree(s);
   const ReferenceBvh bvh(s);
   const UniformGrid grid(s);
   const Octree octree(s);
+  const Octree octreeGenerateAndTest(s, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(s);
-  expectAgreementOnRandomRays(s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree}),
-                              kAgreementRays);
+  expectAgreementOnRandomRays(
+      s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest}),
+      kAgreementRays);
 }
 
 inline RenderResult renderText(const std::string& text, AccelKind kind = AccelKind::Embree,
