@@ -5,6 +5,7 @@
 #include "accel/embree_accel.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
+#include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
 #include "accel/uniform_grid.h"
 #include "core/out_of_memory.h"
@@ -28,13 +29,16 @@ std::string_view accelName(AccelKind k) {
       return "kdtree";
     case AccelKind::OctreeGenerateAndTest:
       return "octree-generate-and-test";
+    case AccelKind::Coherence:
+      return "coherence";
   }
   return "?";
 }
 
 bool parseAccelKind(std::string_view name, AccelKind& out) {
   for (auto k : {AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce, AccelKind::Grid,
-                 AccelKind::Octree, AccelKind::KdTree, AccelKind::OctreeGenerateAndTest})
+                 AccelKind::Octree, AccelKind::KdTree, AccelKind::OctreeGenerateAndTest,
+                 AccelKind::Coherence})
     if (accelName(k) == name) {
       out = k;
       return true;
@@ -60,6 +64,8 @@ std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene) {
       return std::make_unique<KdTree>(scene);
     case AccelKind::OctreeGenerateAndTest:
       return std::make_unique<Octree>(scene, 0, Octree::Walk::GenerateAndTest);
+    case AccelKind::Coherence:
+      return std::make_unique<RayCoherence>(scene);
   }
   return nullptr;
 }

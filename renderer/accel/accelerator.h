@@ -12,7 +12,16 @@ namespace glint {
 
 class Scene;
 
-enum class AccelKind { Embree, Bvh, BruteForce, Grid, Octree, KdTree, OctreeGenerateAndTest };
+enum class AccelKind {
+  Embree,
+  Bvh,
+  BruteForce,
+  Grid,
+  Octree,
+  KdTree,
+  OctreeGenerateAndTest,
+  Coherence
+};
 
 std::string_view accelName(AccelKind);
 bool parseAccelKind(std::string_view name, AccelKind& out);

@@ -67,7 +67,7 @@ RaySets makeRays(const Scene& scene, const Accelerator* accel, int randomCount) 
     const Vec3f target = scene.lights.empty()
                              ? sp.p + Vec3f{0, 1e3f, 0}
                              : sampleLight(scene.lights[0], sp.p, sp.ng, {0.5f, 0.5f}).target;
-    sets.shadow.push_back(spawnShadowRay(sp, true, target, 0));
+    sets.shadow.push_back(spawnShadowRay(sp, true, target, 0, 0));
   }
   const Bounds3f b = randomRayOrigins(scene);
   for (int i = 0; i < randomCount; ++i) {
@@ -313,7 +313,7 @@ CommandRunner addBenchCommand(CLI::App& app) {
   cmd->add_option("scene", args->scenePath, sceneArgumentHelp())->check(CLI::ExistingFile);
   cmd->add_option("--accel", args->accels,
                   "Comma-separated backends (embree, bvh, brute, grid, octree, kdtree, "
-                  "octree-generate-and-test)");
+                  "octree-generate-and-test, coherence)");
   // A heightfield beyond 2^28 triangles would not fit this machine's memory (80 B each).
   cmd->add_option("--procedural", args->procedural,
                   "Benchmark a generated heightfield of about this many triangles instead")

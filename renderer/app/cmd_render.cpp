@@ -704,8 +704,8 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--max-depth", args->maxDepth, "Recursion limit")->check(CLI::Range(0, 1000));
   cmd->add_option("--accel", args->accel,
                   "Intersection backend (default " + defaultText(args->accel) + ")")
-      ->check(CLI::IsMember(
-          {"embree", "bvh", "brute", "grid", "octree", "kdtree", "octree-generate-and-test"}));
+      ->check(CLI::IsMember({"embree", "bvh", "brute", "grid", "octree", "kdtree",
+                             "octree-generate-and-test", "coherence"}));
   cmd->add_option("--integrator", args->integrator,
                   "production, or reference: seed 002's depth-first Trace, the oracle the "
                   "production kernel is tested against (beauty only) (default " +

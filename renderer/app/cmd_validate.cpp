@@ -11,6 +11,8 @@
 #include "accel/embree_accel.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
+#include "accel/origin_rays.h"
+#include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
 #include "accel/uniform_grid.h"
 #include "app/commands.h"
@@ -49,11 +51,13 @@ int runValidate(const ValidateArgs& a) {
   const Octree octree(scene);
   const Octree octreeGenerateAndTest(scene, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(scene);
+  const RayCoherence coherence(scene);
   std::unique_ptr<BruteForce> brute;
   if (!a.noBrute && scene.primitiveCount() <= kBruteForceLimit)
     brute = std::make_unique<BruteForce>(scene);
   std::vector<const Accelerator*> others{&bvh, &grid, &octree, &kdtree};
   others.push_back(&octreeGenerateAndTest);
+  others.push_back(&coherence);
   if (brute) others.push_back(brute.get());
 
   if (!a.ray.empty()) {  // reproduce one ray from a report line
@@ -64,8 +68,9 @@ int runValidate(const ValidateArgs& a) {
       throw UsageError("--ray: expected 9 numbers: ox oy oz dx dy dz tmin tmax time");
     if (const std::string why = rayProblem(r); !why.empty()) throw UsageError("--ray: " + why);
     std::printf("ray %s\n", formatRay(r).c_str());
-    for (const Accelerator* acc : std::vector<const Accelerator*>{
-             &embree, &bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, brute.get()})
+    for (const Accelerator* acc :
+         std::vector<const Accelerator*>{&embree, &bvh, &grid, &octree, &kdtree,
+                                         &octreeGenerateAndTest, &coherence, brute.get()})
       if (acc)
         std::printf("  %-7s %s\n", std::string(acc->name()).c_str(),
                     a.occludedRay ? (acc->occluded(r) ? "occluded" : "clear")
@@ -92,14 +97,17 @@ int runValidate(const ValidateArgs& a) {
     renderScene(scene, check, opt);
   }
   castRandomRays(scene, check, a.rays, a.seed);
+  castOriginRays(scene, embree, check, a.rays / 4, a.seed);
 
   const CrossCheckStats& st = check.stats();
   const BvhStats& bs = bvh.stats();
-  std::printf("backends       embree, bvh, grid, octree, kdtree, octree-generate-and-test%s\n",
-              brute ? ", brute" : " (brute force skipped: scene too large)");
   std::printf(
-      "queries        %llu closest-hit, %llu occlusion (scene rays at %d spp + %d random)\n",
-      (unsigned long long)st.rays, (unsigned long long)st.occlusionRays, a.spp, a.rays);
+      "backends       embree, bvh, grid, octree, kdtree, octree-generate-and-test, coherence%s\n",
+      brute ? ", brute" : " (brute force skipped: scene too large)");
+  std::printf(
+      "queries        %llu closest-hit, %llu occlusion (scene rays at %d spp + %d random + "
+      "%d samples of rays from origins)\n",
+      (unsigned long long)st.rays, (unsigned long long)st.occlusionRays, a.spp, a.rays, a.rays / 4);
   std::printf("hit/miss       %.9f agreement\n", st.hitAgreement());
   std::printf("primitive      %.9f agreement (ties within %.0e count as agreement)\n",
               st.primAgreement(), double(CrossCheck::kTieTolerance));
@@ -127,6 +135,12 @@ int runValidate(const ValidateArgs& a) {
         "primitive), %.1f MiB\n",
         label, ts->buildSeconds, ts->nodes, ts->leaves, ts->maxDepth, ts->references,
         ts->referencesPerPrimitive(), double(ts->bytes) / (1 << 20));
+  const CoherenceStats& cs = coherence.stats();
+  std::printf(
+      "coherence build %.3f s, %zu origins (%zu with a row), %zu objects, %zu classes, %zu "
+      "references, %.1f MiB\n",
+      cs.buildSeconds, cs.origins, cs.rows, cs.objects, cs.classes, cs.references,
+      double(cs.bytes) / (1 << 20));
   if (!st.firstDisagreements.empty()) {
     std::printf("first disagreements (reproduce with glint validate SCENE --ray ...):\n");
     for (const auto& line : st.firstDisagreements) std::printf("  %s\n", line.c_str());
@@ -157,6 +171,13 @@ int runValidate(const ValidateArgs& a) {
                 {"max_depth", ts->maxDepth},
                 {"references", ts->references},
                 {"bytes", ts->bytes}};
+    j["coherence"] = {{"build_seconds", cs.buildSeconds},
+                      {"origins", cs.origins},
+                      {"rows", cs.rows},
+                      {"objects", cs.objects},
+                      {"classes", cs.classes},
+                      {"references", cs.references},
+                      {"bytes", cs.bytes}};
     j["embree"] = {{"build_seconds", embree.buildSeconds()}, {"bytes", embree.bytes()}};
     writeTextFileAtomically(a.json, j.dump(2) + "\n");
   }

@@ -10,6 +10,7 @@
 #include "accel/embree_accel.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
+#include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
 #include "accel/two_level.h"
 #include "accel/uniform_grid.h"
@@ -30,6 +31,7 @@ size_t structureBytes(const Accelerator& accel) {
   if (const auto* g = dynamic_cast<const UniformGrid*>(&accel)) return g->stats().bytes;
   if (const auto* o = dynamic_cast<const Octree*>(&accel)) return o->stats().bytes;
   if (const auto* k = dynamic_cast<const KdTree*>(&accel)) return k->stats().bytes;
+  if (const auto* c = dynamic_cast<const RayCoherence*>(&accel)) return c->stats().bytes;
   return 0;
 }
 

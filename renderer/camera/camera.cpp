@@ -85,6 +85,7 @@ void Camera::generateRay(float x, float y, Vec2f lens, Ray& ray) const {
   ray.tMin = 0;
   ray.tMax = kInfinity;
   ray.time = 0;
+  ray.origin = ray_origin::kEye;
   if (desc_.projection == Projection::Perspective) {
     // Through s = e + d + u·u + v·v: the image plane at distance 1 along the view direction d,
     // spanned by u and v (§4.3.2; d = −w unless oblique).

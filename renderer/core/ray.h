@@ -2,11 +2,26 @@
 // A ray o + t·d valid for t in (tMin, tMax), at a shutter time in [0, 1] (Embree's range).
 #include <bit>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #include "core/vec.h"
 
 namespace glint {
+
+// Where a ray comes from (Ray::origin), for the backend that classifies rays by the object they
+// leave (ray coherence, accel/ray_coherence.h); every other backend ignores it. An entry of the
+// world group (a hit's geomId, or its instId inside an instance) for a ray leaving that entry's
+// surface; the eye for a camera ray; light k for a shadow ray towards light k (a segment that
+// ends on the light at t = 1 when the light has a finite position).
+// It is a hint: the backend checks the ray against the origin's bounds and takes its fallback
+// when they disagree, so a missing or wrong tag costs time, never a hit.
+namespace ray_origin {
+inline constexpr uint32_t kNone = 0xFFFFFFFFu;
+inline constexpr uint32_t kEye = 0xFFFFFFFEu;
+inline constexpr uint32_t kLightBit = 0x80000000u;  // below it: a world entry
+constexpr uint32_t light(size_t k) { return kLightBit | static_cast<uint32_t>(k); }
+}  // namespace ray_origin
 
 struct Ray {
   Vec3f o;
@@ -14,6 +29,7 @@ struct Ray {
   float tMin = 0;
   float tMax = kInfinity;
   float time = 0;
+  uint32_t origin = ray_origin::kNone;
 
   Vec3f at(float t) const { return o + t * d; }
 };

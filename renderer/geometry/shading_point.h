@@ -22,6 +22,7 @@ struct ShadingPoint {
   float t = 0;
   uint32_t materialId = 0;
   uint32_t objectId = 0;
+  uint32_t origin = ray_origin::kNone;  // the world entry hit: what rays leaving it carry
   // The surface's texture coordinates and their tangents dp/du, dp/dv (world space), filled
   // only in scenes with image textures (Features::surfaceCoordinates): every other hit leaves
   // them out.
@@ -51,29 +52,34 @@ struct ShadingPoint {
 // `toPoint`, `v` is a point and the ray a shadow ray towards it: t in (0, 1) covers the segment
 // and stops just short of the point, by a relative 2^-12 of the segment, so the light's own
 // surface never occludes it. Otherwise `v` is the direction and the ray unbounded. (Written
-// into `r`, not returned: a returned copy stalled on store forwarding.)
+// into `r`, not returned: a returned copy stalled on store forwarding.) `origin` is the ray's
+// Ray::origin.
 inline constexpr float kShadowRayEnd = 1.0f - 1.0f / 4096.0f;
 [[gnu::always_inline]] inline void spawnRayFrom(Ray& r, const Vec3f& p, const Vec3f& pError,
                                                 const Vec3f& ng, bool toPoint, const Vec3f& v,
-                                                float time) {
+                                                float time, uint32_t origin) {
   r.o = offsetRayOrigin(p, pError, ng, toPoint ? v - p : v);
   r.d = toPoint ? v - r.o : v;
   r.tMin = 0;
   r.tMax = toPoint ? kShadowRayEnd : kInfinity;
   r.time = time;
+  r.origin = origin;
 }
 [[gnu::always_inline]] inline void spawnRayInto(Ray& r, const ShadingPoint& sp, bool toPoint,
                                                 const Vec3f& v, float time) {
-  spawnRayFrom(r, sp.p, sp.pError, sp.ng, toPoint, v, time);
+  spawnRayFrom(r, sp.p, sp.pError, sp.ng, toPoint, v, time, sp.origin);
 }
 // A shadow ray from the point the light is sampled for: from p lifted by sp.shadowLift, whose
-// sum p + lift carries one more rounding.
+// sum p + lift carries one more rounding. The ray carries light `light` as its origin (ray
+// coherence classifies a segment that ends on a light at a finite position from that light,
+// reversed, and takes its fallback for a light at infinity).
 [[gnu::always_inline]] inline void spawnShadowRayInto(Ray& r, const ShadingPoint& sp, bool toPoint,
-                                                      const Vec3f& v, float time) {
+                                                      const Vec3f& v, float time, size_t light) {
+  const uint32_t origin = ray_origin::light(light);
   if (!sp.lifted) [[likely]]
-    return spawnRayInto(r, sp, toPoint, v, time);
+    return spawnRayFrom(r, sp.p, sp.pError, sp.ng, toPoint, v, time, origin);
   const Vec3f from = sp.p + sp.shadowLift;
-  spawnRayFrom(r, from, sp.pError + gamma(2) * abs(from), sp.ng, toPoint, v, time);
+  spawnRayFrom(r, from, sp.pError + gamma(2) * abs(from), sp.ng, toPoint, v, time, origin);
 }
 inline Ray spawnRay(const ShadingPoint& sp, const Vec3f& dir, float time) {
   Ray r;
@@ -86,9 +92,10 @@ inline Ray spawnRayTo(const ShadingPoint& sp, const Vec3f& target, float time) {
   return r;
 }
 
-inline Ray spawnShadowRay(const ShadingPoint& sp, bool toPoint, const Vec3f& v, float time) {
+inline Ray spawnShadowRay(const ShadingPoint& sp, bool toPoint, const Vec3f& v, float time,
+                          size_t light) {
   Ray r;
-  spawnShadowRayInto(r, sp, toPoint, v, time);
+  spawnShadowRayInto(r, sp, toPoint, v, time, light);
   return r;
 }
 

@@ -225,7 +225,7 @@ void BatchedKernel::lightPendingPoints(Scratch& scratch, Generation::Sum* sums,
     if (lights_[li].delta) {
       // One shadow ray per point and no sample drawn: the loop says so once per light.
       for (int k = 0; k < pending; ++k) {
-        queueSample(scratch.pending[k].pt, scene_.lights[li], {0.5f, 0.5f}, queue);
+        queueSample(scratch.pending[k].pt, li, {0.5f, 0.5f}, queue);
         rayEnd[li * kChunk + static_cast<size_t>(k)] = static_cast<uint16_t>(queue.size);
       }
       continue;
@@ -319,7 +319,7 @@ void BatchedKernel::queueLight(const LitPoint& pt, size_t li, const SamplePatter
       u = points + begin;
     else
       pt.branch->key->get2D(pattern, begin, n, count, batch);
-    for (int j = 0; j < n; ++j) queueSample(pt, scene_.lights[li], u[j], queue);
+    for (int j = 0; j < n; ++j) queueSample(pt, li, u[j], queue);
   }
 }
 
@@ -359,7 +359,7 @@ uint64_t BatchedKernel::lightAlone(const LitPoint& pt, Rgb& L, RayCounters& coun
     for (int first = 0; first < count; first += queue.kCapacity) {
       queue.size = 0;
       if (lights_[li].delta)
-        queueSample(pt, scene_.lights[li], {0.5f, 0.5f}, queue);
+        queueSample(pt, li, {0.5f, 0.5f}, queue);
       else
         queueLight(pt, li, pattern, first, std::min(queue.kCapacity, count - first), count, queue);
       traceShadows(queue, counters);

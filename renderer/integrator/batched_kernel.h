@@ -160,18 +160,19 @@ class BatchedKernel {
     return n;
   }
   bool transparentShadows() const { return scene_.render.transparentShadows; }
-  // Queues the shadow ray of one sample of `light` at the point, u its point on the light
+  // Queues the shadow ray of one sample of light `li` at the point, u its point on the light
   // (ignored by a delta light), unless the light is behind the surface or black: the shadow
   // ray and what the light adds if it is not blocked.
   template <class Queue>
-  [[gnu::always_inline]] void queueSample(const LitPoint& pt, const Light& light, Vec2f u,
+  [[gnu::always_inline]] void queueSample(const LitPoint& pt, size_t li, Vec2f u,
                                           Queue& queue) const {
+    const Light& light = scene_.lights[li];
     const LightSample ls = sampleLight(light, pt.sp.p, pt.at.n, u);
     if (!facesLight(pt.at, ls.wi) || ls.intensity.isBlack()) return;
     const Rgb f = reflectedLight(pt.material->surface, pt.sp, pt.at, ls.wi);
     const int q = queue.size++;
     spawnShadowRayInto(queue.rays[q], pt.sp, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target,
-                       pt.time);
+                       pt.time, li);
     queue.term[q] = f * ls.intensity;
     queue.atInfinity[q] = ls.atInfinity;
     if (transparentShadows()) queue.media[q] = &pt.branch->media;

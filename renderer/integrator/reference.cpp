@@ -84,7 +84,8 @@ Rgb ReferenceIntegrator::accLightSource(const Material& m, const ShadingPoint& q
       const LightSample ls = sampleLight(light, q.p, at.n, u);
       if (!facesLight(at, ls.wi) || ls.intensity.isBlack()) continue;
       const Rgb f = reflectedLight(m.surface, q, at, ls.wi);  // diffuse and highlight
-      const Ray shadow = spawnShadowRay(q, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target, time);
+      const Ray shadow =
+          spawnShadowRay(q, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target, time, li);
       const Rgb term = f * ls.intensity;
       if (scene_.render.transparentShadows) {
         const Rgb visible = visibility(shadow, ls.atInfinity, branch, counters);

@@ -125,7 +125,11 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, ShadingPoint& sp) const
   GLINT_CHECK(bool(hit));
   // Object space = world space outside instances; inside, go through the instance transform.
   // (A pointer, not an optional Transform, whose 128 bytes GCC cleared on every call.)
-  if (hit.instId == kInvalidId) return shadingPoint(ray, hit, nullptr, sp);
+  if (hit.instId == kInvalidId) {
+    sp.origin = hit.geomId;
+    return shadingPoint(ray, hit, nullptr, sp);
+  }
+  sp.origin = hit.instId;
   const Transform worldFromObject =
       instances[groups[0].geometries[hit.instId].index].transformAt(ray.time);
   shadingPoint(ray, hit, &worldFromObject, sp);

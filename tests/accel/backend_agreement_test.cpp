@@ -8,6 +8,7 @@
 #include "accel/accelerator.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
+#include "accel/ray_coherence.h"
 #include "accel/uniform_grid.h"
 #include "core/hash.h"
 #include "test_util.h"
@@ -88,6 +89,16 @@ TEST(BackendAgreement, OctreeAndKdTreeMatchBruteForce) {
     expectAgreesWithBruteForce(s, Octree(s, levels, Octree::Walk::GenerateAndTest));
   }
   expectAgreesWithBruteForce(s, KdTree(s));
+}
+
+// Ray coherence at its default resolution and at 1 and 32 classes per face edge: random rays
+// carry no origin (the fallback); rays tagged with an origin are in tests/accel/ray_coherence_test.
+TEST(BackendAgreement, RayCoherenceMatchesBruteForce) {
+  const Scene s = everyShapeKind();
+  for (int resolution : {0, 1, 32}) {
+    SCOPED_TRACE(resolution);
+    expectAgreesWithBruteForce(s, RayCoherence(s, resolution));
+  }
 }
 
 // The renderer traces camera rays and shadow rays as coherent streams (packets inside Embree):

@@ -13,8 +13,12 @@
 namespace glint {
 namespace {
 
-constexpr AccelKind kCounted[] = {AccelKind::Bvh, AccelKind::Grid, AccelKind::Octree,
-                                  AccelKind::KdTree, AccelKind::OctreeGenerateAndTest};
+constexpr AccelKind kCounted[] = {AccelKind::Bvh,
+                                  AccelKind::Grid,
+                                  AccelKind::Octree,
+                                  AccelKind::KdTree,
+                                  AccelKind::OctreeGenerateAndTest,
+                                  AccelKind::Coherence};
 
 const CountingTraversal& counting(const Accelerator& accel) {
   return dynamic_cast<const CountingTraversal&>(accel);

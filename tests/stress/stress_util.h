@@ -12,6 +12,7 @@
 #include "accel/embree_accel.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
+#include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
 #include "accel/uniform_grid.h"
 #include "oracle_util.h"
@@ -50,8 +51,9 @@ inline void expectStructuresAgreeWithEmbree(const Scene& s) {
   const Octree octree(s);
   const Octree octreeGenerateAndTest(s, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(s);
+  const RayCoherence coherence(s);
   expectAgreementOnRandomRays(
-      s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest}),
+      s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &coherence}),
       kAgreementRays);
 }
 
