@@ -24,7 +24,8 @@ import subprocess
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-STRUCTURES = ["embree", "bvh", "kdtree", "octree", "grid", "octree-generate-and-test"]
+STRUCTURES = ["embree", "bvh", "kdtree", "octree", "grid", "octree-generate-and-test",
+              "coherence"]
 
 
 def spheres_scene(n, rng):
@@ -62,6 +63,43 @@ def write_scene(path, family, n):
              "lights": [{"type": "point", "position": [0, 20, 10], "intensity": [1, 1, 1]}],
              "objects": objects}
     path.write_text(json.dumps(scene, separators=(",", ":")))
+
+
+def coherence_study(glint, work, max_n, rays):
+    """Ray coherence's preprocessing against n objects and m origins (seed 002 §9.2.4: O(m·n)
+    visibility sets): the spheres family with a share of its spheres mirrors (each an origin,
+    beside the eye and the light), and its query cost on the camera rays."""
+    rows = []
+    for share in (0, 0.01, 0.1):
+        n = 100
+        while n <= max_n:
+            scene, figures = work / f"coherence_{share}_{n}.json", work / f"coherence_{n}.out.json"
+            rng = random.Random(n * 7)
+            camera, objects = spheres_scene(n, rng)
+            for i, o in enumerate(objects):
+                if share and i % round(1 / share) == 0:
+                    o["material"] = "mirror"
+            scene.write_text(json.dumps({
+                "render": {"width": 160, "height": 120}, "camera": camera,
+                "materials": {"m": {"type": "phong"}, "mirror": {"type": "mirror"}},
+                "lights": [{"type": "point", "position": [0, 20, 10], "intensity": [1, 1, 1]}],
+                "objects": objects}, separators=(",", ":")))
+            subprocess.run([glint, "bench", str(scene), "--structures", "--accel", "coherence",
+                            "--random-rays", str(rays), "--json", str(figures)], check=True,
+                           stdout=subprocess.DEVNULL)
+            c = json.loads(figures.read_text())["structures"]["coherence"]
+            rows.append((share, n, c))
+            scene.unlink()
+            n *= 10
+    print("\nray coherence: preprocessing against n and m (rows: origins within the budgets)\n")
+    print("| mirrors | n | m | rows | m·n | sets computed | build s | MiB | camera ns/ray | "
+          "camera tests/ray |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for share, n, c in rows:
+        print(f"| {share:.0%} | {n:.0e} | {c['origins']} | {c['rows']} | "
+              f"{c['origins'] * c['objects']:.1e} | {c['pairs']:.1e} | {c['build_seconds']:.3g} | "
+              f"{c['bytes'] / 2**20:.2f} | {c['camera_ns_per_ray']:.0f} | "
+              f"{c['camera_tests_per_ray']:.1f} |")
 
 
 def plot(results, out):
@@ -155,6 +193,7 @@ def main():
                         lambda v: f"{v:.0f}")))
             fmt = (lambda f: lambda v: "–" if v is None else f(v))(fmt)
             print(f"| {r['family']} | {r['n']:.0e} | " + " | ".join(fmt(v) for v in vals) + " |")
+    coherence_study(args.glint, work, min(args.max_n, 100000), args.rays)
 
 
 if __name__ == "__main__":

@@ -47,7 +47,7 @@ double largestCoordinate(const Vec3f& p) {
 }  // namespace
 
 RayCoherence::RayCoherence(const Scene& scene, int resolution, size_t pairBudget, size_t wordBudget)
-    : TwoLevelAccelerator(scene), classes_(resolution > 0 ? resolution : kDefaultResolution) {
+    : TwoLevelAccelerator(scene), classes_(resolution > 0 ? resolution : kMinResolution) {
   const auto start = std::chrono::steady_clock::now();
   // Instanced groups first (they follow their parents): an instance's box is its group's box.
   groupTrees_.resize(scene.groups.size());
@@ -131,6 +131,7 @@ RayCoherence::RayCoherence(const Scene& scene, int resolution, size_t pairBudget
     originOf.push_back({Origin::Entry, objects_[i].geom});
   }
   pad_ = kRelativePad * std::max(extent, 1.0);
+  if (resolution <= 0) classes_ = DirectionClasses(defaultResolution(objects_.size()));
 
   stats_.objects = objects_.size();
   stats_.origins = origins.size();
@@ -158,7 +159,8 @@ RayCoherence::RayCoherence(const Scene& scene, int resolution, size_t pairBudget
   stats_.bytes = objects_.size() * sizeof(Object);
   for (const Row& r : rows_)
     stats_.bytes += (r.offsets.size() + r.objects.size()) * sizeof(uint32_t) +
-                    r.origin.vertices.size() * sizeof(Vec3d) + sizeof(Row);
+                    r.nearest.size() * sizeof(float) + r.origin.vertices.size() * sizeof(Vec3d) +
+                    sizeof(Row);
   for (const BoxTree& t : meshTrees_) stats_.bytes += t.bytes();
   for (const BoxTree& t : groupTrees_) stats_.bytes += t.bytes();
   stats_.buildSeconds =
@@ -185,7 +187,7 @@ void RayCoherence::buildRows(const std::vector<Shell>& origins, const std::vecto
         classes_.forEachClassMeeting(set, [&](uint32_t c) { classesOf[k].push_back(c); });
       });
       for (size_t k = begin; k < end; ++k) listed += classesOf[k].size();
-      over = words + d + 1 + listed > wordBudget;
+      over = words + d + 1 + 2 * listed > wordBudget;
     }
     if (over) return;
     Row row;
@@ -194,11 +196,25 @@ void RayCoherence::buildRows(const std::vector<Shell>& origins, const std::vecto
     for (const auto& cs : classesOf)
       for (uint32_t c : cs) ++row.offsets[c + 1];
     for (size_t c = 0; c < d; ++c) row.offsets[c + 1] += row.offsets[c];
+    // Each list nearest first, so that a closest-hit query stops at the first object farther
+    // than its hit (rounded down to float, so the bound stays a lower bound).
+    std::vector<float> nearest(n);
+    std::vector<uint32_t> order(n);
+    for (uint32_t k = 0; k < n; ++k) {
+      order[k] = k;
+      nearest[k] = nextFloatDown(float(shellDistance(origin, targets[k], pad_)));
+    }
+    std::stable_sort(order.begin(), order.end(),
+                     [&](uint32_t a, uint32_t b) { return nearest[a] < nearest[b]; });
     row.objects.resize(listed);
+    row.nearest.resize(listed);
     std::vector<uint32_t> next(row.offsets.begin(), row.offsets.end() - 1);
-    for (size_t k = 0; k < n; ++k)
-      for (uint32_t c : classesOf[k]) row.objects[next[c]++] = static_cast<uint32_t>(k);
-    words += d + 1 + listed;
+    for (uint32_t k : order)
+      for (uint32_t c : classesOf[k]) {
+        row.nearest[next[c]] = std::max(0.0f, nearest[k]);
+        row.objects[next[c]++] = k;
+      }
+    words += d + 1 + 2 * listed;
     stats_.references += listed;
     rows_.push_back(std::move(row));
   }
@@ -260,8 +276,13 @@ bool RayCoherence::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, H
   count.step();
   const Row& r = rows_[size_t(row)];
   const uint32_t c = classes_.classOf(reversed ? -ray.d : ray.d);
+  // Distances along the ray from its origin: a reversed row orders its lists from the light.
+  const float length = reversed || AnyHit ? 0 : std::sqrt(dot(ray.d, ray.d));
   bool found = false;
   for (uint32_t k = r.offsets[c]; k < r.offsets[c + 1]; ++k) {
+    // Every object left is at least r.nearest[k] away: none holds a closer hit. The product is
+    // rounded up by a margin far above its rounding error.
+    if (found && length > 0 && hit.t * length * (1 + 1e-5f) < r.nearest[k]) break;
     const Object& o = objects_[r.objects[k]];
     bool h;
     if (o.tree >= 0) {

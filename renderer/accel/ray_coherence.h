@@ -22,10 +22,14 @@
 // The pad is kRelativePad times the largest coordinate of the world, the eye and the lights
 // (render space), which covers the offset spawned rays leave their surface by.
 //
+// Lists are sorted nearest first (a lower bound of the distance from the origin's shell), so a
+// closest-hit query stops at the first object past its hit.
+//
 // Preprocessing is bounded (an attacker's scene with 10⁵ mirror spheres): rows are built in the
 // order eye, lights, objects while origins × objects stays within kPairBudget visibility sets and
 // the lists with their offsets within kWordBudget 32-bit words; the origins past either bound
 // have no row (their rays take the fallback), which stats() reports.
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -48,12 +52,19 @@ struct CoherenceStats {
 
 class RayCoherence final : public TwoLevelAccelerator<RayCoherence> {
  public:
-  static constexpr int kDefaultResolution = 8;
-  static constexpr size_t kPairBudget = size_t(1) << 20;
+  // The default resolution, ⌈2√n⌉ within [8, 256] for n objects: 6R² = 24n classes, so that a
+  // class's list holds O(1) of the objects in view (docs/acceleration.md has the measurements).
+  static constexpr int kMinResolution = 8, kMaxResolution = 256;
+  static int defaultResolution(size_t objects) {
+    const double r = std::ceil(2 * std::sqrt(double(objects)));
+    return r < kMinResolution ? kMinResolution : r > kMaxResolution ? kMaxResolution : int(r);
+  }
+  static constexpr size_t kPairBudget = size_t(1) << 18;
   static constexpr size_t kWordBudget = size_t(1) << 24;  // 64 MiB of lists
   static constexpr double kRelativePad = 1e-4;
 
-  // `resolution` classes along each edge of each face of the direction cube (0: the default).
+  // `resolution` classes along each edge of each face of the direction cube (0: the default,
+  // defaultResolution).
   explicit RayCoherence(const Scene& scene, int resolution = 0, size_t pairBudget = kPairBudget,
                         size_t wordBudget = kWordBudget);
   std::string_view name() const override { return "coherence"; }
@@ -81,7 +92,8 @@ class RayCoherence final : public TwoLevelAccelerator<RayCoherence> {
   struct Row {
     Shell origin;
     std::vector<uint32_t> offsets;  // list of class j: objects[offsets[j], offsets[j + 1])
-    std::vector<uint32_t> objects;  // indices into objects_
+    std::vector<uint32_t> objects;  // indices into objects_, nearest first
+    std::vector<float> nearest;     // per entry: no hit on its object is closer to the origin
   };
   void buildRows(const std::vector<Shell>& origins, const std::vector<Shell>& targets,
                  size_t pairBudget, size_t wordBudget);

@@ -175,6 +175,22 @@ VisibilitySet visibilitySet(const Shell& from, const Shell& to, double pad) {
   return set;
 }
 
+double shellDistance(const Shell& from, const Shell& to, double pad) {
+  double d;
+  if (from.sphere && to.sphere) {
+    d = length(to.center - from.center) - from.radius - to.radius - 2 * pad;
+  } else {
+    double sum = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double gap = std::max(component(to.lo, k) - component(from.hi, k),
+                                  component(from.lo, k) - component(to.hi, k));
+      if (gap > 0) sum += gap * gap;
+    }
+    d = std::sqrt(sum) - 2 * std::sqrt(3.0) * pad;
+  }
+  return d > 0 ? d : 0;
+}
+
 bool DirectionClasses::mayMeet(const VisibilitySet& set, int face, double u0, double u1, double v0,
                                double v1) const {
   if (set.everywhere) return true;

@@ -56,6 +56,10 @@ struct VisibilitySet {
 // V(from, to) for rays leaving `from`, each shell grown by `pad`.
 VisibilitySet visibilitySet(const Shell& from, const Shell& to, double pad);
 
+// A lower bound on the distance between a point of `from` and a point of `to`, each shell grown
+// by `pad` (0 when they may touch): between the spheres, else between the boxes.
+double shellDistance(const Shell& from, const Shell& to, double pad);
+
 // The direction cube's six faces, each cut into resolution × resolution classes: face a·2 + s
 // holds the directions whose largest component is along axis a, positive (s = 0) or negative;
 // on it, u and v are the next two axes' components over the largest one's magnitude, in [−1, 1].

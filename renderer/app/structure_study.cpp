@@ -120,6 +120,13 @@ nlohmann::json studyStructures(const Scene& scene, const std::vector<AccelKind>&
                                                    {"random_steps_per_ray", randomCounts["steps"]},
                                                    {"random_tests_per_ray", randomCounts["tests"]}};
     j["structures"][std::string(accel->name())].update(subdivisionFigures(*accel));
+    // Ray coherence's preprocessing is O(m·n) in the seed: m origins, n objects.
+    if (const auto* c = dynamic_cast<const RayCoherence*>(accel.get()))
+      j["structures"][std::string(accel->name())].update({{"origins", c->stats().origins},
+                                                          {"rows", c->stats().rows},
+                                                          {"objects", c->stats().objects},
+                                                          {"pairs", c->stats().pairs},
+                                                          {"references", c->stats().references}});
   }
   return j;
 }

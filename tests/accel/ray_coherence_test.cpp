@@ -205,7 +205,8 @@ TEST(RayCoherence, PreprocessingStaysWithinItsBudgets) {
   EXPECT_EQ(rc.stats().origins, 20002u);
   EXPECT_EQ(rc.stats().rows, 5u);  // ⌊10⁵ / 20 000⌋
   EXPECT_LE(rc.stats().pairs, 100000u);
-  EXPECT_LE(rc.stats().references + rc.stats().rows * (rc.stats().classes + 1), size_t(1) << 20);
+  EXPECT_LE(2 * rc.stats().references + rc.stats().rows * (rc.stats().classes + 1), size_t(1)
+                                                                                        << 20);
   // A word budget below one row's offsets leaves every origin without a row.
   EXPECT_EQ(RayCoherence(s, 8, 100000, 100).stats().rows, 0u);
   const EmbreeAccel embree(s);
