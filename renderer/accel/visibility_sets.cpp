@@ -191,26 +191,56 @@ double shellDistance(const Shell& from, const Shell& to, double pad) {
   return d > 0 ? d : 0;
 }
 
+namespace {
+
+// A block of a face: its corners (unit, in order around it), its centre and the angle from the
+// centre to its farthest corner (a cap under 90° is convex and holds the hull of its points).
+struct Block {
+  Vec3d corner[4];
+  Vec3d center;
+  double spread = 0;
+  Block(int face, double u0, double u1, double v0, double v1) {
+    const int a = face / 2;
+    const double s = face % 2 ? -1 : 1;
+    const auto direction = [&](double u, double v) {
+      double c[3];
+      c[a] = s;
+      c[(a + 1) % 3] = u;
+      c[(a + 2) % 3] = v;
+      return unit(Vec3d{c[0], c[1], c[2]});
+    };
+    corner[0] = direction(u0, v0);
+    corner[1] = direction(u1, v0);
+    corner[2] = direction(u1, v1);
+    corner[3] = direction(u0, v1);
+    center = direction(0.5 * (u0 + u1), 0.5 * (v0 + v1));
+    for (const Vec3d& c : corner) spread = std::max(spread, angleBetween(center, c));
+  }
+};
+
+}  // namespace
+
+bool DirectionClasses::inside(const VisibilitySet& set, int face, double u0, double u1, double v0,
+                              double v1) const {
+  if (set.everywhere) return true;
+  const Block b(face, u0, u1, v0, v1);
+  // A cap holds the block's cap; a hull's planes hold its corners (and so the block: both are
+  // convex).
+  if (set.generators.empty()) return angleBetween(set.axis, b.center) + b.spread <= set.halfAngle;
+  if (set.faces.size() < 3) return false;
+  for (const Vec3d& n : set.faces)
+    for (const Vec3d& c : b.corner)
+      if (dot(n, c) < 0) return false;
+  return true;
+}
+
 bool DirectionClasses::mayMeet(const VisibilitySet& set, int face, double u0, double u1, double v0,
                                double v1) const {
   if (set.everywhere) return true;
-  const int a = face / 2;
-  const double s = face % 2 ? -1 : 1;
-  const auto direction = [&](double u, double v) {
-    double c[3];
-    c[a] = s;
-    c[(a + 1) % 3] = u;
-    c[(a + 2) % 3] = v;
-    return unit(Vec3d{c[0], c[1], c[2]});
-  };
-  const Vec3d corner[4] = {direction(u0, v0), direction(u1, v0), direction(u1, v1),
-                           direction(u0, v1)};
-  const Vec3d center = direction(0.5 * (u0 + u1), 0.5 * (v0 + v1));
-  // The block lies in the cap around its centre through its farthest corner (a cap under 90°
-  // is convex and holds the hull of its points).
-  double spread = 0;
-  for (const Vec3d& c : corner) spread = std::max(spread, angleBetween(center, c));
-  if (angleBetween(set.axis, center) > set.halfAngle + spread) return false;
+  const Block b(face, u0, u1, v0, v1);
+  const Vec3d(&corner)[4] = b.corner;
+  const Vec3d& center = b.center;
+  if (angleBetween(set.axis, center) > set.halfAngle + b.spread) return false;
   // The block is the cone of its corners, inside each plane through two neighbouring corners.
   const double sinPad = std::sin(set.pad);
   for (int k = 0; k < 4; ++k) {

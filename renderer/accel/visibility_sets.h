@@ -91,6 +91,9 @@ class DirectionClasses {
   // not). Exposed for the tests.
   bool mayMeet(const VisibilitySet& set, int face, double u0, double u1, double v0,
                double v1) const;
+  // Whether the block lies inside `set` (false when unsure): its classes are listed without
+  // looking at each.
+  bool inside(const VisibilitySet& set, int face, double u0, double u1, double v0, double v1) const;
 
  private:
   template <class Add>
@@ -108,10 +111,9 @@ template <class Add>
 void DirectionClasses::descend(const VisibilitySet& set, int face, int i0, int i1, int j0, int j1,
                                Add& add) const {
   const double step = 2.0 / r_;
-  if (!set.everywhere &&
-      !mayMeet(set, face, -1 + i0 * step, -1 + i1 * step, -1 + j0 * step, -1 + j1 * step))
-    return;
-  if ((i1 - i0 == 1 && j1 - j0 == 1) || set.everywhere) {
+  const double u0 = -1 + i0 * step, u1 = -1 + i1 * step, v0 = -1 + j0 * step, v1 = -1 + j1 * step;
+  if (!set.everywhere && !mayMeet(set, face, u0, u1, v0, v1)) return;
+  if ((i1 - i0 == 1 && j1 - j0 == 1) || set.everywhere || inside(set, face, u0, u1, v0, v1)) {
     for (int i = i0; i < i1; ++i)
       for (int j = j0; j < j1; ++j)
         add((uint32_t(face) * uint32_t(r_) + uint32_t(i)) * uint32_t(r_) + uint32_t(j));
