@@ -170,8 +170,9 @@ RayCoherence::RayCoherence(const Scene& scene, int resolution, size_t pairBudget
 void RayCoherence::buildRows(const std::vector<Shell>& origins, const std::vector<Shell>& targets,
                              size_t pairBudget, size_t wordBudget) {
   const size_t n = targets.size(), d = classes_.count();
-  // Targets are done this many at a time, so that a row over budget is given up after at most
-  // one block past it.
+  // Targets are done in blocks of at most this many, and of no more than the words left can
+  // hold if each listed every class, so a row over budget is given up at most one target's
+  // classes past it.
   constexpr size_t kBlock = 4096;
   size_t words = 0;
   for (const Shell& origin : origins) {
@@ -180,8 +181,10 @@ void RayCoherence::buildRows(const std::vector<Shell>& origins, const std::vecto
     std::vector<std::vector<uint32_t>> classesOf(n);
     size_t listed = 0;
     bool over = false;
-    for (size_t begin = 0; begin < n && !over; begin += kBlock) {
-      const size_t end = std::min(n, begin + kBlock);
+    for (size_t begin = 0, end = 0; begin < n && !over; begin = end) {
+      const size_t used = words + d + 1 + 2 * listed;
+      const size_t room = wordBudget > used ? wordBudget - used : 0;
+      end = std::min({n, begin + kBlock, begin + 1 + room / (2 * d)});
       tbb::parallel_for(begin, end, [&](size_t k) {
         const VisibilitySet set = visibilitySet(origin, targets[k], pad_);
         classes_.forEachClassMeeting(set, [&](uint32_t c) { classesOf[k].push_back(c); });
