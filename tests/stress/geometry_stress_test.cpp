@@ -5,6 +5,7 @@
 #include "accel/embree_accel.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
+#include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
 #include "accel/uniform_grid.h"
 #include "core/hash.h"
@@ -178,7 +179,9 @@ TEST(DegenerateGeometry, RendersAndCrossChecksCleanly) {
   const Octree octree(s);
   const Octree octreeGenerateAndTest(s, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(s);
-  const CrossCheck check(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest});
+  const RayCoherence coherence(s);
+  const CrossCheck check(embree,
+                         {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &coherence});
   castRandomRays(s, check, 100000, 5);
   EXPECT_EQ(check.stats().hitAgree, check.stats().rays);
   for (const auto& line : check.stats().firstDisagreements) ADD_FAILURE() << line;
@@ -350,8 +353,9 @@ TEST(EmbreeVsOctreeAndKdTree, OneMillionRandomRays) {
   const Octree octree(s);
   const Octree octreeGenerateAndTest(s, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(s);
+  const RayCoherence coherence(s);
   stress::expectAgreementOnRandomRays(
-      s, CrossCheck(embree, {&octree, &kdtree, &octreeGenerateAndTest}), 1000000,
+      s, CrossCheck(embree, {&octree, &kdtree, &octreeGenerateAndTest, &coherence}), 1000000,
       kSoupComparedHits);
 }
 
@@ -365,9 +369,10 @@ TEST(CsgSolids, EveryBackendAgreesOnOneMillionRandomRays) {
   const Octree octree(s);
   const Octree octreeGenerateAndTest(s, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(s);
+  const RayCoherence coherence(s);
   stress::expectAgreementOnRandomRays(
-      s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest}), 1000000,
-      kSoupComparedHits);
+      s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &coherence}),
+      1000000, kSoupComparedHits);
 }
 
 // 24. Every bundled scene: Embree against each of Glint's structures on 10⁶ random rays (issue
