@@ -5,6 +5,7 @@
 #include "accel/embree_accel.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
+#include "accel/ray_classification.h"
 #include "accel/reference_bvh.h"
 #include "accel/uniform_grid.h"
 #include "core/out_of_memory.h"
@@ -26,13 +27,15 @@ std::string_view accelName(AccelKind k) {
       return "octree";
     case AccelKind::KdTree:
       return "kdtree";
+    case AccelKind::RayClass:
+      return "rayclass";
   }
   return "?";
 }
 
 bool parseAccelKind(std::string_view name, AccelKind& out) {
   for (auto k : {AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce, AccelKind::Grid,
-                 AccelKind::Octree, AccelKind::KdTree})
+                 AccelKind::Octree, AccelKind::KdTree, AccelKind::RayClass})
     if (accelName(k) == name) {
       out = k;
       return true;
@@ -42,7 +45,8 @@ bool parseAccelKind(std::string_view name, AccelKind& out) {
 
 namespace {
 
-std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene) {
+std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene,
+                                   const AccelOptions& options) {
   switch (kind) {
     case AccelKind::Embree:
       return std::make_unique<EmbreeAccel>(scene);
@@ -56,16 +60,19 @@ std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene) {
       return std::make_unique<Octree>(scene);
     case AccelKind::KdTree:
       return std::make_unique<KdTree>(scene);
+    case AccelKind::RayClass:
+      return std::make_unique<RayClassification>(scene, options.rayclass);
   }
   return nullptr;
 }
 
 }  // namespace
 
-std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene) {
+std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene,
+                                             const AccelOptions& options) {
   return out_of_memory::whileDoing(
       "building the " + std::string(accelName(kind)) + " acceleration structure",
-      [&] { return build(kind, scene); });
+      [&] { return build(kind, scene, options); });
 }
 
 namespace {

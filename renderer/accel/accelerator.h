@@ -5,6 +5,7 @@
 #include <memory>
 #include <string_view>
 
+#include "accel/ray_classification_settings.h"
 #include "core/ray.h"
 #include "geometry/hit.h"
 
@@ -12,7 +13,7 @@ namespace glint {
 
 class Scene;
 
-enum class AccelKind { Embree, Bvh, BruteForce, Grid, Octree, KdTree };
+enum class AccelKind { Embree, Bvh, BruteForce, Grid, Octree, KdTree, RayClass };
 
 std::string_view accelName(AccelKind);
 bool parseAccelKind(std::string_view name, AccelKind& out);
@@ -37,7 +38,12 @@ class Accelerator {
   virtual std::string_view name() const = 0;
 };
 
-std::unique_ptr<Accelerator> makeAccelerator(AccelKind, const Scene&);
+// What the command line may set of the backends that have settings (app/accel_options.h).
+struct AccelOptions {
+  RayClassSettings rayclass;
+};
+
+std::unique_ptr<Accelerator> makeAccelerator(AccelKind, const Scene&, const AccelOptions& = {});
 
 // Closest plane hit of the world group closer than hit.t; updates `hit` in place.
 void intersectPlanes(const Scene& scene, const Ray& ray, Hit& hit);

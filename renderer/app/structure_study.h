@@ -17,6 +17,7 @@ namespace glint {
 // Prints one line per structure and returns {"primitives", "structures": {name: {...}}}.
 nlohmann::json studyStructures(const Scene& scene, const std::vector<AccelKind>& kinds,
                                const std::vector<Ray>& cameraRays,
-                               const std::vector<Ray>& randomRays);
+                               const std::vector<Ray>& randomRays,
+                               const AccelOptions& options = {});
 
 }  // namespace glint

@@ -8,6 +8,7 @@
 #include "accel/accelerator.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
+#include "accel/ray_classification.h"
 #include "accel/uniform_grid.h"
 #include "core/hash.h"
 #include "test_util.h"
@@ -87,6 +88,7 @@ TEST(BackendAgreement, OctreeAndKdTreeMatchBruteForce) {
     expectAgreesWithBruteForce(s, Octree(s, levels));
   }
   expectAgreesWithBruteForce(s, KdTree(s));
+  expectAgreesWithBruteForce(s, RayClassification(s));
 }
 
 // The renderer traces camera rays and shadow rays as coherent streams (packets inside Embree):

@@ -14,7 +14,7 @@ namespace glint {
 namespace {
 
 constexpr AccelKind kCounted[] = {AccelKind::Bvh, AccelKind::Grid, AccelKind::Octree,
-                                  AccelKind::KdTree};
+                                  AccelKind::KdTree, AccelKind::RayClass};
 
 const CountingTraversal& counting(const Accelerator& accel) {
   return dynamic_cast<const CountingTraversal&>(accel);

@@ -352,6 +352,16 @@ TEST(EmbreeVsOctreeAndKdTree, OneMillionRandomRays) {
                                       kSoupComparedHits);
 }
 
+// 22b. Ray classification on the same 10⁶ rays over the soup, its lazily made cells' beams
+// crossing the needles.
+TEST(EmbreeVsRayClassification, OneMillionRandomRays) {
+  const Scene s = triangleSoup();
+  const EmbreeAccel embree(s);
+  const RayClassification rayclass(s);
+  stress::expectAgreementOnRandomRays(s, CrossCheck(embree, {&rayclass}), 1000000,
+                                      kSoupComparedHits);
+}
+
 // 23. CSG solids: Embree (user geometry) and every structure of Glint's reach them differently
 // but must agree on 10⁶ random rays, as for the triangle soup.
 TEST(CsgSolids, EveryBackendAgreesOnOneMillionRandomRays) {
@@ -361,8 +371,10 @@ TEST(CsgSolids, EveryBackendAgreesOnOneMillionRandomRays) {
   const UniformGrid grid(s);
   const Octree octree(s);
   const KdTree kdtree(s);
-  stress::expectAgreementOnRandomRays(s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree}),
-                                      1000000, kSoupComparedHits);
+  const RayClassification rayclass(s);
+  stress::expectAgreementOnRandomRays(
+      s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &rayclass}), 1000000,
+      kSoupComparedHits);
 }
 
 // 24. Every bundled scene: Embree against each of Glint's structures on 10⁶ random rays (issue
