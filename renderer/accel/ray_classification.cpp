@@ -170,17 +170,24 @@ RayClassification::Cell* RayClassification::makeChild(const Hyperset& h, int fac
   for (size_t i = 0; i < n; ++i)
     if (meets(beam, h.prims[parent.refs[i]].box)) list.push_back(parent.refs[i]);
   auto cell = std::make_unique<Cell>();
-  cell->own = std::make_unique<uint32_t[]>(list.size());
-  std::copy(list.begin(), list.end(), cell->own.get());
-  cell->refs = cell->own.get();
   cell->count = uint32_t(list.size());
-  const size_t bytes = sizeof(Cell) + list.size() * sizeof(uint32_t);
+  if (list.size() == n) {
+    // The beam meets all its parent's objects (as near the roots, where the cells are wide):
+    // the parent's list, which outlives its children, serves as it is.
+    cell->refs = parent.refs;
+  } else {
+    cell->own = std::make_unique<uint32_t[]>(list.size());
+    std::copy(list.begin(), list.end(), cell->own.get());
+    cell->refs = cell->own.get();
+  }
+  const size_t owned = cell->own ? list.size() : 0;
+  const size_t bytes = sizeof(Cell) + owned * sizeof(uint32_t);
   Cell* published = nullptr;
   if (parent.child[half].compare_exchange_strong(published, cell.get(), std::memory_order_acq_rel,
                                                  std::memory_order_acquire)) {
     lazyBytes_.fetch_sub(most - bytes, std::memory_order_relaxed);
     cells_.fetch_add(1, std::memory_order_relaxed);
-    references_.fetch_add(list.size(), std::memory_order_relaxed);
+    references_.fetch_add(owned, std::memory_order_relaxed);
     return cell.release();
   }
   // Another thread made this half first: its list is the same; ours is dropped.

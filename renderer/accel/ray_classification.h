@@ -45,7 +45,7 @@ namespace glint {
 struct RayClassStats {
   size_t primitives = 0;
   size_t cells = 0;       // made while tracing (the six roots of each group not counted)
-  size_t references = 0;  // in the candidate lists of those cells
+  size_t references = 0;  // in the lists they own (a cell with all its parent's shares it)
   size_t lazyBytes = 0;   // of those cells and lists: at most capBytes
   size_t capBytes = 0;
   size_t fixedBytes = 0;  // the groups' object boxes and root lists, made when built
