@@ -25,7 +25,7 @@ import subprocess
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-STRUCTURES = ["embree", "bvh", "kdtree", "octree", "grid", "rayclass"]
+STRUCTURES = ["embree", "bvh", "kdtree", "octree", "grid", "octree-generate-and-test", "rayclass"]
 
 
 def spheres_scene(n, rng):
@@ -86,10 +86,11 @@ def plot(results, out):
                     ax.loglog(*zip(*pts), marker="o", label=s, color=f"C{STRUCTURES.index(s)}")
             ns = sorted({r["n"] for r in results if r["family"] == family})
             if key == "camera_steps_per_ray" and ns:
-                # The seeds' claims as they stand: a ray crosses at most 3R - 2 of the grid's
-                # R = ceil(cbrt n) cells per axis; a balanced hierarchy is log2 n levels deep.
+                # Glint's bound: a 3D-DDA enters at most 3R - 2 of the grid's R = ceil(cbrt n)
+                # cells per axis (seed 002's eq. 9.1 writes 1 + 7(R - 1)); a balanced hierarchy
+                # is log2 n levels deep.
                 ax.loglog(ns, [3 * math.ceil(n ** (1 / 3) - 1e-9) - 2 for n in ns], "k:",
-                          label="3⌈∛n⌉ − 2")
+                          label="Glint's bound 3⌈∛n⌉ − 2")
                 ax.loglog(ns, [math.log2(n) for n in ns], "k--", label="log₂ n")
                 ax.legend(fontsize=8)
             elif key.endswith("ns_per_ray") and ns:

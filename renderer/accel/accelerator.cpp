@@ -27,6 +27,8 @@ std::string_view accelName(AccelKind k) {
       return "octree";
     case AccelKind::KdTree:
       return "kdtree";
+    case AccelKind::OctreeGenerateAndTest:
+      return "octree-generate-and-test";
     case AccelKind::RayClass:
       return "rayclass";
   }
@@ -35,7 +37,8 @@ std::string_view accelName(AccelKind k) {
 
 bool parseAccelKind(std::string_view name, AccelKind& out) {
   for (auto k : {AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce, AccelKind::Grid,
-                 AccelKind::Octree, AccelKind::KdTree, AccelKind::RayClass})
+                 AccelKind::Octree, AccelKind::KdTree, AccelKind::OctreeGenerateAndTest,
+                 AccelKind::RayClass})
     if (accelName(k) == name) {
       out = k;
       return true;
@@ -60,6 +63,8 @@ std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene,
       return std::make_unique<Octree>(scene);
     case AccelKind::KdTree:
       return std::make_unique<KdTree>(scene);
+    case AccelKind::OctreeGenerateAndTest:
+      return std::make_unique<Octree>(scene, 0, Octree::Walk::GenerateAndTest);
     case AccelKind::RayClass:
       return std::make_unique<RayClassification>(scene, options.rayclass);
   }

@@ -13,7 +13,16 @@ namespace glint {
 
 class Scene;
 
-enum class AccelKind { Embree, Bvh, BruteForce, Grid, Octree, KdTree, RayClass };
+enum class AccelKind {
+  Embree,
+  Bvh,
+  BruteForce,
+  Grid,
+  Octree,
+  KdTree,
+  OctreeGenerateAndTest,
+  RayClass
+};
 
 std::string_view accelName(AccelKind);
 bool parseAccelKind(std::string_view name, AccelKind& out);

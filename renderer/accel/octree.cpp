@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "accel/surface_cell_overlap.h"
+
 namespace glint {
 
 namespace {
@@ -14,33 +16,53 @@ namespace {
 constexpr size_t kLeafPrimitives = 2;
 // 2^10 cells per axis at the finest level at most, as the uniform grid's resolution.
 constexpr int kMaxLevels = 10;
-// A primitive goes into every octant its box reaches, and this share of the cell beyond: a ray
-// computed a hair across a mid-plane must still find it.
-constexpr float kCellPad = 1e-4f;
+
+// The octant of a cell centred at `c` that holds p (a point on a mid-plane goes up).
+int octantOf(const Vec3f& p, const Vec3f& c) {
+  return int(p.x >= c.x) | int(p.y >= c.y) << 1 | int(p.z >= c.z) << 2;
+}
+
+// Octant k of the cell `cell` centred at `c`, and the octant's own centre (the one arithmetic
+// that the build and both walks share, so that they agree on every cell to the last bit).
+Bounds3f octantBox(const Bounds3f& cell, const Vec3f& c, int k) {
+  Bounds3f b = cell;
+  for (int a = 0; a < 3; ++a) ((k >> a & 1) ? b.lo[a] : b.hi[a]) = c[a];
+  return b;
+}
+Vec3f octantCenter(const Vec3f& c, float half, int k) {
+  const float quarter = half / 2;
+  return c + Vec3f{(k & 1) ? quarter : -quarter, (k & 2) ? quarter : -quarter,
+                   (k & 4) ? quarter : -quarter};
+}
 
 class Builder {
  public:
-  Builder(Octree::Tree& tree, int levels)
-      : t_(tree),
+  Builder(const Scene& scene, uint32_t groupId, Octree::Tree& tree, int levels,
+          SubdivisionStats& stats)
+      : scene_(scene),
+        groupId_(groupId),
+        t_(tree),
         levels_(levels),
+        stats_(stats),
         budget_(referenceBudget(tree.prims.size())),
         references_(double(tree.prims.size())) {}
 
-  void build(uint32_t node, const Vec3f& center, float half, std::vector<uint32_t> list, int depth,
-             size_t& maxDepth) {
-    maxDepth = std::max(maxDepth, size_t(depth));
+  // `inside`: the cell lies inside some primitive's solid.
+  void build(uint32_t node, const Vec3f& center, float half, const Bounds3f& cell,
+             std::vector<uint32_t> list, int depth, bool inside) {
+    stats_.maxDepth = std::max(stats_.maxDepth, size_t(depth));
     if (depth < levels_ && list.size() > kLeafPrimitives) {
-      // The octants each primitive's box reaches (seed 002's "partial" cells).
+      // The octants each primitive's surface meets (seed 002's "partial" cells).
       std::array<std::vector<uint32_t>, 8> octants;
-      const float pad = kCellPad * half;
+      std::array<bool, 8> insideOctant;
+      insideOctant.fill(inside);
       size_t listed = 0;
-      for (uint32_t i : list) {
-        const Bounds3f& b = t_.prims[i].box;
-        for (int k = 0; k < 8; ++k) {
-          bool reaches = true;
-          for (int a = 0; a < 3 && reaches; ++a)
-            reaches = (k >> a & 1) ? b.hi[a] >= center[a] - pad : b.lo[a] <= center[a] + pad;
-          if (reaches) octants[size_t(k)].push_back(i), ++listed;
+      for (int k = 0; k < 8; ++k) {
+        const Bounds3f box = paddedCell(octantBox(cell, center, k));
+        for (uint32_t i : list) {
+          const CellContact contact = paddedSurfaceContact(scene_, groupId_, t_.prims[i], box);
+          if (contact == CellContact::Surface) octants[size_t(k)].push_back(i), ++listed;
+          if (contact == CellContact::Inside) insideOctant[size_t(k)] = true;
         }
       }
       // Cutting pays only when it separates something, and only within the reference budget
@@ -51,50 +73,64 @@ class Builder {
         const auto first = static_cast<uint32_t>(t_.nodes.size());
         t_.nodes.resize(first + 8);
         t_.nodes[node].firstChild = first;
-        for (int k = 0; k < 8; ++k) {
-          const Vec3f offset{(k & 1) ? half / 2 : -half / 2, (k & 2) ? half / 2 : -half / 2,
-                             (k & 4) ? half / 2 : -half / 2};
-          build(first + uint32_t(k), center + offset, half / 2, std::move(octants[size_t(k)]),
-                depth + 1, maxDepth);
-        }
+        for (int k = 0; k < 8; ++k)
+          build(first + uint32_t(k), octantCenter(center, half, k), half / 2,
+                octantBox(cell, center, k), std::move(octants[size_t(k)]), depth + 1,
+                insideOctant[size_t(k)]);
         return;
       }
     }
+    if (list.empty()) ++(inside ? stats_.fullLeaves : stats_.emptyLeaves);
     t_.nodes[node].refStart = static_cast<uint32_t>(t_.refs.size());
     t_.nodes[node].refCount = static_cast<uint32_t>(list.size());
     t_.refs.insert(t_.refs.end(), list.begin(), list.end());
   }
 
  private:
+  const Scene& scene_;
+  uint32_t groupId_;
   Octree::Tree& t_;
   int levels_;
+  SubdivisionStats& stats_;
   double budget_;
   double references_;  // in all lists made so far (the root's n to begin with)
 };
 
-Octree::Tree buildTree(std::vector<PrimitiveBox> prims, int levels, size_t& maxDepth) {
+Octree::Tree buildTree(const Scene& scene, uint32_t groupId, std::vector<PrimitiveBox> prims,
+                       int levels, SubdivisionStats& stats) {
   Octree::Tree t;
   Bounds3f& box = t.box;
   for (const PrimitiveBox& p : prims) box.extend(p.box);
   t.center = 0.5f * (box.lo + box.hi);
   // The seed's cube around the object space, a hair larger than the box so no box touches it.
   t.half = 0.5f * maxComponent(box.hi - box.lo) * (1 + 1e-5f);
+  const Vec3f h{t.half, t.half, t.half};
+  t.cube = {t.center - h, t.center + h};
   const int k =
       levels > 0 ? levels : static_cast<int>(std::ceil(std::log2(double(prims.size())) / 3));
   // A point-like or unbounded (past float's range) box is not cut at all.
-  const int cut =
-      t.half > 0 && std::isfinite(t.half) && isFinite(t.center) ? std::clamp(k, 0, kMaxLevels) : 0;
+  int cut = t.half > 0 && std::isfinite(t.half) && isFinite(t.center) && isFinite(t.cube.lo) &&
+                    isFinite(t.cube.hi)
+                ? std::clamp(k, 0, kMaxLevels)
+                : 0;
+  // Nor cut finer than 2⁻²⁰ of the cube's largest coordinate (8 float steps): the walks step
+  // b/2 past a face, which must leave the cell, and centres must stay distinct.
+  const float reach = std::max(maxComponent(abs(t.cube.lo)), maxComponent(abs(t.cube.hi)));
+  while (cut > 0 && std::ldexp(2 * t.half, -cut) < 0x1p-20f * reach) --cut;
+  t.step = std::ldexp(t.half, -cut);
   t.prims = std::move(prims);
   std::vector<uint32_t> all(t.prims.size());
   for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
   t.nodes.resize(1);
-  Builder(t, cut).build(0, t.center, t.half, std::move(all), 0, maxDepth);
+  Builder(scene, groupId, t, cut, stats)
+      .build(0, t.center, t.half, t.cube, std::move(all), 0, false);
   return t;
 }
 
 }  // namespace
 
-Octree::Octree(const Scene& scene, int levels) : TwoLevelAccelerator(scene) {
+Octree::Octree(const Scene& scene, int levels, Walk walk)
+    : TwoLevelAccelerator(scene), walk_(walk) {
   const auto start = std::chrono::steady_clock::now();
   trees_.resize(scene.groups.size());
   // Instanced groups first (they follow their parents): an instance's box is its group's box.
@@ -102,7 +138,7 @@ Octree::Octree(const Scene& scene, int levels) : TwoLevelAccelerator(scene) {
     std::vector<PrimitiveBox> prims =
         groupPrimitives(scene, uint32_t(g), [&](uint32_t child) { return trees_[child].box; });
     if (prims.empty()) continue;
-    Tree& t = trees_[g] = buildTree(std::move(prims), levels, stats_.maxDepth);
+    Tree& t = trees_[g] = buildTree(scene, uint32_t(g), std::move(prims), levels, stats_);
     stats_.primitives += t.prims.size();
     stats_.references += t.refs.size();
     stats_.nodes += t.nodes.size();
@@ -117,12 +153,101 @@ Octree::Octree(const Scene& scene, int levels) : TwoLevelAccelerator(scene) {
 template <bool AnyHit, class Counter>
 bool Octree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit,
                       Counter count) const {
+  return walk_ == Walk::MidPlane ? walkMidPlanes<AnyHit>(groupId, ray, instId, hit, count)
+                                 : generateAndTest<AnyHit>(groupId, ray, instId, hit, count);
+}
+
+template <bool AnyHit, class Counter>
+bool Octree::testLeaf(uint32_t groupId, uint32_t node, const Ray& ray, uint32_t instId, Hit& hit,
+                      Counter count) const {
+  const Tree& t = trees_[groupId];
+  const Node& n = t.nodes[node];
+  bool found = false;
+  for (uint32_t k = n.refStart; k < n.refStart + n.refCount; ++k) {
+    const PrimitiveBox& p = t.prims[t.refs[k]];
+    count.test();
+    if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
+                           intoInstance(count))) {
+      if constexpr (AnyHit) return true;
+      found = true;
+    }
+  }
+  return found;
+}
+
+template <bool AnyHit, class Counter>
+bool Octree::generateAndTest(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit,
+                             Counter count) const {
   const Tree& t = trees_[groupId];
   if (t.prims.empty()) return false;
   const RaySlabs slabs(ray);
-  const Vec3f h{t.half, t.half, t.half};
   float tEnter = ray.tMin, tLeave = std::min(ray.tMax, hit.t);
-  if (!slabTest({t.center - h, t.center + h}, ray, slabs, tEnter, tLeave)) return false;
+  if (!slabTest(t.cube, ray, slabs, tEnter, tLeave)) return false;
+  // The first point: the origin, or where a ray from outside enters the cube. A cell holds
+  // [lo, hi) along each axis (Classify sends a point on a mid-plane up), so a coordinate is
+  // kept below the cube's upper faces and above its lower ones.
+  const auto below = [](float x) { return std::nextafter(x, -kInfinity); };
+  Vec3f q = ray.o + tEnter * ray.d;
+  for (int a = 0; a < 3; ++a) q[a] = std::clamp(q[a], t.cube.lo[a], below(t.cube.hi[a]));
+  bool found = false;
+  while (true) {
+    // Classify(q): from the root down to the leaf holding q, keeping the leaf's faces.
+    uint32_t node = 0;
+    Vec3f c = t.center;
+    float half = t.half;
+    Bounds3f cell = t.cube;
+    count.step();
+    while (t.nodes[node].firstChild != kInvalidId) {
+      const int k = octantOf(q, c);
+      cell = octantBox(cell, c, k);
+      c = octantCenter(c, half, k);
+      half /= 2;
+      node = t.nodes[node].firstChild + uint32_t(k);
+      count.step();
+    }
+    if (testLeaf<AnyHit>(groupId, node, ray, instId, hit, count)) {
+      if constexpr (AnyHit) return true;
+      found = true;
+    }
+    // Where the ray leaves the leaf: the nearest of the faces it heads for.
+    Vec3f tFace{kInfinity, kInfinity, kInfinity};
+    for (int a = 0; a < 3; ++a)
+      if (ray.d[a] != 0)
+        tFace[a] = ((ray.d[a] > 0 ? cell.hi[a] : cell.lo[a]) - ray.o[a]) * slabs.inv[a];
+    const float tExit = std::min({tFace.x, tFace.y, tFace.z});
+    // The ray ends in this leaf, or its closest hit lies here: no later leaf holds a closer.
+    if (!(tExit < std::min(ray.tMax, hit.t))) break;
+    // q = e + (b/2)·(the axes of the faces the ray leaves by), eq. 9.18: past each of those
+    // faces by half the smallest cell (in the next leaf, whatever its size), and at least one
+    // float step (so q leaves this leaf); along the other axes the ray's own coordinate at e,
+    // held inside this leaf, whose exit float rounding might otherwise skip for a neighbour.
+    bool leaves = false;
+    for (int a = 0; a < 3; ++a) {
+      if (tFace[a] == tExit) {
+        if (ray.d[a] > 0) {
+          leaves |= cell.hi[a] == t.cube.hi[a];
+          q[a] = std::max(cell.hi[a] + t.step, cell.hi[a]);
+        } else {
+          leaves |= cell.lo[a] == t.cube.lo[a];
+          q[a] = std::min(cell.lo[a] - t.step, below(cell.lo[a]));
+        }
+      } else {
+        q[a] = std::clamp(ray.o[a] + tExit * ray.d[a], cell.lo[a], below(cell.hi[a]));
+      }
+    }
+    if (leaves) break;  // out of the root cube
+  }
+  return found;
+}
+
+template <bool AnyHit, class Counter>
+bool Octree::walkMidPlanes(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hit,
+                           Counter count) const {
+  const Tree& t = trees_[groupId];
+  if (t.prims.empty()) return false;
+  const RaySlabs slabs(ray);
+  float tEnter = ray.tMin, tLeave = std::min(ray.tMax, hit.t);
+  if (!slabTest(t.cube, ray, slabs, tEnter, tLeave)) return false;
 
   // Cells still to visit, nearest on top: a cell's octants are pushed farthest first.
   struct Cell {
@@ -141,14 +266,9 @@ bool Octree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hi
     const Node& n = t.nodes[c.node];
     count.step();
     if (n.firstChild == kInvalidId) {
-      for (uint32_t k = n.refStart; k < n.refStart + n.refCount; ++k) {
-        const PrimitiveBox& p = t.prims[t.refs[k]];
-        count.test();
-        if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
-                               intoInstance(count))) {
-          if constexpr (AnyHit) return true;
-          found = true;
-        }
+      if (testLeaf<AnyHit>(groupId, c.node, ray, instId, hit, count)) {
+        if constexpr (AnyHit) return true;
+        found = true;
       }
       continue;
     }
@@ -180,15 +300,13 @@ bool Octree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hi
       octant ^= 1 << a;
     }
     along[octants++] = {uint32_t(octant), {}, 0, from, c.t1};
-    const float quarter = c.half / 2;
     for (int i = octants; i-- > 0;) {
       const uint32_t k = along[i].node;
       const uint32_t child = n.firstChild + k;
       const Node& cn = t.nodes[child];
-      if (cn.firstChild == kInvalidId && cn.refCount == 0) continue;  // an empty cell
-      const Vec3f offset{(k & 1) ? quarter : -quarter, (k & 2) ? quarter : -quarter,
-                         (k & 4) ? quarter : -quarter};
-      stack[top++] = {child, c.center + offset, quarter, along[i].t0, along[i].t1};
+      if (cn.firstChild == kInvalidId && cn.refCount == 0) continue;  // empty or full
+      stack[top++] = {child, octantCenter(c.center, c.half, int(k)), c.half / 2, along[i].t0,
+                      along[i].t1};
     }
   }
   return found;

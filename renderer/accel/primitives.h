@@ -29,6 +29,9 @@ struct PrimitiveBox {
 struct SubdivisionStats {
   double buildSeconds = 0;
   size_t nodes = 0, leaves = 0, references = 0, primitives = 0, maxDepth = 0, bytes = 0;
+  // The octree's leaves that no surface meets (seed 002 §9.2.2), and of those the full ones
+  // (inside a sphere: the solid whose inside the exact tests can tell).
+  size_t emptyLeaves = 0, fullLeaves = 0;
   double referencesPerPrimitive() const {
     return primitives ? double(references) / double(primitives) : 0;
   }

@@ -18,9 +18,11 @@ namespace glint {
 // What a traversal did for one ray, instanced groups included (planes, tested by the shared
 // loop beside every structure, are not counted): the nodes or cells it visited — for the BVH
 // every node whose box it tests, a box the ray misses included; for the grid, the octree and
-// the k-d tree the cells or nodes it enters — and the primitives it tested. The seeds' claims are
-// about these (seed 002 §9.2.1: at most about R = ⌈∛n⌉ cells per ray for the grid; about log n
-// nodes for the hierarchies), and `glint bench --structures` reports them beside the time per ray.
+// the k-d tree the cells or nodes it enters (for the octree's generate-and-test walk, every node
+// of each descent from the root) — and the primitives it tested. The seeds' claims are
+// about these (seed 002 eq. 9.1: k ≤ 1 + 7(R − 1) cells per ray for the grid of R = ⌈∛n⌉ cells
+// per axis, O(∛n); about log n nodes for the hierarchies), and `glint bench --structures`
+// reports them beside the time per ray.
 struct TraversalCounts {
   uint64_t steps = 0, tests = 0;
 };

@@ -4,6 +4,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <utility>
+
+#include "accel/surface_cell_overlap.h"
 
 namespace glint {
 
@@ -45,12 +48,27 @@ void setResolution(UniformGrid::Grid& g, int r) {
   }
 }
 
-UniformGrid::Grid buildGrid(std::vector<PrimitiveBox> prims, int resolution) {
+// Cell (x, y, z) of `g`, its faces where the DDA puts them (the whole box along an axis of one
+// cell).
+Bounds3f cellBox(const UniformGrid::Grid& g, const std::array<int, 3>& cell) {
+  Bounds3f b = g.box;
+  for (int a = 0; a < 3; ++a) {
+    if (g.cellsPerUnit[a] == 0) continue;
+    b.lo[a] = g.box.lo[a] + float(cell[size_t(a)]) * g.cellSize[a];
+    if (cell[size_t(a)] + 1 < g.cells[a])
+      b.hi[a] = g.box.lo[a] + float(cell[size_t(a)] + 1) * g.cellSize[a];
+  }
+  return b;
+}
+
+UniformGrid::Grid buildGrid(const Scene& scene, uint32_t groupId, std::vector<PrimitiveBox> prims,
+                            int resolution) {
   UniformGrid::Grid g;
   for (const PrimitiveBox& p : prims) g.box.extend(p.box);
   int r = resolution > 0 ? resolution : cubeRootRoundedUp(prims.size());
-  // Each primitive's range of cells, at the finest resolution (from r down by halves) whose
-  // references stay within referenceBudget (n·R³ ≈ n² for primitives spanning the box).
+  // Each primitive's range of cells (those its box reaches), at the finest resolution (from r
+  // down by halves) whose ranges stay within referenceBudget (n·R³ ≈ n² for primitives
+  // spanning the box); the exact tests below list it in fewer.
   std::vector<std::array<int, 6>> ranges(prims.size());
   const double allowed = referenceBudget(prims.size());
   while (true) {
@@ -68,28 +86,28 @@ UniformGrid::Grid buildGrid(std::vector<PrimitiveBox> prims, int resolution) {
     if (references <= allowed || r == 1) break;
     r = std::max(1, r / 2);
   }
-  const size_t cellCount = size_t(g.cells[0]) * size_t(g.cells[1]) * size_t(g.cells[2]);
-  // Counting sort of the references by cell: count, prefix sum, fill.
-  g.cellStart.assign(cellCount + 1, 0);
+  // Each primitive in the cells of its range that its surface meets (accel/
+  // surface_cell_overlap.h): (cell, primitive) pairs, then a counting sort by cell.
+  const auto cellIndex = [&](int x, int y, int z) {
+    return (size_t(z) * size_t(g.cells[1]) + size_t(y)) * size_t(g.cells[0]) + size_t(x);
+  };
+  std::vector<std::pair<uint32_t, uint32_t>> pairs;
   for (size_t i = 0; i < prims.size(); ++i) {
     const auto& rg = ranges[i];
     for (int z = rg[2]; z <= rg[5]; ++z)
       for (int y = rg[1]; y <= rg[4]; ++y)
         for (int x = rg[0]; x <= rg[3]; ++x)
-          ++g.cellStart[(size_t(z) * size_t(g.cells[1]) + size_t(y)) * size_t(g.cells[0]) +
-                        size_t(x) + 1];
+          if (surfaceContact(scene, groupId, prims[i], cellBox(g, {x, y, z})) ==
+              CellContact::Surface)
+            pairs.emplace_back(uint32_t(cellIndex(x, y, z)), uint32_t(i));
   }
+  const size_t cellCount = size_t(g.cells[0]) * size_t(g.cells[1]) * size_t(g.cells[2]);
+  g.cellStart.assign(cellCount + 1, 0);
+  for (const auto& [cell, prim] : pairs) ++g.cellStart[cell + 1];
   for (size_t c = 0; c < cellCount; ++c) g.cellStart[c + 1] += g.cellStart[c];
   g.refs.resize(g.cellStart[cellCount]);
   std::vector<uint32_t> filled(g.cellStart.begin(), g.cellStart.end() - 1);
-  for (size_t i = 0; i < prims.size(); ++i) {
-    const auto& rg = ranges[i];
-    for (int z = rg[2]; z <= rg[5]; ++z)
-      for (int y = rg[1]; y <= rg[4]; ++y)
-        for (int x = rg[0]; x <= rg[3]; ++x)
-          g.refs[filled[(size_t(z) * size_t(g.cells[1]) + size_t(y)) * size_t(g.cells[0]) +
-                        size_t(x)]++] = uint32_t(i);
-  }
+  for (const auto& [cell, prim] : pairs) g.refs[filled[cell]++] = prim;
   g.prims = std::move(prims);
   return g;
 }
@@ -104,7 +122,7 @@ UniformGrid::UniformGrid(const Scene& scene, int resolution) : TwoLevelAccelerat
     std::vector<PrimitiveBox> prims =
         groupPrimitives(scene, uint32_t(g), [&](uint32_t child) { return grids_[child].box; });
     if (prims.empty()) continue;
-    Grid& grid = grids_[g] = buildGrid(std::move(prims), resolution);
+    Grid& grid = grids_[g] = buildGrid(scene, uint32_t(g), std::move(prims), resolution);
     stats_.primitives += grid.prims.size();
     stats_.references += grid.refs.size();
     stats_.cells += grid.cellStart.size() - 1;

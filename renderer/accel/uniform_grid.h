@@ -1,10 +1,11 @@
 #pragma once
 // The uniform grid of seed 000 §12.3.3 and seed 002 §9.2.1: a group's box cut into R × R × R
 // equal cells (R = ⌈∛n⌉ for n primitives by default, the resolution of seed 002's analysis),
-// each listing the primitives whose box overlaps it; a ray walks its cells in order with the
-// 3D-DDA of Amanatides and Woo (1987) and stops at the first cell that holds its closest hit.
-// Mailboxing skips a primitive already tested in an earlier cell. Two levels like the reference
-// BVH: an instance is a primitive of its parent's grid and has a grid of its own group.
+// each listing the primitives whose surface meets it (accel/surface_cell_overlap.h); a ray walks
+// its cells in order with the 3D-DDA of Amanatides and Woo (1987) and stops at the first cell
+// that holds its closest hit. Mailboxing skips a primitive already tested in an earlier cell.
+// Two levels like the reference BVH: an instance is a primitive of its parent's grid and has a
+// grid of its own group.
 #include <array>
 #include <cstdint>
 #include <vector>

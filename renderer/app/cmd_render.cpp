@@ -706,7 +706,8 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--max-depth", args->maxDepth, "Recursion limit")->check(CLI::Range(0, 1000));
   cmd->add_option("--accel", args->accel,
                   "Intersection backend (default " + defaultText(args->accel) + ")")
-      ->check(CLI::IsMember({"embree", "bvh", "brute", "grid", "octree", "kdtree", "rayclass"}));
+      ->check(CLI::IsMember({"embree", "bvh", "brute", "grid", "octree", "kdtree",
+                             "octree-generate-and-test", "rayclass"}));
   addAccelOptions(*cmd, args->accelOptions);
   cmd->add_option("--integrator", args->integrator,
                   "production, or reference: seed 002's depth-first Trace, the oracle the "

@@ -51,12 +51,15 @@ int runValidate(const ValidateArgs& a) {
   const ReferenceBvh bvh(scene);
   const UniformGrid grid(scene);
   const Octree octree(scene);
+  const Octree octreeGenerateAndTest(scene, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(scene);
   const RayClassification rayclass(scene, a.accelOptions.rayclass);
   std::unique_ptr<BruteForce> brute;
   if (!a.noBrute && scene.primitiveCount() <= kBruteForceLimit)
     brute = std::make_unique<BruteForce>(scene);
-  std::vector<const Accelerator*> others{&bvh, &grid, &octree, &kdtree, &rayclass};
+  std::vector<const Accelerator*> others{&bvh, &grid, &octree, &kdtree};
+  others.push_back(&octreeGenerateAndTest);
+  others.push_back(&rayclass);
   if (brute) others.push_back(brute.get());
 
   if (!a.ray.empty()) {  // reproduce one ray from a report line
@@ -67,8 +70,9 @@ int runValidate(const ValidateArgs& a) {
       throw UsageError("--ray: expected 9 numbers: ox oy oz dx dy dz tmin tmax time");
     if (const std::string why = rayProblem(r); !why.empty()) throw UsageError("--ray: " + why);
     std::printf("ray %s\n", formatRay(r).c_str());
-    for (const Accelerator* acc : std::vector<const Accelerator*>{&embree, &bvh, &grid, &octree,
-                                                                  &kdtree, &rayclass, brute.get()})
+    for (const Accelerator* acc :
+         std::vector<const Accelerator*>{&embree, &bvh, &grid, &octree, &kdtree,
+                                         &octreeGenerateAndTest, &rayclass, brute.get()})
       if (acc)
         std::printf("  %-8s %s\n", std::string(acc->name()).c_str(),
                     a.occludedRay ? (acc->occluded(r) ? "occluded" : "clear")
@@ -98,8 +102,9 @@ int runValidate(const ValidateArgs& a) {
 
   const CrossCheckStats& st = check.stats();
   const BvhStats& bs = bvh.stats();
-  std::printf("backends       embree, bvh, grid, octree, kdtree, rayclass%s\n",
-              brute ? ", brute" : " (brute force skipped: scene too large)");
+  std::printf(
+      "backends       embree, bvh, grid, octree, kdtree, octree-generate-and-test, rayclass%s\n",
+      brute ? ", brute" : " (brute force skipped: scene too large)");
   std::printf(
       "queries        %llu closest-hit, %llu occlusion (scene rays at %d spp + %d random)\n",
       (unsigned long long)st.rays, (unsigned long long)st.occlusionRays, a.spp, a.rays);

@@ -78,6 +78,21 @@ nlohmann::json countsPerRay(const Accelerator& accel, const std::vector<Ray>& ra
   return {{"steps", double(counts.steps) / n}, {"tests", double(counts.tests) / n}};
 }
 
+// What the study records of a subdivision beside time and memory: references per primitive,
+// and for the octree its leaves that no surface meets, empty and full (seed 002 §9.2.2).
+nlohmann::json subdivisionFigures(const Accelerator& accel) {
+  if (const auto* o = dynamic_cast<const Octree*>(&accel))
+    return {{"references_per_primitive", o->stats().referencesPerPrimitive()},
+            {"leaves", o->stats().leaves},
+            {"empty_leaves", o->stats().emptyLeaves},
+            {"full_leaves", o->stats().fullLeaves}};
+  if (const auto* g = dynamic_cast<const UniformGrid*>(&accel))
+    return {{"references_per_primitive",
+             g->stats().primitives ? double(g->stats().references) / double(g->stats().primitives)
+                                   : 0.0}};
+  return nlohmann::json::object();
+}
+
 std::string oneDecimal(const nlohmann::json& value) {
   if (value.is_null()) return "-";
   char text[32];
@@ -135,6 +150,7 @@ nlohmann::json studyStructures(const Scene& scene, const std::vector<AccelKind>&
     if (rayclass)
       j["structures"][std::string(accel->name())]["lazy"] = {{"after_camera", afterCamera},
                                                              {"after_random", afterRandom}};
+    j["structures"][std::string(accel->name())].update(subdivisionFigures(*accel));
   }
   return j;
 }

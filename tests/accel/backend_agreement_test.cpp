@@ -80,12 +80,13 @@ TEST(BackendAgreement, UniformGridMatchesBruteForceAtEveryResolution) {
 }
 
 // The octree at its default depth (⌈log₂(n)/3⌉ = 4 levels here), at none (one leaf), and one
-// and seven levels deep; the k-d tree as built by its SAH.
+// and seven levels deep, by both walks; the k-d tree as built by its SAH.
 TEST(BackendAgreement, OctreeAndKdTreeMatchBruteForce) {
   const Scene s = everyShapeKind();
   for (int levels : {0, 1, 7}) {
     SCOPED_TRACE(levels);
     expectAgreesWithBruteForce(s, Octree(s, levels));
+    expectAgreesWithBruteForce(s, Octree(s, levels, Octree::Walk::GenerateAndTest));
   }
   expectAgreesWithBruteForce(s, KdTree(s));
   expectAgreesWithBruteForce(s, RayClassification(s));

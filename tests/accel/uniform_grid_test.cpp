@@ -35,5 +35,23 @@ TEST(UniformGrid, ReferencesStayBoundedWhenEveryPrimitiveSpansTheScene) {
   test::expectFindsTheFansClosestHit(s, grid);
 }
 
+TEST(UniformGrid, ListsASphereOnlyInTheCellsItsSurfaceMeets) {
+  // A unit sphere in 5 × 5 × 5 cells 0.4 wide (faces at ±0.2, ±0.6, ±1). Its box reaches all
+  // 125. Per axis a cell's farthest coordinate is 0.2, 0.6 or 1 from the centre and its nearest
+  // 0, 0.2 or 0.6: the cells whose farthest corner is within 1 lie inside (the centre cell,
+  // 0.12; its 6 face neighbours, 0.44; the 12 at (0.6, 0.6, 0.2), 0.76), the 8 corner cells,
+  // nearest at √1.08 = 1.04, lie outside: 125 − 19 − 8 = 98 cells hold part of the surface.
+  const Scene s = test::sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-1]},
+    "materials": {"m": {"type": "phong"}},
+    "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})");
+  const UniformGrid grid(s, 5);
+  EXPECT_EQ(grid.stats().cells, 125u);
+  EXPECT_EQ(grid.stats().references, 98u);
+  // A ray from the centre, inside the centre cell whose list is empty, finds the surface.
+  const Hit h = grid.intersect(Ray{{0, 0, 0}, normalize(Vec3f{0.3f, 0.5f, 0.8f})});
+  ASSERT_TRUE(h);
+  EXPECT_NEAR(h.t, 1, 1e-6);
+}
+
 }  // namespace
 }  // namespace glint

@@ -302,7 +302,8 @@ TEST(Cli, EveryBackendRendersTheSameImage) {
   // for every sampled effect too.
   const std::string scene = test::writeTemp("backends.json", kSmallScene);
   const auto path = [](const std::string& n) { return (test::tempDir() / (n + ".exr")).string(); };
-  for (const char* accel : {"embree", "bvh", "brute", "grid", "octree", "kdtree", "rayclass"})
+  for (const char* accel : {"embree", "bvh", "brute", "grid", "octree", "kdtree",
+                            "octree-generate-and-test", "rayclass"})
     ASSERT_EQ(
         runGlint("render " + scene + " --quiet --accel " + accel + " -o " + path(accel)).exitCode,
         0);
@@ -313,6 +314,7 @@ TEST(Cli, EveryBackendRendersTheSameImage) {
   EXPECT_EQ(readImage(path("octree")).pixels, embree);
   EXPECT_EQ(readImage(path("kdtree")).pixels, embree);
   EXPECT_EQ(readImage(path("rayclass")).pixels, embree);
+  EXPECT_EQ(readImage(path("octree-generate-and-test")).pixels, embree);
 }
 
 TEST(Cli, DefaultSceneRendersWithStats) {

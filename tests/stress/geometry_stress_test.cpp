@@ -176,8 +176,9 @@ TEST(DegenerateGeometry, RendersAndCrossChecksCleanly) {
   const ReferenceBvh bvh(s);
   const UniformGrid grid(s);
   const Octree octree(s);
+  const Octree octreeGenerateAndTest(s, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(s);
-  const CrossCheck check(embree, {&bvh, &grid, &octree, &kdtree});
+  const CrossCheck check(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest});
   castRandomRays(s, check, 100000, 5);
   EXPECT_EQ(check.stats().hitAgree, check.stats().rays);
   for (const auto& line : check.stats().firstDisagreements) ADD_FAILURE() << line;
@@ -341,15 +342,17 @@ TEST(EmbreeVsGrid, OneMillionRandomRays) {
   stress::expectAgreementOnRandomRays(s, CrossCheck(embree, {&grid}), 1000000, kSoupComparedHits);
 }
 
-// 22. The octree and the k-d tree on the same 10⁶ rays over the soup, the needles crossing
-// their cells and planes.
+// 22. The octree (both walks) and the k-d tree on the same 10⁶ rays over the soup, the needles
+// crossing their cells and planes.
 TEST(EmbreeVsOctreeAndKdTree, OneMillionRandomRays) {
   const Scene s = triangleSoup();
   const EmbreeAccel embree(s);
   const Octree octree(s);
+  const Octree octreeGenerateAndTest(s, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(s);
-  stress::expectAgreementOnRandomRays(s, CrossCheck(embree, {&octree, &kdtree}), 1000000,
-                                      kSoupComparedHits);
+  stress::expectAgreementOnRandomRays(
+      s, CrossCheck(embree, {&octree, &kdtree, &octreeGenerateAndTest}), 1000000,
+      kSoupComparedHits);
 }
 
 // 22b. Ray classification on the same 10⁶ rays over the soup, its lazily made cells' beams
@@ -370,11 +373,12 @@ TEST(CsgSolids, EveryBackendAgreesOnOneMillionRandomRays) {
   const ReferenceBvh bvh(s);
   const UniformGrid grid(s);
   const Octree octree(s);
+  const Octree octreeGenerateAndTest(s, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(s);
   const RayClassification rayclass(s);
   stress::expectAgreementOnRandomRays(
-      s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &rayclass}), 1000000,
-      kSoupComparedHits);
+      s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &rayclass}),
+      1000000, kSoupComparedHits);
 }
 
 // 24. Every bundled scene: Embree against each of Glint's structures on 10⁶ random rays (issue

@@ -43,16 +43,18 @@ inline void expectAgreementOnRandomRays(const Scene& s, const CrossCheck& check,
 }
 
 // As `glint validate --no-brute` checks a scene: Embree against each of Glint's own structures
-// (the BVH, the grid, the octree, the k-d tree) on kAgreementRays random rays; ray
+// (the BVH, the grid, the octree by both walks, the k-d tree) on kAgreementRays random rays; ray
 // classification on a tenth of them.
 inline void expectStructuresAgreeWithEmbree(const Scene& s) {
   const EmbreeAccel embree(s);
   const ReferenceBvh bvh(s);
   const UniformGrid grid(s);
   const Octree octree(s);
+  const Octree octreeGenerateAndTest(s, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(s);
-  expectAgreementOnRandomRays(s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree}),
-                              kAgreementRays);
+  expectAgreementOnRandomRays(
+      s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest}),
+      kAgreementRays);
   // Ray classification makes its cells while tracing, and random rays, unlike a render's,
   // share few of them: each makes the cells of its own path (docs/acceleration.md), which costs
   // ten times the other structures' whole query, so it takes a tenth of the rays.
