@@ -12,7 +12,8 @@ For each scene `glint bench --structures` builds every structure and times one t
 camera rays (160 x 120) and on --rays random rays (origins in the scene's box, directions
 uniform on the sphere), the best of three passes, and counts the nodes or cells each camera ray
 visits and the primitives it tests (Glint's own structures; Embree's traversal is not
-counted). Prints a markdown table; writes the plots and
+counted), and for ray classification what its lazy build made (cells, bytes) and its first
+pass's time beside its best. Prints markdown tables; writes the plots and
 the figures (JSON) to --out. Needs python3-matplotlib (Debian's /usr/bin/python3).
 """
 
@@ -24,7 +25,7 @@ import subprocess
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
-STRUCTURES = ["embree", "bvh", "kdtree", "octree", "grid", "octree-generate-and-test",
+STRUCTURES = ["embree", "bvh", "kdtree", "octree", "grid", "octree-generate-and-test", "rayclass",
               "coherence"]
 
 
@@ -193,6 +194,24 @@ def main():
                         lambda v: f"{v:.0f}")))
             fmt = (lambda f: lambda v: "–" if v is None else f(v))(fmt)
             print(f"| {r['family']} | {r['n']:.0e} | " + " | ".join(fmt(v) for v in vals) + " |")
+    # Ray classification builds while tracing: its candidate lists and what the lazy build made,
+    # beside the seed's claims (short lists; the cost of making a cell amortised over its rays).
+    print("\nrayclass: candidate list and lazy build\n\n| scene | n | camera cells descended | "
+          "camera list (tests) | random list | cells after camera | MiB after camera | "
+          "cells after random | MiB after random | camera ns first pass / best | "
+          "random ns first pass / best |")
+    print("|---|---|" + "---|" * 9)
+    for r in results:
+        rc = r["structures"].get("rayclass")
+        if not rc:
+            continue
+        cam, rnd = rc["lazy"]["after_camera"], rc["lazy"]["after_random"]
+        print(f"| {r['family']} | {r['n']:.0e} | {rc['camera_steps_per_ray']:.1f} | "
+              f"{rc['camera_tests_per_ray']:.1f} | {rc['random_tests_per_ray']:.1f} | "
+              f"{cam['cells']} | {cam['bytes'] / 2**20:.2f} | {rnd['cells']} | "
+              f"{rnd['bytes'] / 2**20:.2f} | {rc['camera_first_pass_ns_per_ray']:.0f} / "
+              f"{rc['camera_ns_per_ray']:.0f} | {rc['random_first_pass_ns_per_ray']:.0f} / "
+              f"{rc['random_ns_per_ray']:.0f} |")
     coherence_study(args.glint, work, min(args.max_n, 100000), args.rays)
 
 

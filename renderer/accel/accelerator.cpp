@@ -5,6 +5,7 @@
 #include "accel/embree_accel.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
+#include "accel/ray_classification.h"
 #include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
 #include "accel/uniform_grid.h"
@@ -29,6 +30,8 @@ std::string_view accelName(AccelKind k) {
       return "kdtree";
     case AccelKind::OctreeGenerateAndTest:
       return "octree-generate-and-test";
+    case AccelKind::RayClass:
+      return "rayclass";
     case AccelKind::Coherence:
       return "coherence";
   }
@@ -38,7 +41,7 @@ std::string_view accelName(AccelKind k) {
 bool parseAccelKind(std::string_view name, AccelKind& out) {
   for (auto k : {AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce, AccelKind::Grid,
                  AccelKind::Octree, AccelKind::KdTree, AccelKind::OctreeGenerateAndTest,
-                 AccelKind::Coherence})
+                 AccelKind::RayClass, AccelKind::Coherence})
     if (accelName(k) == name) {
       out = k;
       return true;
@@ -48,7 +51,8 @@ bool parseAccelKind(std::string_view name, AccelKind& out) {
 
 namespace {
 
-std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene) {
+std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene,
+                                   const AccelOptions& options) {
   switch (kind) {
     case AccelKind::Embree:
       return std::make_unique<EmbreeAccel>(scene);
@@ -64,6 +68,8 @@ std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene) {
       return std::make_unique<KdTree>(scene);
     case AccelKind::OctreeGenerateAndTest:
       return std::make_unique<Octree>(scene, 0, Octree::Walk::GenerateAndTest);
+    case AccelKind::RayClass:
+      return std::make_unique<RayClassification>(scene, options.rayclass);
     case AccelKind::Coherence:
       return std::make_unique<RayCoherence>(scene);
   }
@@ -72,10 +78,11 @@ std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene) {
 
 }  // namespace
 
-std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene) {
+std::unique_ptr<Accelerator> makeAccelerator(AccelKind kind, const Scene& scene,
+                                             const AccelOptions& options) {
   return out_of_memory::whileDoing(
       "building the " + std::string(accelName(kind)) + " acceleration structure",
-      [&] { return build(kind, scene); });
+      [&] { return build(kind, scene, options); });
 }
 
 namespace {

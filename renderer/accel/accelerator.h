@@ -5,6 +5,7 @@
 #include <memory>
 #include <string_view>
 
+#include "accel/ray_classification_settings.h"
 #include "core/ray.h"
 #include "geometry/hit.h"
 
@@ -20,6 +21,7 @@ enum class AccelKind {
   Octree,
   KdTree,
   OctreeGenerateAndTest,
+  RayClass,
   Coherence
 };
 
@@ -46,7 +48,12 @@ class Accelerator {
   virtual std::string_view name() const = 0;
 };
 
-std::unique_ptr<Accelerator> makeAccelerator(AccelKind, const Scene&);
+// What the command line may set of the backends that have settings (app/accel_options.h).
+struct AccelOptions {
+  RayClassSettings rayclass;
+};
+
+std::unique_ptr<Accelerator> makeAccelerator(AccelKind, const Scene&, const AccelOptions& = {});
 
 // Closest plane hit of the world group closer than hit.t; updates `hit` in place.
 void intersectPlanes(const Scene& scene, const Ray& ray, Hit& hit);

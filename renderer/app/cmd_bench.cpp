@@ -18,6 +18,7 @@
 #include "accel/cross_check.h"
 #include "accel/embree_accel.h"
 #include "accel/reference_bvh.h"
+#include "app/accel_options.h"
 #include "app/commands.h"
 #include "app/procedural_scene.h"
 #include "app/render_bench.h"
@@ -38,6 +39,7 @@ namespace {
 struct BenchArgs {
   std::string scenePath;
   std::string accels = "embree,bvh";
+  AccelOptions accelOptions;
   size_t procedural = 0;
   int threads = 0;
   int randomRays = 1 << 20;
@@ -109,7 +111,7 @@ int runBench(const BenchArgs& a) {
   if (kinds.empty()) throw UsageError("--accel: name at least one backend");
   if (a.structures) {
     const RaySets rays = makeRays(scene, nullptr, a.randomRays);
-    nlohmann::json j = studyStructures(scene, kinds, rays.camera, rays.random);
+    nlohmann::json j = studyStructures(scene, kinds, rays.camera, rays.random, a.accelOptions);
     j["scene"] = scene.sourcePath;
     j["load_seconds"] = loadSeconds;
     if (!a.json.empty()) writeTextFileAtomically(a.json, j.dump(2) + "\n");
@@ -138,7 +140,7 @@ int runBench(const BenchArgs& a) {
   std::vector<std::unique_ptr<Accelerator>> owned;
   std::vector<const Accelerator*> accels;
   for (AccelKind k : kinds) {
-    if (k != AccelKind::Embree) owned.push_back(makeAccelerator(k, scene));
+    if (k != AccelKind::Embree) owned.push_back(makeAccelerator(k, scene, a.accelOptions));
     accels.push_back(k == AccelKind::Embree ? &embree : owned.back().get());
   }
   const RaySets rays = makeRays(scene, accels[0], a.randomRays);
@@ -313,7 +315,8 @@ CommandRunner addBenchCommand(CLI::App& app) {
   cmd->add_option("scene", args->scenePath, sceneArgumentHelp())->check(CLI::ExistingFile);
   cmd->add_option("--accel", args->accels,
                   "Comma-separated backends (embree, bvh, brute, grid, octree, kdtree, "
-                  "octree-generate-and-test, coherence)");
+                  "octree-generate-and-test, rayclass, coherence)");
+  addAccelOptions(*cmd, args->accelOptions);
   // A heightfield beyond 2^28 triangles would not fit this machine's memory (80 B each).
   cmd->add_option("--procedural", args->procedural,
                   "Benchmark a generated heightfield of about this many triangles instead")

@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/accel_options.h"
 #include "app/commands.h"
 #include "app/farm_plan.h"
 #include "app/option_arity.h"
@@ -46,6 +47,7 @@ struct RenderArgs {
   std::string display;
   DisplaySettings ocio;
   std::string accel = "embree";
+  AccelOptions accelOptions;  // --rayclass-n-min, --rayclass-w-min
   std::string integrator = "production";
   std::string sampler;
   std::string statsJson;
@@ -467,7 +469,7 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
         return isDisplayFormat(renderOutputFormat(job.out, {}));
       });
   if (displayImages) DisplayTransform check(a.ocio);
-  const auto accel = makeAccelerator(kind, scene);
+  const auto accel = makeAccelerator(kind, scene, a.accelOptions);
   // From here a signal stops the render and the frame so far is written (CLI.md).
   const interrupt::RenderPhase stopCleanlyOnSignal;
   for (const Job& job : jobs) {
@@ -705,7 +707,8 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--accel", args->accel,
                   "Intersection backend (default " + defaultText(args->accel) + ")")
       ->check(CLI::IsMember({"embree", "bvh", "brute", "grid", "octree", "kdtree",
-                             "octree-generate-and-test", "coherence"}));
+                             "octree-generate-and-test", "rayclass", "coherence"}));
+  addAccelOptions(*cmd, args->accelOptions);
   cmd->add_option("--integrator", args->integrator,
                   "production, or reference: seed 002's depth-first Trace, the oracle the "
                   "production kernel is tested against (beauty only) (default " +

@@ -1,6 +1,7 @@
 // `glint validate`: renders the scene's own rays (camera, reflection, refraction, shadow) and
-// N random rays through Embree, the reference BVH, the uniform grid, the octree, the k-d tree
-// and (for small scenes) brute force, and reports how well they agree, hit by hit.
+// N random rays through Embree, the reference BVH, the uniform grid, the octree, the k-d tree,
+// ray classification and (for small scenes) brute force, and reports how well they agree, hit
+// by hit.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -12,9 +13,11 @@
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
 #include "accel/origin_rays.h"
+#include "accel/ray_classification.h"
 #include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
 #include "accel/uniform_grid.h"
+#include "app/accel_options.h"
 #include "app/commands.h"
 #include "app/option_arity.h"
 #include "app/scene_source.h"
@@ -37,6 +40,7 @@ struct ValidateArgs {
   std::vector<std::string> ray;  // --ray's nine numbers
   bool occludedRay = false;
   bool noBrute = false;
+  AccelOptions accelOptions;
 };
 
 // Brute force is O(N) per ray: used when the scene has at most this many primitives.
@@ -51,12 +55,14 @@ int runValidate(const ValidateArgs& a) {
   const Octree octree(scene);
   const Octree octreeGenerateAndTest(scene, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(scene);
+  const RayClassification rayclass(scene, a.accelOptions.rayclass);
   const RayCoherence coherence(scene);
   std::unique_ptr<BruteForce> brute;
   if (!a.noBrute && scene.primitiveCount() <= kBruteForceLimit)
     brute = std::make_unique<BruteForce>(scene);
   std::vector<const Accelerator*> others{&bvh, &grid, &octree, &kdtree};
   others.push_back(&octreeGenerateAndTest);
+  others.push_back(&rayclass);
   others.push_back(&coherence);
   if (brute) others.push_back(brute.get());
 
@@ -68,11 +74,11 @@ int runValidate(const ValidateArgs& a) {
       throw UsageError("--ray: expected 9 numbers: ox oy oz dx dy dz tmin tmax time");
     if (const std::string why = rayProblem(r); !why.empty()) throw UsageError("--ray: " + why);
     std::printf("ray %s\n", formatRay(r).c_str());
-    for (const Accelerator* acc :
-         std::vector<const Accelerator*>{&embree, &bvh, &grid, &octree, &kdtree,
-                                         &octreeGenerateAndTest, &coherence, brute.get()})
+    for (const Accelerator* acc : std::vector<const Accelerator*>{
+             &embree, &bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &rayclass, &coherence,
+             brute.get()})
       if (acc)
-        std::printf("  %-7s %s\n", std::string(acc->name()).c_str(),
+        std::printf("  %-8s %s\n", std::string(acc->name()).c_str(),
                     a.occludedRay ? (acc->occluded(r) ? "occluded" : "clear")
                                   : formatHit(acc->intersect(r)).c_str());
     return kExitOk;
@@ -102,7 +108,8 @@ int runValidate(const ValidateArgs& a) {
   const CrossCheckStats& st = check.stats();
   const BvhStats& bs = bvh.stats();
   std::printf(
-      "backends       embree, bvh, grid, octree, kdtree, octree-generate-and-test, coherence%s\n",
+      "backends       embree, bvh, grid, octree, kdtree, octree-generate-and-test, rayclass, "
+      "coherence%s\n",
       brute ? ", brute" : " (brute force skipped: scene too large)");
   std::printf(
       "queries        %llu closest-hit, %llu occlusion (scene rays at %d spp + %d random + "
@@ -135,6 +142,14 @@ int runValidate(const ValidateArgs& a) {
         "primitive), %.1f MiB\n",
         label, ts->buildSeconds, ts->nodes, ts->leaves, ts->maxDepth, ts->references,
         ts->referencesPerPrimitive(), double(ts->bytes) / (1 << 20));
+  const RayClassStats rs = rayclass.stats();
+  std::printf(
+      "rayclass cells %zu made while tracing (n_min %u, w_min %g), %zu references (%.2f per "
+      "primitive), %.1f MiB of a cap of %.1f MiB, %.1f MiB besides\n",
+      rs.cells, a.accelOptions.rayclass.nMin, a.accelOptions.rayclass.wMin, rs.references,
+      rs.primitives ? double(rs.references) / double(rs.primitives) : 0.0,
+      double(rs.lazyBytes) / (1 << 20), double(rs.capBytes) / (1 << 20),
+      double(rs.fixedBytes) / (1 << 20));
   const CoherenceStats& cs = coherence.stats();
   std::printf(
       "coherence build %.3f s, %zu origins (%zu with a row), %zu objects, %zu classes, %zu "
@@ -179,6 +194,11 @@ int runValidate(const ValidateArgs& a) {
                       {"references", cs.references},
                       {"bytes", cs.bytes}};
     j["embree"] = {{"build_seconds", embree.buildSeconds()}, {"bytes", embree.bytes()}};
+    j["rayclass"] = {{"cells", rs.cells},
+                     {"references", rs.references},
+                     {"lazy_bytes", rs.lazyBytes},
+                     {"cap_bytes", rs.capBytes},
+                     {"fixed_bytes", rs.fixedBytes}};
     writeTextFileAtomically(a.json, j.dump(2) + "\n");
   }
   if (st.hitAgreement() < a.minAgreement || st.occlusionAgreement() < a.minAgreement) {
@@ -215,6 +235,7 @@ CommandRunner addValidateCommand(CLI::App& app) {
               9, ValueKind::Number, "ox oy oz dx dy dz tmin tmax time");
   cmd->add_flag("--occluded", args->occludedRay, "With --ray: an occlusion query");
   cmd->add_flag("--no-brute", args->noBrute, "Skip the brute-force oracle");
+  addAccelOptions(*cmd, args->accelOptions);
   return [args] { return runValidate(*args); };
 }
 

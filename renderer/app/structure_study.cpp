@@ -10,6 +10,7 @@
 #include "accel/embree_accel.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
+#include "accel/ray_classification.h"
 #include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
 #include "accel/two_level.h"
@@ -31,26 +32,41 @@ size_t structureBytes(const Accelerator& accel) {
   if (const auto* g = dynamic_cast<const UniformGrid*>(&accel)) return g->stats().bytes;
   if (const auto* o = dynamic_cast<const Octree*>(&accel)) return o->stats().bytes;
   if (const auto* k = dynamic_cast<const KdTree*>(&accel)) return k->stats().bytes;
+  if (const auto* r = dynamic_cast<const RayClassification*>(&accel))
+    return r->stats().fixedBytes + r->stats().lazyBytes;
   if (const auto* c = dynamic_cast<const RayCoherence*>(&accel)) return c->stats().bytes;
   return 0;
 }
 
 // Nanoseconds per closest-hit query on one thread: the best of three passes (the machine is
-// shared), or of one when a pass takes more than 10 s.
-double nanosecondsPerRay(const Accelerator& accel, const std::vector<Ray>& rays) {
-  if (rays.empty()) return 0;
+// shared), or of one when a pass takes more than 10 s; and the first pass's, which for a
+// structure built lazily (rayclass) includes the building.
+struct RayTimes {
+  double best = 0, first = 0;
+};
+RayTimes nanosecondsPerRay(const Accelerator& accel, const std::vector<Ray>& rays) {
+  if (rays.empty()) return {};
   const FlushToZeroScope flushToZero;
-  double best = kInfinity;
+  double best = kInfinity, first = 0;
   for (int pass = 0; pass < 3; ++pass) {
     const auto start = std::chrono::steady_clock::now();
     size_t hits = 0;
     for (const Ray& r : rays) hits += bool(accel.intersect(r));
     const double s = secondsSince(start);
     benchmark::DoNotOptimize(hits);
+    if (pass == 0) first = s;
     best = std::min(best, s);
     if (s > 10) break;
   }
-  return best / double(rays.size()) * 1e9;
+  return {best / double(rays.size()) * 1e9, first / double(rays.size()) * 1e9};
+}
+
+// What ray classification has made lazily (accel/ray_classification.h), as a JSON object.
+nlohmann::json lazyCells(const RayClassStats& s) {
+  return {{"cells", s.cells},
+          {"references", s.references},
+          {"bytes", s.lazyBytes},
+          {"cap_bytes", s.capBytes}};
 }
 
 // Mean nodes or cells visited and primitives tested per closest-hit query, for a structure whose
@@ -90,35 +106,52 @@ std::string oneDecimal(const nlohmann::json& value) {
 
 nlohmann::json studyStructures(const Scene& scene, const std::vector<AccelKind>& kinds,
                                const std::vector<Ray>& cameraRays,
-                               const std::vector<Ray>& randomRays) {
+                               const std::vector<Ray>& randomRays, const AccelOptions& options) {
   nlohmann::json j;
   j["primitives"] = scene.primitiveCount();
   std::printf("%-8s %10s %10s %14s %14s %22s %22s\n", "backend", "build s", "MiB", "camera ns/ray",
               "random ns/ray", "camera steps/tests", "random steps/tests");
   for (AccelKind kind : kinds) {
     const auto start = std::chrono::steady_clock::now();
-    const std::unique_ptr<Accelerator> accel = makeAccelerator(kind, scene);
+    const std::unique_ptr<Accelerator> accel = makeAccelerator(kind, scene, options);
     const double build = secondsSince(start);
-    const size_t bytes = structureBytes(*accel);
-    const double camera = nanosecondsPerRay(*accel, cameraRays);
-    const double random = nanosecondsPerRay(*accel, randomRays);
+    const auto* rayclass = dynamic_cast<const RayClassification*>(accel.get());
+    const RayTimes camera = nanosecondsPerRay(*accel, cameraRays);
+    const nlohmann::json afterCamera = rayclass ? lazyCells(rayclass->stats()) : nlohmann::json();
+    const RayTimes random = nanosecondsPerRay(*accel, randomRays);
+    const nlohmann::json afterRandom = rayclass ? lazyCells(rayclass->stats()) : nlohmann::json();
+    const size_t bytes = structureBytes(*accel);  // after the rays: rayclass builds while tracing
     const nlohmann::json cameraCounts = countsPerRay(*accel, cameraRays);
     const nlohmann::json randomCounts = countsPerRay(*accel, randomRays);
     const auto pair = [](const nlohmann::json& c) {
       return oneDecimal(c["steps"]) + " / " + oneDecimal(c["tests"]);
     };
     std::printf("%-8s %10.4f %10.2f %14.1f %14.1f %22s %22s\n", std::string(accel->name()).c_str(),
-                build, double(bytes) / (1 << 20), camera, random, pair(cameraCounts).c_str(),
-                pair(randomCounts).c_str());
+                build, double(bytes) / (1 << 20), camera.best, random.best,
+                pair(cameraCounts).c_str(), pair(randomCounts).c_str());
+    if (rayclass)
+      std::printf(
+          "%-8s lazily made: %zu cells, %.2f MiB after the camera rays (first pass %.1f "
+          "ns/ray); %zu cells, %.2f MiB after the random rays too (first pass %.1f "
+          "ns/ray); cap %.1f MiB\n",
+          "", afterCamera["cells"].get<size_t>(), afterCamera["bytes"].get<double>() / (1 << 20),
+          camera.first, afterRandom["cells"].get<size_t>(),
+          afterRandom["bytes"].get<double>() / (1 << 20), random.first,
+          double(rayclass->stats().capBytes) / (1 << 20));
     std::fflush(stdout);
     j["structures"][std::string(accel->name())] = {{"build_seconds", build},
                                                    {"bytes", bytes},
-                                                   {"camera_ns_per_ray", camera},
-                                                   {"random_ns_per_ray", random},
+                                                   {"camera_ns_per_ray", camera.best},
+                                                   {"random_ns_per_ray", random.best},
+                                                   {"camera_first_pass_ns_per_ray", camera.first},
+                                                   {"random_first_pass_ns_per_ray", random.first},
                                                    {"camera_steps_per_ray", cameraCounts["steps"]},
                                                    {"camera_tests_per_ray", cameraCounts["tests"]},
                                                    {"random_steps_per_ray", randomCounts["steps"]},
                                                    {"random_tests_per_ray", randomCounts["tests"]}};
+    if (rayclass)
+      j["structures"][std::string(accel->name())]["lazy"] = {{"after_camera", afterCamera},
+                                                             {"after_random", afterRandom}};
     j["structures"][std::string(accel->name())].update(subdivisionFigures(*accel));
     // Ray coherence's preprocessing is O(m·n) in the seed: m origins, n objects.
     if (const auto* c = dynamic_cast<const RayCoherence*>(accel.get()))

@@ -8,6 +8,7 @@
 #include "accel/accelerator.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
+#include "accel/ray_classification.h"
 #include "accel/ray_coherence.h"
 #include "accel/uniform_grid.h"
 #include "core/hash.h"
@@ -89,6 +90,7 @@ TEST(BackendAgreement, OctreeAndKdTreeMatchBruteForce) {
     expectAgreesWithBruteForce(s, Octree(s, levels, Octree::Walk::GenerateAndTest));
   }
   expectAgreesWithBruteForce(s, KdTree(s));
+  expectAgreesWithBruteForce(s, RayClassification(s));
 }
 
 // Ray coherence at its default resolution and at 1 and 32 classes per face edge: random rays

@@ -18,6 +18,7 @@ constexpr AccelKind kCounted[] = {AccelKind::Bvh,
                                   AccelKind::Octree,
                                   AccelKind::KdTree,
                                   AccelKind::OctreeGenerateAndTest,
+                                  AccelKind::RayClass,
                                   AccelKind::Coherence};
 
 const CountingTraversal& counting(const Accelerator& accel) {

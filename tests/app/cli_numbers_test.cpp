@@ -132,6 +132,8 @@ TEST(CliNumbers, HostileValuesOfEveryNumericOptionAreRefusedOrUsed) {
   const std::vector<std::string> bench = {"bench",         scene, "--random-rays", "256",
                                           "--render-runs", "0",   "--accel",       "bvh"};
   const std::vector<std::string> plan = {"plan", scene};
+  const std::vector<std::string> rayclass = {"render", scene,     "--quiet", "-o",
+                                             out,      "--accel", "rayclass"};
   std::vector<std::string> adaptive = render;  // 8 spp: room for adaptive sampling's passes
   adaptive.insert(adaptive.end(), {"--spp", "8"});
   std::vector<std::string> cropLast = render;
@@ -157,6 +159,10 @@ TEST(CliNumbers, HostileValuesOfEveryNumericOptionAreRefusedOrUsed) {
       {validate, "--seed"},
       {validate, "--spp"},
       {validate, "--min-agreement"},
+      {rayclass, "--rayclass-n-min"},
+      {rayclass, "--rayclass-w-min"},
+      {validate, "--rayclass-n-min"},
+      {validate, "--rayclass-w-min"},
       {{"validate", scene}, "--ray", "0 0 5 0 0 -1 0 ", " 0"},    // tmax
       {{"validate", scene}, "--ray", "", " 0 5 0 0 -1 0 100 0"},  // the origin's x
       {{"compare", exr, exr}, "--threshold"},

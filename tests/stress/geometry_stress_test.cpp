@@ -359,6 +359,16 @@ TEST(EmbreeVsOctreeAndKdTree, OneMillionRandomRays) {
       kSoupComparedHits);
 }
 
+// 22b. Ray classification on the same 10⁶ rays over the soup, its lazily made cells' beams
+// crossing the needles.
+TEST(EmbreeVsRayClassification, OneMillionRandomRays) {
+  const Scene s = triangleSoup();
+  const EmbreeAccel embree(s);
+  const RayClassification rayclass(s);
+  stress::expectAgreementOnRandomRays(s, CrossCheck(embree, {&rayclass}), 1000000,
+                                      kSoupComparedHits);
+}
+
 // 23. CSG solids: Embree (user geometry) and every structure of Glint's reach them differently
 // but must agree on 10⁶ random rays, as for the triangle soup.
 TEST(CsgSolids, EveryBackendAgreesOnOneMillionRandomRays) {
@@ -369,9 +379,12 @@ TEST(CsgSolids, EveryBackendAgreesOnOneMillionRandomRays) {
   const Octree octree(s);
   const Octree octreeGenerateAndTest(s, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(s);
+  const RayClassification rayclass(s);
   const RayCoherence coherence(s);
   stress::expectAgreementOnRandomRays(
-      s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &coherence}),
+      s,
+      CrossCheck(embree,
+                 {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &rayclass, &coherence}),
       1000000, kSoupComparedHits);
 }
 

@@ -12,6 +12,7 @@
 #include "accel/embree_accel.h"
 #include "accel/kd_tree.h"
 #include "accel/octree.h"
+#include "accel/ray_classification.h"
 #include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
 #include "accel/uniform_grid.h"
@@ -43,7 +44,8 @@ inline void expectAgreementOnRandomRays(const Scene& s, const CrossCheck& check,
 }
 
 // As `glint validate --no-brute` checks a scene: Embree against each of Glint's own structures
-// (the BVH, the grid, the octree by both walks, the k-d tree) on kAgreementRays random rays.
+// (the BVH, the grid, the octree by both walks, the k-d tree) on kAgreementRays random rays; ray
+// classification on a tenth of them.
 inline void expectStructuresAgreeWithEmbree(const Scene& s) {
   const EmbreeAccel embree(s);
   const ReferenceBvh bvh(s);
@@ -55,6 +57,11 @@ inline void expectStructuresAgreeWithEmbree(const Scene& s) {
   expectAgreementOnRandomRays(
       s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &coherence}),
       kAgreementRays);
+  // Ray classification makes its cells while tracing, and random rays, unlike a render's,
+  // share few of them: each makes the cells of its own path (docs/acceleration.md), which costs
+  // ten times the other structures' whole query, so it takes a tenth of the rays.
+  const RayClassification rayclass(s);
+  expectAgreementOnRandomRays(s, CrossCheck(embree, {&rayclass}), kAgreementRays / 10);
 }
 
 inline RenderResult renderText(const std::string& text, AccelKind kind = AccelKind::Embree,
