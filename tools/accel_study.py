@@ -26,7 +26,7 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 STRUCTURES = ["embree", "bvh", "kdtree", "octree", "grid", "octree-generate-and-test", "rayclass",
-              "coherence"]
+              "coherence", "spheres"]
 
 
 def spheres_scene(n, rng):

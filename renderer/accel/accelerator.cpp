@@ -8,6 +8,7 @@
 #include "accel/ray_classification.h"
 #include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
+#include "accel/sphere_hierarchy.h"
 #include "accel/uniform_grid.h"
 #include "core/out_of_memory.h"
 #include "scene/scene.h"
@@ -34,6 +35,8 @@ std::string_view accelName(AccelKind k) {
       return "rayclass";
     case AccelKind::Coherence:
       return "coherence";
+    case AccelKind::Spheres:
+      return "spheres";
   }
   return "?";
 }
@@ -41,7 +44,7 @@ std::string_view accelName(AccelKind k) {
 bool parseAccelKind(std::string_view name, AccelKind& out) {
   for (auto k : {AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce, AccelKind::Grid,
                  AccelKind::Octree, AccelKind::KdTree, AccelKind::OctreeGenerateAndTest,
-                 AccelKind::RayClass, AccelKind::Coherence})
+                 AccelKind::RayClass, AccelKind::Coherence, AccelKind::Spheres})
     if (accelName(k) == name) {
       out = k;
       return true;
@@ -72,6 +75,8 @@ std::unique_ptr<Accelerator> build(AccelKind kind, const Scene& scene,
       return std::make_unique<RayClassification>(scene, options.rayclass);
     case AccelKind::Coherence:
       return std::make_unique<RayCoherence>(scene);
+    case AccelKind::Spheres:
+      return std::make_unique<SphereHierarchy>(scene);
   }
   return nullptr;
 }

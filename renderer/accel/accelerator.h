@@ -22,7 +22,8 @@ enum class AccelKind {
   KdTree,
   OctreeGenerateAndTest,
   RayClass,
-  Coherence
+  Coherence,
+  Spheres
 };
 
 std::string_view accelName(AccelKind);

@@ -315,7 +315,7 @@ CommandRunner addBenchCommand(CLI::App& app) {
   cmd->add_option("scene", args->scenePath, sceneArgumentHelp())->check(CLI::ExistingFile);
   cmd->add_option("--accel", args->accels,
                   "Comma-separated backends (embree, bvh, brute, grid, octree, kdtree, "
-                  "octree-generate-and-test, rayclass, coherence)");
+                  "octree-generate-and-test, rayclass, coherence, spheres)");
   addAccelOptions(*cmd, args->accelOptions);
   // A heightfield beyond 2^28 triangles would not fit this machine's memory (80 B each).
   cmd->add_option("--procedural", args->procedural,

@@ -707,7 +707,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
   cmd->add_option("--accel", args->accel,
                   "Intersection backend (default " + defaultText(args->accel) + ")")
       ->check(CLI::IsMember({"embree", "bvh", "brute", "grid", "octree", "kdtree",
-                             "octree-generate-and-test", "rayclass", "coherence"}));
+                             "octree-generate-and-test", "rayclass", "coherence", "spheres"}));
   addAccelOptions(*cmd, args->accelOptions);
   cmd->add_option("--integrator", args->integrator,
                   "production, or reference: seed 002's depth-first Trace, the oracle the "

@@ -1,7 +1,7 @@
 // `glint validate`: renders the scene's own rays (camera, reflection, refraction, shadow) and
 // N random rays through Embree, the reference BVH, the uniform grid, the octree, the k-d tree,
-// ray classification and (for small scenes) brute force, and reports how well they agree, hit
-// by hit.
+// ray classification, the sphere hierarchy and (for small scenes) brute force, and reports how
+// well they agree, hit by hit.
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -16,6 +16,7 @@
 #include "accel/ray_classification.h"
 #include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
+#include "accel/sphere_hierarchy.h"
 #include "accel/uniform_grid.h"
 #include "app/accel_options.h"
 #include "app/commands.h"
@@ -57,6 +58,7 @@ int runValidate(const ValidateArgs& a) {
   const KdTree kdtree(scene);
   const RayClassification rayclass(scene, a.accelOptions.rayclass);
   const RayCoherence coherence(scene);
+  const SphereHierarchy spheres(scene);
   std::unique_ptr<BruteForce> brute;
   if (!a.noBrute && scene.primitiveCount() <= kBruteForceLimit)
     brute = std::make_unique<BruteForce>(scene);
@@ -64,6 +66,7 @@ int runValidate(const ValidateArgs& a) {
   others.push_back(&octreeGenerateAndTest);
   others.push_back(&rayclass);
   others.push_back(&coherence);
+  others.push_back(&spheres);
   if (brute) others.push_back(brute.get());
 
   if (!a.ray.empty()) {  // reproduce one ray from a report line
@@ -76,7 +79,7 @@ int runValidate(const ValidateArgs& a) {
     std::printf("ray %s\n", formatRay(r).c_str());
     for (const Accelerator* acc : std::vector<const Accelerator*>{
              &embree, &bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &rayclass, &coherence,
-             brute.get()})
+             &spheres, brute.get()})
       if (acc)
         std::printf("  %-8s %s\n", std::string(acc->name()).c_str(),
                     a.occludedRay ? (acc->occluded(r) ? "occluded" : "clear")
@@ -109,7 +112,7 @@ int runValidate(const ValidateArgs& a) {
   const BvhStats& bs = bvh.stats();
   std::printf(
       "backends       embree, bvh, grid, octree, kdtree, octree-generate-and-test, rayclass, "
-      "coherence%s\n",
+      "coherence, spheres%s\n",
       brute ? ", brute" : " (brute force skipped: scene too large)");
   std::printf(
       "queries        %llu closest-hit, %llu occlusion (scene rays at %d spp + %d random + "
@@ -136,7 +139,8 @@ int runValidate(const ValidateArgs& a) {
               gs.primitives ? double(gs.references) / double(gs.primitives) : 0.0,
               double(gs.bytes) / (1 << 20));
   for (const auto& [label, ts] :
-       {std::pair{"octree build ", &octree.stats()}, std::pair{"kdtree build ", &kdtree.stats()}})
+       {std::pair{"octree build ", &octree.stats()}, std::pair{"kdtree build ", &kdtree.stats()},
+        std::pair{"spheres build", &spheres.stats()}})
     std::printf(
         "%s  %.3f s, %zu nodes, %zu leaves, depth %zu, %zu references (%.2f per "
         "primitive), %.1f MiB\n",
@@ -179,7 +183,8 @@ int runValidate(const ValidateArgs& a) {
                  {"references", gs.references},
                  {"bytes", gs.bytes}};
     for (const auto& [key, ts] :
-         {std::pair{"octree", &octree.stats()}, std::pair{"kdtree", &kdtree.stats()}})
+         {std::pair{"octree", &octree.stats()}, std::pair{"kdtree", &kdtree.stats()},
+          std::pair{"spheres", &spheres.stats()}})
       j[key] = {{"build_seconds", ts->buildSeconds},
                 {"nodes", ts->nodes},
                 {"leaves", ts->leaves},

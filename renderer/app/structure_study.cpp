@@ -13,6 +13,7 @@
 #include "accel/ray_classification.h"
 #include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
+#include "accel/sphere_hierarchy.h"
 #include "accel/two_level.h"
 #include "accel/uniform_grid.h"
 #include "core/fp_env.h"
@@ -35,6 +36,7 @@ size_t structureBytes(const Accelerator& accel) {
   if (const auto* r = dynamic_cast<const RayClassification*>(&accel))
     return r->stats().fixedBytes + r->stats().lazyBytes;
   if (const auto* c = dynamic_cast<const RayCoherence*>(&accel)) return c->stats().bytes;
+  if (const auto* s = dynamic_cast<const SphereHierarchy*>(&accel)) return s->stats().bytes;
   return 0;
 }
 

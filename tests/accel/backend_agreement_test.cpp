@@ -10,6 +10,7 @@
 #include "accel/octree.h"
 #include "accel/ray_classification.h"
 #include "accel/ray_coherence.h"
+#include "accel/sphere_hierarchy.h"
 #include "accel/uniform_grid.h"
 #include "core/hash.h"
 #include "test_util.h"
@@ -101,6 +102,12 @@ TEST(BackendAgreement, RayCoherenceMatchesBruteForce) {
     SCOPED_TRACE(resolution);
     expectAgreesWithBruteForce(s, RayCoherence(s, resolution));
   }
+}
+
+// The sphere hierarchy: every shape kind behind its own bounding sphere, instances included.
+TEST(BackendAgreement, SphereHierarchyMatchesBruteForce) {
+  const Scene s = everyShapeKind();
+  expectAgreesWithBruteForce(s, SphereHierarchy(s));
 }
 
 // The renderer traces camera rays and shadow rays as coherent streams (packets inside Embree):

@@ -19,7 +19,8 @@ constexpr AccelKind kCounted[] = {AccelKind::Bvh,
                                   AccelKind::KdTree,
                                   AccelKind::OctreeGenerateAndTest,
                                   AccelKind::RayClass,
-                                  AccelKind::Coherence};
+                                  AccelKind::Coherence,
+                                  AccelKind::Spheres};
 
 const CountingTraversal& counting(const Accelerator& accel) {
   return dynamic_cast<const CountingTraversal&>(accel);

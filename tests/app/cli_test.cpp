@@ -303,7 +303,7 @@ TEST(Cli, EveryBackendRendersTheSameImage) {
   const std::string scene = test::writeTemp("backends.json", kSmallScene);
   const auto path = [](const std::string& n) { return (test::tempDir() / (n + ".exr")).string(); };
   for (const char* accel : {"embree", "bvh", "brute", "grid", "octree", "kdtree",
-                            "octree-generate-and-test", "rayclass", "coherence"})
+                            "octree-generate-and-test", "rayclass", "coherence", "spheres"})
     ASSERT_EQ(
         runGlint("render " + scene + " --quiet --accel " + accel + " -o " + path(accel)).exitCode,
         0);
@@ -316,6 +316,7 @@ TEST(Cli, EveryBackendRendersTheSameImage) {
   EXPECT_EQ(readImage(path("rayclass")).pixels, embree);
   EXPECT_EQ(readImage(path("octree-generate-and-test")).pixels, embree);
   EXPECT_EQ(readImage(path("coherence")).pixels, embree);
+  EXPECT_EQ(readImage(path("spheres")).pixels, embree);
 }
 
 TEST(Cli, DefaultSceneRendersWithStats) {

@@ -7,6 +7,7 @@
 #include "accel/octree.h"
 #include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
+#include "accel/sphere_hierarchy.h"
 #include "accel/uniform_grid.h"
 #include "core/hash.h"
 #include "film/compare.h"
@@ -180,8 +181,9 @@ TEST(DegenerateGeometry, RendersAndCrossChecksCleanly) {
   const Octree octreeGenerateAndTest(s, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(s);
   const RayCoherence coherence(s);
-  const CrossCheck check(embree,
-                         {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &coherence});
+  const SphereHierarchy spheres(s);
+  const CrossCheck check(
+      embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &coherence, &spheres});
   castRandomRays(s, check, 100000, 5);
   EXPECT_EQ(check.stats().hitAgree, check.stats().rays);
   for (const auto& line : check.stats().firstDisagreements) ADD_FAILURE() << line;
@@ -369,6 +371,16 @@ TEST(EmbreeVsRayClassification, OneMillionRandomRays) {
                                       kSoupComparedHits);
 }
 
+// 22c. The sphere hierarchy on the same 10⁶ rays over the soup: the needles' bounding spheres
+// are long and thin-walled around them, which a sphere test rounded towards a miss would lose.
+TEST(EmbreeVsSphereHierarchy, OneMillionRandomRays) {
+  const Scene s = triangleSoup();
+  const EmbreeAccel embree(s);
+  const SphereHierarchy spheres(s);
+  stress::expectAgreementOnRandomRays(s, CrossCheck(embree, {&spheres}), 1000000,
+                                      kSoupComparedHits);
+}
+
 // 23. CSG solids: Embree (user geometry) and every structure of Glint's reach them differently
 // but must agree on 10⁶ random rays, as for the triangle soup.
 TEST(CsgSolids, EveryBackendAgreesOnOneMillionRandomRays) {
@@ -381,10 +393,11 @@ TEST(CsgSolids, EveryBackendAgreesOnOneMillionRandomRays) {
   const KdTree kdtree(s);
   const RayClassification rayclass(s);
   const RayCoherence coherence(s);
+  const SphereHierarchy spheres(s);
   stress::expectAgreementOnRandomRays(
       s,
-      CrossCheck(embree,
-                 {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &rayclass, &coherence}),
+      CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &rayclass,
+                          &coherence, &spheres}),
       1000000, kSoupComparedHits);
 }
 

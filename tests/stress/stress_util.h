@@ -15,6 +15,7 @@
 #include "accel/ray_classification.h"
 #include "accel/ray_coherence.h"
 #include "accel/reference_bvh.h"
+#include "accel/sphere_hierarchy.h"
 #include "accel/uniform_grid.h"
 #include "oracle_util.h"
 #include "render/render_job.h"
@@ -44,8 +45,8 @@ inline void expectAgreementOnRandomRays(const Scene& s, const CrossCheck& check,
 }
 
 // As `glint validate --no-brute` checks a scene: Embree against each of Glint's own structures
-// (the BVH, the grid, the octree by both walks, the k-d tree) on kAgreementRays random rays; ray
-// classification on a tenth of them.
+// (the BVH, the grid, the octree by both walks, the k-d tree, the sphere hierarchy) on
+// kAgreementRays random rays; ray classification on a tenth of them.
 inline void expectStructuresAgreeWithEmbree(const Scene& s) {
   const EmbreeAccel embree(s);
   const ReferenceBvh bvh(s);
@@ -54,9 +55,11 @@ inline void expectStructuresAgreeWithEmbree(const Scene& s) {
   const Octree octreeGenerateAndTest(s, 0, Octree::Walk::GenerateAndTest);
   const KdTree kdtree(s);
   const RayCoherence coherence(s);
-  expectAgreementOnRandomRays(
-      s, CrossCheck(embree, {&bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &coherence}),
-      kAgreementRays);
+  const SphereHierarchy spheres(s);
+  expectAgreementOnRandomRays(s,
+                              CrossCheck(embree, {&bvh, &grid, &octree, &kdtree,
+                                                  &octreeGenerateAndTest, &coherence, &spheres}),
+                              kAgreementRays);
   // Ray classification makes its cells while tracing, and random rays, unlike a render's,
   // share few of them: each makes the cells of its own path (docs/acceleration.md), which costs
   // ten times the other structures' whole query, so it takes a tenth of the rays.
