@@ -20,6 +20,7 @@
 #include "accel/reference_bvh.h"
 #include "app/accel_options.h"
 #include "app/commands.h"
+#include "app/intersection_share.h"
 #include "app/procedural_scene.h"
 #include "app/render_bench.h"
 #include "app/scene_source.h"
@@ -46,6 +47,8 @@ struct BenchArgs {
   double minSeconds = 0.5;
   int renderRuns = 3;
   bool structures = false;
+  bool intersectionShare = false;
+  int width = 0, height = 0;  // 0: the scene's
   std::string json;
 };
 
@@ -97,8 +100,9 @@ class RateCollector : public benchmark::BenchmarkReporter {
 int runBench(const BenchArgs& a) {
   checkOutputPaths({{"--json", a.json}});
   const auto loadStart = std::chrono::steady_clock::now();
-  const Scene scene =
-      a.procedural ? makeProceduralScene(a.procedural) : loadSceneOrDefault(a.scenePath);
+  Scene scene = a.procedural ? makeProceduralScene(a.procedural) : loadSceneOrDefault(a.scenePath);
+  if (a.width > 0) scene.render.width = a.width;
+  if (a.height > 0) scene.render.height = a.height;
   const double loadSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
   std::vector<AccelKind> kinds;
@@ -114,6 +118,14 @@ int runBench(const BenchArgs& a) {
     nlohmann::json j = studyStructures(scene, kinds, rays.camera, rays.random, a.accelOptions);
     j["scene"] = scene.sourcePath;
     j["load_seconds"] = loadSeconds;
+    if (!a.json.empty()) writeTextFileAtomically(a.json, j.dump(2) + "\n");
+    return kExitOk;
+  }
+  if (a.intersectionShare) {
+    nlohmann::json j = studyIntersectionShare(scene, kinds, std::max(1, a.renderRuns));
+    j["scene"] = scene.sourcePath;
+    j["width"] = scene.render.width;
+    j["height"] = scene.render.height;
     if (!a.json.empty()) writeTextFileAtomically(a.json, j.dump(2) + "\n");
     return kExitOk;
   }
@@ -331,6 +343,15 @@ CommandRunner addBenchCommand(CLI::App& app) {
   cmd->add_flag("--structures", args->structures,
                 "Only the study of the acceleration structures: build time, memory and one "
                 "thread's time per camera and random ray for each --accel (docs/acceleration.md)");
+  cmd->add_flag("--intersection-share", args->intersectionShare,
+                "Only the share of one thread's render time spent in intersection, for each "
+                "--accel: the render's rays replayed through the backend alone, best of "
+                "--render-runs (docs/acceleration.md)")
+      ->excludes("--structures");
+  cmd->add_option("--width", args->width, "Image width instead of the scene's")
+      ->check(CLI::Range(1, 1 << 15));
+  cmd->add_option("--height", args->height, "Image height instead of the scene's")
+      ->check(CLI::Range(1, 1 << 15));
   cmd->add_option("--json", args->json, "Write the figures as JSON");
   return [args] { return runBench(*args); };
 }

@@ -41,60 +41,6 @@ RenderResult render(const Scene& scene, const Accelerator& accel, int threads, i
   return renderScene(scene, accel, opt);
 }
 
-// The rays the render traced, through Embree with no shading, on the same threads: seconds per
-// pass over them, `passes` times over (so that a replay lasts about as long as the render it is
-// compared with, and meets the same moments of a shared machine). One ray at a time
-// (rtcIntersect1 / rtcOccluded1: the Embree limit of the issue), or `asTraced`: each query as
-// the render made it, a coherent batch through intersectCoherent / occludedCoherent (Embree's
-// packets), which is the traversal the render itself pays.
-double replaySeconds(const Accelerator& embree, const std::vector<RecordedRay>& rays, int threads,
-                     bool asTraced, int passes = 1) {
-  // Each query's first ray, and the rays it traces together: one by one, every ray is a query.
-  std::vector<size_t> queries;
-  size_t largest = 1;
-  for (size_t i = 0, size; i < rays.size(); i += size) {
-    size = asTraced ? std::max<uint32_t>(1, rays[i].query) : 1;
-    queries.push_back(i);
-    largest = std::max(largest, size);
-  }
-  tbb::task_arena arena(threads);
-  const auto start = Clock::now();
-  size_t hits = 0;
-  arena.execute([&] {
-    for (int pass = 0; pass < passes; ++pass)
-      hits += tbb::parallel_reduce(
-          tbb::blocked_range<size_t>(0, queries.size(), asTraced ? 1024 : 4096), size_t(0),
-          [&](const tbb::blocked_range<size_t>& r, size_t n) {
-            const FlushToZeroScope flushToZero;
-            std::vector<Ray> batch(largest);
-            std::vector<Hit> found(largest);
-            std::unique_ptr<bool[]> blocked(new bool[largest]);
-            for (size_t q = r.begin(); q != r.end(); ++q) {
-              const RecordedRay* first = &rays[queries[q]];
-              const size_t size = asTraced ? first->query : 1;
-              if (size == 1) {
-                n += first->occlusion ? embree.occluded(first->ray)
-                                      : bool(embree.intersect(first->ray));
-                continue;
-              }
-              for (size_t i = 0; i < size; ++i) batch[i] = first[i].ray;
-              if (first->occlusion) {
-                embree.occludedCoherent(batch.data(), blocked.get(), size);
-                n += static_cast<size_t>(std::count(blocked.get(), blocked.get() + size, true));
-              } else {
-                embree.intersectCoherent(batch.data(), found.data(), size);
-                n += static_cast<size_t>(std::count_if(found.begin(), found.begin() + long(size),
-                                                       [](const Hit& h) { return bool(h); }));
-              }
-            }
-            return n;
-          },
-          std::plus<>());
-  });
-  benchmark::DoNotOptimize(hits);
-  return secondsSince(start) / passes;
-}
-
 // Camera sampling alone: every camera ray the render makes, through the same CameraSampling,
 // with nothing traced.
 double samplingSeconds(const Scene& scene, int threads) {
@@ -138,6 +84,54 @@ double share(double part, double whole) { return whole > 0 ? 100 * part / whole 
 
 }  // namespace
 
+double replaySeconds(const Accelerator& accel, const std::vector<RecordedRay>& rays, int threads,
+                     bool asTraced, int passes) {
+  // Each query's first ray, and the rays it traces together: one by one, every ray is a query.
+  std::vector<size_t> queries;
+  size_t largest = 1;
+  for (size_t i = 0, size; i < rays.size(); i += size) {
+    size = asTraced ? std::max<uint32_t>(1, rays[i].query) : 1;
+    queries.push_back(i);
+    largest = std::max(largest, size);
+  }
+  tbb::task_arena arena(threads);
+  const auto start = Clock::now();
+  size_t hits = 0;
+  arena.execute([&] {
+    for (int pass = 0; pass < passes; ++pass)
+      hits += tbb::parallel_reduce(
+          tbb::blocked_range<size_t>(0, queries.size(), asTraced ? 1024 : 4096), size_t(0),
+          [&](const tbb::blocked_range<size_t>& r, size_t n) {
+            const FlushToZeroScope flushToZero;
+            std::vector<Ray> batch(largest);
+            std::vector<Hit> found(largest);
+            std::unique_ptr<bool[]> blocked(new bool[largest]);
+            for (size_t q = r.begin(); q != r.end(); ++q) {
+              const RecordedRay* first = &rays[queries[q]];
+              const size_t size = asTraced ? first->query : 1;
+              if (size == 1) {
+                n += first->occlusion ? accel.occluded(first->ray)
+                                      : bool(accel.intersect(first->ray));
+                continue;
+              }
+              for (size_t i = 0; i < size; ++i) batch[i] = first[i].ray;
+              if (first->occlusion) {
+                accel.occludedCoherent(batch.data(), blocked.get(), size);
+                n += static_cast<size_t>(std::count(blocked.get(), blocked.get() + size, true));
+              } else {
+                accel.intersectCoherent(batch.data(), found.data(), size);
+                n += static_cast<size_t>(std::count_if(found.begin(), found.begin() + long(size),
+                                                       [](const Hit& h) { return bool(h); }));
+              }
+            }
+            return n;
+          },
+          std::plus<>());
+  });
+  benchmark::DoNotOptimize(hits);
+  return secondsSince(start) / passes;
+}
+
 double bestRenderSeconds(const Scene& scene, const Accelerator& accel, int threads, int tileSize,
                          int runs) {
   return bestOf(runs, [&] { return render(scene, accel, threads, tileSize).stats.seconds; });
@@ -173,7 +167,7 @@ nlohmann::json benchWholeRender(const Scene& scene, const EmbreeAccel& embree,
   // Each replay repeats the recorded rays for about a render's duration, so that a short
   // replay cannot fall into a quiet moment of a shared machine that the render did not see.
   const int passes =
-      std::max(1, static_cast<int>(seconds / replaySeconds(embree, recorded, n, false)));
+      std::max(1, static_cast<int>(seconds / replaySeconds(embree, recorded, n, false, 1)));
 
   // Interleave renders and replays so that drift hits them all alike.
   double replay = 1e300, traced = 1e300;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "accel/embree_accel.h"
+#include "accel/ray_recorder.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -22,6 +23,15 @@ nlohmann::json benchWholeRender(const Scene& scene, const EmbreeAccel& embree,
 // The fastest of `runs` whole renders (no progress output), in seconds.
 double bestRenderSeconds(const Scene& scene, const Accelerator& accel, int threads, int tileSize,
                          int runs);
+
+// The rays a render traced (RayRecorder), through `accel` with no shading, on `threads` threads:
+// seconds per pass over them, `passes` times over (so that a replay can last about as long as
+// the render it is compared with, and meet the same moments of a shared machine). One ray at a
+// time (intersect / occluded: for Embree the Embree limit of the issue), or `asTraced`: each
+// query as the render made it, a coherent batch through intersectCoherent / occludedCoherent
+// (Embree's packets), which is the traversal the render itself pays.
+double replaySeconds(const Accelerator& accel, const std::vector<RecordedRay>& rays, int threads,
+                     bool asTraced, int passes);
 
 // Bytes the scene's triangle meshes hold (positions, keys, indices) plus Embree's BVHs.
 int64_t sceneGeometryBytes(const Scene& scene, const EmbreeAccel& embree);

@@ -173,6 +173,8 @@ TEST(CliNumbers, HostileValuesOfEveryNumericOptionAreRefusedOrUsed) {
       {converge, "--threads"},
       {{"bench", scene, "--random-rays", "256", "--render-runs", "0"}, "--procedural"},
       {bench, "--threads"},
+      {bench, "--width"},
+      {bench, "--height"},
       {{"bench", scene, "--render-runs", "0", "--accel", "bvh"}, "--random-rays"},
       {{"bench", scene, "--random-rays", "256", "--accel", "bvh"}, "--render-runs"},
       {{"merge", out, exr}, "--scene-hash"},  // a string: any value, but no crash
