@@ -15,6 +15,10 @@ visits and the primitives it tests (Glint's own structures; Embree's traversal i
 counted), and for ray classification what its lazy build made (cells, bytes) and its first
 pass's time beside its best. Prints markdown tables; writes the plots and
 the figures (JSON) to --out. Needs python3-matplotlib (Debian's /usr/bin/python3).
+
+--only NAME,... measures only those structures and puts their figures into the JSON already in
+--out (the others' are kept), so that a structure added to STRUCTURES joins the study without
+measuring the rest again.
 """
 
 import argparse
@@ -104,7 +108,12 @@ def coherence_study(glint, work, max_n, rays):
 
 
 def plot(results, out):
-    import matplotlib
+    try:
+        import matplotlib
+    except ImportError:  # the figures and tables still come out
+        print(f"matplotlib is not installed: {out}/accel_study_*.png not redrawn "
+              "(redraw with --plot-only where it is)")
+        return
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     figures = [("camera_steps_per_ray", "nodes or cells visited per camera ray"),
@@ -138,6 +147,11 @@ def plot(results, out):
                 ax.loglog(ns, [g0 * (n / ns[0]) ** (1 / 3) for n in ns], "k:", label="∝ ∛n")
                 ax.loglog(ns, [b0 * math.log2(n) / math.log2(ns[0]) for n in ns], "k--",
                           label="∝ log n")
+                # Seed 002 §9.2.2's E[Q(n)] = O(∛n log n) for the octree, from its first point.
+                o0 = first["structures"].get("octree", {}).get(key)
+                if o0:
+                    ax.loglog(ns, [o0 * (n / ns[0]) ** (1 / 3) * math.log2(n) / math.log2(ns[0])
+                                   for n in ns], "k-.", label="∝ ∛n log n")
             ax.set_xlabel("primitives n")
             ax.set_title(label)
             ax.grid(True, which="both", alpha=0.3)
@@ -156,13 +170,23 @@ def main():
     ap.add_argument("--max-n", type=int, default=1000000)
     ap.add_argument("--rays", type=int, default=100000)
     ap.add_argument("--plot-only", metavar="JSON", help="re-plot the figures a run wrote")
+    ap.add_argument("--only", metavar="NAMES",
+                    help="comma-separated structures to measure into --out's accel_study.json")
     args = ap.parse_args()
+    measured = args.only.split(",") if args.only else STRUCTURES
+    unknown = [s for s in measured if s not in STRUCTURES]
+    if unknown:
+        ap.error(f"--only: unknown structure {unknown[0]!r}; known: {', '.join(STRUCTURES)}")
     out, work = Path(args.out), Path(args.work)
     out.mkdir(parents=True, exist_ok=True)
     work.mkdir(parents=True, exist_ok=True)
     if args.plot_only:
         plot(json.loads(Path(args.plot_only).read_text()), out)
         return
+    previous = {}
+    if args.only and (out / "accel_study.json").exists():
+        previous = {(r["family"], r["n"]): r
+                    for r in json.loads((out / "accel_study.json").read_text())}
     results = []
     for family in ("spheres", "stadium"):
         n = 100
@@ -170,9 +194,13 @@ def main():
             scene, figures = work / f"{family}_{n}.json", work / f"{family}_{n}.out.json"
             write_scene(scene, family, n)
             subprocess.run([args.glint, "bench", str(scene), "--structures", "--accel",
-                            ",".join(STRUCTURES), "--random-rays", str(args.rays), "--json",
+                            ",".join(measured), "--random-rays", str(args.rays), "--json",
                             str(figures)], check=True, stdout=subprocess.DEVNULL)
             r = json.loads(figures.read_text())
+            if (family, n) in previous:
+                kept = previous[(family, n)]
+                kept["structures"].update(r["structures"])
+                r = kept
             r.update(family=family, n=n)
             results.append(r)
             scene.unlink()
@@ -181,13 +209,17 @@ def main():
     plot(results, out)
     for key, label in (("camera_steps_per_ray", "nodes or cells visited per camera ray"),
                        ("camera_tests_per_ray", "primitives tested per camera ray"),
+                       ("random_steps_per_ray", "nodes or cells visited per random ray"),
+                       ("random_tests_per_ray", "primitives tested per random ray"),
                        ("random_ns_per_ray", "ns per random ray"),
                        ("camera_ns_per_ray", "ns per camera ray"),
+                       ("camera_first_pass_ns_per_ray",
+                        "ns per camera ray, first pass (with what is built while tracing)"),
                        ("build_seconds", "build s"), ("bytes", "MiB")):
         print(f"\n{label}\n\n| scene | n | " + " | ".join(STRUCTURES) + " |")
         print("|---|---|" + "---|" * len(STRUCTURES))
         for r in results:
-            vals = [r["structures"][s].get(key) for s in STRUCTURES]
+            vals = [r["structures"].get(s, {}).get(key) for s in STRUCTURES]
             fmt = (lambda v: f"{v / 2**20:.2f}") if key == "bytes" else (
                 (lambda v: f"{v:.3g}") if key == "build_seconds" else (
                     (lambda v: f"{v:.1f}") if "steps" in key or "tests" in key else (
