@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 
 #include "core/check.h"
 #include "scene/scene.h"
@@ -126,7 +127,6 @@ class Builder {
       std::vector<Sphere> inner;
       for (size_t i = begin; i < end; ++i) {
         tree_.slots.push_back(prims_[i].slot);
-        tree_.boxes.push_back(prims_[i].box);
         inner.push_back(prims_[i].slot.bound);
       }
       // One primitive: its own sphere; more: the box-centred sphere around theirs.
@@ -268,16 +268,15 @@ SphereHierarchy::SphereHierarchy(const Scene& scene) : TwoLevelAccelerator(scene
   const auto start = std::chrono::steady_clock::now();
   trees_.resize(scene.groups.size());
   // Instanced groups first: an instance's box is its group's box, transformed.
-  std::vector<Bounds3f> groupBoxes(scene.groups.size());
   for (size_t g = scene.groups.size(); g-- > 0;) {
+    Tree& tree = trees_[g];
     std::vector<BuildPrim> prims;
     for (const PrimitiveBox& p :
-         groupPrimitives(scene, uint32_t(g), [&](uint32_t child) { return groupBoxes[child]; })) {
-      groupBoxes[g].extend(p.box);
+         groupPrimitives(scene, uint32_t(g), [&](uint32_t child) { return trees_[child].box; })) {
+      tree.box.extend(p.box);
       prims.push_back({p.box, boxCenter(p.box), slotOf(scene, uint32_t(g), p)});
     }
     if (prims.empty()) continue;
-    Tree& tree = trees_[g];
     Builder(prims, tree, stats_).build(0, prims.size(), 0);
     stats_.nodes += tree.nodes.size();
     stats_.primitives += tree.slots.size();
@@ -363,6 +362,14 @@ bool SphereHierarchy::traverse(uint32_t groupId, const Ray& ray, uint32_t instId
 std::string SphereHierarchy::checkInvariants() const {
   for (size_t g = 0; g < trees_.size(); ++g) {
     const Tree& t = trees_[g];
+    // The primitives' boxes again, by (geometry, primitive), to check their spheres against.
+    std::map<std::pair<uint32_t, uint32_t>, Bounds3f> boxes;
+    for (const PrimitiveBox& p :
+         groupPrimitives(scene_, uint32_t(g), [&](uint32_t child) { return trees_[child].box; }))
+      boxes[{p.geom, p.prim}] = p.box;
+    if (boxes.size() != t.slots.size())
+      return "group " + std::to_string(g) + ": " + std::to_string(t.slots.size()) +
+             " primitives in leaves, expected " + std::to_string(boxes.size());
     std::vector<int> seen(t.slots.size(), 0);
     for (size_t i = 0; i < t.nodes.size(); ++i) {
       const Node& n = t.nodes[i];
@@ -389,8 +396,10 @@ std::string SphereHierarchy::checkInvariants() const {
           if (!encloses(s.bound, {scene_.meshes[geom.index].vertex(s.prim, c), 0}))
             return where + ": a corner of the triangle is outside its sphere";
       } else {
+        const auto box = boxes.find({s.geom, s.prim});
+        if (box == boxes.end()) return where + " names no primitive of the group";
         for (int c = 0; c < 8; ++c)
-          if (!encloses(s.bound, {t.boxes[p].corner(c), 0}))
+          if (!encloses(s.bound, {box->second.corner(c), 0}))
             return where + ": a corner of the primitive's box is outside its sphere";
       }
     }

@@ -2,10 +2,10 @@
 // A hierarchy of bounding spheres (seed 001 §9, advice 8: "a ray must first intersect an
 // object's bounding sphere, before the actual object geometry is used ... Hierarchies of
 // bounding spheres can be used for very complex models"). One tree per group, two levels like
-// the reference BVH. Build: the reference BVH's binned SAH over primitive boxes (16 bins on the
-// longest centroid axis, ≤ 4 primitives per leaf; an object-median split below depth 64, which
-// bounds the depth by 64 + log₂ n). Every primitive gets its own bounding sphere (a static
-// triangle the smaller of its box's sphere and the sphere about its vertices' mean; anything
+// the reference BVH. Build: binned SAH over primitive boxes as the reference BVH's, on the
+// longest centroid axis only (16 bins, ≤ 4 primitives per leaf; an object-median split below
+// depth 64, which bounds the depth by 64 + log₂ n). Every primitive gets its own bounding sphere (a
+// static triangle the smaller of its box's sphere and the sphere about its vertices' mean; anything
 // else its shutter box's sphere; a static sphere is its own bound and is not tested twice); a
 // leaf's sphere encloses its primitives' spheres, an inner node's its two children's spheres,
 // each the smaller of the exact sphere around the spheres it encloses and the one centred on the
@@ -54,7 +54,7 @@ class SphereHierarchy final : public TwoLevelAccelerator<SphereHierarchy> {
   struct Tree {
     std::vector<Node> nodes;
     std::vector<Slot> slots;
-    std::vector<Bounds3f> boxes;  // each slot's shutter box, for checkInvariants
+    Bounds3f box;  // the group's, over the shutter: an instance of it is bounded by it
   };
   const Tree& tree(uint32_t groupId) const { return trees_[groupId]; }
 

@@ -220,7 +220,9 @@ TEST(SphereHierarchy, RaysTangentToALoneSphereAreNotDropped) {
       const Ray r{c + radius * n - back * t, t};
       const Hit a = tree.intersect(r), e = brute.intersect(r);
       ASSERT_EQ(bool(a), bool(e)) << "ray " << i;
-      if (a) EXPECT_EQ(a.t, e.t);
+      if (a) {
+        EXPECT_EQ(a.t, e.t);
+      }
       hits += bool(e);
     }
     // Tangent to within rounding: both answers occur, so the rays do sit on the edge.
