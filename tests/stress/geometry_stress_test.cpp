@@ -403,7 +403,7 @@ TEST(CsgSolids, EveryBackendAgreesOnOneMillionRandomRays) {
 
 // 24. Every bundled scene: Embree against each of Glint's structures on 10⁶ random rays (issue
 // 25's bar), as `glint validate --no-brute` checks them. real_assets reads 1 − 7.7·10⁻⁷: one ray
-// that Embree misses and all four of Glint's structures hit (docs/validation.md).
+// that Embree misses and every one of Glint's structures hits (docs/validation.md).
 TEST(BundledScenes, EveryStructureAgreesWithEmbreeOnOneMillionRandomRays) {
   for (const std::string& name : test::fileNamesIn(GLINT_SCENES_DIR)) {
     if (!name.ends_with(".json")) continue;
