@@ -187,14 +187,10 @@ bool KdTree::traverse(uint32_t groupId, const Ray& ray, uint32_t instId, Hit& hi
       }
       continue;
     }
-    for (uint32_t k = n.first; k < n.first + n.count; ++k) {
-      const PrimitiveBox& p = t.prims[t.refs[k]];
-      count.test();
-      if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
-                             intoInstance(count))) {
-        if constexpr (AnyHit) return true;
-        found = true;
-      }
+    if (testList<AnyHit>(groupId, t.prims.data(), t.refs.data() + n.first, n.count, ray, instId,
+                         hit, count)) {
+      if constexpr (AnyHit) return true;
+      found = true;
     }
     if (top == 0) break;
     --top;

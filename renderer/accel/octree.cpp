@@ -162,17 +162,8 @@ bool Octree::testLeaf(uint32_t groupId, uint32_t node, const Ray& ray, uint32_t 
                       Counter count) const {
   const Tree& t = trees_[groupId];
   const Node& n = t.nodes[node];
-  bool found = false;
-  for (uint32_t k = n.refStart; k < n.refStart + n.refCount; ++k) {
-    const PrimitiveBox& p = t.prims[t.refs[k]];
-    count.test();
-    if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
-                           intoInstance(count))) {
-      if constexpr (AnyHit) return true;
-      found = true;
-    }
-  }
-  return found;
+  return testList<AnyHit>(groupId, t.prims.data(), t.refs.data() + n.refStart, n.refCount, ray,
+                          instId, hit, count);
 }
 
 template <bool AnyHit, class Counter>

@@ -258,17 +258,8 @@ bool RayClassification::traverse(uint32_t groupId, const Ray& ray, uint32_t inst
   if (h.prims.empty()) return false;
   const Cell* cell = classify(h, ray, hit.t, count);
   if (!cell) return false;
-  bool found = false;
-  for (uint32_t k = 0; k < cell->count; ++k) {
-    const PrimitiveBox& p = h.prims[cell->refs[k]];
-    count.test();
-    if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
-                           intoInstance(count))) {
-      if constexpr (AnyHit) return true;
-      found = true;
-    }
-  }
-  return found;
+  return testList<AnyHit>(groupId, h.prims.data(), cell->refs, cell->count, ray, instId, hit,
+                          count);
 }
 
 }  // namespace glint

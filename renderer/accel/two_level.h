@@ -11,6 +11,7 @@
 #include <cstdint>
 
 #include "accel/accelerator.h"
+#include "accel/primitives.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -71,6 +72,24 @@ class TwoLevelAccelerator : public Accelerator, public CountingTraversal {
     return [this, count](const Instance& inst, const Ray& ray, uint32_t geom, Hit& hit) {
       return self().template traverse<false>(inst.groupId, inst.toObject(ray), geom, hit, count);
     };
+  }
+
+  // A cell's or leaf's candidate list: prims[refs[k]] for k in [0, n), tested in order. Whether
+  // one was hit closer than hit.t (written to `hit`); with AnyHit, stops at the first.
+  template <bool AnyHit, class Counter>
+  bool testList(uint32_t groupId, const PrimitiveBox* prims, const uint32_t* refs, uint32_t n,
+                const Ray& ray, uint32_t instId, Hit& hit, Counter count) const {
+    bool found = false;
+    for (uint32_t k = 0; k < n; ++k) {
+      const PrimitiveBox& p = prims[refs[k]];
+      count.test();
+      if (intersectPrimitive(scene_, groupId, p.geom, p.prim, ray, instId, hit,
+                             intoInstance(count))) {
+        if constexpr (AnyHit) return true;
+        found = true;
+      }
+    }
+    return found;
   }
 
   const Scene& scene_;
