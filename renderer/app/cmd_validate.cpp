@@ -81,7 +81,7 @@ int runValidate(const ValidateArgs& a) {
              &embree, &bvh, &grid, &octree, &kdtree, &octreeGenerateAndTest, &rayclass, &coherence,
              &spheres, brute.get()})
       if (acc)
-        std::printf("  %-8s %s\n", std::string(acc->name()).c_str(),
+        std::printf("  %-24s %s\n", std::string(acc->name()).c_str(),
                     a.occludedRay ? (acc->occluded(r) ? "occluded" : "clear")
                                   : formatHit(acc->intersect(r)).c_str());
     return kExitOk;
@@ -89,8 +89,9 @@ int runValidate(const ValidateArgs& a) {
 
   // Every comparison where both backends hit keeps its |Δt| (CrossCheckStats::relDt), and the
   // 99.9th percentile sorts a copy: checked against the memory there is before any ray is cast.
-  const double needed = 2.0 * double(a.rays) * double(others.size()) * sizeof(float);
-  if (const uint64_t available = availableMemoryBytes(); available != 0 && needed > available)
+  const double needed = 2.0 * double(a.rays) * double(others.size()) * double(sizeof(float));
+  if (const uint64_t available = availableMemoryBytes();
+      available != 0 && needed > double(available))
     throw UsageError("--rays " + std::to_string(a.rays) + ": comparing " +
                      std::to_string(others.size()) + " backends with Embree keeps about " +
                      gigabytes(needed) + " of distances; " + gigabytes(double(available)) +

@@ -230,8 +230,8 @@ TEST(Cli, NoInputReachesAnEmbreeAssertion) {
       "look_at": [0,0,0], "window": [-2e38, 2e38, -1, 1]}, "materials": {"m": {"type": "phong"}},
       "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})");
   const std::string out = (test::tempDir() / "window.exr").string();
-  for (const std::string command : {"render " + window + " -o " + out, "validate " + window,
-                                    "bench " + window, "converge " + window + " --spp 1,2"}) {
+  for (const std::string& command : {"render " + window + " -o " + out, "validate " + window,
+                                     "bench " + window, "converge " + window + " --spp 1,2"}) {
     const auto r = runGlint(command);
     EXPECT_EQ(r.exitCode, 2) << command << ": " << r.output;
     EXPECT_NE(r.output.find("window.json:2: camera.window[0]: window values must lie within ±1e18"),
