@@ -126,6 +126,8 @@ RayClassification::RayClassification(const Scene& scene, const RayClassSettings&
     sets_[g] = std::move(h);
   }
   capBytes_ = settings_.capBytes ? settings_.capBytes : defaultCapBytes(primitives);
+  testBudget_ =
+      settings_.testBudget ? settings_.testBudget : size_t(256 * referenceBudget(primitives));
 }
 
 RayClassification::~RayClassification() = default;
@@ -136,6 +138,8 @@ RayClassStats RayClassification::stats() const {
   s.references = references_.load();
   s.lazyBytes = lazyBytes_.load();
   s.capBytes = capBytes_;
+  s.beamTests = beamTests_.load();
+  s.testBudget = testBudget_;
   for (const auto& h : sets_) {
     s.primitives += h->prims.size();
     s.fixedBytes += sizeof(Hyperset) + h->prims.size() * (sizeof(PrimitiveBox) + sizeof(uint32_t));
@@ -147,6 +151,15 @@ RayClassification::Cell* RayClassification::makeChild(const Hyperset& h, int fac
                                                       int half, const double* lo,
                                                       const double* w) const {
   const size_t n = parent.count;
+  // Work is bounded as memory is: a cell that keeps all its parent's objects costs only its own
+  // bytes, so objects that span every beam (a fan of scene-wide triangles) would otherwise have
+  // every ray make ~log2(1/w_min) such cells at n beam tests each. Past the budget of tests the
+  // parent answers for the half, as past the memory cap.
+  if (beamTests_.fetch_add(n, std::memory_order_relaxed) + n > testBudget_) {
+    beamTests_.fetch_sub(n, std::memory_order_relaxed);
+    parent.closed[half].store(true, std::memory_order_relaxed);
+    return nullptr;
+  }
   // The most it holds at once: the cell, its list at the longest and the exact copy of it.
   const size_t most = sizeof(Cell) + 2 * n * sizeof(uint32_t);
   if (lazyBytes_.fetch_add(most, std::memory_order_relaxed) + most > capBytes_) {
@@ -206,10 +219,12 @@ const RayClassification::Cell* RayClassification::classify(const Hyperset& h, co
     count.step();
     return &h.roots[0];  // its list is the whole group
   }
-  // The segment's part in E, in double: its start is the ray's point in the 5-D space.
+  // The segment's part in E grown by the beams' pad (the margin the beams keep for rounding,
+  // so that E's own, below a float step far from the origin, never decides alone), in double:
+  // its start, clamped into E, is the ray's point in the 5-D space.
   double t0 = ray.tMin, t1 = std::min(ray.tMax, tEnd);
   for (int i = 0; i < 3; ++i) {
-    const double o = ray.o[i], d = ray.d[i], lo = h.lo[i], hi = h.lo[i] + h.side;
+    const double o = ray.o[i], d = ray.d[i], lo = h.lo[i] - h.pad, hi = h.lo[i] + h.side + h.pad;
     if (d == 0) {
       if (o < lo || o > hi) return nullptr;
       continue;

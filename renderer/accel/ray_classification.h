@@ -48,6 +48,8 @@ struct RayClassStats {
   size_t references = 0;  // in the lists they own (a cell with all its parent's shares it)
   size_t lazyBytes = 0;   // of those cells and lists: at most capBytes
   size_t capBytes = 0;
+  size_t beamTests = 0;   // of the objects of parents' lists against their halves' beams
+  size_t testBudget = 0;  // beamTests stays within it
   size_t fixedBytes = 0;  // the groups' object boxes and root lists, made when built
 };
 
@@ -80,8 +82,9 @@ class RayClassification final : public TwoLevelAccelerator<RayClassification> {
 
   RayClassSettings settings_;
   size_t capBytes_ = 0;
+  size_t testBudget_ = 0;
   std::vector<std::unique_ptr<Hyperset>> sets_;  // one per group
-  mutable std::atomic<size_t> lazyBytes_{0}, cells_{0}, references_{0};
+  mutable std::atomic<size_t> lazyBytes_{0}, cells_{0}, references_{0}, beamTests_{0};
 };
 
 }  // namespace glint

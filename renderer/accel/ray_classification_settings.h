@@ -17,6 +17,9 @@ struct RayClassSettings {
   // Bytes the lazily made cells and candidate lists may take, over all groups (0: the default
   // cap, RayClassification::defaultCapBytes).
   size_t capBytes = 0;
+  // Beam tests the lazily made cells may cost, over all groups (0: 256 per reference of
+  // referenceBudget, accel/primitives.h): the work bound, as capBytes is the memory bound.
+  size_t testBudget = 0;
 };
 
 }  // namespace glint

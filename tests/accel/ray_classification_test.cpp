@@ -180,6 +180,31 @@ TEST(RayClassification, MemoryStaysUnderItsCapAndHitsStayRight) {
   test::expectFindsTheFansClosestHit(s, rc);
 }
 
+TEST(RayClassification, BeamTestsStayWithinTheirBudgetAndHitsStayRight) {
+  // The same fan: a cell keeps nearly all its parent's 2000 objects, so each new cell costs
+  // about 2000 beam tests while costing almost no memory. Unbounded, the 3000 rays make cells
+  // for several million tests; under a budget of 10⁵ (fifty cells) the structure stops there,
+  // on one thread exactly at or below it, and still finds brute force's hits.
+  const Scene s = test::triangles(2000, true);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 3000; ++i) {
+    const auto u = [&](int k) { return toUnitFloat(hashKey(6, i, k)); };
+    const Vec3f o{3 * u(0) - 1, 3 * u(1) - 1, 3 * u(2) - 1};
+    rays.push_back(Ray{o, Vec3f{u(3), u(4), u(5)} - o});
+  }
+  RayClassSettings settings{2, 1.0 / 1024};
+  const RayClassification unbounded(s, settings);
+  for (const Ray& r : rays) unbounded.intersect(r);
+  settings.testBudget = 100000;
+  EXPECT_GT(unbounded.stats().beamTests, 10 * settings.testBudget);
+  const RayClassification bounded(s, settings);
+  expectAgreesWithBruteForce(s, bounded, rays, 500);
+  EXPECT_LE(bounded.stats().beamTests, settings.testBudget);
+  // The budget was reached: a list of 2000 more would have passed it.
+  EXPECT_GT(bounded.stats().beamTests + 2000, settings.testBudget);
+  test::expectFindsTheFansClosestHit(s, bounded);
+}
+
 TEST(RayClassification, ARayFromOutsideEIsClassifiedWhereItEnters) {
   // From z = 20, far outside E (the cube around the lattice and the lone triangle at −5), straight
   // down the column of spheres at x = y = 3: it meets the sphere at (3, 3, 3) first, at
