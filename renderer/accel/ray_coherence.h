@@ -17,8 +17,8 @@
 //    and its point at t = 1 lies in the light's shell, and then it is classified from the light,
 //    reversed (the segment lies on the ray from that point along −d);
 //  - every other ray (no tag, an object that sends no rays on, an origin whose row the budget
-//    left out, a lifted shadow ray, validate's random rays, any ray inside an instance) takes the
-//    fallback: the BoxTree over the world's primitives.
+//    left out, validate's random rays, any ray inside an instance) takes the fallback: the
+//    BoxTree over the world's primitives.
 // The pad is kRelativePad times the largest coordinate of the world, the eye and the lights
 // (render space), which covers the offset spawned rays leave their surface by.
 //

@@ -122,7 +122,8 @@ int runBench(const BenchArgs& a) {
     return kExitOk;
   }
   if (a.intersectionShare) {
-    nlohmann::json j = studyIntersectionShare(scene, kinds, std::max(1, a.renderRuns));
+    nlohmann::json j =
+        studyIntersectionShare(scene, kinds, std::max(1, a.renderRuns), a.accelOptions);
     j["scene"] = scene.sourcePath;
     j["width"] = scene.render.width;
     j["height"] = scene.render.height;
@@ -346,7 +347,7 @@ CommandRunner addBenchCommand(CLI::App& app) {
   cmd->add_flag("--intersection-share", args->intersectionShare,
                 "Only the share of one thread's render time spent in intersection, for each "
                 "--accel: the render's rays replayed through the backend alone, best of "
-                "--render-runs (docs/acceleration.md)")
+                "--render-runs (docs/performance.md)")
       ->excludes("--structures");
   cmd->add_option("--width", args->width, "Image width instead of the scene's")
       ->check(CLI::Range(1, 1 << 15));

@@ -46,12 +46,12 @@ RenderResult renderOneThread(const Scene& scene, const Accelerator& accel) {
 }  // namespace
 
 nlohmann::json studyIntersectionShare(const Scene& scene, const std::vector<AccelKind>& kinds,
-                                      int runs) {
+                                      int runs, const AccelOptions& options) {
   nlohmann::json j;
   std::printf("%-8s %12s %12s %12s %12s %10s\n", "backend", "render cpu s", "rays", "recorded",
               "replay cpu s", "share");
   for (AccelKind kind : kinds) {
-    const std::unique_ptr<Accelerator> accel = makeAccelerator(kind, scene);
+    const std::unique_ptr<Accelerator> accel = makeAccelerator(kind, scene, options);
     // The first render sizes the recording and counts as the first timed run.
     RenderStats first;
     double render = oneThreadCpuSeconds([&] { first = renderOneThread(scene, *accel).stats; });

@@ -6,7 +6,7 @@
 // what it measures): one thread renders the scene with the backend, best of `runs`; the same
 // render's queries, recorded by RayRecorder in an untimed render, are replayed through the
 // backend alone on one thread, in the render's order and batches, best of `runs`; the share is
-// replay seconds / render seconds (docs/acceleration.md). Both are the thread's CPU time, which
+// replay seconds / render seconds (docs/performance.md). Both are the thread's CPU time, which
 // other processes on a shared machine do not inflate.
 #include <nlohmann/json.hpp>
 #include <vector>
@@ -16,8 +16,9 @@
 
 namespace glint {
 
-// Prints one line per backend and returns {"intersection_share": {name: {...}}}.
+// Prints one line per backend and returns {"intersection_share": {name: {...}}}; `options`
+// are the backends' settings (ray classification's n_min and w_min).
 nlohmann::json studyIntersectionShare(const Scene& scene, const std::vector<AccelKind>& kinds,
-                                      int runs);
+                                      int runs, const AccelOptions& options = {});
 
 }  // namespace glint
