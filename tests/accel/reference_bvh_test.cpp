@@ -9,45 +9,17 @@
 #include "accel/cross_check.h"
 #include "accel/embree_accel.h"
 #include "accel/reference_bvh.h"
+#include "accel/soup_scenes.h"
 #include "core/hash.h"
 #include "test_util.h"
 
 namespace glint {
 namespace {
 
-float rnd(uint64_t key, int i, int k) { return toUnitFloat(hashKey(key, i, k)); }
-
-std::string vec(float x, float y, float z) {
-  std::ostringstream s;
-  s.precision(9);
-  s << "[" << x << "," << y << "," << z << "]";
-  return s.str();
-}
-
-// The eye at the world origin: render space (world − eye, io/placement.h) is world space.
-std::string sceneWith(const std::string& objects, const std::string& groups = "") {
-  return R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
-    "materials": {"m": {"type": "phong"}}, )" +
-         (groups.empty() ? "" : "\"groups\": {" + groups + "}, ") + "\"objects\": [" + objects +
-         "]}";
-}
-
-// An inline mesh of `count` random triangles in [−1, 1]³ of edge up to `size`.
-std::string soup(uint64_t key, int count, float size) {
-  std::string pos, idx;
-  for (int t = 0; t < count; ++t) {
-    const Vec3f c{2 * rnd(key, t, 0) - 1, 2 * rnd(key, t, 1) - 1, 2 * rnd(key, t, 2) - 1};
-    for (int v = 0; v < 3; ++v) {
-      const Vec3f p = c + size * Vec3f{rnd(key, t, 3 + 3 * v) - 0.5f, rnd(key, t, 4 + 3 * v) - 0.5f,
-                                       rnd(key, t, 5 + 3 * v) - 0.5f};
-      pos += (pos.empty() ? "" : ",") + vec(p.x, p.y, p.z);
-    }
-    idx += (idx.empty() ? "" : ",") + std::string("[") + std::to_string(3 * t) + "," +
-           std::to_string(3 * t + 1) + "," + std::to_string(3 * t + 2) + "]";
-  }
-  return R"({"type": "mesh", "material": "m", "positions": [)" + pos + "], \"indices\": [" + idx +
-         "]}";
-}
+using test::preciseVec;
+using test::rnd;
+using test::sceneWith;
+using test::soup;
 
 struct Agreement {
   CrossCheckStats stats;
@@ -86,7 +58,7 @@ TEST(ReferenceBvh, Spheres) {
   std::string objects;
   for (int i = 0; i < 150; ++i)
     objects += (i ? "," : "") + std::string(R"({"type": "sphere", "material": "m", "center": )") +
-               vec(2 * rnd(2, i, 0) - 1, 2 * rnd(2, i, 1) - 1, 2 * rnd(2, i, 2) - 1) +
+               preciseVec(2 * rnd(2, i, 0) - 1, 2 * rnd(2, i, 1) - 1, 2 * rnd(2, i, 2) - 1) +
                ", \"radius\": " + std::to_string(0.01 + 0.1 * rnd(2, i, 3)) + "}";
   expectAgreement(crossCheck(sceneWith(objects), 100000), "spheres");
 }
@@ -110,7 +82,7 @@ TEST(ReferenceBvh, InstancesAndMotion) {
   for (int i = 0; i < 12; ++i)
     objects += R"(, {"type": "instance", "group": "g", "transform": {"rotate": [1,2,3,)" +
                std::to_string(30 * i) + R"(], "translate": )" +
-               vec(2 * rnd(4, i, 0) - 1, 2 * rnd(4, i, 1) - 1, 2 * rnd(4, i, 2) - 1) + "}}";
+               preciseVec(2 * rnd(4, i, 0) - 1, 2 * rnd(4, i, 1) - 1, 2 * rnd(4, i, 2) - 1) + "}}";
   objects += R"(, {"type": "instance", "group": "g", "motion": {"transform": [
       {"rotate": [0,0,1,0]}, {"rotate": [0,0,1,120], "translate": [0.5,0,0]}, {"rotate": [0,0,1,240]}]}},
     {"type": "sphere", "center": [0,0,0], "radius": 0.2, "material": "m",
@@ -166,7 +138,7 @@ TriangleMesh icosphere() {
 
 std::string meshJson(const TriangleMesh& m) {
   std::string pos, idx;
-  for (const Vec3f& p : m.positions) pos += (pos.empty() ? "" : ",") + vec(p.x, p.y, p.z);
+  for (const Vec3f& p : m.positions) pos += (pos.empty() ? "" : ",") + preciseVec(p.x, p.y, p.z);
   for (size_t i = 0; i < m.indices.size(); i += 3)
     idx += (idx.empty() ? "[" : ",[") + std::to_string(m.indices[i]) + "," +
            std::to_string(m.indices[i + 1]) + "," + std::to_string(m.indices[i + 2]) + "]";

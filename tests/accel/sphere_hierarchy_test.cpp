@@ -9,51 +9,23 @@
 #include "accel/brute_force.h"
 #include "accel/cross_check.h"
 #include "accel/embree_accel.h"
+#include "accel/soup_scenes.h"
 #include "core/hash.h"
 #include "test_util.h"
 
 namespace glint {
 namespace {
 
-float rnd(uint64_t key, int i, int k) { return toUnitFloat(hashKey(key, i, k)); }
-
-std::string vec(float x, float y, float z) {
-  std::ostringstream s;
-  s.precision(9);
-  s << "[" << x << "," << y << "," << z << "]";
-  return s.str();
-}
-
-// The eye at the world origin: render space (world − eye, io/placement.h) is world space.
-std::string sceneWith(const std::string& objects, const std::string& groups = "") {
-  return R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
-    "materials": {"m": {"type": "phong"}}, )" +
-         (groups.empty() ? "" : "\"groups\": {" + groups + "}, ") + "\"objects\": [" + objects +
-         "]}";
-}
-
-// An inline mesh of `count` random triangles in [−1, 1]³ of edge up to `size`.
-std::string soup(uint64_t key, int count, float size) {
-  std::string pos, idx;
-  for (int t = 0; t < count; ++t) {
-    const Vec3f c{2 * rnd(key, t, 0) - 1, 2 * rnd(key, t, 1) - 1, 2 * rnd(key, t, 2) - 1};
-    for (int v = 0; v < 3; ++v) {
-      const Vec3f p = c + size * Vec3f{rnd(key, t, 3 + 3 * v) - 0.5f, rnd(key, t, 4 + 3 * v) - 0.5f,
-                                       rnd(key, t, 5 + 3 * v) - 0.5f};
-      pos += (pos.empty() ? "" : ",") + vec(p.x, p.y, p.z);
-    }
-    idx += (idx.empty() ? "" : ",") + std::string("[") + std::to_string(3 * t) + "," +
-           std::to_string(3 * t + 1) + "," + std::to_string(3 * t + 2) + "]";
-  }
-  return R"({"type": "mesh", "material": "m", "positions": [)" + pos + "], \"indices\": [" + idx +
-         "]}";
-}
+using test::preciseVec;
+using test::rnd;
+using test::sceneWith;
+using test::soup;
 
 std::string spheres(uint64_t key, int count) {
   std::string objects;
   for (int i = 0; i < count; ++i)
     objects += (i ? "," : "") + std::string(R"({"type": "sphere", "material": "m", "center": )") +
-               vec(2 * rnd(key, i, 0) - 1, 2 * rnd(key, i, 1) - 1, 2 * rnd(key, i, 2) - 1) +
+               preciseVec(2 * rnd(key, i, 0) - 1, 2 * rnd(key, i, 1) - 1, 2 * rnd(key, i, 2) - 1) +
                ", \"radius\": " + std::to_string(0.01 + 0.1 * rnd(key, i, 3)) + "}";
   return objects;
 }
@@ -66,7 +38,7 @@ std::string mixedScene() {
   for (int i = 0; i < 12; ++i)
     objects += R"(, {"type": "instance", "group": "g", "transform": {"rotate": [1,2,3,)" +
                std::to_string(30 * i) + R"(], "translate": )" +
-               vec(2 * rnd(4, i, 0) - 1, 2 * rnd(4, i, 1) - 1, 2 * rnd(4, i, 2) - 1) + "}}";
+               preciseVec(2 * rnd(4, i, 0) - 1, 2 * rnd(4, i, 1) - 1, 2 * rnd(4, i, 2) - 1) + "}}";
   objects += R"(, {"type": "instance", "group": "g", "motion": {"transform": [
       {"rotate": [0,0,1,0]}, {"rotate": [0,0,1,120], "translate": [0.5,0,0]}, {"rotate": [0,0,1,240]}]}},
     {"type": "sphere", "center": [0,0,0], "radius": 0.2, "material": "m",
@@ -205,7 +177,7 @@ TEST(SphereHierarchy, RaysTangentToALoneSphereAreNotDropped) {
     const float radius = 0.9f;
     const Scene s =
         test::sceneFromText(sceneWith(R"({"type": "sphere", "material": "m", "center": )" +
-                                      vec(c.x, c.y, c.z) + ", \"radius\": 0.9}"));
+                                      preciseVec(c.x, c.y, c.z) + ", \"radius\": 0.9}"));
     const SphereHierarchy tree(s);
     const BruteForce brute(s);
     int hits = 0;
