@@ -9,6 +9,7 @@
 #include <numeric>
 
 #include "accel/primitives.h"
+#include "accel/sah_bins.h"
 #include "core/check.h"
 #include "scene/scene.h"
 
@@ -16,32 +17,8 @@ namespace glint {
 
 namespace {
 
-float area(const Bounds3f& b) {
-  if (b.empty()) return 0;
-  const Vec3f d = b.diagonal();
-  return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
-}
-
 // Halving before adding is exact and cannot overflow, unlike lo + hi near ±3.4e38.
 Vec3f centroid(const Bounds3f& b) { return 0.5f * b.lo + 0.5f * b.hi; }
-
-// Maps a centroid coordinate in [lo, hi] to one of the SAH bins. It works on halved coordinates:
-// for centroids near ±3.4e38, hi − lo overflowed, (c − lo)·B/∞ was NaN and the NaN, cast to int,
-// indexed outside the bins (found by tests/fuzz). Halving is exact, so every bin is the one that
-// (c − lo)·B/(hi − lo) gives whenever that is finite.
-class CentroidBins {
- public:
-  CentroidBins(float lo, float hi)
-      : halfLo_(0.5f * lo), scale_(ReferenceBvh::kBins / (0.5f * hi - halfLo_)) {}
-  // False when the bins cannot separate anything: a zero or non-finite extent.
-  bool usable() const { return std::isfinite(scale_) && scale_ > 0; }
-  int operator()(float c) const {
-    return std::min(ReferenceBvh::kBins - 1, static_cast<int>((0.5f * c - halfLo_) * scale_));
-  }
-
- private:
-  float halfLo_, scale_;
-};
 
 bool contains(const Bounds3f& outer, const Bounds3f& inner) {
   return inner.lo.x >= outer.lo.x && inner.lo.y >= outer.lo.y && inner.lo.z >= outer.lo.z &&
@@ -131,7 +108,7 @@ class Builder {
     float bestCost = kInfinity;
     int bestAxis = -1, bestBin = 0;
     for (int a = 0; a < 3; ++a) {
-      const CentroidBins binOf(centers.lo[a], centers.hi[a]);
+      const CentroidBins<B> binOf(centers.lo[a], centers.hi[a]);
       if (!binOf.usable()) continue;
       Bounds3f bins[B];
       size_t counts[B] = {};
@@ -140,35 +117,21 @@ class Builder {
         bins[b].extend(prims_[i].box);
         ++counts[b];
       }
-      float rightArea[B];
-      size_t rightCount[B];
-      Bounds3f acc;
-      size_t n = 0;
-      for (int b = B - 1; b > 0; --b) {
-        acc.extend(bins[b]);
-        n += counts[b];
-        rightArea[b] = area(acc);
-        rightCount[b] = n;
-      }
-      acc = Bounds3f{};
-      n = 0;
-      for (int b = 0; b < B - 1; ++b) {
-        acc.extend(bins[b]);
-        n += counts[b];
-        const float cost = area(acc) * float(n) + rightArea[b + 1] * float(rightCount[b + 1]);
-        if (n > 0 && rightCount[b + 1] > 0 && cost < bestCost) {
-          bestCost = cost;
-          bestAxis = a;
-          bestBin = b;
-        }
+      float cost = 0;
+      const int bin = cheapestCut<B>(bins, counts, cost);
+      if (bin >= 0 && cost < bestCost) {
+        bestCost = cost;
+        bestAxis = a;
+        bestBin = bin;
       }
     }
     if (bestAxis < 0) return false;
     // Leaf cost N·A(box) against traversal 1·A(box) + children (intersection cost 1).
-    const float leafCost = float(count) * area(box);
-    if (count <= ReferenceBvh::kMaxLeafSize && bestCost + area(box) >= leafCost) return false;
+    const float leafCost = float(count) * surfaceArea(box);
+    if (count <= ReferenceBvh::kMaxLeafSize && bestCost + surfaceArea(box) >= leafCost)
+      return false;
     axis = bestAxis;
-    const CentroidBins binOf(centers.lo[axis], centers.hi[axis]);
+    const CentroidBins<B> binOf(centers.lo[axis], centers.hi[axis]);
     auto it = std::partition(prims_.begin() + long(begin), prims_.begin() + long(end),
                              [&](const BuildPrim& p) { return binOf(p.center[axis]) <= bestBin; });
     mid = static_cast<size_t>(it - prims_.begin());
@@ -185,7 +148,7 @@ void flatten(const BuildNode& n, const std::vector<BuildPrim>& prims, ReferenceB
   const auto index = static_cast<uint32_t>(tree.nodes.size());
   tree.nodes.push_back({n.box, 0, 0, static_cast<uint16_t>(n.axis)});
   stats.maxDepth = std::max(stats.maxDepth, depth);
-  const float rel = rootArea > 0 ? area(n.box) / rootArea : 1;
+  const float rel = rootArea > 0 ? surfaceArea(n.box) / rootArea : 1;
   if (!n.child[0]) {
     tree.nodes[index].first = static_cast<uint32_t>(tree.prims.size());
     tree.nodes[index].count = static_cast<uint16_t>(n.count);
@@ -229,7 +192,7 @@ ReferenceBvh::ReferenceBvh(const Scene& scene, BvhSplit split) : TwoLevelAcceler
     if (prims.empty()) continue;
     Builder builder(prims, split);
     const auto root = builder.build(0, prims.size());
-    flatten(*root, prims, trees_[g], stats_, 0, area(root->box));
+    flatten(*root, prims, trees_[g], stats_, 0, surfaceArea(root->box));
     Tree& tree = trees_[g];
     tree.corners.resize(tree.prims.size());
     tree.staticTriangle.assign(tree.prims.size(), 0);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 
+#include "accel/sah_bins.h"
 #include "core/check.h"
 #include "scene/scene.h"
 
@@ -160,10 +161,10 @@ class Builder {
     if (spread && depth < SphereHierarchy::kMedianBelowDepth) {
       int leafOrBin = 0;
       if (sahBin(begin, end, centers, box, axis, leafOrBin)) {
-        const float lo = 0.5f * centers.lo[axis], scale = kBins / (0.5f * centers.hi[axis] - lo);
-        const auto it = std::partition(
-            prims_.begin() + long(begin), prims_.begin() + long(end),
-            [&](const BuildPrim& p) { return binOf(p, axis, lo, scale) <= leafOrBin; });
+        const CentroidBins<kBins> binOf(centers.lo[axis], centers.hi[axis]);
+        const auto it =
+            std::partition(prims_.begin() + long(begin), prims_.begin() + long(end),
+                           [&](const BuildPrim& p) { return binOf(p.center[axis]) <= leafOrBin; });
         mid = static_cast<size_t>(it - prims_.begin());
         if (mid != begin && mid != end) return true;
       } else if (leafOrBin < 0) {
@@ -180,58 +181,27 @@ class Builder {
   }
 
   static constexpr int kBins = SphereHierarchy::kBins;
-  static int binOf(const BuildPrim& p, int axis, float halfLo, float scale) {
-    return std::clamp(static_cast<int>((0.5f * p.center[axis] - halfLo) * scale), 0, kBins - 1);
-  }
-  static float area(const Bounds3f& b) {
-    if (b.empty()) return 0;
-    const Vec3f d = b.diagonal();
-    return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
-  }
 
-  // The binned SAH (traversal cost 1, intersection cost 1) along `axis`: true with the last bin
-  // of the left side in `bin`; false with bin = −1 when a leaf of ≤ kMaxLeafSize costs less,
-  // or bin = 0 when no bin separates anything.
+  // The binned SAH along `axis`: true with the last bin of the left side in `bin`; false with
+  // bin = −1 when a leaf of ≤ kMaxLeafSize costs less, or bin = 0 when no bin separates anything.
   bool sahBin(size_t begin, size_t end, const Bounds3f& centers, const Bounds3f& box, int axis,
               int& bin) {
-    const float halfLo = 0.5f * centers.lo[axis];
-    const float scale = kBins / (0.5f * centers.hi[axis] - halfLo);
+    const CentroidBins<kBins> binOf(centers.lo[axis], centers.hi[axis]);
     bin = 0;
-    if (!(std::isfinite(scale) && scale > 0)) return false;
+    if (!binOf.usable()) return false;
     Bounds3f bins[kBins];
     size_t counts[kBins] = {};
     for (size_t i = begin; i < end; ++i) {
-      const int b = binOf(prims_[i], axis, halfLo, scale);
+      const int b = binOf(prims_[i].center[axis]);
       bins[b].extend(prims_[i].box);
       ++counts[b];
     }
-    float rightArea[kBins];
-    size_t rightCount[kBins];
-    Bounds3f acc;
-    size_t n = 0;
-    for (int b = kBins - 1; b > 0; --b) {
-      acc.extend(bins[b]);
-      n += counts[b];
-      rightArea[b] = area(acc);
-      rightCount[b] = n;
-    }
-    acc = Bounds3f{};
-    n = 0;
-    float best = kInfinity;
-    int bestBin = -1;
-    for (int b = 0; b < kBins - 1; ++b) {
-      acc.extend(bins[b]);
-      n += counts[b];
-      const float cost = area(acc) * float(n) + rightArea[b + 1] * float(rightCount[b + 1]);
-      if (n > 0 && rightCount[b + 1] > 0 && cost < best) {
-        best = cost;
-        bestBin = b;
-      }
-    }
+    float best = 0;
+    const int bestBin = cheapestCut<kBins>(bins, counts, best);
     if (bestBin < 0) return false;
     const size_t count = end - begin;
     if (count <= size_t(SphereHierarchy::kMaxLeafSize) &&
-        best + area(box) >= float(count) * area(box)) {
+        best + surfaceArea(box) >= float(count) * surfaceArea(box)) {
       bin = -1;
       return false;
     }
