@@ -15,7 +15,7 @@ template <class Test>
                                                  Test&& test) {
   const bool cut = scene.hasCutout(g);
   // No shape meets a ray more than twice, so a third test finds nothing. (One call of `test`
-  // in the loop: a second one kept GCC from inlining the shape tests, 1 % of a default render.)
+  // in the loop: a second one keeps GCC from inlining the shape tests.)
   for (int tries = 0;; ++tries) {
     const float t = test(r, u, v);
     if (!cut || !(t < r.tMax) || !scene.cutAway(g, r, t, prim, u, v)) return t;

@@ -109,7 +109,7 @@ float intersectShape(const EmbreeAccel::UserShape& s, const Ray& r, float& u, fl
 }
 
 // The shape's first hit that its cut-out keeps (accel/cutout_hits.h). Out of line: inlined
-// beside intersectShape it kept GCC from inlining the shape tests (1 % of a default render).
+// beside intersectShape it keeps GCC from inlining the shape tests.
 [[gnu::noinline]] float keptUserHit(const EmbreeAccel::UserShape& s, const Ray& r, float& u,
                                     float& v) {
   return firstKeptHit(*s.scene, *s.cutout, 0, r, u, v, [&](const Ray& q, float& tu, float& tv) {
@@ -505,7 +505,7 @@ void EmbreeAccel::occludedCoherent(const Ray* rays, bool* blocked, size_t n) con
   // A closest-hit stream: a ray is blocked when it hits anything before its tMax, as with
   // rtcOccluded1. Not rtcOccluded1M: as fast, but it hung inside Embree 3.13.5's AVX-512 packet
   // traversal of an instanced scene under ASan (docs/performance.md). Not intersectStream: planes
-  // are tested first and no Hit is built, 5–7 % of a default render.
+  // are tested first and no Hit is built, work a shadow ray does not need.
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;

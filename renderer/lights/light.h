@@ -36,8 +36,8 @@ struct PointLight {
   Vec3f spotAxis;  // unit, the way its light travels
   float cosInner = -1, cosOuter = -1;
 
-  // A spot's outer angle is at most 90°: one comparison (one of the two a delta light's sample
-  // made cost 0.6 % of a default render's instructions).
+  // A spot's outer angle is at most 90°: one comparison per point-light sample (what it costs:
+  // docs/performance.md, "Leaving out what a scene does not need").
   bool isSpot() const { return cosOuter > -1; }
   // The fraction of its intensity a spot light sends towards a point in direction -wi (wi:
   // unit, from the point towards the light).

@@ -69,7 +69,7 @@ void splitMetal(const SurfaceMaps& maps, const ShadingPoint& sp, SurfacePoint& a
 float ambientOcclusion(const SurfaceMaps& maps, const ShadingPoint& sp, const SurfacePoint& at);
 
 // Always inlined (like forEachCoherentRay): out of line, their results came back through memory
-// (store forwarding; 7 % of a default render).
+// (a store-forwarding stall at every shaded hit).
 // `footprint`: the width of the pixel's footprint at the point (integrator/footprint.h).
 [[gnu::always_inline]] inline SurfacePoint lookUp(const Surface& s, const ShadingPoint& sp,
                                                   const Vec3f& wo, float footprint,

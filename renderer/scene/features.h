@@ -3,7 +3,8 @@
 // out at run time: no lens or time samples without a lens or motion, one shadow ray and no
 // sample set for a delta light, no interior list outside dielectrics, no refraction rays
 // without them, no AOV records unless asked for; `glint render --stats` lists both sides. (No
-// capability is compiled out: `glint bench` showed none paying 5 %, docs/performance.md.)
+// capability is compiled out: specialised kernels saved too little to pay for keeping several,
+// docs/performance.md, "Leaving out what a scene does not need".)
 #include <string>
 #include <vector>
 

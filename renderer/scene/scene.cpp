@@ -14,7 +14,7 @@ namespace {
 // A point on the ray projected onto the plane through `point` with unit `normal`, and its
 // error bound: the projection cancels the along-normal error of o + t·d; what is left is
 // rounding of the subtraction and the dot product, relative to the magnitudes involved.
-// Always inlined: out of line, p and pError came back through memory (4 % of a default render).
+// Always inlined: out of line, p and pError came back through memory.
 [[gnu::always_inline]] inline void projectOntoPlane(const Vec3f& onRay, const Vec3f& point,
                                                     const Vec3f& normal, Vec3f& p, Vec3f& pError) {
   const Vec3f rel = onRay - point;

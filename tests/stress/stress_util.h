@@ -31,7 +31,7 @@ constexpr int kAgreementRays = test::kAddressSanitizer ? 100000 : 1000000;
 // (issue 25's bar). Hits at a ray's origin count as ties (CrossCheck::kOriginTolerance), but at
 // most 10⁻⁴ of the queries may need that: a scene far from the origin, where every hit on a
 // small shape lies within the tolerance, must not pass on ties (a sphere's box rounded inside
-// it made 7 % of rays disagree there). `minComparedHits`: the share of rays that must hit in
+// it would make many rays disagree there). `minComparedHits`: the share of rays that must hit in
 // both backends, so that the agreement says something about hits.
 inline void expectAgreementOnRandomRays(const Scene& s, const CrossCheck& check, int rays,
                                         double minComparedHits = 0) {
