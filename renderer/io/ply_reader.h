@@ -1,7 +1,7 @@
 #pragma once
 // Glint's own PLY reader (ASCII, binary little and big endian), used for every .ply file.
-// Assimp's PLY path welded the file's already shared vertices again (JoinIdenticalVertices): a
-// 2M-triangle binary file took 2.2 s and 384 bytes per triangle to load. This one streams the
+// Assimp's PLY path welded the file's already shared vertices again (JoinIdenticalVertices),
+// slow and several times the memory of the mesh it made. This one streams the
 // body through a bounded buffer into vectors sized by the header's counts (checked against the
 // file's size first, io/ply_header.h), checking every value as it is read. docs/scene-format.md
 // lists what it takes from a file; docs/performance.md ("Loading big meshes") what it costs.

@@ -35,8 +35,7 @@ inline constexpr int kDefaultFirstPassSpp = 8;
 // halves, by its edge floor), its mean, and the samples it had when they were taken, for one
 // target, spread and frame. A pass changes a pixel only by adding samples, so a choice recomputes
 // them only where the sample count moved (and the edge ratios of those pixels' 4-neighbours):
-// taken anew over the whole frame at every pass, they cost 3 ms a pass, 23 ms of a 156-ms
-// adaptive render (objects at 240 x 150, --min-spp 8).
+// taken anew over the whole frame at every pass, each short pass paid for the whole frame's.
 struct ChoiceCache {
   std::vector<double> ratio, edgeRatio, means;
   std::vector<int64_t> samples;  // -1 where not taken yet
