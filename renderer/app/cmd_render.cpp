@@ -33,6 +33,7 @@
 #include "io/scene_loader.h"
 #include "render/pass_plan.h"
 #include "render/render_job.h"
+#include "render/render_session.h"
 #include "render/resume_state.h"
 
 namespace glint {
@@ -415,7 +416,7 @@ ResumeState readResumable(const RenderArgs& a, const Scene& scene, const PassPla
 int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   Scene scene = loadSceneOrDefault(a.scenePath, frame, a.camera, a.environment);
   applyOverrides(a, scene);
-  // How renderScene will spend the samples (it makes the same plan): for the metadata and
+  // How the render session will spend the samples (it makes the same plan): for the metadata and
   // --resume, and to refuse contradictory bounds before anything is built.
   const PassPlan plan = PassPlan::make(scene.render.spp, scene.render.sampler, a.sampling);
   RenderOptions opt;
@@ -515,8 +516,14 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
       log::info("preview: " + job.out + " at " + std::to_string(soFar.stats.passes.back().spp) +
                 " spp");
     };
-    RenderResult result =
-        renderScene(scene, *accel, opt, a.previewEvery > 0 ? preview : PassCallback());
+    // The frame's passes (render/render_session.h), a preview between two when one is due; a
+    // signal cuts the pass in flight (opt.cancel) and the frame keeps the passes finished. The
+    // session's buffers are gone before the frame is written.
+    RenderResult result = [&] {
+      RenderSession session(scene, *accel, opt);
+      session.runToEnd(a.previewEvery > 0 ? preview : PassCallback());
+      return session.finish();
+    }();
     // The earlier render's passes come first; this one's start where its time ended.
     if (!earlierPasses.empty())
       for (PassRecord& p : result.stats.passes) p.seconds += earlierPasses.back().seconds;

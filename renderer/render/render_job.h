@@ -142,7 +142,7 @@ struct RenderResult {
 // Throws UsageError, naming the numbers and the light, when one pixel's set of samples (`spp`,
 // the most a pixel may take, or spp × an area light's samples) is larger than kMaxSampleSet
 // (core/sampler.h). The loader bounds spp alone; the product needs the light and a --spp or
-// --max-spp override, so renderScene checks it before anything renders.
+// --max-spp override, so a render session checks it before anything renders.
 void checkSampleSets(const Scene& scene, int64_t spp);
 
 // Throws UsageError when a frame of `pixels` pixels with `channels` film channels (RGBA and
@@ -154,9 +154,10 @@ void checkFrameFits(int64_t pixels, size_t channels, uint64_t availableBytes);
 
 // Called after each finished pass with the frame so far (its film resolved, its stats up to
 // that pass): previews. Runs on the calling thread, between passes, inside the render's arena
-// (withThreads): TBB work it starts shares the render's threads.
+// (ThreadArena): TBB work it starts shares the render's threads.
 using PassCallback = std::function<void(const RenderResult& soFar)>;
 
+// A frame straight through: a RenderSession (render/render_session.h) run to its end.
 RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt,
                          const PassCallback& onPass = {});
 

@@ -59,22 +59,38 @@ int defaultThreadCount() { return tbb::info::default_concurrency(); }
 int threadCount(int requested) { return requested > 0 ? requested : defaultThreadCount(); }
 
 namespace {
-// The threads of the withThreads whose body this thread runs; 0 outside one.
+// The threads of the arena whose body this thread runs, and that arena; 0 and null outside one.
 thread_local int tArenaThreads = 0;
+thread_local const ThreadArena* tArena = nullptr;
 }  // namespace
 
-void withThreads(int threads, const std::function<void()>& body) {
-  const int count = threadCount(threads);
-  tbb::task_arena arena(count);
-  arena.execute([&] {
+struct ThreadArena::Arena {
+  int threads;
+  tbb::task_arena arena;
+  explicit Arena(int count) : threads(count), arena(count) {}
+};
+
+ThreadArena::ThreadArena(int threads) : arena_(std::make_unique<Arena>(threadCount(threads))) {}
+ThreadArena::~ThreadArena() = default;
+
+void ThreadArena::run(const std::function<void()>& body) const {
+  if (tArena == this) {
+    body();
+    return;
+  }
+  arena_->arena.execute([&] {
     struct Mark {
-      int outer = tArenaThreads;
-      ~Mark() { tArenaThreads = outer; }
+      int outerThreads = tArenaThreads;
+      const ThreadArena* outer = tArena;
+      ~Mark() { tArenaThreads = outerThreads, tArena = outer; }
     } restoredOnExit;
-    tArenaThreads = count;
+    tArenaThreads = arena_->threads;
+    tArena = this;
     body();
   });
 }
+
+void withThreads(int threads, const std::function<void()>& body) { ThreadArena(threads).run(body); }
 
 void runTiles(const std::vector<PixelWindow>& tiles, int threads,
               const std::function<void(size_t)>& renderTile) {

@@ -3,6 +3,7 @@
 // the requested thread count. Each tile is rendered by one task; results are reduced in tile
 // order, so the output never depends on threads or scheduling.
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "film/film.h"
@@ -22,8 +23,24 @@ std::vector<PixelWindow> makeTiles(const PixelWindow& window, int tileSize,
 inline constexpr int kTilesPerThread = 32;
 int effectiveTileSize(const PixelWindow& window, int requested, int threads);
 
-// Runs `body` on an arena of `threads` threads (0 = all cores): the tiles and every other TBB
-// loop it runs share those threads, and no more.
+// An arena of `threads` threads (0 = all cores): the tiles and every other TBB loop that a body
+// run on it starts share those threads, and no more. A render session keeps one for all its
+// passes, so that its workers stay with it from one pass to the next.
+class ThreadArena {
+ public:
+  explicit ThreadArena(int threads);
+  ~ThreadArena();
+  ThreadArena(const ThreadArena&) = delete;
+  ThreadArena& operator=(const ThreadArena&) = delete;
+  // Runs `body` on the arena; at once where the calling thread runs a body of it already.
+  void run(const std::function<void()>& body) const;
+
+ private:
+  struct Arena;
+  std::unique_ptr<Arena> arena_;
+};
+
+// Runs `body` on an arena of `threads` threads (0 = all cores) of its own.
 void withThreads(int threads, const std::function<void()>& body);
 
 // Runs renderTile(tileIndex) for every tile on `threads` threads (0 = all cores): called from

@@ -1,0 +1,386 @@
+#include "render/render_session.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include "core/check.h"
+#include "core/error.h"
+#include "core/memory.h"
+
+namespace glint {
+
+namespace {
+
+// Throws UsageError when the frame's film, AOV planes and per-pixel states would not fit in
+// memory (checkFrameFits): the AOV planes' channels come from the layout itself, made on a
+// one-pixel film, and a pixel's state between passes is counted in doubles.
+void checkFrameMemory(const Scene& scene, const AovSet& aovs, const PixelWindow& sampledWindow) {
+  Film probe(1, 1, PixelWindow{0, 1, 0, 1});
+  AovLayout::create(aovs, scene, probe);
+  size_t channels = 4 + sizeof(PixelEstimate) / 12;
+  for (const FilmPlane& plane : probe.planes()) channels += 2 * plane.channels.size();
+  checkFrameFits(sampledWindow.area(), channels, availableMemoryBytes());
+}
+
+// An adaptive frame continues as a straight render only if its passes are where this plan's
+// are: the last it finished is one of the plan's ends, and the one it cut short the next. Their
+// ends double from the first pass up to --max-spp: a frame finished at --max-spp 20 (8, 16, 20)
+// has taken a pass that a render to 32 (8, 16, 32) never takes. Any position suits the other
+// renders, whose passes choose every pixel below their end.
+void checkResumablePosition(const PassPlan& plan, const PassPosition& at) {
+  if (!plan.adaptive()) return;
+  const auto next = std::upper_bound(plan.ends.begin(), plan.ends.end(), at.finishedEnd);
+  const bool finishedOnPlan = at.finishedEnd == 0 || std::find(plan.ends.begin(), plan.ends.end(),
+                                                               at.finishedEnd) != plan.ends.end();
+  if (finishedOnPlan && (at.cutEnd == 0 || (next != plan.ends.end() && *next == at.cutEnd))) return;
+  std::string ends;
+  for (const int end : plan.ends) ends += (ends.empty() ? "" : ", ") + std::to_string(end);
+  throw UsageError("--resume: the frame's adaptive passes stopped at " +
+                   std::to_string(at.cutEnd > 0 ? at.cutEnd : at.finishedEnd) +
+                   " spp, which this render's passes (" + ends +
+                   ") do not reach on their way: a continued frame takes the choices a "
+                   "straight render takes only where their passes end alike; give a --max-spp "
+                   "whose passes, doubling from --min-spp, include it");
+}
+
+// Throws UsageError where the state a render left cannot be continued by this one.
+void checkResumable(const PassPlan& plan, const RenderOptions& opt, const PixelWindow& window,
+                    const PixelWindow& sampledWindow) {
+  const ResumeState& from = *opt.resumeFrom;
+  if (sampledWindow.area() != window.area())
+    throw UsageError(
+        "--resume continues an adaptive render of the full frame only: a crop's "
+        "adaptive sampling depends on pixels around it, whose state is not kept");
+  GLINT_CHECK(from.estimates.size() == size_t(sampledWindow.area()));
+  if (opt.aovs.needsSamples())
+    throw UsageError(
+        "--resume continues the beauty and its variance only: the other AOVs' "
+        "sums are not kept with the frame");
+  checkResumablePosition(plan, from.position);
+}
+
+// What the progress line knows before the first pass.
+ProgressPlan progressPlan(const PassPlan& plan, const PixelWindow& sampledWindow, bool resumed) {
+  ProgressPlan p;
+  p.totalWork = sampledWindow.area() * plan.maxSpp;
+  p.workIsBound = plan.adaptive();
+  if (plan.timeLimitSeconds > 0) p.timeLimitSeconds = plan.timeLimitSeconds;
+  // A continued frame's first pass is behind it: the limit holds from its first pass taken.
+  if (!resumed) p.firstPassWork = sampledWindow.area() * plan.ends.front();
+  return p;
+}
+
+RenderOptions withoutAovs(RenderOptions opt) {
+  opt.aovs = {};
+  return opt;
+}
+
+// The pixels' states inside `window` (of the sampled window), row-major.
+std::vector<PixelEstimate> estimatesIn(const FrameContext& f, const PixelWindow& window) {
+  std::vector<PixelEstimate> out;
+  out.reserve(static_cast<size_t>(window.area()));
+  for (int y = window.y0; y < window.y1; ++y)
+    for (int x = window.x0; x < window.x1; ++x) out.push_back(f.estimate(x, y));
+  return out;
+}
+
+// The part of a per-pixel mask over `from` that lies in `window` (inside it), row-major.
+std::vector<uint8_t> windowPart(const std::vector<uint8_t>& mask, const PixelWindow& from,
+                                const PixelWindow& window) {
+  std::vector<uint8_t> out;
+  out.reserve(static_cast<size_t>(window.area()));
+  for (int y = window.y0; y < window.y1; ++y)
+    for (int x = window.x0; x < window.x1; ++x)
+      out.push_back(mask[size_t(y - from.y0) * size_t(from.width()) + size_t(x - from.x0)]);
+  return out;
+}
+
+// The frame as it stands in `window`: each pixel's mean and the AOVs' finished values.
+Film resolveFrame(const FrameContext& f, const PixelWindow& window) {
+  const Film& sums = f.aovSums;
+  Film out(sums.fullWidth(), sums.fullHeight(), window);
+  for (const FilmPlane& plane : sums.planes())
+    out.addPlane(plane.name, plane.channels, plane.isUint);
+  for (const auto& [key, value] : sums.stringAttributes()) out.addAttribute(key, value);
+  for (const auto& [key, value] : sums.intAttributes()) out.addAttribute(key, value);
+  // On the render's threads: each pixel is written from its own state alone.
+  forEachRow(window.y0, window.y1, [&](int y) {
+    for (int x = window.x0; x < window.x1; ++x) {
+      const PixelEstimate& pixel = f.estimate(x, y);
+      double rgba[4];
+      pixel.mean(rgba);
+      out.setPixel(x, y, rgba[0], rgba[1], rgba[2], rgba[3]);
+      if (f.opt.aovs.any()) resolveAovs(f.aovLayout, sums, f.aovTables, pixel, out, x, y);
+    }
+  });
+  return out;
+}
+
+// The statistics of the frame as it stands, besides the rays and time; returns the samples its
+// pixels hold.
+int64_t describeSamples(const std::vector<PixelEstimate>& estimates, SamplerKind sampler,
+                        RenderStats& stats) {
+  stats.sampler = sampler;
+  stats.estimated = estimateFrameError(estimates, sampler);
+  struct Counts {
+    int64_t fewest = std::numeric_limits<int64_t>::max(), most = 0, total = 0;
+  };
+  const Counts counts = tbb::parallel_reduce(
+      tbb::blocked_range<size_t>(0, estimates.size()), Counts{},
+      [&](const tbb::blocked_range<size_t>& r, Counts c) {
+        for (size_t i = r.begin(); i != r.end(); ++i) {
+          const int64_t n = estimates[i].samples();
+          c = {std::min(c.fewest, n), std::max(c.most, n), c.total + n};
+        }
+        return c;
+      },
+      [](const Counts& a, const Counts& b) {
+        return Counts{std::min(a.fewest, b.fewest), std::max(a.most, b.most), a.total + b.total};
+      });
+  stats.minPixelSpp = estimates.empty() ? 0 : static_cast<int>(counts.fewest);
+  stats.maxPixelSpp = static_cast<int>(counts.most);
+  return counts.total;
+}
+
+}  // namespace
+
+RenderSession::Shape RenderSession::planFrame(const Scene& scene, const RenderOptions& opt) {
+  const RenderSettings& rs = scene.render;
+  Shape s{PassPlan::make(rs.spp, rs.sampler, opt.sampling), {}, {}};
+  checkSampleSets(scene, s.plan.maxSpp);
+  s.window = opt.crop.value_or(PixelWindow{0, rs.width, 0, rs.height});
+  // Adaptive sampling decides from each pixel's neighbours: a crop samples an apron around it
+  // too, so that its pixels are sampled as in the full frame (PassPlan::apron).
+  const int apron = s.plan.apron();
+  s.sampledWindow = {std::max(0, s.window.x0 - apron), std::min(rs.width, s.window.x1 + apron),
+                     std::max(0, s.window.y0 - apron), std::min(rs.height, s.window.y1 + apron)};
+  checkFrameMemory(scene, opt.aovs, s.sampledWindow);
+  // AOV work happens only when AOVs are asked for (leave out what is not needed).
+  if (opt.integrator == IntegratorKind::Reference && opt.aovs.any())
+    throw UsageError("the reference integrator renders the beauty only: drop --aov");
+  if (opt.resumeFrom) checkResumable(s.plan, opt, s.window, s.sampledWindow);
+  return s;
+}
+
+RenderSession::RenderSession(const Scene& scene, const Accelerator& accel, const RenderOptions& opt)
+    : scene_(scene),
+      accel_(accel),
+      opt_(opt),
+      probeOptions_(withoutAovs(opt)),
+      start_(Clock::now()),
+      boundedStop_(std::in_place),
+      shape_(planFrame(scene, opt)),
+      threads_(threadCount(opt.threads)),
+      tileSize_(effectiveTileSize(shape_.sampledWindow, opt.tileSize, threads_)),
+      arena_(threads_),
+      tiles_(makeTiles(shape_.sampledWindow, tileSize_, opt.tileOrder)),
+      camera_(scene.cameraDesc, scene.render.width, scene.render.height),
+      cameraSampling_(scene, camera_),
+      sampler_(plan_.sampler, plan_.maxSpp, scene.render.seed),
+      aovSums_(scene.render.width, scene.render.height, shape_.sampledWindow),
+      aovLayout_(AovLayout::create(opt.aovs, scene, aovSums_)),
+      aovTables_(aovLayout_, shape_.sampledWindow),
+      integrator_(makeTilePasses(opt.integrator, scene, accel, plan_.footprintSpp())),
+      progress_(progressPlan(plan_, shape_.sampledWindow, opt.resumeFrom != nullptr), opt.progress,
+                start_),
+      estimates_(opt.resumeFrom ? opt.resumeFrom->estimates
+                                : std::vector<PixelEstimate>(size_t(shape_.sampledWindow.area()))),
+      sampled_(estimates_.size(), 1),
+      tileCounters_(tiles_.size()),
+      frame_{scene_,          accel_,   opt_,       camera_,
+             cameraSampling_, sampler_, aovLayout_, loggedNonfinite_,
+             estimates_,      aovSums_, aovTables_, PixelSlots::all(shape_.sampledWindow)} {
+  // Where the passes stand, from where the continued frame's stood: its pixels may hold more
+  // than the ends this plan skips (--spp 24, continued to 64: 24 against 16), and a stop
+  // before its cut pass is taken again must keep that pass's choice.
+  if (opt.resumeFrom) {
+    resumedAt_ = opt.resumeFrom->position;
+    position_ = *resumedAt_;
+  }
+}
+
+RenderSession::~RenderSession() = default;
+
+bool RenderSession::measureSpread() {
+  GLINT_CHECK(!finished_);
+  bool measured = false;
+  arena_.run([&] { measured = measureSpreadOnThreads(); });
+  return measured;
+}
+
+bool RenderSession::runPass() {
+  GLINT_CHECK(!finished_);
+  bool finished = false;
+  arena_.run([&] { finished = takeNextPass(); });
+  return finished;
+}
+
+void RenderSession::runToEnd(const PassCallback& onPass) {
+  GLINT_CHECK(!finished_);
+  // From here on, on the render's threads: the tiles, and the per-pixel work between passes
+  // (choosing pixels, the statistics, the resolved frame), which other threads would wait for.
+  arena_.run([&] {
+    while (takeNextPass())
+      if (onPass && passesLeft()) onPass(snapshot());
+  });
+}
+
+RenderResult RenderSession::snapshot() const {
+  GLINT_CHECK(!finished_);
+  std::optional<Film> film;
+  arena_.run([&] { film.emplace(resolveFrame(frame_, shape_.window)); });
+  const bool apron = shape_.sampledWindow.area() != shape_.window.area();
+  return {std::move(*film),
+          stats_,
+          partial_,
+          tileSize_,
+          apron ? estimatesIn(frame_, shape_.window) : estimates_,
+          position_};
+}
+
+RenderResult RenderSession::finish() {
+  GLINT_CHECK(!finished_);
+  finished_ = true;
+  // A frame whose driver stopped taking passes is short of its plan, as one a cancel stopped
+  // between two passes is.
+  const bool partial = partial_ || (!ended_ && next_ < plan_.ends.size());
+  std::optional<Film> film;
+  arena_.run([&] {
+    progress_.finish(stats_.timeLimitReached ? "the time limit" : partial ? "an interrupt" : "");
+    film.emplace(resolveFrame(frame_, shape_.window));
+    refreshStats();
+  });
+  boundedStop_.reset();
+  RenderResult result{std::move(*film),    std::move(stats_), partial, tileSize_, {},
+                      std::move(position_)};
+  // Moved, not copied: the frame's states, or the window's that refreshStats took from them.
+  result.estimates = shape_.sampledWindow.area() == shape_.window.area()
+                         ? std::move(estimates_)
+                         : std::move(cropEstimates_);
+  return result;
+}
+
+bool RenderSession::takeNextPass() {
+  for (; passesLeft(); ++next_) {
+    const int end = plan_.ends[next_];
+    // A continued frame's finished passes are not taken again: their choices would read a
+    // state later passes have moved on (a straight render takes each from the one before).
+    if (resumedAt_ && end <= resumedAt_->finishedEnd) continue;
+    // From the second pass on, adaptive choices weigh each pixel by the frame's spread.
+    if (plan_.adaptive() && next_ > 0 && !measureSpreadOnThreads()) return false;
+    const int64_t pixels = choosePixels(end);
+    if (pixels == 0) {  // every pixel is past this pass (continued), or met its target
+      passFinished(end);
+      continue;
+    }
+    if (!renderChosen(pixels)) return false;
+    passFinished(end);
+    const int64_t samples = refreshStats();
+    stats_.passes.push_back({end, double(samples) / double(shape_.window.area()), stats_.seconds,
+                             stats_.estimated, pixels});
+    ++next_;
+    return true;
+  }
+  return false;
+}
+
+// The probes' first pass, rendered on their own (beauty only) so that a crop or a continued
+// frame measures the frame's spread as the full frame does.
+bool RenderSession::measureSpreadOnThreads() {
+  if (!plan_.adaptive() || spread_) return true;
+  if (ended_) return false;
+  const RenderSettings& rs = scene_.render;
+  const ProbeLattice lattice = ProbeLattice::of(rs.width, rs.height);
+  std::vector<PixelEstimate> probes(size_t(lattice.columns) * size_t(lattice.rows));
+  const FrameContext probeFrame{
+      scene_,          accel_,   probeOptions_, camera_,
+      cameraSampling_, sampler_, aovLayout_,    loggedNonfinite_,
+      probes,          aovSums_, aovTables_,    PixelSlots::probes(lattice, rs.width, rs.height)};
+  const std::vector<uint8_t> all(probes.size(), 1);
+  std::atomic<bool> never{false}, stopped{false};
+  const PassContext pass{plan_.minSpp, all, std::nullopt, never};
+  Progress silent({}, false);
+  const std::vector<PixelWindow> frameTiles =
+      makeTiles(PixelWindow{0, rs.width, 0, rs.height}, tileSize_, opt_.tileOrder);
+  probeCounters_.assign(frameTiles.size(), {});
+  TileWork work{frameTiles, probeCounters_, silent, stopped, threads_};
+  integrator_->render(probeFrame, pass, work);
+  if (stopped) {
+    partial_ = ended_ = true;
+    refreshStats();
+    return false;
+  }
+  spread_ = FrameSpread::of(probes);
+  return true;
+}
+
+// Marks in sampled_ the pixels the pass to `end` takes, and returns how many.
+int64_t RenderSession::choosePixels(int end) {
+  // The pass a stop cut short goes on with the pixels it had chosen.
+  if (resumedAt_ && end == resumedAt_->cutEnd) {
+    sampled_ = resumedAt_->cutChosen;
+    return std::count(sampled_.begin(), sampled_.end(), uint8_t{1});
+  }
+  return plan_.choosePixels(estimates_, shape_.sampledWindow.width(), end,
+                            spread_.value_or(FrameSpread{}), choiceCache_, sampled_);
+}
+
+// Renders the next pass on the pixels chosen; returns false when a stop cut it short.
+bool RenderSession::renderChosen(int64_t pixels) {
+  const size_t k = next_;
+  if (plan_.adaptive()) progress_.replan(pixels * (plan_.maxSpp - (k > 0 ? plan_.ends[k - 1] : 0)));
+  // The time limit applies from the second pass on: the first is what makes a frame.
+  std::optional<Clock::time_point> deadline;
+  if (plan_.timeLimitSeconds > 0 && k > 0)  // a limit past 30 years is none (no overflow)
+    deadline = start_ + std::chrono::duration_cast<Clock::duration>(
+                            std::chrono::duration<double>(std::min(plan_.timeLimitSeconds, 1e9)));
+  const PassContext pass{plan_.ends[k], sampled_, deadline, deadlinePassed_};
+  std::atomic<bool> stopped{false};
+  TileWork work{tiles_, tileCounters_, progress_, stopped, threads_};
+  integrator_->render(frame_, pass, work);
+  if (!stopped) return true;
+  passCut(plan_.ends[k]);
+  return false;
+}
+
+// A stop cut the pass to `end` short: the frame ends there, keeping the pass's choice so that a
+// continuation takes it again.
+void RenderSession::passCut(int end) {
+  stats_.timeLimitReached = deadlinePassed_.load();
+  partial_ = !stats_.timeLimitReached;
+  ended_ = true;
+  position_.cutEnd = end;
+  position_.cutChosen = windowPart(sampled_, shape_.sampledWindow, shape_.window);
+  refreshStats();
+}
+
+void RenderSession::passFinished(int end) {
+  position_.finishedEnd = end;
+  if (position_.cutEnd <= end) position_.cutEnd = 0, position_.cutChosen.clear();
+}
+
+int64_t RenderSession::refreshStats() {
+  stats_.rays = {};
+  for (const RayCounters& c : tileCounters_) stats_.rays += c;
+  for (const RayCounters& c : probeCounters_) stats_.rays += c;
+  stats_.integrator = opt_.integrator;
+  stats_.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+  return describeSamples(windowEstimates(), plan_.sampler, stats_);
+}
+
+// The pixels' states in the window: the frame's own where it samples no apron, else a copy.
+const std::vector<PixelEstimate>& RenderSession::windowEstimates() {
+  if (shape_.sampledWindow.area() == shape_.window.area()) return estimates_;
+  cropEstimates_ = estimatesIn(frame_, shape_.window);
+  return cropEstimates_;
+}
+
+}  // namespace glint
