@@ -12,12 +12,12 @@
 #include "core/input_files.h"
 #include "core/log.h"
 #include "core/out_of_memory.h"
-#include "film/texture_file.h"
 #include "io/gltf_scene.h"
 #include "io/mesh_io.h"
 #include "io/object_names.h"
 #include "io/scene_formats.h"
 #include "io/scene_loader.h"
+#include "io/texture_file.h"
 
 namespace glint {
 

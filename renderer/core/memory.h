@@ -1,7 +1,7 @@
 #pragma once
 // How much memory this process can still take, for checks that refuse an oversized frame,
 // input image, texture or scene before allocating it (render_job.cpp, film/image_limits.cpp,
-// film/texture_file.cpp, io/scene_source.cpp), and how much it has used (render statistics).
+// io/texture_file.cpp, app/scene_source.cpp), and how much it has used (render statistics).
 // The budget is the least of three sources (core/memory_sources.h): the machine's
 // MemAvailable, the address-space limit (RLIMIT_AS) less what is mapped, and the memory
 // cgroup's limit less its usage.

@@ -2,7 +2,9 @@
 // OpenImageIO behind a module loaded at run time. Debian's libOpenImageIO pulls in about 260
 // shared libraries (ffmpeg, GDAL, OpenCV, ...): linked into glint, they cost every run 0.3 s and
 // 130 MB before main(). Only the runs that need what only OpenImageIO does (image formats other
-// than EXR and PNG) load libglint_oiio.so, and with it OpenImageIO.
+// than EXR and PNG) load libglint_oiio.so, and with it OpenImageIO. One loader serves film/'s
+// image output and io/'s texture input (io/texture_file.h), so it sits in film/, the lower of the
+// two: both reach it downward, and the process loads the module once.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -17,7 +19,7 @@ namespace glint::oiio_module {
 void writeImage(const std::string& path, const std::string& tmpPath, int width, int height,
                 int channels, int bits, const std::vector<uint16_t>& codes);
 
-// OpenImageIO's TextureSystem (film/texture_file.h). Throws GlintError naming the texture
+// OpenImageIO's TextureSystem (io/texture_file.h). Throws GlintError naming the texture
 // `path` when the module cannot be loaded.
 struct TextureFunctions {
   GlintOiioTextureOpen open = nullptr;

@@ -26,7 +26,6 @@
 #include "core/input_files.h"
 #include "core/log.h"
 #include "core/out_of_memory.h"
-#include "film/texture_file.h"
 #include "io/assimp_scene_info.h"
 #include "io/expansion_limits.h"
 #include "io/gltf_indices.h"
@@ -35,6 +34,7 @@
 #include "io/mesh_materials.h"
 #include "io/object_names.h"
 #include "io/ply_reader.h"
+#include "io/texture_file.h"
 
 namespace glint {
 

@@ -43,7 +43,7 @@ struct SceneBuilder {
   std::map<std::pair<std::string, std::string>, std::shared_ptr<const ImageTexture>> textures;
 
   // The texture of `path` in `colorspace` (empty: the file's), opened on first use
-  // (film/texture_file.h; throws as openImageTexture does).
+  // (io/texture_file.h; throws as openImageTexture does).
   std::shared_ptr<const ImageTexture> texture(const std::string& path,
                                               const std::string& colorspace);
 

@@ -9,10 +9,10 @@
 #include "core/log.h"
 #include "core/memory.h"
 #include "core/sampler.h"
-#include "film/texture_file.h"
 #include "io/animation.h"
 #include "io/object_names.h"
 #include "io/scene_builder.h"
+#include "io/texture_file.h"
 
 namespace glint {
 

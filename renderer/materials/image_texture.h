@@ -1,7 +1,7 @@
 #pragma once
 // An image on a surface's (u, v) coordinates. Materials see only this interface; the images
 // themselves are read, mip-mapped, cached and filtered by OpenImageIO's TextureSystem outside
-// the shading layer (film/texture_file.h), and colour-converted to scene-linear there.
+// the shading layer (io/texture_file.h), and colour-converted to scene-linear there.
 #include <cmath>
 #include <cstdint>
 #include <string>

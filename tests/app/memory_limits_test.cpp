@@ -94,7 +94,7 @@ std::string texturedScene(const std::string& name, const std::string& image) {
 TEST(MemoryLimits, AHugeTextureIsRefusedFromItsHeaderBeforeAnyTexelIsRead) {
   SKIP_UNDER_ASAN();
   // 20000 x 20000 8-bit RGB in 1.2 MB: 1.2 GB of texels, 3.6 GB read, cached and MIP-mapped
-  // (three times them, film/texture_file.cpp). Under a 1.5 GB limit it cannot fit: refused by
+  // (three times them, io/texture_file.cpp). Under a 1.5 GB limit it cannot fit: refused by
   // its header with exit 1 naming it. OpenImageIO, left to try, failed to allocate it and then
   // decoded the whole file again for every tile, for hours.
   const std::string png = writeBlackPng("huge-black.png", 20000);

@@ -8,9 +8,9 @@
 #include <cmath>
 #include <filesystem>
 
-#include "film/texture_file.h"
 #include "io/mesh_io.h"
 #include "io/mesh_materials.h"
+#include "io/texture_file.h"
 #include "test_util.h"
 
 namespace glint {

@@ -1,4 +1,4 @@
-#include "film/texture_file.h"
+#include "io/texture_file.h"
 
 #include <algorithm>
 #include <filesystem>

@@ -2,6 +2,9 @@
 // Image textures read from files by OpenImageIO's TextureSystem (through its module,
 // film/oiio_module.h: only scenes with image textures load it): mip-mapped, cached, filtered
 // over each lookup's footprint, repeating; colours converted to the rendering space by OCIO.
+// Texture input is the scene's input, so it lives in io/: it gives materials/ and lights/ what
+// they sample and reaches down to film/ for the image module and the colour conversion that
+// output shares.
 #include <cstdint>
 #include <memory>
 #include <string>
