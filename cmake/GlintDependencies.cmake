@@ -35,4 +35,5 @@ endforeach()
 
 if(GLINT_BUILD_TESTS)
   find_package(GTest REQUIRED)
+  find_package(Python3 REQUIRED COMPONENTS Interpreter)  # tools/check-layers.py
 endif()

@@ -8,7 +8,7 @@ GLINT_BUILD="${GLINT_BUILD:-$GLINT_ROOT/build}"
 
 # Every Debian 12 package the build, the tests and the tools need (third_party_notes.md).
 GLINT_PACKAGES=(
-  build-essential cmake clang-format
+  build-essential cmake clang-format python3 # python3: tools/check-layers.py, run by ctest
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev
   libpng-dev zlib1g-dev
   libopencolorio-dev opencolorio-tools nlohmann-json3-dev libcli11-dev libassimp-dev
