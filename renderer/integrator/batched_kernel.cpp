@@ -7,14 +7,6 @@
 
 namespace glint {
 
-namespace {
-
-// Fewer queued shadow rays than this are traced one by one: a stream's set-up costs more than
-// packets save on a handful of rays (docs/performance.md).
-constexpr size_t kMinShadowStream = 8;
-
-}  // namespace
-
 BatchedKernel::BatchedKernel(const Scene& scene, const Accelerator& accel, float minThroughput,
                              int footprintSpp)
     : scene_(scene),
@@ -22,10 +14,8 @@ BatchedKernel::BatchedKernel(const Scene& scene, const Accelerator& accel, float
       minThroughput_(minThroughput),
       cone_(pixelCone(scene.cameraDesc, scene.render.height, footprintSpp)) {
   for (const Light& light : scene.lights) {
-    const bool delta = isDeltaLight(light);
-    lights_.push_back({lightSampleCount(light), delta});
+    lights_.push_back({lightSampleCount(light), isDeltaLight(light)});
     shadowRaysPerPoint_ += lights_.back().samples;
-    areaLights_ |= !delta;
   }
 }
 
@@ -45,12 +35,11 @@ void BatchedKernel::traceCameraHits(const Ray* rays, const Hit* hits, const Samp
   for (int begin = 0; begin < count; begin += kChunk) {
     const int n = std::min(kChunk, count - begin);
     for (int i = 0; i < n; ++i) scratch.roots[i].key = &keys[begin + i];  // the rest never changes
-    scratch.lightPointsDrawn = false;
     scratch.rootKeys = keys + begin;
     scratch.rootCount = n;
     std::fill_n(scratch.raysOf, n, uint64_t{0});
     shadeChunk(rays + begin, hits + begin, scratch.roots, n, scratch.cameraRadiance,
-               aovs ? aovs + begin : nullptr, keys + begin, counters, scratch);
+               aovs ? aovs + begin : nullptr, true, counters, scratch);
     for (int i = 0; i < n; ++i) {
       Radiance& r = out[begin + i];
       r.L = scratch.cameraRadiance[i];
@@ -69,14 +58,22 @@ BatchedKernel::Generation& BatchedKernel::generation(Scratch& scratch, int depth
 }
 
 void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* branches, int n,
-                               Rgb* radiance, AovSample* const* aovs, const SampleKey* cameraKeys,
+                               Rgb* radiance, AovSample* const* aovs, bool camera,
                                RayCounters& counters, Scratch& scratch) const {
   const int depth = branches[0].depth;  // every ray of a chunk has the same
   Generation& gen = generation(scratch, depth);
+  shadeHits(rays, hits, branches, n, gen, aovs, counters, scratch);
+  lightPendingPoints(scratch, gen.sums, aovs, counters);
+  traceGeneration(gen, depth, camera, counters, scratch);
+  sumRadiance(gen, n, radiance);
+}
+
+void BatchedKernel::shadeHits(const Ray* rays, const Hit* hits, const Branch* branches, int n,
+                              Generation& gen, AovSample* const* aovs, RayCounters& counters,
+                              Scratch& scratch) const {
   gen.children = 0;
-  const auto& queue = scratch.queue;
   scratch.pendingCount = 0;
-  const bool pastDepthLimit = depth > scene_.render.maxDepth;
+  const bool pastDepthLimit = branches[0].depth > scene_.render.maxDepth;
   for (int i = 0; i < n; ++i) {
     auto& sum = gen.sums[i];
     Rgb& local = sum.local;
@@ -106,8 +103,7 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
     const Vec3f wo = normalize(-ray.d);
     const float distance = distanceAt(ray, hit, branch);
     // AccLightSource: what the surface emits and reflects of the ambient light now; the light
-    // sources' share, for a surface that reflects them, when the pending points are lit (or at
-    // once for a point traced alone).
+    // sources' share, for a surface that reflects them, when the pending points are lit.
     if (!m.surface.reflectsLights()) {
       ShadingPoint sp;
       scene_.shadingPoint(ray, hit, sp);
@@ -121,55 +117,47 @@ void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* b
       sum.childEnd = gen.children;
       continue;
     }
-    // A lit point waits for its direct light in the pending list; the list is lit first
-    // whenever this point's shadow rays might not fit the queue.
-    const bool alone = shadowRaysPerPoint_ > queue.kCapacity;
-    if (!alone && (scratch.pendingCount + 1) * shadowRaysPerPoint_ > queue.kCapacity)
-      lightPendingPoints(scratch, gen.sums, aovs, cameraKeys != nullptr, counters);
-    // Shaded in the next pending slot, which it keeps unless it is lit alone.
-    auto& p = scratch.pending[scratch.pendingCount];
+    // A lit point waits for its direct light in the pending list, which is lit first when this
+    // point's shadow rays would not fit the queue beside theirs: each tracing then holds whole
+    // points, and a point with more rays than the queue holds is lit on its own.
+    if ((scratch.pendingCount + 1) * shadowRaysPerPoint_ > ShadowQueue::kCapacity)
+      lightPendingPoints(scratch, gen.sums, aovs, counters);
+    auto& p = scratch.pending[scratch.pendingCount++];
     LitPoint& pt = p.pt;
     scene_.shadingPoint(ray, hit, pt.sp);
     pt.material = &m;
     pt.at = lookUp(m.surface, pt.sp, wo, cone_.widthAt(distance), scene_.worldOrigin);
     pt.time = ray.time;
     pt.branch = &branch;
+    p.ray = i;
     if (aov) recordAov(ray, hit, m, pt.sp, pt.at, *aov);
     local = ambientAndEmission(m.surface, pt.at, pt.sp, scene_.render.ambient, scene_.worldOrigin);
-    if (alone) {
-      scratch.raysOfRoot(branch) += lightAlone(pt, local, counters, aov ? aov->perLight : nullptr);
-      if (aov) aov->direct = local;
-    } else {
-      if (areaLights_ && cameraKeys && !scratch.lightPointsDrawn) {
-        drawLightPoints(cameraKeys, n, scratch);
-        scratch.lightPointsDrawn = true;
-      }
-      p.ray = i;
-      ++scratch.pendingCount;
-    }
     spawnCoherent(hit, m, pt.sp, pt.at, ray, -wo, branch, distance, gen, counters,
                   scratch.raysOfRoot(branch));
     sum.childEnd = gen.children;
   }
-  lightPendingPoints(scratch, gen.sums, aovs, cameraKeys != nullptr, counters);
-  // The next generation: the spawned rays traced, then shaded a chunk at a time.
-  if (gen.children > 0) {
-    if (depth + 1 > scene_.render.maxDepth) {
-      // Past the limit: not traced (shadeChunk returns the background for them).
-    } else if (cameraKeys) {
+}
+
+void BatchedKernel::traceGeneration(Generation& gen, int depth, bool camera, RayCounters& counters,
+                                    Scratch& scratch) const {
+  // Past the limit the rays are not traced: shadeChunk returns the background for them.
+  if (gen.children > 0 && depth + 1 <= scene_.render.maxDepth) {
+    if (camera) {
       // The camera hits' reflections and refractions leave neighbouring pixels close together
-      // and point alike: a coherent stream. Deeper generations have scattered: in a box of
-      // mirrors a stream took 8-17 % longer than one ray at a time.
+      // and point alike: a coherent stream. Deeper generations have scattered, and in a box of
+      // mirrors a stream was slower than one ray at a time.
       accel_.intersectCoherent(gen.rays.data(), gen.hits.data(), static_cast<size_t>(gen.children));
     } else {
       for (int c = 0; c < gen.children; ++c) gen.hits[c] = accel_.intersect(gen.rays[c]);
     }
-    for (int c = 0; c < gen.children; c += kChunk)
-      shadeChunk(gen.rays.data() + c, gen.hits.data() + c, gen.branches.data() + c,
-                 std::min(kChunk, gen.children - c), gen.radiance.data() + c, nullptr, nullptr,
-                 counters, scratch);
   }
-  // Each ray's sum, its children in the order they were spawned.
+  for (int c = 0; c < gen.children; c += kChunk)
+    shadeChunk(gen.rays.data() + c, gen.hits.data() + c, gen.branches.data() + c,
+               std::min(kChunk, gen.children - c), gen.radiance.data() + c, nullptr, false,
+               counters, scratch);
+}
+
+void BatchedKernel::sumRadiance(const Generation& gen, int n, Rgb* radiance) {
   for (int i = 0, c = 0; i < n; ++i) {
     const auto& sum = gen.sums[i];
     Rgb L = sum.local;
@@ -209,56 +197,74 @@ void BatchedKernel::spawnCoherent(const Hit& hit, const Material& m, const Shadi
 }
 
 void BatchedKernel::lightPendingPoints(Scratch& scratch, Generation::Sum* sums,
-                                       AovSample* const* aovs, bool camera,
-                                       RayCounters& counters) const {
+                                       AovSample* const* aovs, RayCounters& counters) const {
   const int pending = scratch.pendingCount;
   if (pending == 0) return;
-  auto& queue = scratch.queue;
-  const size_t lights = scene_.lights.size();
+  for (int k = 0; k < pending; ++k) scratch.pending[k].shadowRays = 0;
   // Light by light, every point's samples: the queue comes out sorted by light, and each
   // light's rays, which start close together and converge on it, leave as one coherent run.
-  // rayEnd[li · kChunk + k]: one past point k's last ray towards light li.
-  std::vector<uint16_t>& rayEnd = scratch.rayEnd;
-  if (rayEnd.size() < lights * kChunk) rayEnd.resize(lights * kChunk);
-  queue.size = 0;
-  for (size_t li = 0; li < lights; ++li) {
-    if (lights_[li].delta) {
-      // One shadow ray per point and no sample drawn: the loop says so once per light.
-      for (int k = 0; k < pending; ++k) {
-        queueSample(scratch.pending[k].pt, li, {0.5f, 0.5f}, queue);
-        rayEnd[li * kChunk + static_cast<size_t>(k)] = static_cast<uint16_t>(queue.size);
-      }
-      continue;
-    }
-    const int samples = lights_[li].samples;
-    const Vec2f* cameraPoints =
-        camera && li < kMaxPrecomputedLights ? scratch.lightPointsOf[li] : nullptr;
-    for (int k = 0; k < pending; ++k) {
-      const auto& p = scratch.pending[k];
-      const Vec2f* points = cameraPoints ? cameraPoints + p.ray * samples : nullptr;
-      queueLight(p.pt, li, points ? SamplePattern{} : lightPattern(p.pt, li), 0, samples, samples,
-                 queue, points);
-      rayEnd[li * kChunk + static_cast<size_t>(k)] = static_cast<uint16_t>(queue.size);
-    }
-  }
-  traceShadows(queue, counters);
+  for (size_t li = 0; li < scene_.lights.size(); ++li)
+    queueShadowRays(scratch, li, sums, aovs, counters);
+  flushShadows(scratch, sums, aovs, counters);
   for (int k = 0; k < pending; ++k) {
     const auto& p = scratch.pending[k];
-    AovSample* aov = aovs ? aovs[p.ray] : nullptr;
-    Rgb L = sums[p.ray].local;
-    uint64_t rays = 0;
-    for (size_t li = 0; li < lights; ++li) {
-      const size_t slot = li * kChunk + static_cast<size_t>(k);
-      const int begin = k > 0 ? rayEnd[slot - 1] : li > 0 ? rayEnd[slot - kChunk + pending - 1] : 0;
-      addContribution(sumVisible(queue, begin, rayEnd[slot]), li, L, aov ? aov->perLight : nullptr);
-      rays += tracedIn(queue, begin, rayEnd[slot]);
-    }
-    scratch.raysOfRoot(*p.pt.branch) += rays;
-    if (aov) aov->direct = L;
-    sums[p.ray].local = L;
+    scratch.raysOfRoot(*p.pt.branch) += p.shadowRays;
+    if (aovs && aovs[p.ray]) aovs[p.ray]->direct = sums[p.ray].local;
   }
-  queue.size = 0;
   scratch.pendingCount = 0;
+}
+
+void BatchedKernel::queueShadowRays(Scratch& scratch, size_t li, Generation::Sum* sums,
+                                    AovSample* const* aovs, RayCounters& counters) const {
+  auto& queue = scratch.queue;
+  const int light = static_cast<int>(li);
+  if (lights_[li].delta) {
+    // One shadow ray per point and no sample drawn: the loop says so once per light.
+    for (int k = 0; k < scratch.pendingCount; ++k) {
+      if (queue.full()) flushShadows(scratch, sums, aovs, counters);
+      queueSample(scratch.pending[k].pt, li, {0.5f, 0.5f}, queue);
+      queue.addRun(k, light, false, true);
+    }
+    return;
+  }
+  const int count = lights_[li].samples;
+  for (int k = 0; k < scratch.pendingCount; ++k) {
+    const auto& p = scratch.pending[k];
+    const SamplePattern pattern = lightPattern(p.pt, li);
+    for (int first = 0; first < count;) {
+      if (queue.full()) flushShadows(scratch, sums, aovs, counters);
+      const int size = std::min(count - first, queue.kCapacity - queue.size);
+      queueLight(p.pt, li, pattern, first, size, count, queue);
+      queue.addRun(k, light, first > 0, first + size == count);
+      first += size;
+    }
+  }
+}
+
+void BatchedKernel::flushShadows(Scratch& scratch, Generation::Sum* sums, AovSample* const* aovs,
+                                 RayCounters& counters) const {
+  traceShadows(scratch.queue, counters);
+  addDirectLight(scratch, sums, aovs);
+  scratch.queue.size = 0;
+  scratch.queue.runCount = 0;
+}
+
+void BatchedKernel::addDirectLight(Scratch& scratch, Generation::Sum* sums,
+                                   AovSample* const* aovs) const {
+  const auto& queue = scratch.queue;
+  for (int r = 0, begin = 0; r < queue.runCount; begin = queue.runs[r++].end) {
+    const ShadowRun& run = queue.runs[r];
+    auto& p = scratch.pending[run.point];
+    const Rgb sum = sumVisible(queue, begin, run.end, run.continues ? p.lightSum : Rgb{});
+    p.shadowRays += tracedIn(queue, begin, run.end);
+    if (!run.lastOfLight) {
+      p.lightSum = sum;
+      continue;
+    }
+    AovSample* aov = aovs ? aovs[p.ray] : nullptr;
+    addContribution(sum, static_cast<size_t>(run.light), sums[p.ray].local,
+                    aov ? aov->perLight : nullptr);
+  }
 }
 
 void BatchedKernel::recordAov(const Ray& ray, const Hit& hit, const Material& m,
@@ -282,49 +288,20 @@ SamplePattern BatchedKernel::lightPattern(const LitPoint& pt, size_t li) const {
   return pt.branch->key->pattern(dimension(Dim::Light, pt.branch->depth, static_cast<int>(li)));
 }
 
-void BatchedKernel::drawLightPoints(const SampleKey* keys, int count, Scratch& scratch) const {
-  const Vec2f** points = scratch.lightPointsOf;
-  std::fill_n(points, kMaxPrecomputedLights, nullptr);
-  int used = 0;
-  for (size_t li = 0; li < scene_.lights.size() && li < kMaxPrecomputedLights; ++li) {
-    const int n = lights_[li].samples;
-    if (lights_[li].delta || used + count * n > Scratch::kMaxLightPoints) continue;
-    points[li] = scratch.lightPoints + used;
-    // Per pixel and half: its run of samples key.index + i, sub-samples j, is one run of flat
-    // indices (key.index + i)·n + j of its set.
-    for (int begin = 0, end; begin < count; begin = end) {
-      const SampleKey& key = keys[begin];
-      for (end = begin + 1; end < count && keys[end].px == key.px && keys[end].py == key.py &&
-                            keys[end].half == key.half;)
-        ++end;
-      key.get2D(key.pattern(dimension(Dim::Light, 0, static_cast<int>(li))), 0, (end - begin) * n,
-                n, scratch.lightPoints + used + begin * n);
-    }
-    used += count * n;
-  }
-}
-
-template <class Queue>
 void BatchedKernel::queueLight(const LitPoint& pt, size_t li, const SamplePattern& pattern,
-                               int first, int size, int count, Queue& queue,
-                               const Vec2f* points) const {
+                               int first, int size, int count, ShadowQueue& queue) const {
   // Sample points are drawn a batch ahead of their shadow rays: drawing one is a long chain of
   // dependent integer operations (sampler.cpp), and a batch's chains run side by side.
   constexpr int kBatch = 8;
   Vec2f batch[kBatch];
   for (int begin = first; begin < first + size; begin += kBatch) {
     const int n = std::min(kBatch, first + size - begin);
-    const Vec2f* u = batch;
-    if (points)
-      u = points + begin;
-    else
-      pt.branch->key->get2D(pattern, begin, n, count, batch);
-    for (int j = 0; j < n; ++j) queueSample(pt, li, u[j], queue);
+    pt.branch->key->get2D(pattern, begin, n, count, batch);
+    for (int j = 0; j < n; ++j) queueSample(pt, li, batch[j], queue);
   }
 }
 
-template <class Queue>
-void BatchedKernel::traceShadows(Queue& queue, RayCounters& counters) const {
+void BatchedKernel::traceShadows(ShadowQueue& queue, RayCounters& counters) const {
   const auto n = static_cast<size_t>(queue.size);
   // Shadows are see-through only where there are dielectrics to see through.
   if (transparentShadows()) {
@@ -338,37 +315,10 @@ void BatchedKernel::traceShadows(Queue& queue, RayCounters& counters) const {
     return;
   }
   counters.shadow += n;
-  if (n < kMinShadowStream) {
-    for (size_t i = 0; i < n; ++i) queue.blocked[i] = accel_.occluded(queue.rays[i]);
-    return;
-  }
-  // The queue is sorted by light (lightPendingPoints queues light by light, lightAlone one
-  // light at a time): each light's rays, which start close together and converge on it (or
-  // run parallel), are one coherent run of the stream.
+  // The queue is sorted by light (lightPendingPoints queues light by light): each light's rays,
+  // which start close together and converge on it (or run parallel), are one coherent run of
+  // the stream.
   accel_.occludedCoherent(queue.rays.data(), queue.blocked, n);
-}
-
-uint64_t BatchedKernel::lightAlone(const LitPoint& pt, Rgb& L, RayCounters& counters,
-                                   Rgb* perLight) const {
-  ShadowQueue<8> queue;
-  uint64_t rays = 0;
-  for (size_t li = 0; li < scene_.lights.size(); ++li) {
-    const int count = lights_[li].samples;
-    const SamplePattern pattern = lightPattern(pt, li);
-    Rgb sum;
-    for (int first = 0; first < count; first += queue.kCapacity) {
-      queue.size = 0;
-      if (lights_[li].delta)
-        queueSample(pt, li, {0.5f, 0.5f}, queue);
-      else
-        queueLight(pt, li, pattern, first, std::min(queue.kCapacity, count - first), count, queue);
-      traceShadows(queue, counters);
-      sum = sumVisible(queue, 0, queue.size, sum);
-      rays += tracedIn(queue, 0, queue.size);
-    }
-    addContribution(sum, li, L, perLight);
-  }
-  return rays;
 }
 
 }  // namespace glint

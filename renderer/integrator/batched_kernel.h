@@ -4,13 +4,15 @@
 // pseudocode, and the oracle this kernel must match (tests/integrator/reference_test.cpp). This
 // file owns only the order in which rays are traced and where their data live; what happens at
 // a surface is decided in materials/ and what a light delivers in lights/.
-//  - Rays of one depth are shaded a chunk at a time, a generation (shadeChunk): the hits'
-//    shading points and the rays they spawn, then the chunk's direct light, then the spawned
-//    rays as the next generation, then each ray's sum.
-//  - The direct light of a chunk's lit points is queued light by light and the shadow rays
-//    traced together, as coherent streams (lightPendingPoints, traceShadows).
-//  - The camera hits' reflections and refractions leave as one coherent stream.
+// From a camera ray to a pixel, one named stage per queue (as pbrt-v4's wavefront integrator):
+//  camera rays and their closest hits (traceCameraHits), then per chunk of rays of one depth
+//  (shadeChunk): shadeHits (emission, ambient, the rays each hit spawns into the next
+//  Generation, lit points into the pending list), lightPendingPoints (queueShadowRays light by
+//  light, traceShadows as coherent streams, addDirectLight), traceGeneration (the spawned rays
+//  traced and shaded, the camera hits' as one coherent stream) and sumRadiance (each ray's local
+//  light plus its children's).
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <vector>
 
@@ -35,8 +37,8 @@ class BatchedKernel {
   BatchedKernel(const Scene& scene, const Accelerator& accel, float minThroughput,
                 int footprintSpp);
 
-  // Where a thread keeps a chunk's pending lit points, their shadow rays, the area lights'
-  // points, and the rays each generation spawns: one per thread, reused for every chunk.
+  // Where a thread keeps a chunk's pending lit points, their shadow rays and the rays each
+  // generation spawns: one per thread, reused for every chunk.
   struct Scratch;
 
   // Radiance along `count` camera rays whose closest hits are known (traced together as a
@@ -104,11 +106,22 @@ class BatchedKernel {
   };
 
   // Radiance along `n` (at most kChunk) rays of one depth, given their closest hits, into
-  // radiance[i]. aovs: at the camera only. cameraKeys: at the camera only, the samples' keys,
-  // from which an area light's points for the whole chunk are drawn at once.
+  // radiance[i]. aovs: at the camera only. `camera`: the rays are camera rays.
   void shadeChunk(const Ray* rays, const Hit* hits, const Branch* branches, int n, Rgb* radiance,
-                  AovSample* const* aovs, const SampleKey* cameraKeys, RayCounters& counters,
+                  AovSample* const* aovs, bool camera, RayCounters& counters,
                   Scratch& scratch) const;
+  // shadeChunk's first stage: each ray's local light (background past the depth limit or on a
+  // miss; else emission and ambient), its children spawned into `gen`, and its hit, where the
+  // surface reflects the lights, added to the pending list (lit first when the queue is full).
+  void shadeHits(const Ray* rays, const Hit* hits, const Branch* branches, int n, Generation& gen,
+                 AovSample* const* aovs, RayCounters& counters, Scratch& scratch) const;
+  // The rays `gen` holds, spawned by a chunk of depth `depth`: traced (as one coherent stream
+  // when `camera`) and shaded a chunk at a time, into gen.radiance.
+  void traceGeneration(Generation& gen, int depth, bool camera, RayCounters& counters,
+                       Scratch& scratch) const;
+  // Each of the n rays' radiance: (local + Σ weight · child radiance) · absorbed, children in
+  // the order spawned, the order the depth-first recursion sums in.
+  static void sumRadiance(const Generation& gen, int n, Rgb* radiance);
   // The generation that the chunks of depth `depth` spawn into (made on first use).
   Generation& generation(Scratch& scratch, int depth) const;
   // Spawns into `gen` the rays the material at a hit sends on (materials' forEachCoherentRay),
@@ -132,28 +145,43 @@ class BatchedKernel {
     float time = 0;
     const Branch* branch = nullptr;
   };
-  // One shadow ray per light sample that can contribute, with what it adds unblocked. Slots
-  // [0, size) are written by queueLight and traceShadows before anything reads them.
-  template <int Capacity>
+  // A run of the shadow queue: samples of one light at one pending point, in sample order. A
+  // point's samples of a light that outnumber the queue's room are split over runs of several
+  // tracings.
+  struct ShadowRun {
+    int point;  // its index in the pending list
+    int light;
+    int end;           // one past its last ray in the queue; it begins where the previous ends
+    bool continues;    // the light's samples at the point began in an earlier tracing
+    bool lastOfLight;  // its light's samples at the point are all queued: the light's sum is whole
+  };
+  // One shadow ray per light sample that can contribute, with what it adds unblocked, in runs.
+  // Slots [0, size) are written by queueLight and traceShadows before anything reads them.
   struct ShadowQueue {
-    static constexpr int kCapacity = Capacity;
-    UninitializedArray<Ray, Capacity> rays;
-    UninitializedArray<Rgb, Capacity> term;  // reflected light · intensity: what it adds unblocked
-    bool atInfinity[Capacity];
+    static constexpr int kCapacity = 512;
+    // Full when either is: a run can be empty (every sample behind the surface).
+    bool full() const { return size == kCapacity || runCount == kCapacity; }
+    void addRun(int point, int light, bool continues, bool lastOfLight) {
+      runs[runCount++] = {point, light, size, continues, lastOfLight};
+    }
+    UninitializedArray<ShadowRun, kCapacity> runs;
+    int runCount = 0;
+    UninitializedArray<Ray, kCapacity> rays;
+    UninitializedArray<Rgb, kCapacity> term;  // reflected light · intensity: what it adds unblocked
+    bool atInfinity[kCapacity];
     // Where each ray starts: the interior list of its point's ray (transparent shadows).
-    UninitializedArray<const MediumStack*, Capacity> media;
+    UninitializedArray<const MediumStack*, kCapacity> media;
     int size = 0;
     // Filled by traceShadows: with opaque shadows whether each ray is blocked; with transparent
     // ones (transparentShadows()) the fraction of the light arriving.
-    bool blocked[Capacity];
-    UninitializedArray<Rgb, Capacity> visible;
+    bool blocked[kCapacity];
+    UninitializedArray<Rgb, kCapacity> visible;
     // With transparent shadows, the rays each one took (one per stretch between interfaces);
     // an opaque shadow is one ray.
-    UninitializedArray<uint32_t, Capacity> traced;
+    UninitializedArray<uint32_t, kCapacity> traced;
   };
   // The rays queued samples [begin, end) traced (Radiance::rays).
-  template <class Queue>
-  uint64_t tracedIn(const Queue& queue, int begin, int end) const {
+  uint64_t tracedIn(const ShadowQueue& queue, int begin, int end) const {
     if (!transparentShadows()) return static_cast<uint64_t>(end - begin);
     uint64_t n = 0;
     for (int q = begin; q < end; ++q) n += queue.traced[q];
@@ -163,9 +191,8 @@ class BatchedKernel {
   // Queues the shadow ray of one sample of light `li` at the point, u its point on the light
   // (ignored by a delta light), unless the light is behind the surface or black: the shadow
   // ray and what the light adds if it is not blocked.
-  template <class Queue>
   [[gnu::always_inline]] void queueSample(const LitPoint& pt, size_t li, Vec2f u,
-                                          Queue& queue) const {
+                                          ShadowQueue& queue) const {
     const Light& light = scene_.lights[li];
     const LightSample ls = sampleLight(light, pt.sp.p, pt.at.n, u);
     if (!facesLight(pt.at, ls.wi) || ls.intensity.isBlack()) return;
@@ -178,27 +205,29 @@ class BatchedKernel {
     if (transparentShadows()) queue.media[q] = &pt.branch->media;
   }
   // Queues samples [first, first + size) of area light `li`'s `count` for the point (pattern:
-  // the light's sample set; `points`, when given: the set's points for this point, drawn
-  // already).
-  template <class Queue>
+  // the light's sample set).
   void queueLight(const LitPoint& pt, size_t li, const SamplePattern& pattern, int first, int size,
-                  int count, Queue& queue, const Vec2f* points = nullptr) const;
-  // For a camera chunk: the points of the area lights among the first kMaxPrecomputedLights
-  // for the `count` camera samples of `keys` (runs of consecutive samples of a pixel's half), into
-  // the scratch; lightPointsOf[li] stays null for a delta light or one that no longer fits.
-  static constexpr size_t kMaxPrecomputedLights = 8;
-  void drawLightPoints(const SampleKey* keys, int count, Scratch& scratch) const;
-  template <class Queue>
-  void traceShadows(Queue& queue, RayCounters& counters) const;
-  // The direct light of the points pending in the scratch, added to their ray's local: every
-  // light's samples queued, light by light, the queue traced, the sums taken. `camera`: they
-  // are camera hits (their area lights' points may be drawn already). Empties both.
+                  int count, ShadowQueue& queue) const;
+  // The direct light of the points pending in the scratch, added to their ray's local:
+  // queueShadowRays, traceShadows, addDirectLight. Empties the pending list and the queue.
   void lightPendingPoints(Scratch& scratch, typename Generation::Sum* sums, AovSample* const* aovs,
-                          bool camera, RayCounters& counters) const;
+                          RayCounters& counters) const;
+  // Light li's samples at every pending point queued as runs, the queue traced and its light
+  // added (flushShadows) whenever it is full.
+  void queueShadowRays(Scratch& scratch, size_t li, Generation::Sum* sums, AovSample* const* aovs,
+                       RayCounters& counters) const;
+  // Whether each queued shadow ray is blocked (or, with transparent shadows, what it lets
+  // through).
+  void traceShadows(ShadowQueue& queue, RayCounters& counters) const;
+  // The traced queue's runs summed into their point's light sums; a light's whole sum added to
+  // its point's local light.
+  void addDirectLight(Scratch& scratch, Generation::Sum* sums, AovSample* const* aovs) const;
+  // traceShadows then addDirectLight; empties the queue.
+  void flushShadows(Scratch& scratch, Generation::Sum* sums, AovSample* const* aovs,
+                    RayCounters& counters) const;
   // `sum` plus what queued samples [begin, end) let through, added in queue order. Inlined: a
   // delta light's range is one sample, and as a call its sum went through memory.
-  template <class Queue>
-  [[gnu::always_inline]] Rgb sumVisible(const Queue& queue, int begin, int end,
+  [[gnu::always_inline]] Rgb sumVisible(const ShadowQueue& queue, int begin, int end,
                                         Rgb sum = {}) const {
     if (transparentShadows()) {
       for (int q = begin; q < end; ++q)
@@ -216,18 +245,14 @@ class BatchedKernel {
     L += contribution;
     if (perLight && li < size_t(AovSet::kMaxLights)) perLight[li] = contribution;
   }
-  // Per light, what the loops over lights ask of it, looked up once (asked of the variant per
-  // light and point, it cost 4-7 % of a render): its shadow samples per point and whether it
-  // is a delta light (one shadow ray, no sample drawn).
+  // Per light, what the loops over lights ask of it, looked up once rather than of the variant
+  // per light and point: its shadow samples per point and whether it is a delta light (one
+  // shadow ray, no sample drawn).
   struct LightInfo {
     int samples;
     bool delta;
   };
   SamplePattern lightPattern(const LitPoint& pt, size_t li) const;
-  // Direct light at a point whose shadow rays outnumber the shared queue: its lights traced on
-  // their own, a few samples at a time, added to L. `perLight`, when given, receives each
-  // light's contribution (AOVs of the camera hit). Returns the shadow rays it traced.
-  uint64_t lightAlone(const LitPoint& pt, Rgb& L, RayCounters& counters, Rgb* perLight) const;
   void recordAov(const Ray& ray, const Hit& hit, const Material& m, const ShadingPoint& sp,
                  const SurfacePoint& at, AovSample& aov) const;
 
@@ -236,25 +261,20 @@ class BatchedKernel {
   float minThroughput_;
   PixelCone cone_;
   std::vector<LightInfo> lights_;
-  bool areaLights_ = false;     // some light is not a delta light
-  int shadowRaysPerPoint_ = 0;  // at most, over all lights: what a lit point may queue
+  int64_t shadowRaysPerPoint_ = 0;  // at most, over all lights: what a lit point may queue
 
  public:
   struct Scratch {
-    // The lit points of a chunk whose direct light is still to be found; the slot after the
-    // last pending one holds the lit hit being shaded.
+    // The lit points of a chunk whose direct light is still to be found.
     struct Pending {
       LitPoint pt;
-      int ray = 0;  // its ray's index in the chunk
+      int ray = 0;              // its ray's index in the chunk
+      Rgb lightSum;             // a light's samples so far, where they span tracings
+      uint64_t shadowRays = 0;  // traced for it (Radiance::rays)
     };
     Pending pending[kChunk];
     int pendingCount = 0;
-    ShadowQueue<512> queue;
-    std::vector<uint16_t> rayEnd;                 // lightPendingPoints' ranges of the queue
-    static constexpr int kMaxLightPoints = 2048;  // 64 samples × 32 points, for example
-    Vec2f lightPoints[kMaxLightPoints];
-    const Vec2f* lightPointsOf[kMaxPrecomputedLights] = {};  // per light; null: per point
-    bool lightPointsDrawn = false;
+    ShadowQueue queue;
     Branch roots[kChunk];
     Rgb cameraRadiance[kChunk];
     // The rays each camera sample of the chunk being shaded has traced beyond its camera ray

@@ -73,6 +73,48 @@ TEST(ReferenceIntegrator, AgreesBitForBitWhereOneKernelTracesEveryRay) {
   }
 }
 
+// A small room for the shadow queue's cases: a floor, a matte sphere, a mirror and a glass
+// sphere under `lights`, `transparent` choosing whether shadows pass the glass.
+std::string room(const std::string& render, const std::string& lights, bool transparent) {
+  return R"({ "render": { )" + render + R"(, "max_depth": 3, "seed": 7,
+      "background": [0.05, 0.05, 0.06], "ambient": [0.05, 0.05, 0.05],
+      "transparent_shadows": )" +
+         (transparent ? "true" : "false") + R"( },
+    "camera": { "eye": [0, 3.5, 6.5], "look_at": [0, 0.5, 0], "vfov": 40 },
+    "materials": { "floor": { "type": "phong", "kd": [0.75, 0.75, 0.75] },
+      "red": { "type": "phong", "kd": [0.8, 0.2, 0.15], "ks": [0.2, 0.2, 0.2], "exponent": 30 },
+      "chrome": { "type": "mirror", "km": [0.85, 0.85, 0.88] },
+      "glass": { "type": "dielectric", "ior": 1.5, "attenuation": [0.9, 0.6, 0.3] } },
+    "lights": [ )" +
+         lights + R"( ],
+    "objects": [
+      { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor" },
+      { "type": "sphere", "center": [-1.2, 0.7, 0], "radius": 0.7, "material": "red" },
+      { "type": "sphere", "center": [0.4, 0.8, -1], "radius": 0.8, "material": "chrome" },
+      { "type": "sphere", "center": [1.3, 0.5, 0.8], "radius": 0.5, "material": "glass" } ] })";
+}
+
+TEST(ReferenceIntegrator, AgreesWhereOnePointsShadowRaysOutnumberTheQueue) {
+  // 1024 samples of one light and a point light: a lit point's 1025 shadow rays are more than
+  // the kernel's queue holds (512), so they are traced in pieces and each light's sum runs on
+  // across them; opaque (coherent streams) and transparent (one ray per interface) alike.
+  const std::string lights =
+      R"({ "type": "quad", "corner": [-2.5, 4, -0.5], "edge1": [1.5, 0, 0], "edge2": [0, 0, 1.5],
+           "intensity": [0.7, 0.65, 0.6], "samples": 1024 },
+         { "type": "point", "position": [3, 5, 4], "intensity": [0.3, 0.3, 0.35] })";
+  for (const bool transparent : {false, true}) {
+    const Scene scene =
+        test::sceneFromText(room(R"("width": 12, "height": 8, "spp": 1)", lights, transparent));
+    const auto accel = makeAccelerator(AccelKind::Embree, scene);
+    const RenderResult production = renderScene(scene, *accel, quiet());
+    // About 94 lit points (camera hits off the glass and mirror, and the mirror's reflections)
+    // of up to 1025 rays each: 96351 opaque; a piece lost at the queue's edge costs 512 a point.
+    EXPECT_GE(production.stats.rays.shadow, 1025u * 90) << transparent;
+    EXPECT_EQ(test::expectReferenceAgrees(scene, *accel, quiet(), production, "1024 samples"), 0)
+        << transparent;
+  }
+}
+
 TEST(ReferenceIntegrator, CountsTheSameRays) {
   // Both trace the same tree: the same camera, shadow, reflection and refraction rays.
   const Scene scene = small(std::string(GLINT_SCENES_DIR) + "/whitted.json", 32, 24, 2);
