@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "io/scene_loader.h"
@@ -113,6 +114,24 @@ TEST(ReferenceIntegrator, AgreesWhereOnePointsShadowRaysOutnumberTheQueue) {
     EXPECT_EQ(test::expectReferenceAgrees(scene, *accel, quiet(), production, "1024 samples"), 0)
         << transparent;
   }
+}
+
+TEST(ReferenceIntegrator, AgreesWhereOnePointsLightsOutnumberTheQueue) {
+  // 600 point lights on a sphere about the scene, half of them below the floor: a lit point's
+  // runs (one per light, empty where the light is behind it) outnumber the queue's 512.
+  std::string lights;
+  for (int i = 0; i < 600; ++i) {
+    const double z = 1 - (i + 0.5) / 300.0, r = std::sqrt(1 - z * z), phi = 2.39996 * i;
+    lights += (i ? ", " : "") + std::string(R"({ "type": "point", "position": [)") +
+              std::to_string(6 * r * std::cos(phi)) + ", " + std::to_string(6 * z) + ", " +
+              std::to_string(6 * r * std::sin(phi)) + R"(], "intensity": [0.004, 0.004, 0.004] })";
+  }
+  const Scene scene =
+      test::sceneFromText(room(R"("width": 8, "height": 6, "spp": 1)", lights, false));
+  ASSERT_EQ(scene.lights.size(), 600u);
+  const auto accel = makeAccelerator(AccelKind::Embree, scene);
+  const RenderResult production = renderScene(scene, *accel, quiet());
+  EXPECT_EQ(test::expectReferenceAgrees(scene, *accel, quiet(), production, "600 lights"), 0);
 }
 
 TEST(ReferenceIntegrator, CountsTheSameRays) {
