@@ -2,14 +2,10 @@
 // backend, against a reference rendered with an independent seed (or given as an EXR).
 // `glint converge --from-render FRAME.exr`: the same from one render's passes and its own error
 // estimates (glint:passes), with nothing rendered.
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfMultiPartInputFile.h>
-#include <OpenEXR/ImfStringAttribute.h>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
-#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -25,6 +21,7 @@
 #include "film/compare.h"
 #include "film/exr_input.h"
 #include "film/image_format.h"
+#include "render/frame_record.h"
 #include "render/render_job.h"
 
 namespace glint {
@@ -98,63 +95,46 @@ void writeOutputs(const ConvergeArgs& a, const std::vector<ConvergenceSeries>& s
   }
 }
 
-// The passes a render recorded: the `passes` of its --stats-json, or its EXR's glint:passes.
-nlohmann::json passesOf(const std::string& path) {
-  std::string text;
+// The passes a render recorded: the `passes` of its --stats-json, or its EXR's glint:passes,
+// read as the frame record reads them (render/frame_record.h).
+std::vector<PassRecord> passesOf(const std::string& path) {
   const bool isJson = path.size() > 5 && path.substr(path.size() - 5) == ".json";
-  if (isJson) {
-    text = readInputFile(path, size_t{64} << 20, "render record (--stats-json)");
-  } else {
-    const auto file = openExr(path);
-    const auto* passes = file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:passes");
-    if (!passes)
+  if (!isJson) {
+    const FrameRecord record = readFrameRecord(path);
+    if (!record.passes)
       throw UsageError(path +
                        " has no glint:passes: it was not written by a glint render that "
                        "records its passes");
-    text = "{\"passes\": " + passes->value() + "}";
+    return *record.passes;
   }
-  const std::string what = isJson ? "its JSON" : "its glint:passes";
+  const std::string text = readInputFile(path, size_t{64} << 20, "render record (--stats-json)");
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    throw UsageError(path + ": " + what + " is not JSON (at byte " + std::to_string(e.byte) + ")");
+    throw UsageError(path + ": its JSON is not JSON (at byte " + std::to_string(e.byte) + ")");
   } catch (const nlohmann::json::exception& e) {
     // A number past a double's range (1e999) is no parse error to nlohmann but out_of_range.
-    throw UsageError(path + ": " + what + " holds a value Glint cannot read (" + excerpt(e.what()) +
+    throw UsageError(path + ": its JSON holds a value Glint cannot read (" + excerpt(e.what()) +
                      ")");
   }
   if (!j.is_object() || !j.contains("passes") || !j["passes"].is_array())
     throw UsageError(path + ": has no \"passes\" list");
-  return j["passes"];
+  return parsePasses(path, "passes", j["passes"].dump());
 }
 
-// One pass of a render's record, checked: the record may be edited or damaged, and a pass that
-// no render can have finished is refused rather than plotted.
-ConvergencePoint passPoint(const std::string& path, size_t index, const nlohmann::json& pass) {
-  const std::string where = path + ": passes[" + std::to_string(index) + "]";
-  if (!pass.is_object()) throw UsageError(where + " is not an object");
-  const auto number = [&](const char* key, double least, double most, const char* range) {
-    if (!pass.contains(key)) throw UsageError(where + " has no \"" + key + "\"");
-    const nlohmann::json& v = pass[key];
-    if (v.is_null() && std::string(key).rfind("estimated_", 0) == 0)
-      throw UsageError(where +
-                       " has no error estimate (a render of one sample, or of the "
-                       "regular sampler, has nothing to estimate from)");
-    if (!v.is_number()) throw UsageError(where + "." + key + " is not a number");
-    const double x = v.get<double>();
-    if (!(x >= least && x <= most))
-      throw UsageError(where + "." + key + " is " + v.dump() + ", not " + range);
-    return x;
-  };
-  constexpr double kLargest = std::numeric_limits<double>::max();
+// A pass with its estimated error: one of a render of one sample, or of the regular sampler,
+// has none to plot.
+ConvergencePoint passPoint(const std::string& path, size_t index, const PassRecord& pass) {
+  if (!pass.estimated.rmse || !pass.estimated.relmse)
+    throw UsageError(path + ": passes[" + std::to_string(index) +
+                     "] has no error estimate (a render of one sample, or of the regular "
+                     "sampler, has nothing to estimate from)");
   ConvergencePoint p;
-  const double spp = number("spp", 1, double(kMaxSampleSet), "a sample count from 1 to 2^28");
-  if (spp != std::floor(spp)) throw UsageError(where + ".spp is not a whole number");
-  p.spp = static_cast<int>(spp);
-  p.seconds = number("seconds", 0, kLargest, "a time of 0 seconds or more");
-  p.rmse = number("estimated_rmse", 0, kLargest, "an error of 0 or more");
-  p.relmse = number("estimated_relmse", 0, kLargest, "an error of 0 or more");
+  p.spp = pass.spp;
+  p.seconds = pass.seconds;
+  p.rmse = *pass.estimated.rmse;
+  p.relmse = *pass.estimated.relmse;
   return p;
 }
 
@@ -162,7 +142,7 @@ ConvergencePoint passPoint(const std::string& path, size_t index, const nlohmann
 int convergeFromRender(const ConvergeArgs& a) {
   ConvergenceSeries s;
   s.name = "estimated";
-  const nlohmann::json passes = passesOf(a.fromRender);
+  const std::vector<PassRecord> passes = passesOf(a.fromRender);
   for (size_t i = 0; i < passes.size(); ++i) {
     const ConvergencePoint point = passPoint(a.fromRender, i, passes[i]);
     s.points.push_back(point);

@@ -3,6 +3,7 @@
 #include "core/log.h"
 #include "film/image_format.h"
 #include "film/merge.h"
+#include "render/frame_record.h"
 
 namespace glint {
 
@@ -20,7 +21,9 @@ CommandRunner addMergeCommand(CLI::App& app) {
                   "Refuse crops whose glint:scene_hash differs (a farm passes the planned hash)");
   return [out, crops, sceneHash] {
     imageOutputFormat("merge's output", *out, ImageOutput::Exr);
-    const MergeReport r = mergeCrops(*out, *crops, commandLine(), *sceneHash);
+    std::vector<CropRecord> records;
+    for (const std::string& crop : *crops) records.push_back(cropRecord(crop));
+    const MergeReport r = mergeCrops(*out, records, commandLine(), *sceneHash);
     log::info("merged " + std::to_string(r.crops) + " crops into " + *out + " (" +
               std::to_string(r.fullWidth) + "x" + std::to_string(r.fullHeight) + ")");
     return kExitOk;

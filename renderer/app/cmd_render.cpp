@@ -1,12 +1,4 @@
-#include <glint_version.h>
-
-#include <OpenEXR/ImfChannelList.h>
-#include <OpenEXR/ImfHeader.h>
-#include <OpenEXR/ImfIntAttribute.h>
-#include <OpenEXR/ImfMultiPartInputFile.h>
-#include <OpenEXR/ImfStringAttribute.h>
 #include <algorithm>
-#include <charconv>
 #include <filesystem>
 #include <fstream>
 
@@ -18,9 +10,7 @@
 #include "app/option_arity.h"
 #include "app/render_output.h"
 #include "app/scene_source.h"
-#include "camera/camera.h"
 #include "core/error.h"
-#include "core/hash.h"
 #include "core/input_files.h"
 #include "core/interrupt.h"
 #include "core/log.h"
@@ -28,13 +18,12 @@
 #include "core/sampler.h"
 #include "film/atomic_file.h"
 #include "film/display.h"
-#include "film/exr_input.h"
 #include "film/exr_output.h"
 #include "io/scene_loader.h"
+#include "render/frame_record.h"
 #include "render/pass_plan.h"
 #include "render/render_job.h"
 #include "render/render_session.h"
-#include "render/resume_state.h"
 
 namespace glint {
 
@@ -72,12 +61,6 @@ struct RenderArgs {
   std::string resume;        // a frame to continue
 };
 
-std::string hex(uint64_t v) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
-}
-
 void applyOverrides(const RenderArgs& a, Scene& scene) {
   RenderSettings& r = scene.render;
   if (a.spp) r.spp = *a.spp;
@@ -105,19 +88,6 @@ std::optional<PixelWindow> cropWindow(const RenderArgs& a, const RenderSettings&
 // An estimate, or null where there is none (one sample, a regular grid).
 nlohmann::json orNull(const std::optional<double>& v) {
   return v ? nlohmann::json(*v) : nlohmann::json();
-}
-
-// The finished passes (CLI.md: `passes`), also kept in the EXR's glint:passes.
-nlohmann::json passesJson(const std::vector<PassRecord>& passes) {
-  nlohmann::json list = nlohmann::json::array();
-  for (const PassRecord& p : passes)
-    list.push_back({{"spp", p.spp},
-                    {"mean_spp", p.meanSpp},
-                    {"seconds", p.seconds},
-                    {"estimated_rmse", orNull(p.estimated.rmse)},
-                    {"estimated_relmse", orNull(p.estimated.relmse)},
-                    {"pixels_sampled", p.pixelsSampled}});
-  return list;
 }
 
 // The objects of the world by id (the objectid AOV's id, objects' id + 1) and name, as the
@@ -152,7 +122,7 @@ nlohmann::json statsJson(const Scene& scene, const RenderStats& st, uint64_t cla
   // The estimates of the frame's error from its own samples (docs/validation.md).
   j["estimated_rmse"] = orNull(st.estimated.rmse);
   j["estimated_relmse"] = orNull(st.estimated.relmse);
-  j["passes"] = passesJson(st.passes);
+  j["passes"] = nlohmann::json::parse(passesJson(st.passes));  // as glint:passes holds them
   j["pixel_spp"] = {{"min", st.minPixelSpp}, {"max", st.maxPixelSpp}};
   j["time_limit_reached"] = st.timeLimitReached;
   // Of the whole process up to now: scene, acceleration structure, film and the EXR written.
@@ -206,208 +176,9 @@ void printStats(const Scene& scene, const RenderStats& st) {
                                            : "production (batched)");
 }
 
-// What must match for crops of one frame to merge: the scene's bytes and every setting that
-// changes pixels. Threads and tile size do not (the image is the same for any of them). `spp`
-// stands for the scene's (0 where it must not count), so no caller copies the scene to change it.
-uint64_t settingsHash(const Scene& scene, int spp, const std::string& accel,
-                      const std::string& extras) {
-  const RenderSettings& r = scene.render;
-  // An animated scene's frames share its file but not its pixels.
-  const std::string frame =
-      scene.animation ? " frame " + std::to_string(scene.animation->frame) : "";
-  return hashKey(scene.sourceHash, uint64_t(r.width), uint64_t(r.height), uint64_t(spp), r.seed,
-                 uint64_t(r.sampler), uint64_t(r.maxDepth), uint64_t(r.transparentBackground),
-                 hashBytes(accel), hashBytes(extras + frame));
-}
-
-// The sampling options that change pixels, for the settings hash.
-std::string samplingSettings(const SamplingRequest& r) {
-  std::string s;
-  const auto add = [&](const char* name, double v) {
-    if (!(v > 0)) return;
-    // The shortest text that reads back as v: to_string's six decimals read 2e-7 and 4e-7 as
-    // one target.
-    char text[32];
-    const auto end = std::to_chars(text, text + sizeof text, v).ptr;
-    s += std::string(" ") + name + " " + std::string(text, end);
-  };
-  add("target-rmse", r.target.rmse);
-  add("target-relmse", r.target.relmse);
-  add("time-limit", r.timeLimitSeconds);
-  add("min-spp", r.minSpp);
-  add("max-spp", r.maxSpp);
-  return s;
-}
-
-// Raised whenever a Glint draws or shades a sample of the same settings differently, so that a
-// frame an older one left is refused rather than continued with other samples: 2, progressive
-// renders filter textures at the finest footprint (PassPlan::footprintSpp).
-constexpr uint64_t kSampleRevision = 2;
-
-// The sampling settings --resume must find unchanged: the targets and the first pass, not the
-// sample counts or the time limit.
-std::string resumedSampling(const SamplingRequest& sampling) {
-  SamplingRequest targets = sampling;
-  targets.maxSpp = 0;
-  targets.timeLimitSeconds = 0;
-  const std::string s = samplingSettings(targets);
-  return s.empty() ? s : s.substr(1);  // without the separating space it opens with
-}
-
-// What must match for --resume to continue a frame: the settings hash without the sample
-// counts, the time limit, the AOVs and half floats (they change what is written, not the
-// samples; AOVs whose sums are not kept are refused on their own), the sampler actually used,
-// for a sampler whose sets are laid out for one total (stratified) that total, and the Glint's
-// kSampleRevision.
-std::string resumeHash(const RenderArgs& a, const Scene& scene, const PassPlan& plan) {
-  return hex(hashKey(
-      settingsHash(scene, 0, a.accel, a.integrator + " " + resumedSampling(a.sampling)),
-      uint64_t(plan.sampler), uint64_t(plan.progressive() ? 0 : plan.maxSpp), kSampleRevision));
-}
-
-// What differs between --resume's frame and this render, as far as its metadata tells ("the
-// scene file's bytes; seed: the frame's 1, this render's 9"); empty when nothing it records does.
-std::string resumeDifferences(const Imf::Header& header, const RenderArgs& a, const Scene& scene,
-                              const PassPlan& plan) {
-  std::string out;
-  const auto differs = [&](const char* what, const std::optional<std::string>& theirs,
-                           const std::string& ours) {
-    if (!theirs || *theirs == ours) return;
-    out += (out.empty() ? "" : "; ") + std::string(what) + ": the frame's " +
-           (theirs->empty() ? "none" : *theirs) + ", this render's " +
-           (ours.empty() ? "none" : ours);
-  };
-  const auto text = [&](const char* key) -> std::optional<std::string> {
-    const auto* v = header.findTypedAttribute<Imf::StringAttribute>(key);
-    return v ? std::optional<std::string>(v->value()) : std::nullopt;
-  };
-  const auto number = [&](const char* key) -> std::optional<std::string> {
-    const auto* v = header.findTypedAttribute<Imf::IntAttribute>(key);
-    return v ? std::optional<std::string>(std::to_string(v->value())) : std::nullopt;
-  };
-  if (text("glint:scene_hash") && *text("glint:scene_hash") != hex(scene.sourceHash))
-    out += "the scene file's bytes";
-  const Imath::Box2i& full = header.displayWindow();
-  differs("size",
-          std::to_string(full.max.x - full.min.x + 1) + "x" +
-              std::to_string(full.max.y - full.min.y + 1),
-          std::to_string(scene.render.width) + "x" + std::to_string(scene.render.height));
-  differs("seed", text("glint:seed"), std::to_string(scene.render.seed));
-  differs("sampler", text("glint:sampler"), std::string(samplerName(plan.sampler)));
-  differs("max depth", number("glint:max_depth"), std::to_string(scene.render.maxDepth));
-  differs("backend", text("glint:accel"), a.accel);
-  differs("integrator", text("glint:integrator"), a.integrator);
-  differs("targets and first pass", text("glint:resume_sampling"), resumedSampling(a.sampling));
-  if (!plan.progressive())
-    differs("spp its stratified sets are laid out for", number("glint:spp"),
-            std::to_string(scene.render.spp));
-  return out;
-}
-
-ExrMetadata exrMetadata(const RenderArgs& a, const Scene& scene, const PassPlan& plan,
-                        const RenderResult& result) {
-  const RenderStats& st = result.stats;
-  const PixelWindow& w = result.film.window();
-  const Camera camera(scene.cameraDesc, scene.render.width, scene.render.height);
-  ExrMetadata m;
-  m.strings = {{"Software", std::string("Glint ") + GLINT_VERSION},
-               {"glint:version", GLINT_VERSION},
-               {"glint:scene", scene.sourcePath},
-               {"glint:scene_hash", hex(scene.sourceHash)},
-               {"glint:settings_hash",
-                hex(settingsHash(scene, scene.render.spp, a.accel,
-                                 a.aovs + (a.half ? " half" : "") +
-                                     (a.integrator == "production" ? "" : " " + a.integrator) +
-                                     samplingSettings(a.sampling)))},
-               {"glint:integrator", a.integrator},
-               {"glint:sampler", std::string(samplerName(st.sampler))},
-               {"glint:passes", passesJson(st.passes).dump()},
-               {"glint:resume_hash", resumeHash(a, scene, plan)},
-               {"glint:resume_sampling", resumedSampling(a.sampling)},
-               {"glint:accel", a.accel},
-               {"glint:seed", std::to_string(scene.render.seed)},  // 64-bit: kept exact as text
-               {"glint:crop", std::to_string(w.x0) + " " + std::to_string(w.x1) + " " +
-                                  std::to_string(w.y0) + " " + std::to_string(w.y1)},
-               {"glint:commandline", commandLine()},
-               // The OCIO name of the rendering space in the bundled config.
-               {"glint:colorspace", kRenderingColorspace}};
-  m.ints = {{"glint:spp", scene.render.spp},
-            {"glint:max_depth", scene.render.maxDepth},
-            {"glint:partial", result.partial ? 1 : 0},
-            {"glint:min_pixel_spp", st.minPixelSpp},
-            {"glint:max_pixel_spp", st.maxPixelSpp}};
-  if (scene.animation) m.ints.push_back({"glint:frame", scene.animation->frame});
-  m.floats = {{"glint:render_seconds", static_cast<float>(st.seconds)},
-              {"glint:rays", static_cast<float>(st.rays.total())}};
-  if (st.estimated.rmse) {
-    m.floats.push_back({"glint:estimated_rmse", static_cast<float>(*st.estimated.rmse)});
-    m.floats.push_back({"glint:estimated_relmse", static_cast<float>(*st.estimated.relmse)});
-  }
-  // The camera works in render space (world − worldOrigin); compositors want world space.
-  const Vec3d toRender = Vec3d{} - scene.worldOrigin;
-  m.matrices = {{"worldToCamera", afterTranslation(camera.worldToCamera(), toRender)},
-                {"worldToNDC", afterTranslation(camera.worldToNdc(), toRender)}};
-  return m;
-}
-
-// The state of --resume's frame, after checking it is this frame with these settings; its
-// passes, each later by the seconds this render starts after (none: they are its own).
-ResumeState readResumable(const RenderArgs& a, const Scene& scene, const PassPlan& plan,
-                          const std::optional<PixelWindow>& crop, std::vector<PassRecord>& passes) {
-  const RenderSettings& r = scene.render;
-  const PixelWindow window = crop.value_or(PixelWindow{0, r.width, 0, r.height});
-  const std::string expectedHash = resumeHash(a, scene, plan);
-  {
-    const auto file = openExr(a.resume);
-    const auto* hash =
-        file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:resume_hash");
-    // A frame without a state cannot be continued, whatever its settings; one whose state has
-    // no checksum was left by an older Glint, whose hash was made otherwise and whose state
-    // lacks where its passes stood.
-    if (!file->header(0).channels().findChannel(std::string(kResumeLayer) + ".00"))
-      throw UsageError(a.resume +
-                       " holds no resume state: only a frame Glint wrote with --resumable, or a "
-                       "partial, preview or time-limited one, can be resumed");
-    if (hash && !file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:resume_checksum"))
-      throw UsageError(a.resume +
-                       " was left by an older Glint, whose resume state did not keep where its "
-                       "passes stood: render it again");
-    if (!hash || hash->value() != expectedHash) {
-      const std::string differences =
-          hash ? resumeDifferences(file->header(0), a, scene, plan) : std::string();
-      throw UsageError(a.resume +
-                       (!hash ? " has no glint:resume_hash: it was not written by this Glint"
-                        : differences.empty()
-                            ? " was rendered from another scene, or with other settings or a "
-                              "stratified sampler laid out for another spp"
-                            : " differs from this render (" + differences + ")") +
-                       ": --resume continues a frame with the scene and every setting but --spp / "
-                       "--max-spp / --time-limit / --aov variance / --half the same (render with "
-                       "--resumable to continue a frame to any spp)");
-    }
-    const auto* earlier = file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:passes");
-    const nlohmann::json list =
-        earlier ? nlohmann::json::parse(earlier->value(), nullptr, false) : nlohmann::json();
-    if (list.is_array())
-      for (const nlohmann::json& p : list) {
-        if (!p.is_object() || !p.value("spp", nlohmann::json()).is_number_integer()) continue;
-        PassRecord record{};
-        record.spp = p["spp"].get<int>();
-        record.meanSpp = p.value("mean_spp", 0.0);
-        record.seconds = p.value("seconds", 0.0);
-        const auto number = [&](const char* key) -> std::optional<double> {
-          const nlohmann::json v = p.value(key, nlohmann::json());
-          return v.is_number() ? std::optional<double>(v.get<double>()) : std::nullopt;
-        };
-        record.estimated = {number("estimated_rmse"), number("estimated_relmse")};
-        record.pixelsSampled = p.value("pixels_sampled", int64_t{0});
-        passes.push_back(record);
-      }
-  }
-  ResumeState state =
-      readResumeState(a.resume, window, r.width, r.height, plan.maxSpp, &expectedHash);
-  log::info("resuming " + a.resume + " to " + std::to_string(plan.maxSpp) + " spp");
-  return state;
+// The choices of the command line that the frame's record keeps (render/frame_record.h).
+FrameSettings frameSettings(const RenderArgs& a) {
+  return {a.accel, a.integrator, a.aovs, a.half, a.sampling, commandLine()};
 }
 
 // Renders one frame (of an animated scene: `frame`, default its first) and writes its outputs,
@@ -478,13 +249,15 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
     log::info("rendering " + std::to_string(scene.render.width) + "x" +
               std::to_string(scene.render.height) + " " + plan.describe() + " to " + job.out);
     opt.crop = job.crop;
-    ResumeState resumeFrom;
-    std::vector<PassRecord> earlierPasses;
+    ResumedFrame resumed;
+    std::vector<PassRecord>& earlierPasses = resumed.passes;
     if (!a.resume.empty()) {
-      resumeFrom = readResumable(a, scene, plan, job.crop, earlierPasses);
-      opt.resumeFrom = &resumeFrom;
+      resumed = readResumable(
+          a.resume, scene, frameSettings(a), plan,
+          job.crop.value_or(PixelWindow{0, scene.render.width, 0, scene.render.height}));
+      opt.resumeFrom = &resumed.state;
     }
-    // The frame as written: with its state when it may be continued (render/resume_state.h):
+    // The frame as written: with its state when it may be continued (render/frame_record.h):
     // asked for, or partial (interrupted, a preview), or cut by the time limit, or itself a
     // continuation.
     // A display -o is written only whole: a PNG cannot say it is partial or carry its state.
@@ -495,14 +268,14 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
         if (!partial) writeDisplayImage(job.out, r.film, a.ocio, transparent);
         return 0;
       }
-      ExrMetadata m = exrMetadata(a, scene, plan, r);
-      for (auto& [key, value] : m.ints)
-        if (key == "glint:partial") value = partial ? 1 : 0;
+      const FrameRecord record = frameRecord(scene, frameSettings(a), plan, r, partial);
+      ExrMetadata m;
+      writeFrameRecord(record, m);
       const bool resumable =
           a.sampling.progressive || partial || r.stats.timeLimitReached || !a.resume.empty();
       if (!resumable) return writeExr(job.out, r.film, m, {a.half, a.compression, a.multipart});
       Film withState = r.film;
-      addResumeState(withState, m, r.estimates, r.position, resumeHash(a, scene, plan));
+      writeResumeState(withState, m, r.estimates, r.position, record);
       return writeExr(job.out, withState, m, {a.half, a.compression, a.multipart});
     };
     // --preview-every: the frame so far, written as the frame is (atomically), marked partial.
@@ -581,9 +354,7 @@ void checkCropsAndOutputs(const RenderArgs& a) {
 // Whether --resume's frame drew from the Sobol sequence: then its continuation must too, as a
 // --resumable render (the sampler is part of glint:resume_hash, which readResumable checks).
 bool drewFromSobol(const std::string& path) {
-  const auto file = openExr(path);
-  const auto* sampler = file->header(0).findTypedAttribute<Imf::StringAttribute>("glint:sampler");
-  return sampler && sampler->value() == samplerName(SamplerKind::Sobol);
+  return readFrameRecord(path).sampler == SamplerKind::Sobol;
 }
 
 // The flags given whose request only an EXR frame can carry (app/render_output.h).

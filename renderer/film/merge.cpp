@@ -29,6 +29,7 @@ namespace {
 
 struct Crop {
   std::string path;
+  CropRecord record;
   Imf::Header header;
   ExrWindow window;
   std::vector<ExrSlice> slices;  // every channel in its native type, in the file's order
@@ -65,14 +66,15 @@ void refuseNonFinite(const Crop& c) {
 
 // Like readImage, every failure is the file's (exit 2, naming it), and the declared data window
 // is checked against memory before its pixels are allocated.
-Crop readCrop(const std::string& path) {
+Crop readCrop(const CropRecord& record) {
+  const std::string& path = record.path;
   noteInputFile(path);
   const auto file = openExr(path);
   if (file->parts() > 1)
     throw UsageError(path +
                      " has several parts: merge takes single-part crops (render them "
                      "without --multipart)");
-  Crop c{path, file->header(0), exrWindow(path, file->header(0)), {}, 0, {}};
+  Crop c{path, record, file->header(0), exrWindow(path, file->header(0)), {}, 0, {}};
   const Imf::ChannelList& channels = c.header.channels();
   for (auto ch = channels.begin(); ch != channels.end(); ++ch) {
     c.slices.push_back({ch.name(), ch.channel().type, c.pixelBytes});
@@ -83,12 +85,6 @@ Crop readCrop(const std::string& path) {
   readPixelsInBands(path, *file, 0, c.slices, c.pixelBytes, c.pixels);
   refuseNonFinite(c);
   return c;
-}
-
-template <typename Attribute, typename Value>
-Value attributeOr(const Imf::Header& h, const char* name, Value otherwise) {
-  const auto* a = h.findTypedAttribute<Attribute>(name);
-  return a ? Value(a->value()) : otherwise;
 }
 
 // A copy of `h` without the attributes named in `leftOut`. (Header::erase of OpenEXR 3.1 leaks
@@ -161,15 +157,13 @@ std::vector<PixelWindow> missingRegions(const std::vector<PixelWindow>& crops, i
   return out;
 }
 
-MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string>& cropPaths,
+MergeReport mergeCrops(const std::string& outPath, const std::vector<CropRecord>& records,
                        const std::string& commandLine, const std::string& expectedSceneHash) {
-  if (cropPaths.empty()) throw UsageError("merge needs at least one crop");
+  if (records.empty()) throw UsageError("merge needs at least one crop");
   std::vector<Crop> crops;
-  for (const auto& p : cropPaths) crops.push_back(readCrop(p));
+  for (const CropRecord& r : records) crops.push_back(readCrop(r));
   const Crop& first = crops[0];
-  const auto settingsHash = [](const Crop& c) {
-    return attributeOr<Imf::StringAttribute>(c.header, "glint:settings_hash", std::string());
-  };
+  const auto settingsHash = [](const Crop& c) { return c.record.settingsHash; };
   const std::string hash = settingsHash(first);
   if (hash.empty()) throw UsageError(first.path + ": not a Glint render (no glint:settings_hash)");
   const int W = first.window.fullWidth, H = first.window.fullHeight;
@@ -182,13 +176,12 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
                        std::to_string(c.window.fullHeight) + " differs from " + first.path);
     if (!(c.header.channels() == first.header.channels()))
       throw UsageError(c.path + " has other channels or pixel types than " + first.path);
-    const std::string sceneHash =
-        attributeOr<Imf::StringAttribute>(c.header, "glint:scene_hash", std::string());
+    const std::string& sceneHash = c.record.sceneHash;
     if (!expectedSceneHash.empty() && sceneHash != expectedSceneHash)
       throw UsageError(c.path + " was rendered from another scene file (glint:scene_hash " +
                        sceneHash + ", expected " + expectedSceneHash +
                        "): the scene changed after the job was planned");
-    if (attributeOr<Imf::IntAttribute>(c.header, "glint:partial", 0) != 0)
+    if (c.record.partial)
       throw UsageError(c.path + " is a partial (interrupted) render: render its crop again");
   }
 
@@ -255,9 +248,9 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string
   float seconds = 0, rays = 0;
   int64_t clamped = 0;
   for (const Crop& c : crops) {
-    seconds += attributeOr<Imf::FloatAttribute>(c.header, "glint:render_seconds", 0.0f);
-    rays += attributeOr<Imf::FloatAttribute>(c.header, "glint:rays", 0.0f);
-    clamped += attributeOr<Imf::IntAttribute>(c.header, "glint:clamped_values", 0);
+    seconds += c.record.renderSeconds;
+    rays += c.record.rays;
+    clamped += c.record.clampedValues;
   }
   header.insert("glint:clamped_values",
                 Imf::IntAttribute(int(std::min<int64_t>(clamped, INT32_MAX))));

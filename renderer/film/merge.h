@@ -15,12 +15,24 @@ struct MergeReport {
   size_t crops = 0;
 };
 
+// What merge checks and sums of a crop's record, read from its file by
+// render/frame_record.h's cropRecord (absent attributes as empty, false and 0).
+struct CropRecord {
+  std::string path;
+  std::string settingsHash;  // glint:settings_hash, hex; empty: none
+  std::string sceneHash;     // glint:scene_hash, hex; empty: none
+  bool partial = false;      // glint:partial
+  float renderSeconds = 0;   // glint:render_seconds
+  float rays = 0;            // glint:rays
+  int clampedValues = 0;     // glint:clamped_values
+};
+
 // Throws UsageError naming the offending files, the overlapping pixel, or the missing regions
 // as `--crop X0 X1 Y0 Y1` lines that re-render exactly them.
 // `commandLine` is recorded as the merged file's glint:commandline. A non-empty
 // `expectedSceneHash` (hex, as in glint:scene_hash) refuses crops of any other scene file: a farm
 // passes the hash it planned with, so a scene edited while the job ran is caught.
-MergeReport mergeCrops(const std::string& outPath, const std::vector<std::string>& cropPaths,
+MergeReport mergeCrops(const std::string& outPath, const std::vector<CropRecord>& crops,
                        const std::string& commandLine, const std::string& expectedSceneHash = {});
 
 // Missing pixels of a coverage mask (row-major, width × height, true = covered) as disjoint

@@ -1,9 +1,9 @@
 #pragma once
 // The oracle of glint_fuzz_exr, shared with its regression test
 // (tests/io/input_fuzz_regression_test.cpp): an EXR file goes to readImage (glint compare,
-// convert, converge), to mergeCrops (glint merge) as the one crop of a frame, and to
-// readResumeState (glint render --resume) for the window it declares. A merged frame must hold no
-// Inf or NaN: Glint writes none, and merge refuses a crop that does.
+// convert, converge), to readFrameRecord and mergeCrops (glint merge) as the one crop of a
+// frame, and to readResumeState (glint render --resume) for the window it declares. A merged
+// frame must hold no Inf or NaN: Glint writes none, and merge refuses a crop that does.
 #include <OpenEXR/ImfChannelList.h>
 
 #include <cmath>
@@ -17,7 +17,7 @@
 #include "film/exr_input.h"
 #include "film/exr_output.h"
 #include "film/merge.h"
-#include "render/resume_state.h"
+#include "render/frame_record.h"
 
 namespace glint::fuzz {
 
@@ -59,7 +59,7 @@ inline std::string exrReadProblem(const std::string& path, const std::string& me
     if (const std::string p = namesFile(e); !p.empty()) return p;
   }
   try {
-    (void)mergeCrops(mergedPath, {path}, "glint merge (fuzz)");
+    (void)mergeCrops(mergedPath, {cropRecord(path)}, "glint merge (fuzz)");
     if (const std::string p = nonFiniteValueIn(mergedPath); !p.empty()) return p;
   } catch (const GlintError& e) {
     if (const std::string p = namesFile(e); !p.empty()) return p;
