@@ -288,11 +288,11 @@ FrameRecord frameRecord(const Scene& scene, const FrameSettings& s, const PassPl
   FrameRecord r;
   r.version = GLINT_VERSION;
   r.scene = scene.sourcePath;
-  r.sceneHash = scene.sourceHash;
-  r.settingsHash = settingsHash(scene, scene.render.spp, s.accel,
-                                s.aovs + (s.half ? " half" : "") +
-                                    (s.integrator == "production" ? "" : " " + s.integrator) +
-                                    samplingSettings(s.sampling));
+  r.sceneHash = hex(scene.sourceHash);
+  r.settingsHash = hex(settingsHash(scene, scene.render.spp, s.accel,
+                                    s.aovs + (s.half ? " half" : "") +
+                                        (s.integrator == "production" ? "" : " " + s.integrator) +
+                                        samplingSettings(s.sampling)));
   r.integrator = s.integrator;
   r.sampler = st.sampler;
   r.passes = st.passes;
@@ -341,8 +341,8 @@ void writeFrameRecord(const FrameRecord& r, ExrMetadata& m) {
   if (r.version) text("Software", "Glint " + *r.version);
   text("glint:version", r.version);
   text("glint:scene", r.scene);
-  hash("glint:scene_hash", r.sceneHash);
-  hash("glint:settings_hash", r.settingsHash);
+  text("glint:scene_hash", r.sceneHash);
+  text("glint:settings_hash", r.settingsHash);
   text("glint:integrator", r.integrator);
   if (r.sampler) text("glint:sampler", std::string(samplerName(*r.sampler)));
   if (r.passes) text("glint:passes", passesJson(*r.passes));
@@ -385,8 +385,8 @@ FrameRecord readFrameRecord(const std::string& path) {
   FrameRecord r;
   r.version = read.text("glint:version");
   r.scene = read.text("glint:scene");
-  r.sceneHash = read.hash("glint:scene_hash");
-  r.settingsHash = read.hash("glint:settings_hash");
+  r.sceneHash = read.text("glint:scene_hash");
+  r.settingsHash = read.text("glint:settings_hash");
   r.integrator = read.text("glint:integrator");
   if (r.integrator && *r.integrator != "production" && *r.integrator != "reference")
     read.refuse("glint:integrator",
@@ -497,7 +497,7 @@ ResumedFrame readResumable(const std::string& path, const Scene& scene,
     std::string differences;
     if (frame.resumeHash) {
       FrameRecord render;
-      render.sceneHash = scene.sourceHash;
+      render.sceneHash = hex(scene.sourceHash);
       render.frameWidth = r.width;
       render.frameHeight = r.height;
       render.seed = r.seed;
@@ -532,8 +532,8 @@ CropRecord cropRecord(const std::string& path) {
   const FrameRecord r = readFrameRecord(path);
   CropRecord c;
   c.path = path;
-  c.settingsHash = r.settingsHash ? hex(*r.settingsHash) : std::string();
-  c.sceneHash = r.sceneHash ? hex(*r.sceneHash) : std::string();
+  c.settingsHash = r.settingsHash.value_or("");
+  c.sceneHash = r.sceneHash.value_or("");
   c.partial = r.partial.value_or(false);
   c.renderSeconds = r.renderSeconds.value_or(0.0f);
   c.rays = r.rays.value_or(0.0f);

@@ -43,10 +43,13 @@ struct FrameSettings {
 // The attributes of a frame (docs/output.md, The EXR). Each is optional: a frame of an older
 // Glint, or a crop another tool wrote, may lack any of them.
 struct FrameRecord {
-  std::optional<std::string> version;             // glint:version (Software: "Glint " + it)
-  std::optional<std::string> scene;               // glint:scene, the scene's path
-  std::optional<uint64_t> sceneHash;              // glint:scene_hash, of the scene file's bytes
-  std::optional<uint64_t> settingsHash;           // glint:settings_hash: crops that merge share it
+  std::optional<std::string> version;  // glint:version (Software: "Glint " + it)
+  std::optional<std::string> scene;    // glint:scene, the scene's path
+  // glint:scene_hash (of the scene file's bytes) and glint:settings_hash (crops that merge share
+  // it): hex as Glint writes them, compared as text, any text (merge's tests pin crops whose
+  // settings hash is "abc" as merged or refused on their pixels, not on the hash).
+  std::optional<std::string> sceneHash;
+  std::optional<std::string> settingsHash;
   std::optional<std::string> integrator;          // glint:integrator: production or reference
   std::optional<SamplerKind> sampler;             // glint:sampler, the one used
   std::optional<std::vector<PassRecord>> passes;  // glint:passes, the finished ones

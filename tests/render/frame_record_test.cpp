@@ -79,8 +79,8 @@ struct Fixture {
     FrameRecord& r = record;
     r.version = "0.1.0-test";
     r.scene = scene.sourcePath;
-    r.sceneHash = scene.sourceHash;
-    r.settingsHash = 0xfedcba9876543210ULL;
+    r.sceneHash = "0123456789abcdef";
+    r.settingsHash = "fedcba9876543210";
     r.integrator = "production";
     r.sampler = SamplerKind::Sobol;
     PassRecord first{2, 2.0, 0.25, {0.5, 0.125}, 4};
@@ -160,8 +160,8 @@ TEST(FrameRecord, EveryFieldReadsBackAsWritten) {
   const FrameRecord r = readFrameRecord(path);
   EXPECT_EQ(r.version, "0.1.0-test");
   EXPECT_EQ(r.scene, "frames/a.json");
-  EXPECT_EQ(r.sceneHash, 0x0123456789abcdefULL);
-  EXPECT_EQ(r.settingsHash, 0xfedcba9876543210ULL);
+  EXPECT_EQ(r.sceneHash, "0123456789abcdef");
+  EXPECT_EQ(r.settingsHash, "fedcba9876543210");
   EXPECT_EQ(r.integrator, "production");
   EXPECT_EQ(r.sampler, SamplerKind::Sobol);
   ASSERT_TRUE(r.passes && r.passes->size() == 2);
@@ -243,13 +243,14 @@ TEST(FrameRecord, EveryFieldReadsBackAsWritten) {
 }
 
 TEST(FrameRecord, AttributesAFrameLacksAreAbsentNotInvented) {
-  // A crop another tool wrote may carry glint:settings_hash alone; merge asks for no more.
+  // A crop another tool wrote may carry glint:settings_hash alone, any text; merge asks for no
+  // more (ExrInput.NegativeAndOutsideDataWindowsAreReadOrRefusedByMerge).
   Fixture f;
   f.record = FrameRecord{};
-  f.record.settingsHash = 42;
+  f.record.settingsHash = "abc";
   const std::string path = f.write("record-bare.exr", nullptr, false);
   const FrameRecord r = readFrameRecord(path);
-  EXPECT_EQ(r.settingsHash, 42u);
+  EXPECT_EQ(r.settingsHash, "abc");
   EXPECT_FALSE(r.passes);
   EXPECT_FALSE(r.seed);
   EXPECT_FALSE(r.partial);
@@ -276,8 +277,10 @@ TEST(FrameRecord, AnAttributeNotAsGlintWritesItIsRefusedByName) {
       // Malformed values.
       {"seed-sign", [](ExrMetadata& m) { setText(m, "glint:seed", "-1"); },
        "glint:seed is \"-1\", not a whole number from 0 to 2^64 - 1"},
-      {"hash-short", [](ExrMetadata& m) { setText(m, "glint:settings_hash", "abc"); },
-       "glint:settings_hash is \"abc\", not 16 lowercase hex digits"},
+      {"hash-short", [](ExrMetadata& m) { setText(m, "glint:resume_hash", "abc"); },
+       "glint:resume_hash is \"abc\", not 16 lowercase hex digits"},
+      {"settings-hash-int", [](ExrMetadata& m) { setInt(m, "glint:settings_hash", 7); },
+       "glint:settings_hash is of type int, not string"},
       {"crop-three", [](ExrMetadata& m) { setText(m, "glint:crop", "1 3 0"); },
        "glint:crop is \"1 3 0\", not a window"},
       {"crop-empty", [](ExrMetadata& m) { setText(m, "glint:crop", "3 1 0 2"); },
