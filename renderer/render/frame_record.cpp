@@ -280,32 +280,45 @@ std::vector<PassRecord> parsePasses(const std::string& path, const std::string& 
   return passes;
 }
 
+namespace {
+
+// The part of a frame's record that the scene, the settings and the plan fix before any pass:
+// what a resume compares.
+FrameRecord settingsRecord(const Scene& scene, const FrameSettings& s, const PassPlan& plan) {
+  FrameRecord r;
+  r.sceneHash = hex(scene.sourceHash);
+  r.frameWidth = scene.render.width;
+  r.frameHeight = scene.render.height;
+  r.seed = scene.render.seed;
+  r.sampler = plan.sampler;
+  r.maxDepth = scene.render.maxDepth;
+  r.accel = s.accel;
+  r.integrator = s.integrator;
+  r.resumeSampling = resumedSampling(s.sampling);
+  r.spp = scene.render.spp;
+  return r;
+}
+
+}  // namespace
+
 FrameRecord frameRecord(const Scene& scene, const FrameSettings& s, const PassPlan& plan,
                         const RenderResult& result, bool partial) {
   const RenderStats& st = result.stats;
   const PixelWindow& w = result.film.window();
   const Camera camera(scene.cameraDesc, scene.render.width, scene.render.height);
-  FrameRecord r;
+  FrameRecord r = settingsRecord(scene, s, plan);
   r.version = GLINT_VERSION;
   r.scene = scene.sourcePath;
-  r.sceneHash = hex(scene.sourceHash);
   r.settingsHash = hex(settingsHash(scene, scene.render.spp, s.accel,
                                     s.aovs + (s.half ? " half" : "") +
                                         (s.integrator == "production" ? "" : " " + s.integrator) +
                                         samplingSettings(s.sampling)));
-  r.integrator = s.integrator;
-  r.sampler = st.sampler;
   r.passes = st.passes;
   r.resumeHash = resumeHash(scene, s, plan);
-  r.resumeSampling = resumedSampling(s.sampling);
-  r.accel = s.accel;
-  r.seed = scene.render.seed;
   r.crop = w;
   r.commandLine = s.commandLine;
   // The OCIO name of the rendering space in the bundled config.
   r.colorspace = kRenderingColorspace;
-  r.spp = scene.render.spp;
-  r.maxDepth = scene.render.maxDepth;
   r.partial = partial;
   r.minPixelSpp = st.minPixelSpp;
   r.maxPixelSpp = st.maxPixelSpp;
@@ -320,8 +333,6 @@ FrameRecord frameRecord(const Scene& scene, const FrameSettings& s, const PassPl
   const Vec3d toRender = Vec3d{} - scene.worldOrigin;
   r.worldToCamera = afterTranslation(camera.worldToCamera(), toRender);
   r.worldToNdc = afterTranslation(camera.worldToNdc(), toRender);
-  r.frameWidth = scene.render.width;
-  r.frameHeight = scene.render.height;
   return r;
 }
 
@@ -496,18 +507,8 @@ ResumedFrame readResumable(const std::string& path, const Scene& scene,
   if (!frame.resumeHash || *frame.resumeHash != expected) {
     std::string differences;
     if (frame.resumeHash) {
-      FrameRecord render;
-      render.sceneHash = hex(scene.sourceHash);
-      render.frameWidth = r.width;
-      render.frameHeight = r.height;
-      render.seed = r.seed;
-      render.sampler = plan.sampler;
-      render.maxDepth = r.maxDepth;
-      render.accel = settings.accel;
-      render.integrator = settings.integrator;
-      render.resumeSampling = resumedSampling(settings.sampling);
-      render.spp = r.spp;
-      differences = resumeDifferences(frame, render, !plan.progressive());
+      differences =
+          resumeDifferences(frame, settingsRecord(scene, settings, plan), !plan.progressive());
     }
     throw UsageError(path +
                      (!frame.resumeHash ? " has no glint:resume_hash: it was not written by this "
