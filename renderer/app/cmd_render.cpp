@@ -192,9 +192,9 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   const PassPlan plan = PassPlan::make(scene.render.spp, scene.render.sampler, a.sampling);
   RenderOptions opt;
   opt.threads = a.threads.value_or(0);
-  // The frame's line blocks are compressed on the render's threads: zip took 90 ms, on one
-  // thread, of a 560 x 360 frame whose render takes 0.3 s on 16. Never more than the cores:
-  // OpenEXR starts every thread it is given.
+  // The frame's line blocks are compressed on the render's threads: on one, zip would be a
+  // serial step as long as a fast render on many cores. Never more than the cores: OpenEXR
+  // starts every thread it is given.
   setExrThreads(std::min(threadCount(opt.threads), defaultThreadCount()));
   opt.tileSize = a.tileSize;
   parseIntegratorKind(a.integrator, opt.integrator);
