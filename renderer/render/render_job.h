@@ -11,7 +11,7 @@
 #include "camera/camera.h"
 #include "film/film.h"
 #include "integrator/aov.h"
-#include "integrator/batched_kernel.h"
+#include "integrator/radiance.h"
 #include "integrator/ray_counters.h"
 #include "render/pass_plan.h"
 #include "render/resume_state.h"
