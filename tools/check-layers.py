@@ -88,7 +88,9 @@ def check(root):
     included = {name: set() for name in direct}
     for folder in sorted(direct):
         files = sorted(
-            p for p in (renderer / folder).glob("*") if p.suffix in (".h", ".cpp") and p.is_file()
+            p
+            for p in (renderer / folder).rglob("*")
+            if p.suffix in (".h", ".hpp", ".inl", ".cpp") and p.is_file()
         )
         for path in files:
             for number, text in enumerate(path.read_text(errors="replace").splitlines(), 1):

@@ -2,6 +2,8 @@
 // Stateless integer hashing: every random number in Glint is a pure function of its key, never
 // of a thread or of how many numbers were drawn before it.
 #include <cstdint>
+#include <cstdio>
+#include <string>
 #include <string_view>
 
 namespace glint {
@@ -42,6 +44,13 @@ inline uint64_t hashBytes(std::string_view bytes) {
 // Top 24 bits as a float in [0, 1): exactly representable, never 1.
 constexpr float toUnitFloat(uint64_t bits) {
   return static_cast<float>(bits >> 40) * (1.0f / 16777216.0f);
+}
+
+// A hash as the 16 lower-case hex digits frames and manifests carry it as.
+inline std::string hexDigits(uint64_t h) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
+  return text;
 }
 
 }  // namespace glint

@@ -29,12 +29,6 @@ namespace glint {
 
 namespace {
 
-std::string hex(uint64_t v) {
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(v));
-  return buf;
-}
-
 // The sampling options that change pixels, for the settings hash.
 std::string samplingSettings(const SamplingRequest& r) {
   std::string s;
@@ -120,7 +114,8 @@ class AttributeReader {
     if (!s) return std::nullopt;
     uint64_t v = 0;
     const auto [end, error] = std::from_chars(s->data(), s->data() + s->size(), v, 16);
-    if (s->size() != 16 || error != std::errc() || end != s->data() + s->size() || hex(v) != *s)
+    if (s->size() != 16 || error != std::errc() || end != s->data() + s->size() ||
+        hexDigits(v) != *s)
       refuse(key, "is " + inQuotes(excerpt(*s)) + ", not 16 lowercase hex digits");
     return v;
   }
@@ -286,7 +281,7 @@ namespace {
 // what a resume compares.
 FrameRecord settingsRecord(const Scene& scene, const FrameSettings& s, const PassPlan& plan) {
   FrameRecord r;
-  r.sceneHash = hex(scene.sourceHash);
+  r.sceneHash = hexDigits(scene.sourceHash);
   r.frameWidth = scene.render.width;
   r.frameHeight = scene.render.height;
   r.seed = scene.render.seed;
@@ -309,10 +304,10 @@ FrameRecord frameRecord(const Scene& scene, const FrameSettings& s, const PassPl
   FrameRecord r = settingsRecord(scene, s, plan);
   r.version = GLINT_VERSION;
   r.scene = scene.sourcePath;
-  r.settingsHash = hex(settingsHash(scene, scene.render.spp, s.accel,
-                                    s.aovs + (s.half ? " half" : "") +
-                                        (s.integrator == "production" ? "" : " " + s.integrator) +
-                                        samplingSettings(s.sampling)));
+  r.settingsHash = hexDigits(settingsHash(
+      scene, scene.render.spp, s.accel,
+      s.aovs + (s.half ? " half" : "") + (s.integrator == "production" ? "" : " " + s.integrator) +
+          samplingSettings(s.sampling)));
   r.passes = st.passes;
   r.resumeHash = resumeHash(scene, s, plan);
   r.crop = w;
@@ -347,7 +342,7 @@ void writeFrameRecord(const FrameRecord& r, ExrMetadata& m) {
     if (v) m.floats.emplace_back(key, *v);
   };
   const auto hash = [&](const char* key, const std::optional<uint64_t>& v) {
-    if (v) m.strings.emplace_back(key, hex(*v));
+    if (v) m.strings.emplace_back(key, hexDigits(*v));
   };
   if (r.version) text("Software", "Glint " + *r.version);
   text("glint:version", r.version);
@@ -384,7 +379,7 @@ void writeResumeState(Film& film, ExrMetadata& metadata,
                       const std::vector<PixelEstimate>& estimates, const PassPosition& position,
                       const FrameRecord& record) {
   addResumeState(film, metadata, estimates, position,
-                 record.resumeHash ? hex(*record.resumeHash) : std::string());
+                 record.resumeHash ? hexDigits(*record.resumeHash) : std::string());
 }
 
 FrameRecord readFrameRecord(const std::string& path) {
@@ -523,7 +518,7 @@ ResumedFrame readResumable(const std::string& path, const Scene& scene,
   }
   ResumedFrame out;
   if (frame.passes) out.passes = *frame.passes;
-  const std::string expectedHex = hex(expected);
+  const std::string expectedHex = hexDigits(expected);
   out.state = readResumeState(path, window, r.width, r.height, plan.maxSpp, &expectedHex);
   log::info("resuming " + path + " to " + std::to_string(plan.maxSpp) + " spp");
   return out;

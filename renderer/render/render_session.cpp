@@ -83,6 +83,13 @@ RenderOptions withoutAovs(RenderOptions opt) {
   return opt;
 }
 
+// The options the session keeps: the state a frame continues from is copied by the constructor
+// and may be gone after it.
+RenderOptions withoutResumeState(RenderOptions opt) {
+  opt.resumeFrom = nullptr;
+  return opt;
+}
+
 // The pixels' states inside `window` (of the sampled window), row-major.
 std::vector<PixelEstimate> estimatesIn(const FrameContext& f, const PixelWindow& window) {
   std::vector<PixelEstimate> out;
@@ -173,8 +180,8 @@ RenderSession::Shape RenderSession::planFrame(const Scene& scene, const RenderOp
 RenderSession::RenderSession(const Scene& scene, const Accelerator& accel, const RenderOptions& opt)
     : scene_(scene),
       accel_(accel),
-      opt_(opt),
-      probeOptions_(withoutAovs(opt)),
+      opt_(withoutResumeState(opt)),
+      probeOptions_(withoutAovs(opt_)),
       start_(Clock::now()),
       boundedStop_(std::in_place),
       shape_(planFrame(scene, opt)),

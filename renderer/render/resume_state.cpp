@@ -69,9 +69,7 @@ std::string checksumOf(const std::vector<PixelEstimate>& estimates, const PassPo
     const auto& chosen = position.cutChosen;
     h = hashCombine(h, p < chosen.size() ? chosen[p] : 0);
   }
-  char text[17];
-  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(h));
-  return text;
+  return hexDigits(h);
 }
 
 }  // namespace
