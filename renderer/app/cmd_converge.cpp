@@ -120,7 +120,7 @@ std::vector<PassRecord> passesOf(const std::string& path) {
   }
   if (!j.is_object() || !j.contains("passes") || !j["passes"].is_array())
     throw UsageError(path + ": has no \"passes\" list");
-  return parsePasses(path, "passes", j["passes"].dump());
+  return parsePasses(path, "passes", j["passes"]);
 }
 
 // A pass with its estimated error: one of a render of one sample, or of the regular sampler,

@@ -241,6 +241,11 @@ std::vector<PassRecord> parsePasses(const std::string& path, const std::string& 
     throw UsageError(path + ": its " + key + " holds a value Glint cannot read (" +
                      excerpt(e.what()) + ")");
   }
+  return parsePasses(path, key, list);
+}
+
+std::vector<PassRecord> parsePasses(const std::string& path, const std::string& key,
+                                    const nlohmann::json& list) {
   if (!list.is_array()) throw UsageError(path + ": its " + key + " is not a list of passes");
   constexpr double kLargest = std::numeric_limits<double>::max();
   std::vector<PassRecord> passes;

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "core/sampler.h"
 #include "core/transform.h"
 #include "film/exr_output.h"
@@ -106,6 +108,9 @@ FrameRecord readFrameRecord(const std::string& path);
 // regular sampler, has none).
 std::vector<PassRecord> parsePasses(const std::string& path, const std::string& key,
                                     const std::string& json);
+// The same, of a list already parsed (a --stats-json file's "passes").
+std::vector<PassRecord> parsePasses(const std::string& path, const std::string& key,
+                                    const nlohmann::json& list);
 // The passes as the record and --stats-json hold them.
 std::string passesJson(const std::vector<PassRecord>& passes);
 
