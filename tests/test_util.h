@@ -35,6 +35,9 @@ inline constexpr bool kAddressSanitizer = false;
 inline std::filesystem::path tempDir() {
   static const std::filesystem::path dir = [] {
     auto d = std::filesystem::temp_directory_path() / ("glint-test-" + std::to_string(::getpid()));
+    // An earlier test process with the same pid (pids wrap) may have left files here: a FIFO
+    // that mkfifo then refused, a file a test expects to create.
+    std::filesystem::remove_all(d);
     std::filesystem::create_directories(d);
     return d;
   }();

@@ -437,11 +437,11 @@ FrameRecord readFrameRecord(const std::string& path) {
   r.worldToNdc = read.matrix("worldToNDC");
   r.clampedValues = read.number("glint:clamped_values", 0, kMostInt);
   r.mergedCrops = read.number("glint:merged_crops", 1, kMostInt);
-  r.resumeChecksum = read.hash("glint:resume_checksum");
+  r.resumeChecksum = read.hash(kResumeChecksumKey);
   // The state's position is read with its channels (readResumeState); of another type it is
   // refused here, by name, with the rest of the record.
-  read.number("glint:resume_finished_end", kLeastInt, kMostInt);
-  read.number("glint:resume_cut_end", kLeastInt, kMostInt);
+  read.number(kResumeFinishedEndKey, kLeastInt, kMostInt);
+  read.number(kResumeCutEndKey, kLeastInt, kMostInt);
   const ExrWindow w = exrWindow(path, header);
   r.frameWidth = w.fullWidth;
   r.frameHeight = w.fullHeight;

@@ -49,10 +49,6 @@ std::string channelName(int i) {
 
 double* doublesOf(HalfEstimate& h, int k) { return k < 3 ? &h.mean[k] : &h.alpha; }
 
-constexpr const char* kFinishedEndKey = "glint:resume_finished_end";
-constexpr const char* kCutEndKey = "glint:resume_cut_end";
-constexpr const char* kChecksumKey = "glint:resume_checksum";
-
 // Every word the state holds, in file order, with the position and the frame's resume hash.
 std::string checksumOf(const std::vector<PixelEstimate>& estimates, const PassPosition& position,
                        const std::string& resumeHash) {
@@ -96,9 +92,9 @@ void addResumeState(Film& film, ExrMetadata& metadata, const std::vector<PixelEs
       v[kCutChosenChannel] = p < chosen.size() ? chosen[p] : 0;
       film.setPlanePixel(plane, x, y, v);
     }
-  metadata.ints.emplace_back(kFinishedEndKey, position.finishedEnd);
-  metadata.ints.emplace_back(kCutEndKey, position.cutEnd);
-  metadata.strings.emplace_back(kChecksumKey, checksumOf(estimates, position, resumeHash));
+  metadata.ints.emplace_back(kResumeFinishedEndKey, position.finishedEnd);
+  metadata.ints.emplace_back(kResumeCutEndKey, position.cutEnd);
+  metadata.strings.emplace_back(kResumeChecksumKey, checksumOf(estimates, position, resumeHash));
 }
 
 ResumeState readResumeState(const std::string& path, const PixelWindow& window, int fullWidth,
@@ -131,8 +127,8 @@ ResumeState readResumeState(const std::string& path, const PixelWindow& window, 
   }
   ResumeState state;
   PassPosition& position = state.position;
-  for (const auto& [key, value] : {std::pair{kFinishedEndKey, &position.finishedEnd},
-                                   std::pair{kCutEndKey, &position.cutEnd}}) {
+  for (const auto& [key, value] : {std::pair{kResumeFinishedEndKey, &position.finishedEnd},
+                                   std::pair{kResumeCutEndKey, &position.cutEnd}}) {
     const auto* a = header.findTypedAttribute<Imf::IntAttribute>(key);
     if (!a)
       throw UsageError(path + " has no " + key +
@@ -200,7 +196,7 @@ ResumeState readResumeState(const std::string& path, const PixelWindow& window, 
     if (position.cutEnd > 0) position.cutChosen[p] = static_cast<uint8_t>(chosen);
   }
   if (resumeHash) {
-    const auto* stored = header.findTypedAttribute<Imf::StringAttribute>(kChecksumKey);
+    const auto* stored = header.findTypedAttribute<Imf::StringAttribute>(kResumeChecksumKey);
     if (!stored || stored->value() != checksumOf(state.estimates, position, *resumeHash))
       throw UsageError(path + (stored ? "'s resume state is not the one its render wrote: it was "
                                         "altered (a tool that converts its words to float, an "

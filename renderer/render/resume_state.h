@@ -18,6 +18,10 @@
 namespace glint {
 
 inline constexpr const char* kResumeLayer = "glint_resume";
+// The attributes that place the state: where its passes stood, and its checksum.
+inline constexpr const char* kResumeFinishedEndKey = "glint:resume_finished_end";
+inline constexpr const char* kResumeCutEndKey = "glint:resume_cut_end";
+inline constexpr const char* kResumeChecksumKey = "glint:resume_checksum";
 
 // Where a frame's passes stood when it was written. Adaptive choices read the state the
 // previous pass left; a pass cut short (a signal, the time limit) has moved some of its pixels
