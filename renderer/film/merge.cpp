@@ -28,8 +28,8 @@ namespace glint {
 namespace {
 
 struct Crop {
-  std::string path;
-  CropRecord record;
+  CropRecord record;  // its path too
+  const std::string& path() const { return record.path; }
   Imf::Header header;
   ExrWindow window;
   std::vector<ExrSlice> slices;  // every channel in its native type, in the file's order
@@ -56,7 +56,7 @@ void refuseNonFinite(const Crop& c) {
       if (std::isfinite(v)) continue;
       const int x = c.window.x + int(p % size_t(c.window.width)),
                 y = c.window.y + int(p / size_t(c.window.width));
-      throw UsageError(c.path + ": channel " + excerpt(s.name) + " is " +
+      throw UsageError(c.path() + ": channel " + excerpt(s.name) + " is " +
                        (std::isnan(v) ? "NaN" : "infinite") + " at pixel (" + std::to_string(x) +
                        ", " + std::to_string(y) +
                        "); Glint never writes one, so the crop was changed after it was "
@@ -74,7 +74,7 @@ Crop readCrop(const CropRecord& record) {
     throw UsageError(path +
                      " has several parts: merge takes single-part crops (render them "
                      "without --multipart)");
-  Crop c{path, record, file->header(0), exrWindow(path, file->header(0)), {}, 0, {}};
+  Crop c{record, file->header(0), exrWindow(path, file->header(0)), {}, 0, {}};
   const Imf::ChannelList& channels = c.header.channels();
   for (auto ch = channels.begin(); ch != channels.end(); ++ch) {
     c.slices.push_back({ch.name(), ch.channel().type, c.pixelBytes});
@@ -165,24 +165,25 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<CropRecord>
   const Crop& first = crops[0];
   const auto settingsHash = [](const Crop& c) { return c.record.settingsHash; };
   const std::string hash = settingsHash(first);
-  if (hash.empty()) throw UsageError(first.path + ": not a Glint render (no glint:settings_hash)");
+  if (hash.empty())
+    throw UsageError(first.path() + ": not a Glint render (no glint:settings_hash)");
   const int W = first.window.fullWidth, H = first.window.fullHeight;
   for (const Crop& c : crops) {
     if (settingsHash(c) != hash)
-      throw UsageError(c.path + " comes from a different scene or settings than " + first.path +
+      throw UsageError(c.path() + " comes from a different scene or settings than " + first.path() +
                        " (glint:settings_hash " + settingsHash(c) + " vs " + hash + ")");
     if (c.window.fullWidth != W || c.window.fullHeight != H)
-      throw UsageError(c.path + ": frame " + std::to_string(c.window.fullWidth) + "x" +
-                       std::to_string(c.window.fullHeight) + " differs from " + first.path);
+      throw UsageError(c.path() + ": frame " + std::to_string(c.window.fullWidth) + "x" +
+                       std::to_string(c.window.fullHeight) + " differs from " + first.path());
     if (!(c.header.channels() == first.header.channels()))
-      throw UsageError(c.path + " has other channels or pixel types than " + first.path);
+      throw UsageError(c.path() + " has other channels or pixel types than " + first.path());
     const std::string& sceneHash = c.record.sceneHash;
     if (!expectedSceneHash.empty() && sceneHash != expectedSceneHash)
-      throw UsageError(c.path + " was rendered from another scene file (glint:scene_hash " +
+      throw UsageError(c.path() + " was rendered from another scene file (glint:scene_hash " +
                        sceneHash + ", expected " + expectedSceneHash +
                        "): the scene changed after the job was planned");
     if (c.record.partial)
-      throw UsageError(c.path + " is a partial (interrupted) render: render its crop again");
+      throw UsageError(c.path() + " is a partial (interrupted) render: render its crop again");
   }
 
   // Placement is decided on the crops' rectangles: the display window is allocated only once the
@@ -193,7 +194,7 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<CropRecord>
     const ExrWindow& s = c.window;
     // In 64 bits: a data window near INT_MAX overflowed int here.
     if (s.x < 0 || s.y < 0 || int64_t{s.x} + s.width > W || int64_t{s.y} + s.height > H)
-      throw UsageError(c.path + ": data window lies outside the frame");
+      throw UsageError(c.path() + ": data window lies outside the frame");
   }
   const auto windowOf = [](const ExrWindow& s) {
     return PixelWindow{s.x, s.x + s.width, s.y, s.y + s.height};
@@ -211,8 +212,8 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<CropRecord>
       if (!clash || std::pair{y0, x0} < clash->first) clash = {{y0, x0}, j};
     }
     if (clash)
-      throw UsageError(crops[k].path + " and " + crops[clash->second].path + " overlap at pixel (" +
-                       std::to_string(clash->first.second) + ", " +
+      throw UsageError(crops[k].path() + " and " + crops[clash->second].path() +
+                       " overlap at pixel (" + std::to_string(clash->first.second) + ", " +
                        std::to_string(clash->first.first) + ")");
   }
   if (covered != int64_t{W} * H) {
@@ -220,13 +221,13 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<CropRecord>
     for (const Crop& c : crops) windows.push_back(windowOf(c.window));
     const std::vector<PixelWindow> holes = missingRegions(windows, W, H);
     std::string msg = "the crops leave " + std::to_string(holes.size()) + " region(s) of the " +
-                      std::to_string(W) + "x" + std::to_string(H) + " frame of " + first.path +
+                      std::to_string(W) + "x" + std::to_string(H) + " frame of " + first.path() +
                       " unrendered; render them with:";
     for (const PixelWindow& h : holes) msg += "\n  " + window(h);
     throw UsageError(msg);
   }
   const size_t pixelBytes = first.pixelBytes;
-  checkImageFits(first.path, "display window", W, H, double(pixelBytes));
+  checkImageFits(first.path(), "display window", W, H, double(pixelBytes));
   std::vector<unsigned char> frame(size_t(W) * size_t(H) * pixelBytes, 0);
   for (const Crop& c : crops) {
     const ExrWindow& s = c.window;
