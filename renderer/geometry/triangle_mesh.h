@@ -52,8 +52,13 @@ struct TriangleMesh {
     return positions[indices[3 * tri + static_cast<uint32_t>(corner)]];
   }
   // Corner of a triangle at normalised time `time` (linear between keys, as Embree does).
-  Vec3f vertexAt(uint32_t tri, int corner, float time) const {
-    if (!deforming()) return vertex(tri, corner);
+  // The static case inlined at every hit; the keys' interpolation out of line.
+  [[gnu::always_inline]] Vec3f vertexAt(uint32_t tri, int corner, float time) const {
+    if (!deforming()) [[likely]]
+      return vertex(tri, corner);
+    return vertexBetweenKeys(tri, corner, time);
+  }
+  [[gnu::noinline]] Vec3f vertexBetweenKeys(uint32_t tri, int corner, float time) const {
     const uint32_t i = indices[3 * tri + static_cast<uint32_t>(corner)];
     size_t seg;
     float f;

@@ -127,17 +127,19 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, ShadingPoint& sp) const
   // (A pointer, not an optional Transform, whose 128 bytes GCC cleared on every call.)
   if (hit.instId == kInvalidId) {
     sp.origin = hit.geomId;
-    return shadingPoint(ray, hit, nullptr, sp);
+    return shadingPoint<false>(ray, hit, nullptr, sp);
   }
   sp.origin = hit.instId;
   const Transform worldFromObject =
       instances[groups[0].geometries[hit.instId].index].transformAt(ray.time);
-  shadingPoint(ray, hit, &worldFromObject, sp);
+  shadingPoint<true>(ray, hit, &worldFromObject, sp);
 }
 
+template <bool kInstanced>
 void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldFromObject,
                          ShadingPoint& sp) const {
-  const Geometry& g = geometry(hit);
+  if (!kInstanced) worldFromObject = nullptr;  // so the world's copy drops the transform's code
+  const Geometry& g = kInstanced ? geometry(hit) : groups[0].geometries[hit.geomId];
   sp.t = hit.t;
   sp.materialId = g.materialId;
   sp.objectId = g.objectId;

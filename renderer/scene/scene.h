@@ -196,7 +196,8 @@ class Scene {
 
  private:
   // shadingPoint for a hit in object space, placed in the world by `worldFromObject` (null
-  // outside instances).
+  // outside instances). Two copies: the world's hits, the most, take one without the transform.
+  template <bool kInstanced>
   void shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldFromObject,
                     ShadingPoint& sp) const;
   // sp's texture coordinates and tangents for a hit at object-space point p (ShadingPoint::uv).
