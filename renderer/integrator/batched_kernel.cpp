@@ -112,8 +112,9 @@ void BatchedKernel::shadeHits(const Ray* rays, const Hit* hits, const Branch* br
       if (aov) recordAov(ray, hit, m, sp, at, *aov);
       local = ambientAndEmission(m.surface, at, sp, scene_.render.ambient, scene_.worldOrigin);
       if (aov) aov->direct = local;
-      spawnCoherent(hit, m, sp, at, ray, -wo, branch, distance, gen, counters,
-                    scratch.raysOfRoot(branch));
+      if (m.refracts() || m.surface.reflectsCoherently())
+        spawnCoherent(hit, m, sp, at, ray, -wo, branch, distance, gen, counters,
+                      scratch.raysOfRoot(branch));
       sum.childEnd = gen.children;
       continue;
     }
@@ -132,8 +133,10 @@ void BatchedKernel::shadeHits(const Ray* rays, const Hit* hits, const Branch* br
     p.ray = i;
     if (aov) recordAov(ray, hit, m, pt.sp, pt.at, *aov);
     local = ambientAndEmission(m.surface, pt.at, pt.sp, scene_.render.ambient, scene_.worldOrigin);
-    spawnCoherent(hit, m, pt.sp, pt.at, ray, -wo, branch, distance, gen, counters,
-                  scratch.raysOfRoot(branch));
+    // Asked here, not in the call: a matte surface's hit paid the call's set-up for nothing.
+    if (m.refracts() || m.surface.reflectsCoherently())
+      spawnCoherent(hit, m, pt.sp, pt.at, ray, -wo, branch, distance, gen, counters,
+                    scratch.raysOfRoot(branch));
     sum.childEnd = gen.children;
   }
 }
@@ -171,7 +174,6 @@ void BatchedKernel::spawnCoherent(const Hit& hit, const Material& m, const Shadi
                                   const SurfacePoint& at, const Ray& ray, const Vec3f& d,
                                   const Branch& branch, float distance, Generation& gen,
                                   RayCounters& counters, uint64_t& sampleRays) const {
-  if (!m.refracts() && !m.surface.reflectsCoherently()) return;
   const bool traced = branch.depth + 1 <= scene_.render.maxDepth;
   // Spawns each ray that its throughput keeps; `across`: the interior list beyond the surface.
   const auto spawnInto = [&](const MediumStack& across) {

@@ -126,7 +126,8 @@ class BatchedKernel {
   Generation& generation(Scratch& scratch, int depth) const;
   // Spawns into `gen` the rays the material at a hit sends on (materials' forEachCoherentRay),
   // each that its throughput keeps, for `ray` arriving along unit d: the interior list goes
-  // with a refracted ray across the surface. Counts the traced ones in `sampleRays`.
+  // with a refracted ray across the surface. Counts the traced ones in `sampleRays`. Called
+  // only for a material that refracts or reflects coherently.
   void spawnCoherent(const Hit& hit, const Material& m, const ShadingPoint& sp,
                      const SurfacePoint& at, const Ray& ray, const Vec3f& d, const Branch& branch,
                      float distance, Generation& gen, RayCounters& counters,

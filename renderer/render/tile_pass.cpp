@@ -79,6 +79,8 @@ bool renderTilePass(const FrameContext& f, const PassContext& pass, Shading& sha
   SampleKey keys[kCameraChunk];
   Radiance radiance[kCameraChunk];
   bool firstOfPixel[kCameraChunk], lastOfPixel[kCameraChunk];
+  // The pixel's state, at its first and last sample of the chunk (where it is read and kept).
+  PixelEstimate* stateOf[kCameraChunk];
   // Written only when AOVs are asked for: cleared per sample, every sample would pay a store
   // of the whole record.
   UninitializedArray<AovSample, kCameraChunk> records;
@@ -99,7 +101,7 @@ bool renderTilePass(const FrameContext& f, const PassContext& pass, Shading& sha
     for (int i = 0; i < count; ++i) {
       const SampleKey& key = keys[i];
       if (firstOfPixel[i]) {
-        pixel = f.estimate(key.px, key.py);
+        pixel = *stateOf[i];
         if (aovs) pixelAovs.begin();
       }
       Radiance& r = radiance[i];
@@ -122,7 +124,7 @@ bool renderTilePass(const FrameContext& f, const PassContext& pass, Shading& sha
       }
       pixel.half[key.half].add(r.L, r.alpha, r.rays);
       if (lastOfPixel[i]) {
-        f.estimate(key.px, key.py) = pixel;
+        *stateOf[i] = pixel;
         if (aovs) pixelAovs.commit(f.aovSums, f.aovTables, key.px, key.py);
       }
     }
@@ -131,8 +133,11 @@ bool renderTilePass(const FrameContext& f, const PassContext& pass, Shading& sha
   };
   for (int y = tile.y0; y < tile.y1; ++y)
     for (int x = tile.x0; x < tile.x1; ++x) {
-      if (!f.slots.holds(x, y) || !pass.sampled[f.slots.slot(x, y)]) continue;
-      const int64_t taken = f.estimate(x, y).samples();
+      if (!f.slots.holds(x, y)) continue;
+      const size_t slot = f.slots.slot(x, y);
+      if (!pass.sampled[slot]) continue;
+      PixelEstimate* const state = &f.estimates[slot];
+      const int64_t taken = state->samples();
       const uint64_t pixelKey = f.sampler.pixelKey(x, y);
       bool first = true;
       for (int half = 0; half < 2; ++half)
@@ -145,12 +150,13 @@ bool renderTilePass(const FrameContext& f, const PassContext& pass, Shading& sha
             firstOfPixel[count + i] = first && i == 0;
             lastOfPixel[count + i] = false;
           }
+          if (first) stateOf[count] = state;
           first = false;
           f.cameraSampling.rays(keys + count, run, rays + count, cameraPoints);
           count += run;
           j += run;
         }
-      if (!first) lastOfPixel[count - 1] = true;
+      if (!first) lastOfPixel[count - 1] = true, stateOf[count - 1] = state;
     }
   return flush();
 }
