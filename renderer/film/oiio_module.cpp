@@ -77,9 +77,8 @@ const Module& module() {
       symbol(m.writeImage, kGlintOiioWriteImageSymbol);
       symbol(m.texture.open, kGlintOiioTextureOpenSymbol);
       symbol(m.texture.openMemory, kGlintOiioTextureOpenMemorySymbol);
-      symbol(m.texture.lookup, kGlintOiioTextureLookupSymbol);
-      symbol(m.texture.load, kGlintOiioTextureLoadSymbol);
-      symbol(m.texture.texels, kGlintOiioTextureTexelsSymbol);
+      symbol(m.texture.read, kGlintOiioTextureReadSymbol);
+      symbol(m.texture.close, kGlintOiioTextureCloseSymbol);
       if (!m.error.empty()) m.writeImage = nullptr, m.texture = {};
       return m;  // loaded for the rest of the process
     }
@@ -125,7 +124,7 @@ namespace glint::oiio_module {
 
 const TextureFunctions& textureFunctions(const std::string& path) {
   const Module& m = module();
-  if (!m.texture.lookup) {
+  if (!m.texture.read) {
     if (m.outOfMemory) throw OutOfMemoryError(m.error + " (to read texture " + path + ")");
     throw GlintError("cannot read texture " + path + ": OpenImageIO's module: " + m.error);
   }

@@ -19,14 +19,13 @@ namespace glint::oiio_module {
 void writeImage(const std::string& path, const std::string& tmpPath, int width, int height,
                 int channels, int bits, const std::vector<uint16_t>& codes);
 
-// OpenImageIO's TextureSystem (io/texture_file.h). Throws GlintError naming the texture
-// `path` when the module cannot be loaded.
+// OpenImageIO's image readers for textures (io/texture_file.h). Throws GlintError naming the
+// texture `path` when the module cannot be loaded.
 struct TextureFunctions {
   GlintOiioTextureOpen open = nullptr;
   GlintOiioTextureOpenMemory openMemory = nullptr;
-  GlintOiioTextureLookup lookup = nullptr;
-  GlintOiioTextureLoad load = nullptr;
-  GlintOiioTextureTexels texels = nullptr;
+  GlintOiioTextureRead read = nullptr;
+  GlintOiioTextureClose close = nullptr;
 };
 const TextureFunctions& textureFunctions(const std::string& path);
 

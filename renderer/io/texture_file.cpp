@@ -13,113 +13,86 @@
 #include "film/display.h"
 #include "film/image_limits.h"
 #include "film/oiio_module.h"
+#include "materials/mip_pyramid.h"
 
 namespace glint {
 
 namespace {
 
-// What reading a texture takes, in multiples of its texels in their own type (above).
-constexpr double kTextureCopies = 3;
-
 void throwIfOutOfMemory(const char* error);
+
+// The channels kept of a file's: all of grey, grey-alpha, RGB and RGBA; the colour of more.
+int keptChannels(int fileChannels) { return fileChannels <= 4 ? fileChannels : 3; }
 
 class TextureFile final : public ImageTexture {
  public:
-  TextureFile(std::string path, void* handle, const GlintOiioTextureInfo& info,
-              const std::string& colorspace, const oiio_module::TextureFunctions& functions)
+  TextureFile(std::string path, int fileChannels, MipPyramid pyramid,
+              std::unique_ptr<const ToRenderingSpace> toRendering)
       : path_(std::move(path)),
-        handle_(handle),
-        channels_(info.channels),
-        width_(info.width),
-        height_(info.height),
-        toRendering_(colorspace),
-        lookup_(functions.lookup),
-        texels_(functions.texels) {}
+        fileChannels_(fileChannels),
+        pyramid_(std::move(pyramid)),
+        toRendering_(std::move(toRendering)) {}
 
   Rgb color(const ImageFootprint& at) const override {
-    float texel[3] = {0, 0, 0};
-    if (!readRgb(at, texel)) return {};
-    if (!toRendering_.isIdentity()) toRendering_.apply(texel);
+    float texel[3];
+    readRgb(at, texel);
+    if (!toRendering_->isIdentity()) toRendering_->apply(texel);
     return {texel[0], texel[1], texel[2]};
   }
 
   Rgb data(const ImageFootprint& at) const override {
-    float texel[3] = {0, 0, 0};
-    if (!readRgb(at, texel)) return {};
+    float texel[3];
+    readRgb(at, texel);
     return {texel[0], texel[1], texel[2]};
   }
 
   float coverage(const ImageFootprint& at, bool greyWithoutAlpha) const override {
     // RGBA's fourth channel, grey-alpha's second; else the first, or opaque.
-    const int channel = channels_ == 4 ? 3 : channels_ == 2 ? 1 : greyWithoutAlpha ? 0 : -1;
-    float a = 1;
-    if (channel >= 0 && !read(at, channel, 1, &a)) return 1;
+    const int channel = fileChannels_ == 4 ? 3 : fileChannels_ == 2 ? 1 : greyWithoutAlpha ? 0 : -1;
+    if (channel < 0) return 1;
+    float a;
+    pyramid_.filter(at, channel, 1, &a);
     return a;
   }
 
   const std::string& path() const override { return path_; }
 
   LatLongImage texels(double bytesPerTexel) const {
-    const double count = double(width_) * double(height_);
-    checkMemoryFits(count * bytesPerTexel, "image " + path_ + " (" + std::to_string(width_) + "x" +
-                                               std::to_string(height_) + ", read whole)");
+    const int width = pyramid_.width(), height = pyramid_.height();
+    const double count = double(width) * double(height);
+    checkMemoryFits(count * bytesPerTexel, "image " + path_ + " (" + std::to_string(width) + "x" +
+                                               std::to_string(height) + ", read whole)");
     LatLongImage image;
-    image.width = width_;
-    image.height = height_;
+    image.width = width;
+    image.height = height;
     image.texels.resize(static_cast<size_t>(count));
-    const int colorChannels = channels_ >= 3 ? 3 : 1;
-    // A band of rows at a time: the floats in the file's layout are never all held at once.
-    constexpr int kBandRows = 16;
-    std::vector<float> band(static_cast<size_t>(width_) * kBandRows *
-                            static_cast<size_t>(colorChannels));
-    size_t next = 0;
-    for (int y0 = 0; y0 < height_; y0 += kBandRows) {
-      const int y1 = std::min(height_, y0 + kBandRows);
-      char error[512] = "";
-      if (texels_(handle_, width_, y0, y1, colorChannels, band.data(), error, sizeof error) != 0) {
-        throwIfOutOfMemory(error);
-        throw GlintError("cannot read image " + path_ + ": " + excerpt(error));
-      }
-      const size_t n = static_cast<size_t>(width_) * static_cast<size_t>(y1 - y0);
-      for (size_t i = 0; i < n; ++i) {
-        const float* f = band.data() + i * static_cast<size_t>(colorChannels);
-        float texel[3] = {f[0], colorChannels == 3 ? f[1] : f[0], colorChannels == 3 ? f[2] : f[0]};
-        if (!toRendering_.isIdentity()) toRendering_.apply(texel);
-        image.texels[next++] = {texel[0], texel[1], texel[2]};
-      }
+    const size_t stride = size_t(pyramid_.channels());
+    const bool grey = pyramid_.channels() < 3;
+    const float* f = pyramid_.texels().data();
+    for (Rgb& out : image.texels) {
+      float texel[3] = {f[0], grey ? f[0] : f[1], grey ? f[0] : f[2]};
+      if (!toRendering_->isIdentity()) toRendering_->apply(texel);
+      out = {texel[0], texel[1], texel[2]};
+      f += stride;
     }
     return image;
   }
 
  private:
   // Grey (and grey-alpha) images give their one colour channel to all three.
-  bool readRgb(const ImageFootprint& at, float* texel) const {
-    const int colorChannels = channels_ >= 3 ? 3 : 1;
-    if (!read(at, 0, colorChannels, texel)) return false;
-    if (colorChannels == 1) texel[1] = texel[2] = texel[0];
-    return true;
-  }
-  bool read(const ImageFootprint& at, int first, int count, float* out) const {
-    const float st[2] = {at.st.x, at.st.y};
-    const float axes[4] = {at.axisA.x, at.axisA.y, at.axisB.x, at.axisB.y};
-    const int wrap[2] = {oiioWrap(at.wrapS), oiioWrap(at.wrapT)};
-    // A file that fails mid-render (it was read whole when opened, so only a cache eviction
-    // and a changed file could) gives black: the per-ray path never throws.
-    return lookup_(handle_, st, axes, wrap, first, count, out) == 0;
-  }
-
-  static int oiioWrap(TextureWrap w) {
-    return w == TextureWrap::ClampToEdge      ? kGlintOiioWrapClamp
-           : w == TextureWrap::MirroredRepeat ? kGlintOiioWrapMirror
-                                              : kGlintOiioWrapRepeat;
+  void readRgb(const ImageFootprint& at, float* texel) const {
+    if (pyramid_.channels() >= 3) {
+      pyramid_.filter(at, 0, 3, texel);
+    } else {
+      pyramid_.filter(at, 0, 1, texel);
+      texel[1] = texel[2] = texel[0];
+    }
   }
 
   std::string path_;
-  void* handle_;
-  int channels_, width_, height_;
-  ToRenderingSpace toRendering_;
-  GlintOiioTextureLookup lookup_;
-  GlintOiioTextureTexels texels_;
+  int fileChannels_;
+  MipPyramid pyramid_;
+  std::unique_ptr<const ToRenderingSpace> toRendering_;
 };
 
 }  // namespace
@@ -141,45 +114,58 @@ void throwIfOutOfMemory(const char* error) {
     throw std::runtime_error(error);
 }
 
-// The texture behind a handle the module opened (null: it could not, `error` says why), checked
-// and read once.
-std::shared_ptr<const ImageTexture> checkedTexture(const std::string& path, void* handle,
-                                                   const GlintOiioTextureInfo& info,
-                                                   const char* error, const std::string& colorspace,
-                                                   const oiio_module::TextureFunctions& functions) {
+// The texture behind a handle the module opened (null: it could not, `error` says why): its
+// full-resolution texels read whole into floats and made a MIP pyramid. OpenImageIO only reads
+// the file; Glint filters (materials/mip_pyramid.h), so lookups call no library and share no
+// lock.
+std::shared_ptr<const ImageTexture> loadedTexture(const std::string& path, void* handle,
+                                                  const GlintOiioTextureInfo& info,
+                                                  const char* error, const std::string& colorspace,
+                                                  const oiio_module::TextureFunctions& functions) {
   if (!handle) {
     throwIfOutOfMemory(error);
     throw GlintError("cannot read texture " + path + ": " + excerpt(error));
   }
+  const std::unique_ptr<void, GlintOiioTextureClose> opened(handle, functions.close);
   if (info.channels < 1) throw GlintError("texture " + path + " has no channels");
-  // Only the header is read so far. The TextureSystem reads an untiled file whole and mip-maps
-  // it in memory: its texels in their own type twice (the file's read and the cache's copy),
-  // the smaller levels and the working space of its threads (docs/hardening.md, "Memory")
-  // come to about three times them. That must fit before
-  // any is read, since OpenImageIO, failing to allocate it, goes on decoding the whole file
-  // again for every tile, for hours.
+  const int channels = keptChannels(info.channels);
+  // Only the header is read so far. The pyramid holds the kept channels in float, 4/3 of the
+  // finest level's texels (or up to twice them for a strip), and OpenImageIO reads a band of
+  // rows in the file's type beside it: that must fit before any texel is read.
   const int bytesPerChannel = std::max(info.bytesPerChannel, 1);
+  // About 4 MB of floats, whole tiles of a tiled file.
+  const int64_t tile = std::max(info.tileHeight, 1);
+  const int bandRows = int(std::clamp<int64_t>(
+      (int64_t{4} << 20) / std::max<int64_t>(int64_t{info.width} * channels * 4, 1) / tile * tile,
+      tile, std::max<int64_t>(info.height, tile)));
+  const double bandBytes =
+      double(info.width) * bandRows * double(info.channels) * double(bytesPerChannel + 4);
   checkMemoryFits(
-      kTextureCopies * double(info.width) * double(info.height) * info.channels * bytesPerChannel,
+      MipPyramid::bytesFor(info.width, info.height, channels) + bandBytes,
       "texture " + path + " (" + std::to_string(info.width) + "x" + std::to_string(info.height) +
           ", " + std::to_string(info.channels) + " channels of " + std::to_string(bytesPerChannel) +
-          (bytesPerChannel == 1 ? " byte" : " bytes") + ", read, cached and MIP-mapped)");
+          (bytesPerChannel == 1 ? " byte" : " bytes") + ", read into a MIP pyramid of floats)");
   // An empty size, or one past what a process can address, where the budget is unknown.
-  checkImageFits(path, "texture", info.width, info.height,
-                 4.0 / 3 * bytesPerChannel * info.channels);
-  auto texture = std::make_shared<TextureFile>(
-      path, handle, info,
+  checkImageFits(path, "texture", info.width, info.height, 4.0 / 3 * 4 * channels);
+  auto toRendering = std::make_unique<const ToRenderingSpace>(
       colorspace.empty() ? defaultTextureColorspace(info.isFloat != 0, info.colorspace)
-                         : colorspace,
-      functions);
-  // Reading it now (and building its mip levels) refuses a truncated or corrupt image here, with
-  // its reason, instead of rendering black.
-  char loadError[512] = "";
-  if (functions.load(handle, info.channels, loadError, sizeof loadError) != 0) {
-    throwIfOutOfMemory(loadError);
-    throw GlintError("cannot read texture " + path + ": " + excerpt(loadError));
+                         : colorspace);
+  // Reading it whole now refuses a truncated or corrupt image here, with its reason, instead
+  // of rendering black.
+  const size_t row = size_t(info.width) * size_t(channels);
+  std::vector<float> texels(row * size_t(info.height));
+  for (int y0 = 0; y0 < info.height; y0 += bandRows) {
+    const int y1 = std::min(info.height, y0 + bandRows);
+    char readError[512] = "";
+    if (functions.read(handle, y0, y1, channels, texels.data() + row * size_t(y0), readError,
+                       sizeof readError) != 0) {
+      throwIfOutOfMemory(readError);
+      throw GlintError("cannot read texture " + path + ": " + excerpt(readError));
+    }
   }
-  return texture;
+  return std::make_shared<TextureFile>(
+      path, info.channels, MipPyramid(info.width, info.height, channels, std::move(texels)),
+      std::move(toRendering));
 }
 
 std::shared_ptr<const ImageTexture> openTextureFile(const std::string& path,
@@ -189,7 +175,7 @@ std::shared_ptr<const ImageTexture> openTextureFile(const std::string& path,
   GlintOiioTextureInfo info{};
   char error[512] = "";
   void* handle = functions.open(path.c_str(), &info, error, sizeof error);
-  return checkedTexture(path, handle, info, error, colorspace, functions);
+  return loadedTexture(path, handle, info, error, colorspace, functions);
 }
 
 std::shared_ptr<const ImageTexture> openTextureBytes(const std::string& name,
@@ -199,7 +185,7 @@ std::shared_ptr<const ImageTexture> openTextureBytes(const std::string& name,
   char error[512] = "";
   void* handle =
       functions.openMemory(name.c_str(), bytes.data(), bytes.size(), &info, error, sizeof error);
-  return checkedTexture(name, handle, info, error, "", functions);
+  return loadedTexture(name, handle, info, error, "", functions);
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 #pragma once
-// Image textures read from files by OpenImageIO's TextureSystem (through its module,
-// film/oiio_module.h: only scenes with image textures load it): mip-mapped, cached, filtered
-// over each lookup's footprint, repeating; colours converted to the rendering space by OCIO.
+// Image textures read from files by OpenImageIO (through its module, film/oiio_module.h: only
+// scenes with image textures load it) into a MIP pyramid in memory (materials/mip_pyramid.h),
+// filtered over each lookup's footprint; colours converted to the rendering space by OCIO.
 // Texture input is the scene's input, so it lives in io/: it gives materials/ and lights/ what
 // they sample and reaches down to film/ for the image module and the colour conversion that
 // output shares.
@@ -15,10 +15,9 @@
 
 namespace glint {
 
-// The largest texture file read. OpenImageIO reads tiled files a tile at a time and the pixels
-// an image may take are bounded apart (film/image_limits.h); this bound is on the file, so that
-// no file of any size is taken on trust: a 16k x 16k RGBA float texture with its mip levels,
-// uncompressed, is 5.4 GB.
+// The largest texture file read. The pixels an image may take are bounded apart
+// (film/image_limits.h); this bound is on the file, so that no file of any size is taken on
+// trust: a 16k x 16k RGBA float texture with its mip levels, uncompressed, is 5.4 GB.
 inline constexpr uint64_t kMaxTextureFileBytes = uint64_t{8} << 30;
 
 // The colour space a file's texels are taken to be in when the scene does not say:
@@ -27,8 +26,10 @@ inline constexpr uint64_t kMaxTextureFileBytes = uint64_t{8} << 30;
 std::string defaultTextureColorspace(bool floatTexels, const std::string& declared);
 
 // Opens `path` (an image file OpenImageIO reads) as a texture in `colorspace` (empty: as above).
-// Throws GlintError naming the file when it cannot be read or holds more pixels than an image
-// read may take (film/image_limits.h), and UsageError for a colour space OCIO does not know.
+// Its texels are read whole now, so a truncated or corrupt file is refused here. Throws
+// GlintError naming the file when it cannot be read or holds more pixels than an image read may
+// take (film/image_limits.h), OutOfMemoryError when its pyramid (4/3 of its texels, in float)
+// does not fit the memory budget, and UsageError for a colour space OCIO does not know.
 std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
                                                      const std::string& colorspace = "");
 
@@ -40,7 +41,7 @@ std::shared_ptr<const ImageTexture> openImageTextureInMemory(const std::string& 
 // The texels of an opened texture's full-resolution image, unfiltered, converted to the
 // rendering space as color() converts them (grey to all three channels), row 0 at the top: what
 // an environment light samples. Checks first that width × height × bytesPerTexel fit the memory
-// budget (core/memory.h); throws GlintError naming the file when OpenImageIO cannot read them.
+// budget (core/memory.h); throws GlintError naming a texture not read from an image file.
 LatLongImage readTexels(const ImageTexture& texture, double bytesPerTexel);
 
 }  // namespace glint

@@ -1,7 +1,8 @@
 #pragma once
 // An image on a surface's (u, v) coordinates. Materials see only this interface; the images
-// themselves are read, mip-mapped, cached and filtered by OpenImageIO's TextureSystem outside
-// the shading layer (io/texture_file.h), and colour-converted to scene-linear there.
+// themselves are read by OpenImageIO outside the shading layer (io/texture_file.h), filtered
+// over the footprint by their MIP pyramid (materials/mip_pyramid.h), and colour-converted to
+// scene-linear there.
 #include <cmath>
 #include <cstdint>
 #include <string>

@@ -93,10 +93,10 @@ std::string texturedScene(const std::string& name, const std::string& image) {
 
 TEST(MemoryLimits, AHugeTextureIsRefusedFromItsHeaderBeforeAnyTexelIsRead) {
   SKIP_UNDER_ASAN();
-  // 20000 x 20000 8-bit RGB in 1.2 MB: 1.2 GB of texels, 3.6 GB read, cached and MIP-mapped
-  // (three times them, io/texture_file.cpp). Under a 1.5 GB limit it cannot fit: refused by
-  // its header with exit 1 naming it. OpenImageIO, left to try, failed to allocate it and then
-  // decoded the whole file again for every tile, for hours.
+  // 20000 x 20000 8-bit RGB in 1.2 MB: 1.2 GB of texels, 6.4 GB as a MIP pyramid of floats
+  // (4/3 of them, 4 bytes a channel: io/texture_file.cpp). Under a 1.5 GB limit it cannot fit:
+  // refused by its header with exit 1 naming it. OpenImageIO, left to try, failed to allocate it
+  // and then decoded the whole file again for every tile, for hours.
   const std::string png = writeBlackPng("huge-black.png", 20000);
   const std::string scene = texturedScene("huge-texture.json", png);
   const Outcome o = underLimit(1500, "render " + scene + " -o " +
@@ -104,8 +104,8 @@ TEST(MemoryLimits, AHugeTextureIsRefusedFromItsHeaderBeforeAnyTexelIsRead) {
                                          " --width 8 --height 8 --spp 1 --quiet");
   EXPECT_EQ(o.status, 1) << o.output;
   EXPECT_NE(o.output.find("out of memory: texture " + png +
-                          " (20000x20000, 3 channels of 1 byte, read, cached and MIP-mapped) "
-                          "needs 3.6 GB, more than the "),
+                          " (20000x20000, 3 channels of 1 byte, read into a MIP pyramid of floats) "
+                          "needs 6.4 GB, more than the "),
             std::string::npos)
       << o.output;
   EXPECT_NE(o.output.find("address space that the limit (ulimit -v, RLIMIT_AS) leaves"),

@@ -1,0 +1,212 @@
+#include "materials/mip_pyramid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace glint {
+
+namespace {
+
+// The next level's size along an axis of n texels: half, rounded down, at least one.
+int halved(int n) { return std::max(1, n / 2); }
+
+// Which texels of a level of `fine` texels a texel of the next (of `coarse`) averages, and by
+// how much: the box of fine texels under it, the ones cut by its edges weighted by the part
+// that lies inside (an odd size is not rounded away).
+struct Footing {
+  int first = 0, count = 0;
+  float weight[4] = {0, 0, 0, 0};
+};
+std::vector<Footing> footings(int fine, int coarse) {
+  std::vector<Footing> out(static_cast<size_t>(coarse));
+  const double ratio = double(fine) / double(coarse);  // in [2, 3] below the finest level
+  for (int i = 0; i < coarse; ++i) {
+    const double lo = i * ratio, hi = (i + 1) * ratio;
+    Footing& f = out[size_t(i)];
+    f.first = int(std::floor(lo));
+    for (int x = f.first; x < fine && x < hi && f.count < 4; ++x)
+      f.weight[f.count++] = float((std::min(hi, x + 1.0) - std::max(lo, double(x))) / ratio);
+  }
+  return out;
+}
+
+// A coordinate along an axis reduced to one period of its wrap mode, so that the texel index
+// computed from it is small (and exact) whatever the coordinate.
+float reduced(float s, TextureWrap wrap) {
+  switch (wrap) {
+    case TextureWrap::Repeat:
+      return s - std::floor(s);
+    case TextureWrap::MirroredRepeat:
+      return s - 2 * std::floor(0.5f * s);
+    default:
+      return std::clamp(s, -1.0f, 2.0f);
+  }
+}
+
+// Texel i of an axis of n as the wrap mode continues it; i lies within a texel of the period
+// `reduced` left it in.
+int wrapped(int i, int n, TextureWrap wrap) {
+  switch (wrap) {
+    case TextureWrap::Repeat:
+      return i < 0 ? i + n : i >= n ? i - n : i;
+    case TextureWrap::MirroredRepeat:
+      if (i < 0) i = -1 - i;
+      if (i >= 2 * n) i -= 2 * n;
+      return i >= n ? 2 * n - 1 - i : i;
+    default:
+      return std::clamp(i, 0, n - 1);
+  }
+}
+
+}  // namespace
+
+MipPyramid::MipPyramid(int width, int height, int channels, std::vector<float> texels)
+    : channels_(channels) {
+  levels_.push_back({width, height, std::move(texels)});
+  const size_t c = size_t(channels);
+  while (levels_.back().width > 1 || levels_.back().height > 1) {
+    const Level& fine = levels_.back();
+    Level coarse{halved(fine.width), halved(fine.height), {}};
+    coarse.texels.assign(size_t(coarse.width) * size_t(coarse.height) * c, 0.0f);
+    const std::vector<Footing> xs = footings(fine.width, coarse.width);
+    const std::vector<Footing> ys = footings(fine.height, coarse.height);
+    for (int y = 0; y < coarse.height; ++y) {
+      const Footing& fy = ys[size_t(y)];
+      float* out = coarse.texels.data() + size_t(y) * size_t(coarse.width) * c;
+      for (int x = 0; x < coarse.width; ++x, out += c) {
+        const Footing& fx = xs[size_t(x)];
+        for (int j = 0; j < fy.count; ++j) {
+          const float* row = fine.texels.data() + size_t(fy.first + j) * size_t(fine.width) * c;
+          for (int i = 0; i < fx.count; ++i) {
+            const float w = fy.weight[j] * fx.weight[i];
+            const float* in = row + size_t(fx.first + i) * c;
+            for (size_t k = 0; k < c; ++k) out[k] += w * in[k];
+          }
+        }
+      }
+    }
+    levels_.push_back(std::move(coarse));
+  }
+}
+
+double MipPyramid::bytesFor(int width, int height, int channels) {
+  double texels = double(width) * double(height);
+  for (int w = width, h = height; w > 1 || h > 1;) {
+    w = halved(w);
+    h = halved(h);
+    texels += double(w) * double(h);
+  }
+  return texels * channels * double(sizeof(float));
+}
+
+template <int kCount>
+void MipPyramid::bilinear(const Level& level, float s, float t, const ImageFootprint& at, int first,
+                          float weight, float* sum) const {
+  const float x = reduced(s, at.wrapS) * float(level.width) - 0.5f;
+  const float y = reduced(t, at.wrapT) * float(level.height) - 0.5f;
+  const float xFloor = std::floor(x), yFloor = std::floor(y);
+  const float fx = x - xFloor, fy = y - yFloor;
+  const int x0 = int(xFloor), y0 = int(yFloor);
+  const size_t c = size_t(channels_);
+  const size_t xa = size_t(wrapped(x0, level.width, at.wrapS)) * c + size_t(first);
+  const size_t xb = size_t(wrapped(x0 + 1, level.width, at.wrapS)) * c + size_t(first);
+  const size_t rowSize = size_t(level.width) * c;
+  const float* row0 = level.texels.data() + size_t(wrapped(y0, level.height, at.wrapT)) * rowSize;
+  const float* row1 =
+      level.texels.data() + size_t(wrapped(y0 + 1, level.height, at.wrapT)) * rowSize;
+  const float w00 = weight * (1 - fx) * (1 - fy), w10 = weight * fx * (1 - fy);
+  const float w01 = weight * (1 - fx) * fy, w11 = weight * fx * fy;
+  for (int k = 0; k < kCount; ++k)
+    sum[k] += w00 * row0[xa + size_t(k)] + w10 * row0[xb + size_t(k)] + w01 * row1[xa + size_t(k)] +
+              w11 * row1[xb + size_t(k)];
+}
+
+template <int kCount>
+void MipPyramid::filterChannels(const ImageFootprint& at, int first, float* out) const {
+  float sum[kCount] = {};
+  const float s = at.st.x, t = at.st.y;
+  if (!std::isfinite(s) || !std::isfinite(t)) {
+    for (int k = 0; k < kCount; ++k) out[k] = 0;
+    return;
+  }
+  const float width = float(levels_[0].width), height = float(levels_[0].height);
+  // The footprint's axes in finest-level texels and the ellipse they span: its major and minor
+  // diameters are the square roots of the eigenvalues of A·Aᵀ + B·Bᵀ (the minor one from the
+  // determinant, which does not cancel for a thin ellipse).
+  const float ax = at.axisA.x * width, ay = at.axisA.y * height;
+  const float bx = at.axisB.x * width, by = at.axisB.y * height;
+  const float sxx = ax * ax + bx * bx, sxy = ax * ay + bx * by, syy = ay * ay + by * by;
+  const float half = 0.5f * (sxx - syy);
+  const float major2 = 0.5f * (sxx + syy) + std::sqrt(half * half + sxy * sxy);
+  const float major = std::sqrt(major2);
+  // At most a texel (or no footprint: a cut-out's outline, or a NaN one): the finest level.
+  if (!(major > 1)) {
+    bilinear<kCount>(levels_[0], s, t, at, first, 1, sum);
+    for (int k = 0; k < kCount; ++k) out[k] = sum[k];
+    return;
+  }
+  const int last = int(levels_.size()) - 1;
+  if (!(major <= std::numeric_limits<float>::max())) {
+    bilinear<kCount>(levels_[size_t(last)], s, t, at, first, 1, sum);
+    for (int k = 0; k < kCount; ++k) out[k] = sum[k];
+    return;
+  }
+  const float minor =
+      std::max(std::fabs(ax * by - ay * bx) / major, major * (1.0f / kMaxAnisotropy));
+  // The level whose texels are as wide as the minor axis (log2 of it): the major axis is
+  // covered by points a minor axis apart rather than by blurring along both.
+  const float lod = std::log2(std::max(minor, 1.0f));
+  int level = std::min(int(lod), last);
+  const float upper = level < last ? lod - float(level) : 0;
+  const int points =
+      std::clamp(int(std::ceil(major / std::max(minor, 1.0f) - 1e-3f)), 1, kMaxAnisotropy);
+  // The major axis's direction: an eigenvector of the larger eigenvalue, from the better
+  // conditioned of the matrix's two rows.
+  float dx = 1, dy = 0;
+  if (points > 1) {
+    if (sxx >= syy) {
+      dx = major2 - syy;
+      dy = sxy;
+    } else {
+      dx = sxy;
+      dy = major2 - sxx;
+    }
+    const float norm = std::sqrt(dx * dx + dy * dy);
+    if (norm > 0) {
+      dx /= norm;
+      dy /= norm;
+    } else {
+      dx = 1;
+      dy = 0;
+    }
+  }
+  // The points at the middles of `points` equal parts of the major diameter, in (s, t).
+  const float stepS = dx * major / float(points) / width,
+              stepT = dy * major / float(points) / height;
+  const float start = -0.5f * float(points - 1);
+  const float share = 1.0f / float(points);
+  for (int i = 0; i < points; ++i) {
+    const float ps = s + (start + float(i)) * stepS, pt = t + (start + float(i)) * stepT;
+    bilinear<kCount>(levels_[size_t(level)], ps, pt, at, first, share * (1 - upper), sum);
+    if (upper > 0)
+      bilinear<kCount>(levels_[size_t(level + 1)], ps, pt, at, first, share * upper, sum);
+  }
+  for (int k = 0; k < kCount; ++k) out[k] = sum[k];
+}
+
+void MipPyramid::filter(const ImageFootprint& at, int first, int count, float* out) const {
+  switch (count) {
+    case 1:
+      return filterChannels<1>(at, first, out);
+    case 2:
+      return filterChannels<2>(at, first, out);
+    case 3:
+      return filterChannels<3>(at, first, out);
+    default:
+      return filterChannels<4>(at, first, out);
+  }
+}
+
+}  // namespace glint
