@@ -46,22 +46,57 @@ float checkerPattern(const Vec3d& p) {
   return ((cell(p.x) + cell(p.y) + cell(p.z)) & 1) ? 1.0f : 0.0f;
 }
 
+namespace {
+
+// The hashes of a lattice cell's eight corners, hashKey(ix + dx, iy + dy, iz + dz) at
+// dx + 2·dy + 4·dz.
+struct CellHashes {
+  long long ix, iy, iz;
+  bool filled;
+  uint64_t corner[8];
+};
+
+void hashCorners(long long ix, long long iy, long long iz, uint64_t* corner) {
+  // The first two stages shared between the corners that agree on them.
+  for (int dx = 0; dx < 2; ++dx) {
+    const uint64_t hx = hashKey(uint64_t(ix + dx));
+    for (int dy = 0; dy < 2; ++dy) {
+      const uint64_t hxy = hashCombine(hx, uint64_t(iy + dy));
+      for (int dz = 0; dz < 2; ++dz)
+        corner[dx + 2 * dy + 4 * dz] = hashCombine(hxy, uint64_t(iz + dz));
+    }
+  }
+}
+
+// Hashing is most of the noise's work, and neighbouring shading points mostly fall in the cells
+// of their neighbours at every octave but the finest: each thread remembers recent cells' hashes
+// (a pure function's results, so the noise is the same whatever the cache holds).
+const uint64_t* cornerHashes(long long ix, long long iy, long long iz) {
+  constexpr size_t kCells = 64;
+  thread_local CellHashes cells[kCells];
+  const size_t slot = size_t((uint64_t(ix) * 0x9E3779B1u) ^ (uint64_t(iy) * 0x85EBCA77u) ^
+                             (uint64_t(iz) * 0xC2B2AE3Du)) %
+                      kCells;
+  CellHashes& c = cells[slot];
+  if (!c.filled || c.ix != ix || c.iy != iy || c.iz != iz) {
+    hashCorners(ix, iy, iz, c.corner);
+    c.ix = ix;
+    c.iy = iy;
+    c.iz = iz;
+    c.filled = true;
+  }
+  return c.corner;
+}
+
+}  // namespace
+
 float perlinNoise(const Vec3d& p) {
   const long long ix = floorToInteger(p.x), iy = floorToInteger(p.y), iz = floorToInteger(p.z);
   const double x = p.x - double(ix), y = p.y - double(iy), z = p.z - double(iz);
   const double u = fade(x), v = fade(y), w = fade(z);
-  // hashKey(ix + dx, iy + dy, iz + dz) for the cell's eight corners, its first two stages shared
-  // between the corners that agree on them (hashing is most of the noise's work).
-  uint64_t hx[2], hxy[2][2], h[2][2][2];
-  for (int dx = 0; dx < 2; ++dx) {
-    hx[dx] = hashKey(uint64_t(ix + dx));
-    for (int dy = 0; dy < 2; ++dy) {
-      hxy[dx][dy] = hashCombine(hx[dx], uint64_t(iy + dy));
-      for (int dz = 0; dz < 2; ++dz) h[dx][dy][dz] = hashCombine(hxy[dx][dy], uint64_t(iz + dz));
-    }
-  }
+  const uint64_t* h = cornerHashes(ix, iy, iz);
   const auto g = [&](int dx, int dy, int dz) {
-    return gradientDot(h[dx][dy][dz], x - dx, y - dy, z - dz);
+    return gradientDot(h[dx + 2 * dy + 4 * dz], x - dx, y - dy, z - dz);
   };
   const double n =
       lerp(w, lerp(v, lerp(u, g(0, 0, 0), g(1, 0, 0)), lerp(u, g(0, 1, 0), g(1, 1, 0))),
