@@ -1,5 +1,5 @@
 // Image textures end to end (issue 23): texture coordinates and maps from real files, read by
-// OpenImageIO's TextureSystem and linearised by OCIO, filtered over the pixel's footprint
+// OpenImageIO into a MIP pyramid and linearised by OCIO, filtered over the pixel's footprint
 // through mirrors as directly.
 #include <gtest/gtest.h>
 
@@ -61,7 +61,8 @@ TEST(Textures, MapKdOnUvsReproducesTheTexturesLinearisedTexels) {
     "objects": [{"type": "mesh", "file": "textured_quad.obj"}]})",
                            "textured_quad.json");
   // Each quadrant's middle pixel: a pixel is half a texel, so the filter reads texels of the
-  // quadrant only (a bicubic's four texels around (2.25, 2.25) are all inside it), and gives
+  // quadrant only (bilinear, magnified: the texels 1 and 2 on each axis around 1.75 texel
+  // centres into quadrant 0, and likewise in the others, are all inside it), and gives
   // the texel's linearised value up to float rounding of the filter weights (1e-5).
   const int middles[4][2] = {{4, 4}, {11, 4}, {4, 11}, {11, 11}};
   for (int q = 0; q < 4; ++q) {
