@@ -97,14 +97,17 @@ TEST(MipPyramid, AnyFootprintOfALinearRampGivesTheRampAtItsCentre) {
 }
 
 TEST(MipPyramid, TheFilterStaysWithinItsTaylorBoundOfTheImage) {
-  // A smooth image f = sin(2πx/P)·sin(2πy/Q) (texels): a filter whose weights sum to 1 and whose
-  // first moment is 0 (symmetric about the lookup) differs from f at its centre by at most
-  // ½·‖∇²f‖·E|d|², the mean squared distance of its weights from the centre. With this
-  // pyramid's filter that distance is at most the major half-diameter plus the reach of the
-  // two levels read (a bilinear texel of level L+1 and the box filters that made it: 2·2^(L+1)
-  // finest texels), so E|d|² ≤ (major/2 + 2^(L+2))². ‖∇²f‖ ≤ (2π/P)² + (2π/Q)² (the Hessian's
-  // spectral norm is at most its Frobenius norm, which is that). The periods divide the image's
-  // size, so repeating it is seamless.
+  // A smooth image f = sin(2πx/P)·sin(2πy/Q) (texels). A filter is a weighted sum of texels whose
+  // weights sum to 1 and whose mean position is the lookup's centre (box averages, bilinear
+  // weights and points spread symmetrically all keep it there), so by Taylor's theorem it
+  // differs from f at the centre by at most ½·‖∇²f‖·E|d|², E|d|² the weights' second moment
+  // about the centre. ‖∇²f‖ ≤ (2π/P)² + (2π/Q)² (the Hessian's Frobenius norm). E|d|² adds
+  // up: the points' spread along the major diameter D, at most D²/12; a bilinear tap's, at
+  // most T²/4 per axis for texels T finest texels wide; a box of T, T²/12 per axis. Bilinear
+  // at the finest level alone (D ≤ 1): 2·¼; else level L and L + 1 (T up to 2^(L+1)):
+  // D²/12 + 2·(1/4 + 1/12)·4^(L+1). The periods divide the image's size, so repeating it
+  // is seamless. The filter reaches 0.4 of this bound here; read half a texel off centre it
+  // reached 6.5 times it, over footprints twice as wide 1.6 times it.
   const int n = 512;
   const double P = 128, Q = 64;
   const auto f = [&](double x, double y) {
@@ -123,8 +126,10 @@ TEST(MipPyramid, TheFilterStaysWithinItsTaylorBoundOfTheImage) {
         const double major = scale * stretch;
         const double minor = std::max(double(scale), major / MipPyramid::kMaxAnisotropy);
         const double level = minor > 1 ? std::floor(std::log2(minor)) : 0;
-        const double reach = major / 2 + std::pow(2.0, level + 2);
-        const double bound = 0.5 * hessian * reach * reach;
+        const double moment =
+            major <= 1 ? 0.5
+                       : major * major / 12 + 2 * (1.0 / 4 + 1.0 / 12) * std::pow(4.0, level + 1);
+        const double bound = 0.5 * hessian * moment;
         const double error = std::fabs(lookUp(p, st, a, b) - f(st.x * n, st.y * n));
         EXPECT_LE(error, bound + 1e-5) << scale << " " << stretch << " " << angle;
         ++checked;
