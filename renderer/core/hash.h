@@ -19,9 +19,12 @@ template <class U64>
 constexpr uint64_t mix64(uint64_t z) { return mix64Lanes(z); }
 
 // hashCombine's terms that depend only on the seed: hoisted where one seed hashes many values.
-constexpr uint64_t hashCombineOffset(uint64_t seed) {
+// In lanes too, as mix64Lanes (the sampler's lanes may each have a seed of their own).
+template <class U64>
+[[gnu::always_inline]] constexpr U64 hashCombineOffsetLanes(U64 seed) {
   return 0x9e3779b97f4a7c15ULL + (seed << 6) + (seed >> 2);
 }
+constexpr uint64_t hashCombineOffset(uint64_t seed) { return hashCombineOffsetLanes(seed); }
 
 constexpr uint64_t hashCombine(uint64_t seed, uint64_t v) {
   return mix64(seed ^ (v + hashCombineOffset(seed)));

@@ -29,9 +29,10 @@ struct PermutationDomain {
   uint32_t mask;
 };
 
-// One round of permute()'s hash; `w` masks it to the domain's bit width.
-template <class U>
-[[gnu::always_inline]] inline U permuteRound(U i, uint32_t w, uint32_t key) {
+// One round of permute()'s hash; `w` masks it to the domain's bit width. K: one key for every
+// lane (uint32_t), or a key per lane (U).
+template <class U, class K>
+[[gnu::always_inline]] inline U permuteRound(U i, uint32_t w, K key) {
   i ^= key;
   i *= 0xe170893du;
   i ^= key >> 16;
@@ -58,8 +59,8 @@ template <class U>
 // the value falls inside the domain (cycle walking); in lanes, only in the lanes still outside
 // it. For len = 2^b a round never leaves the domain (its last steps mask i to w and shift bits
 // down), so there is one round.
-template <class U>
-[[gnu::always_inline]] inline U permute(U i, const PermutationDomain& domain, uint32_t key) {
+template <class U, class K>
+[[gnu::always_inline]] inline U permute(U i, const PermutationDomain& domain, K key) {
   const uint32_t len = domain.size.divisor();
   i = permuteRound(i, domain.mask, key);
   for (U outside = laneMask<U>(i >= len); anyLane(outside); outside = laneMask<U>(i >= len))
@@ -103,30 +104,50 @@ struct JitterGrid {
   double count, inverseCount;
 };
 
+// What a point's draw reads of its pattern: one pattern's, the same in every lane (K = uint32_t,
+// K64 = uint64_t), or each lane's own (K = U32x8, K64 = U64x8: a block of points drawn from
+// several pixels' sets of one size).
+template <class K, class K64>
+struct PatternLanes {
+  K scramble[3];
+  K64 hash;
+};
+PatternLanes<uint32_t, uint64_t> lanesOf(const SamplePattern& p) {
+  return {{p.scramble[0], p.scramble[1], p.scramble[2]}, p.hash};
+}
+// Lane l from *patterns[l].
+[[gnu::always_inline]] inline PatternLanes<U32x8, U64x8> lanesOf(
+    const SamplePattern* const* patterns) {
+  PatternLanes<U32x8, U64x8> p;
+  for (int l = 0; l < 8; ++l) {
+    for (int c = 0; c < 3; ++c) p.scramble[c][l] = patterns[l]->scramble[c];
+    p.hash[l] = patterns[l]->hash;
+  }
+  return p;
+}
+
 // One correlated multi-jittered set: a pixel's dimension, drawn on the grid of its n points.
 // Each point is placed in its cell so that both 1D projections are stratified too (n-rooks).
 class StratifiedSet {
  public:
-  StratifiedSet(uint32_t n, const SamplePattern& pattern)
-      : grid_(n),
-        allKey_(pattern.scramble[0] * 0x51633e2du),
-        columnKey_(pattern.scramble[0] * 0xa511e9b3u),
-        rowKey_(pattern.scramble[0] * 0x63d83595u),
-        hash_(pattern.hash),
-        hashOffset_(hashCombineOffset(pattern.hash)) {}
+  explicit StratifiedSet(uint32_t n) : grid_(n) {}
 
-  // The points at the set's indices `index` (lanes), the first `size` lanes into out.
-  template <class U>
-  [[gnu::always_inline]] void draw(U index, int size, Vec2f* out) const {
+  // The points at the set's indices `index` (lanes) of the pattern(s) `p`, the first `size`
+  // lanes into out.
+  template <class U, class K, class K64>
+  [[gnu::always_inline]] void draw(U index, const PatternLanes<K, K64>& p, int size,
+                                   Vec2f* out) const {
     using L = Lanes<U>;
+    const K allKey = p.scramble[0] * 0x51633e2du, columnKey = p.scramble[0] * 0xa511e9b3u,
+            rowKey = p.scramble[0] * 0x63d83595u;
     const uint32_t m = grid_.columns.size.divisor(), k = grid_.rows.size.divisor();
-    const U s = permute(index, grid_.all, allKey_);
+    const U s = permute(index, grid_.all, allKey);
     const U row = grid_.columns.size.quotient(s), column = s - row * m;
-    const U sx = permute(column, grid_.columns, columnKey_);
-    const U sy = permute(row, grid_.rows, rowKey_);
+    const U sx = permute(column, grid_.columns, columnKey);
+    const U sy = permute(row, grid_.rows, rowKey);
     // Both jitters from one hash: hashCombine(hash, s), as unitPair takes them.
     const typename L::U64 bits =
-        mix64Lanes(hash_ ^ (convertLanes<typename L::U64>(s) + hashOffset_));
+        mix64Lanes(p.hash ^ (convertLanes<typename L::U64>(s) + hashCombineOffsetLanes(p.hash)));
     // The point sits in cell (column, row) of the coarse grid and, inside it, in sub-cell
     // (sy, sx) of the fine n × n grid: stratum column·k + sy of n along x, row·m + sx along y.
     const double count = grid_.count, inverseCount = grid_.inverseCount;
@@ -162,8 +183,6 @@ class StratifiedSet {
   }
 
   JitterGrid grid_;
-  uint32_t allKey_, columnKey_, rowKey_;  // the keys of the three permutations
-  uint64_t hash_, hashOffset_;            // hashOffset_: hashCombineOffset(hash_)
 };
 
 template <class U>
@@ -179,8 +198,8 @@ template <class U>
 // Burley, "Practical Hash-based Owen Scrambling" (JCGT 2020): a Laine–Karras style hash that
 // only lets higher bits depend on lower ones, applied to the bit-reversed value, is a nested
 // uniform (Owen) scramble: it randomises the points and keeps every elementary interval full.
-template <class U>
-[[gnu::always_inline]] inline U nestedUniformScramble(U x, uint32_t seed) {
+template <class U, class K>
+[[gnu::always_inline]] inline U nestedUniformScramble(U x, K seed) {
   x = reverseBits(x);
   x += seed;
   x ^= x * 0x6c50b47cu;
@@ -210,52 +229,100 @@ template <class U>
 // Owen-scrambled Sobol points at the set's indices `index` (lanes), the first `size` into out.
 // The index is Owen-scrambled too, which shuffles the order of the sequence per pattern while
 // every power-of-two prefix stays a (0,m,2)-net.
-template <class U>
-[[gnu::always_inline]] inline void sobol2D(const SamplePattern& pattern, U index, int size,
+template <class U, class K, class K64>
+[[gnu::always_inline]] inline void sobol2D(const PatternLanes<K, K64>& p, U index, int size,
                                            Vec2f* out) {
-  const U i = nestedUniformScramble(index, pattern.scramble[0]);
-  const U x = nestedUniformScramble(reverseBits(i), pattern.scramble[1]);
-  const U y = nestedUniformScramble(sobolDimension1(i), pattern.scramble[2]);
+  const U i = nestedUniformScramble(index, p.scramble[0]);
+  const U x = nestedUniformScramble(reverseBits(i), p.scramble[1]);
+  const U y = nestedUniformScramble(sobolDimension1(i), p.scramble[2]);
   storePoints<U>(bitsToUnit(x), bitsToUnit(y), size, out);
 }
 
-// Points [first, first + size) of a set, drawn by draw(index lanes, lanes used, out): one at a
-// time below kLanesFrom points, else eight side by side. A block of lanes is a long chain of
+// Where a run's points sit: at one pattern's flat indices first, first + 1, ...
+class RangeRun {
+ public:
+  RangeRun(const SamplePattern& pattern, uint32_t first)
+      : lanes_(lanesOf(pattern)), first_(first) {}
+  uint32_t index(int j) const { return first_ + static_cast<uint32_t>(j); }
+  U32x8 indexBlock(int j) const { return index(j) + U32x8{0, 1, 2, 3, 4, 5, 6, 7}; }
+  const PatternLanes<uint32_t, uint64_t>& patternAt(int) const { return lanes_; }
+  const PatternLanes<uint32_t, uint64_t>& patternBlock(int, int) const { return lanes_; }
+
+ private:
+  PatternLanes<uint32_t, uint64_t> lanes_;
+  uint32_t first_;
+};
+// ... or at flat index flat[j] of *patterns[j], the patterns' sets all of one size.
+class ListRun {
+ public:
+  ListRun(const SamplePattern* const* patterns, const uint32_t* flat)
+      : patterns_(patterns), flat_(flat) {}
+  uint32_t index(int j) const { return flat_[j]; }
+  U32x8 indexBlock(int j) const {
+    U32x8 index;
+    std::memcpy(&index, flat_ + j, sizeof index);
+    return index;
+  }
+  PatternLanes<uint32_t, uint64_t> patternAt(int j) const { return lanesOf(*patterns_[j]); }
+  // Lanes j .. j + 7, those at or past `size` repeating point size − 1.
+  PatternLanes<U32x8, U64x8> patternBlock(int j, int size) const {
+    if (j + 8 <= size) return lanesOf(patterns_ + j);
+    const SamplePattern* tail[8];
+    for (int l = 0; l < 8; ++l) tail[l] = patterns_[std::min(j + l, size - 1)];
+    return lanesOf(tail);
+  }
+
+ private:
+  const SamplePattern* const* patterns_;
+  const uint32_t* flat_;
+};
+
+// Points [0, size) of a run, drawn by draw(index lanes, pattern lanes, lanes used, out): one at
+// a time below kLanesFrom points, else eight side by side. A block of lanes is a long chain of
 // dependent vector multiplies, worth it only for a few points or more.
 constexpr int kLanesFrom = 3;
-template <class Draw>
-[[gnu::always_inline]] inline void drawRun(uint32_t first, int size, Vec2f* out, const Draw& draw) {
+template <class Run, class Draw>
+[[gnu::always_inline]] inline void drawRun(const Run& run, int size, Vec2f* out, const Draw& draw) {
   if (size < kLanesFrom) {
-    for (int j = 0; j < size; ++j) draw(first + static_cast<uint32_t>(j), 1, out + j);
+    for (int j = 0; j < size; ++j) draw(run.index(j), run.patternAt(j), 1, out + j);
     return;
   }
-  const U32x8 lane{0, 1, 2, 3, 4, 5, 6, 7};
-  for (; size >= 8; first += 8, out += 8, size -= 8) draw(first + lane, 8, out);
-  if (size == 0) return;
-  // The last block's unused lanes repeat its last index: an index outside the set could start
+  int j = 0;
+  for (; j + 8 <= size; j += 8) draw(run.indexBlock(j), run.patternBlock(j, size), 8, out + j);
+  if (j == size) return;
+  // The last block's unused lanes repeat its last point: an index outside the set could start
   // a permutation's cycle walk on a cycle that never enters the domain.
   U32x8 index;
-  for (int l = 0; l < 8; ++l) index[l] = first + static_cast<uint32_t>(std::min(l, size - 1));
-  draw(index, size, out);
+  for (int l = 0; l < 8; ++l) index[l] = run.index(std::min(j + l, size - 1));
+  draw(index, run.patternBlock(j, size), size - j, out + j);
 }
 
-// Points [first, first + size) of a Sobol or stratified set of n points, in lanes. Built for
-// baseline x86-64 and for AVX2, chosen when the program loads by what the CPU has: AVX2 holds
-// a block's 64-bit and double lanes in registers, which SSE2 splits and passes through memory
-// (soft_shadows renders in 0.72× the time).
-[[gnu::target_clones("avx2", "default")]] void drawSetRun(SamplerKind kind,
-                                                          const SamplePattern& pattern, uint32_t n,
-                                                          uint32_t first, int size, Vec2f* out) {
+template <class Run>
+[[gnu::always_inline]] inline void drawSet(SamplerKind kind, uint32_t n, const Run& run, int size,
+                                           Vec2f* out) {
   if (kind == SamplerKind::Sobol)
     return drawRun(
-        first, size, out, [&](auto i, int lanes, Vec2f* o) __attribute__((always_inline)) {
-          sobol2D(pattern, i, lanes, o);
+        run, size,
+        out, [&](auto i, const auto& p, int lanes, Vec2f* o) __attribute__((always_inline)) {
+          sobol2D(p, i, lanes, o);
         });
-  const StratifiedSet set(n, pattern);
+  const StratifiedSet set(n);
   drawRun(
-      first, size, out, [&](auto i, int lanes, Vec2f* o) __attribute__((always_inline)) {
-        set.draw(i, lanes, o);
+      run, size,
+      out, [&](auto i, const auto& p, int lanes, Vec2f* o) __attribute__((always_inline)) {
+        set.draw(i, p, lanes, o);
       });
+}
+
+// Points of Sobol or stratified sets of n points, in lanes: [first, first + size) of `pattern`
+// where it is given, else flat[j] of *patterns[j]. Built for baseline x86-64 and for AVX2,
+// chosen when the program loads by what the CPU has: AVX2 holds a block's 64-bit and double
+// lanes in registers, which SSE2 splits and passes through memory.
+[[gnu::target_clones("avx2", "default")]] void drawSetRun(
+    SamplerKind kind, uint32_t n, const SamplePattern* pattern, uint32_t first,
+    const SamplePattern* const* patterns, const uint32_t* flat, int size, Vec2f* out) {
+  if (pattern) return drawSet(kind, n, RangeRun(*pattern, first), size, out);
+  drawSet(kind, n, ListRun(patterns, flat), size, out);
 }
 
 uint32_t key32(uint64_t h) { return static_cast<uint32_t>(h ^ (h >> 32)); }
@@ -342,9 +409,43 @@ void Sampler::get2D(const SamplePattern& pattern, int index, int firstSub, int s
     case SamplerKind::Sobol:
     case SamplerKind::Stratified:
     case SamplerKind::Regular:  // beyond the pixel dimension: stratified
-      return drawSetRun(kind_, pattern, pattern.samples * static_cast<uint32_t>(count), first, size,
-                        out);
+      return drawSetRun(kind_, pattern.samples * static_cast<uint32_t>(count), &pattern, first,
+                        nullptr, nullptr, size, out);
   }
+}
+
+void Sampler::get2DAt(const SamplePattern* const* patterns, int count, const uint32_t* flat,
+                      int size, Vec2f* out) const {
+  const auto c = static_cast<uint32_t>(count);
+  for (int j = 0; j < size;) {
+    // A run of points whose sets are of one size, drawn side by side.
+    const uint32_t samples = patterns[j]->samples;
+    int end = j + 1;
+    if (kind_ == SamplerKind::Sobol || kind_ == SamplerKind::Stratified ||
+        (kind_ == SamplerKind::Regular && !patterns[j]->cellCentres))
+      while (end < size && patterns[end]->samples == samples && !patterns[end]->cellCentres) ++end;
+    if (end - j == 1) {
+      get2D(*patterns[j], static_cast<int>(flat[j] / c), static_cast<int>(flat[j] % c), 1, count,
+            out + j);
+    } else {
+      drawSetRun(kind_, samples * c, nullptr, 0, patterns + j, flat + j, end - j, out + j);
+    }
+    j = end;
+  }
+}
+
+void SubSampleStream::refill() {
+  const SamplePattern* patterns[kWindow];
+  uint32_t flat[kWindow];
+  int m = 0;
+  for (; m < kWindow && sample_ < n_; ++m) {
+    patterns[m] = &patterns_[sample_];
+    flat[m] = static_cast<uint32_t>(indices_[sample_] * count_ + sub_);
+    if (++sub_ == count_) sub_ = 0, ++sample_;
+  }
+  sampler_.get2DAt(patterns, count_, flat, m, window_);
+  drawn_ = m;
+  used_ = 0;
 }
 
 }  // namespace glint

@@ -83,11 +83,45 @@ class Sampler {
   // across sub-samples into the next samples' (a run of a pixel's samples with count 1).
   void get2D(const SamplePattern& pattern, int index, int firstSub, int size, int count,
              Vec2f* out) const;
+  // out[j] = get2D(*patterns[j], index, sub, count) for j in [0, size), where flat[j] = index·
+  // count + sub: the same values, drawn side by side wherever the points lie and whichever
+  // pixels' sets they come from (a light's samples at the points a chunk lights).
+  void get2DAt(const SamplePattern* const* patterns, int count, const uint32_t* flat, int size,
+               Vec2f* out) const;
 
  private:
   SamplerKind kind_;
   int spp_;
   uint64_t seed_;
+};
+
+// Sub-samples [0, count) of each of n camera samples, sample k at index indices[k] of set
+// *patterns[k], in that order (every sub-sample of the first sample, then of the next), drawn a
+// window ahead with Sampler::get2DAt: one sample's few sub-samples (a light's shadow samples)
+// fill a part of a block of lanes, several samples' fill it.
+class SubSampleStream {
+ public:
+  static constexpr int kWindow = 64;
+  SubSampleStream(const Sampler& sampler, int count, const SamplePattern* patterns,
+                  const int* indices, int n)
+      : sampler_(sampler), count_(count), patterns_(patterns), indices_(indices), n_(n) {}
+
+  Vec2f next() {
+    if (used_ == drawn_) refill();
+    return window_[used_++];
+  }
+
+ private:
+  void refill();
+
+  const Sampler& sampler_;
+  int count_;
+  const SamplePattern* patterns_;
+  const int* indices_;
+  int n_;
+  int sample_ = 0, sub_ = 0;  // the next to draw: sub-sample sub_ of sample sample_
+  int drawn_ = 0, used_ = 0;
+  Vec2f window_[kWindow];
 };
 
 // Which camera sample is being traced: keys every random number drawn along its paths.

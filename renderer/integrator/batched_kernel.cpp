@@ -230,13 +230,27 @@ void BatchedKernel::queueShadowRays(Scratch& scratch, size_t li, Generation::Sum
     return;
   }
   const int count = lights_[li].samples;
+  // Every point's samples of the light drawn a window ahead, several points' side by side.
+  SamplePattern patterns[kChunk];
+  int indices[kChunk];
   for (int k = 0; k < scratch.pendingCount; ++k) {
-    const auto& p = scratch.pending[k];
-    const SamplePattern pattern = lightPattern(p.pt, li);
+    const Branch& b = *scratch.pending[k].pt.branch;
+    indices[k] = b.key->index;
+    // Consecutive samples of a pixel's half, pending side by side, share its set.
+    const Branch* before = k > 0 ? scratch.pending[k - 1].pt.branch : nullptr;
+    if (before && before->depth == b.depth && before->key->pixelKey == b.key->pixelKey &&
+        before->key->half == b.key->half)
+      patterns[k] = patterns[k - 1];
+    else
+      patterns[k] = lightPattern(scratch.pending[k].pt, li);
+  }
+  SubSampleStream draws(*scratch.pending[0].pt.branch->key->sampler, count, patterns, indices,
+                        scratch.pendingCount);
+  for (int k = 0; k < scratch.pendingCount; ++k) {
     for (int first = 0; first < count;) {
       if (queue.full()) flushShadows(scratch, sums, aovs, counters);
       const int size = std::min(count - first, queue.kCapacity - queue.size);
-      queueLight(p.pt, li, pattern, first, size, count, queue);
+      queueLight(scratch.pending[k].pt, li, draws, size, queue);
       queue.addRun(k, light, first > 0, first + size == count);
       first += size;
     }
@@ -290,17 +304,9 @@ SamplePattern BatchedKernel::lightPattern(const LitPoint& pt, size_t li) const {
   return pt.branch->key->pattern(dimension(Dim::Light, pt.branch->depth, static_cast<int>(li)));
 }
 
-void BatchedKernel::queueLight(const LitPoint& pt, size_t li, const SamplePattern& pattern,
-                               int first, int size, int count, ShadowQueue& queue) const {
-  // Sample points are drawn a batch ahead of their shadow rays: drawing one is a long chain of
-  // dependent integer operations (sampler.cpp), and a batch's chains run side by side.
-  constexpr int kBatch = 8;
-  Vec2f batch[kBatch];
-  for (int begin = first; begin < first + size; begin += kBatch) {
-    const int n = std::min(kBatch, first + size - begin);
-    pt.branch->key->get2D(pattern, begin, n, count, batch);
-    for (int j = 0; j < n; ++j) queueSample(pt, li, batch[j], queue);
-  }
+void BatchedKernel::queueLight(const LitPoint& pt, size_t li, SubSampleStream& draws, int size,
+                               ShadowQueue& queue) const {
+  for (int j = 0; j < size; ++j) queueSample(pt, li, draws.next(), queue);
 }
 
 void BatchedKernel::traceShadows(ShadowQueue& queue, RayCounters& counters) const {

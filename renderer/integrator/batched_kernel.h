@@ -205,10 +205,9 @@ class BatchedKernel {
     queue.atInfinity[q] = ls.atInfinity;
     if (transparentShadows()) queue.media[q] = &pt.branch->media;
   }
-  // Queues samples [first, first + size) of area light `li`'s `count` for the point (pattern:
-  // the light's sample set).
-  void queueLight(const LitPoint& pt, size_t li, const SamplePattern& pattern, int first, int size,
-                  int count, ShadowQueue& queue) const;
+  // Queues the point's next `size` samples of area light `li`, drawn from `draws`.
+  void queueLight(const LitPoint& pt, size_t li, SubSampleStream& draws, int size,
+                  ShadowQueue& queue) const;
   // The direct light of the points pending in the scratch, added to their ray's local:
   // queueShadowRays, traceShadows, addDirectLight. Empties the pending list and the queue.
   void lightPendingPoints(Scratch& scratch, typename Generation::Sum* sums, AovSample* const* aovs,

@@ -203,6 +203,68 @@ TEST(Sampler, SubSampleRunsContinueIntoTheNextSample) {
   }
 }
 
+TEST(Sampler, PointsOfSeveralPixelsSetsDrawnTogetherMatchOnePointAtATime) {
+  // get2DAt draws blocks of eight lanes whose points come from different pixels' sets, each
+  // lane with its own keys (sampler.cpp); each point must be what it is drawn alone, for every
+  // kind, for sets of many sizes (both halves of an odd spp differ in size, which splits the
+  // lanes into runs), for points anywhere in their sets, in runs ending mid-block (the lanes'
+  // tail repeats the last point) and of every length up to a few blocks.
+  for (const SamplerKind kind :
+       {SamplerKind::Regular, SamplerKind::Random, SamplerKind::Stratified, SamplerKind::Sobol})
+    for (const int spp : {1, 2, 3, 4, 7, 16, 33, 64, 1000, 4097}) {
+      const Sampler s(kind, spp, 11);
+      for (const int count : {1, 3, 4, 8}) {
+        constexpr int kMost = 29;
+        SamplePattern patterns[kMost];
+        const SamplePattern* of[kMost];
+        uint32_t flat[kMost];
+        for (int j = 0; j < kMost; ++j) {
+          // Pixels change every few points, halves (and so set sizes) every third; the camera
+          // dimension too, where a regular sampler's cell centres are drawn one at a time.
+          const uint64_t spread = hashKey(uint64_t(spp), uint64_t(count), uint64_t(j));
+          const int half = spp == 1 ? 0 : (j / 3) % 2;
+          const uint32_t dim = j % 11 == 10 ? dimension(Dim::Pixel) : dimension(Dim::Light, 1, 2);
+          patterns[j] = s.pattern(s.pixelKey(j / 4, 3), dim, half);
+          of[j] = &patterns[j];
+          flat[j] = static_cast<uint32_t>(spread % (uint64_t(patterns[j].samples) * count));
+        }
+        for (int size = 0; size <= kMost; ++size) {
+          Vec2f together[kMost];
+          s.get2DAt(of, count, flat, size, together);
+          for (int j = 0; j < size; ++j) {
+            const Vec2f alone = s.get2D(patterns[j], static_cast<int>(flat[j]) / count,
+                                        static_cast<int>(flat[j]) % count, count);
+            ASSERT_EQ(alone.x, together[j].x)
+                << samplerName(kind) << " spp " << spp << " count " << count << " point " << j;
+            ASSERT_EQ(alone.y, together[j].y)
+                << samplerName(kind) << " spp " << spp << " count " << count << " point " << j;
+          }
+        }
+      }
+    }
+}
+
+TEST(Sampler, SubSampleStreamGoesSampleBySampleThroughEverySubSample) {
+  // The stream gives each sample's sub-samples in order, then the next sample's, whatever
+  // windows it draws them in: 30 samples of 5 sub-samples cross its window of 64 twice.
+  const Sampler s(SamplerKind::Stratified, 8, 2);
+  constexpr int kSamples = 30, kCount = 5;
+  SamplePattern patterns[kSamples];
+  int indices[kSamples];
+  for (int k = 0; k < kSamples; ++k) {
+    patterns[k] = s.pattern(s.pixelKey(k / 7, 1), dimension(Dim::Light, 0, 1), k % 2);
+    indices[k] = (k * 3) % 4;
+  }
+  SubSampleStream stream(s, kCount, patterns, indices, kSamples);
+  for (int k = 0; k < kSamples; ++k)
+    for (int sub = 0; sub < kCount; ++sub) {
+      const Vec2f expected = s.get2D(patterns[k], indices[k], sub, kCount);
+      const Vec2f got = stream.next();
+      ASSERT_EQ(expected.x, got.x) << k << " " << sub;
+      ASSERT_EQ(expected.y, got.y) << k << " " << sub;
+    }
+}
+
 TEST(Sampler, RegularIsCellCentresInThePixelDimensionOnly) {
   // spp = 4 → a 2 × 2 grid of centres at 0.25 and 0.75, row by row.
   const Sampler s(SamplerKind::Regular, 4, 0);
