@@ -15,11 +15,15 @@ class FastDivisor {
  public:
   FastDivisor() = default;
   // M = ⌈2^64 / d⌉. A power of two (1 included, which would need M = 2^64) divides by a shift:
-  // most sets are powers of two (spp, light samples), and a shift is a fraction of the products.
+  // most sets are powers of two (spp, light samples), and a shift is a fraction of the products
+  // (and needs no M, whose division a set drawn for one point paid for).
   explicit FastDivisor(uint32_t d)
       : d_(d),
-        m_(d > 1 ? UINT64_MAX / d + 1 : 0),
-        shift_(std::has_single_bit(d) ? std::countr_zero(d) : -1) {}
+        m_(d == 0 || isPowerOfTwo(d) ? 0 : UINT64_MAX / d + 1),
+        shift_(isPowerOfTwo(d) ? std::countr_zero(d) : -1) {}
+
+  // std::has_single_bit, which baseline x86-64 (no POPCNT) calls out to libgcc for.
+  static constexpr bool isPowerOfTwo(uint32_t d) { return d != 0 && (d & (d - 1)) == 0; }
 
   uint32_t divisor() const { return d_; }
 

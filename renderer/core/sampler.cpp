@@ -96,6 +96,8 @@ struct JitterGrid {
         count(n),
         inverseCount(1.0 / n) {}
   static uint32_t largestDivisorUpToRoot(uint32_t n) {
+    // 2^⌊b/2⌋ for n = 2^b, without the root and the trial divisions (most sets are powers of two).
+    if (FastDivisor::isPowerOfTwo(n)) return 1u << (std::bit_width(n) - 1) / 2;
     auto m = static_cast<uint32_t>(std::max(1.0, std::floor(std::sqrt(double(n)))));
     while (n % m != 0) --m;
     return m;
@@ -277,16 +279,13 @@ class ListRun {
   const uint32_t* flat_;
 };
 
-// Points [0, size) of a run, drawn by draw(index lanes, pattern lanes, lanes used, out): one at
-// a time below kLanesFrom points, else eight side by side. A block of lanes is a long chain of
-// dependent vector multiplies, worth it only for a few points or more.
+// Points [0, size) of a run, size ≥ kLanesFrom, drawn by draw(index lanes, pattern lanes,
+// lanes used, out) eight side by side. Fewer points are drawn one at a time (drawPoint): a block
+// of lanes is a long chain of dependent vector multiplies, worth it only for a few points or
+// more.
 constexpr int kLanesFrom = 3;
 template <class Run, class Draw>
 [[gnu::always_inline]] inline void drawRun(const Run& run, int size, Vec2f* out, const Draw& draw) {
-  if (size < kLanesFrom) {
-    for (int j = 0; j < size; ++j) draw(run.index(j), run.patternAt(j), 1, out + j);
-    return;
-  }
   int j = 0;
   for (; j + 8 <= size; j += 8) draw(run.indexBlock(j), run.patternBlock(j, size), 8, out + j);
   if (j == size) return;
@@ -314,15 +313,23 @@ template <class Run>
       });
 }
 
-// Points of Sobol or stratified sets of n points, in lanes: [first, first + size) of `pattern`
-// where it is given, else flat[j] of *patterns[j]. Built for baseline x86-64 and for AVX2,
-// chosen when the program loads by what the CPU has: AVX2 holds a block's 64-bit and double
-// lanes in registers, which SSE2 splits and passes through memory.
+// Points of Sobol or stratified sets of n points, at least kLanesFrom, in lanes: [first, first
+// + size) of `pattern` where it is given, else flat[j] of *patterns[j]. Built for baseline
+// x86-64 and for AVX2, chosen when the program loads by what the CPU has: AVX2 holds a block's
+// 64-bit and double lanes in registers, which SSE2 splits and passes through memory.
 [[gnu::target_clones("avx2", "default")]] void drawSetRun(
     SamplerKind kind, uint32_t n, const SamplePattern* pattern, uint32_t first,
     const SamplePattern* const* patterns, const uint32_t* flat, int size, Vec2f* out) {
   if (pattern) return drawSet(kind, n, RangeRun(*pattern, first), size, out);
   drawSet(kind, n, ListRun(patterns, flat), size, out);
+}
+
+// The point at flat index `index` of a Sobol or stratified set of n points, alone. Apart from
+// drawSetRun: there, each lone point paid for the lanes' stack frame and the keys they hoist.
+[[gnu::noinline]] void drawPoint(SamplerKind kind, uint32_t n, const SamplePattern& pattern,
+                                 uint32_t index, Vec2f* out) {
+  if (kind == SamplerKind::Sobol) return sobol2D(lanesOf(pattern), index, 1, out);
+  StratifiedSet(n).draw(index, lanesOf(pattern), 1, out);
 }
 
 uint32_t key32(uint64_t h) { return static_cast<uint32_t>(h ^ (h >> 32)); }
@@ -409,8 +416,14 @@ void Sampler::get2D(const SamplePattern& pattern, int index, int firstSub, int s
     case SamplerKind::Sobol:
     case SamplerKind::Stratified:
     case SamplerKind::Regular:  // beyond the pixel dimension: stratified
-      return drawSetRun(kind_, pattern.samples * static_cast<uint32_t>(count), &pattern, first,
-                        nullptr, nullptr, size, out);
+    {
+      const uint32_t n = pattern.samples * static_cast<uint32_t>(count);
+      if (size >= kLanesFrom)
+        return drawSetRun(kind_, n, &pattern, first, nullptr, nullptr, size, out);
+      for (int j = 0; j < size; ++j)
+        drawPoint(kind_, n, pattern, first + static_cast<uint32_t>(j), out + j);
+      return;
+    }
   }
 }
 
@@ -424,12 +437,12 @@ void Sampler::get2DAt(const SamplePattern* const* patterns, int count, const uin
     if (kind_ == SamplerKind::Sobol || kind_ == SamplerKind::Stratified ||
         (kind_ == SamplerKind::Regular && !patterns[j]->cellCentres))
       while (end < size && patterns[end]->samples == samples && !patterns[end]->cellCentres) ++end;
-    if (end - j == 1) {
-      get2D(*patterns[j], static_cast<int>(flat[j] / c), static_cast<int>(flat[j] % c), 1, count,
-            out + j);
-    } else {
+    if (end - j >= kLanesFrom)
       drawSetRun(kind_, samples * c, nullptr, 0, patterns + j, flat + j, end - j, out + j);
-    }
+    else
+      for (int k = j; k < end; ++k)
+        get2D(*patterns[k], static_cast<int>(flat[k] / c), static_cast<int>(flat[k] % c), 1, count,
+              out + k);
     j = end;
   }
 }
