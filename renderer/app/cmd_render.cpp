@@ -100,6 +100,31 @@ std::vector<std::pair<uint32_t, std::string>> worldObjects(const Scene& scene) {
   return objects;
 }
 
+// Where the render's time went around its parallel phases (render/pass_timing.h), for
+// tools/project-scaling.py: each phase's tiles as [tile, start, seconds, thread], in the order
+// taken.
+nlohmann::json scheduleJson(const RenderTiming& t) {
+  nlohmann::json phases = nlohmann::json::array();
+  for (const PassTiming& p : t.passes) {
+    nlohmann::json tiles = nlohmann::json::array();
+    for (const TileTime& tile : p.tiles)
+      tiles.push_back({tile.tile, tile.start, tile.seconds, tile.thread});
+    phases.push_back({{"spp", p.spp},
+                      {"loop_seconds", p.loopSeconds},
+                      {"serial_seconds", p.serialSeconds},
+                      {"tiles_seconds", p.tilesSeconds},
+                      {"tiles", std::move(tiles)}});
+  }
+  return {{"threads", t.threads},
+          {"pixels", {t.width, t.height}},
+          {"tile_size", t.tileSize},
+          {"setup_seconds", t.setupSeconds},
+          {"init_seconds", t.initSeconds},
+          {"phases", std::move(phases)},
+          {"finish_loop_seconds", t.finishLoopSeconds},
+          {"finish_seconds", t.finishSeconds}};
+}
+
 nlohmann::json statsJson(const Scene& scene, const RenderStats& st, uint64_t clampedValues) {
   nlohmann::json j;
   j["seconds"] = st.seconds;
@@ -125,6 +150,7 @@ nlohmann::json statsJson(const Scene& scene, const RenderStats& st, uint64_t cla
   j["passes"] = nlohmann::json::parse(passesJson(st.passes));  // as glint:passes holds them
   j["pixel_spp"] = {{"min", st.minPixelSpp}, {"max", st.maxPixelSpp}};
   j["time_limit_reached"] = st.timeLimitReached;
+  j["schedule"] = scheduleJson(st.timing);
   // Of the whole process up to now: scene, acceleration structure, film and the EXR written.
   j["peak_rss_bytes"] = peakResidentBytes();
   return j;

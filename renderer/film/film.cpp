@@ -6,13 +6,15 @@
 
 namespace glint {
 
-Film::Film(int fullWidth, int fullHeight, const PixelWindow& window)
-    : fullWidth_(fullWidth),
-      fullHeight_(fullHeight),
-      window_(window),
-      rgba_(static_cast<size_t>(window.area()) * 4, 0.0) {
+Film::Film(int fullWidth, int fullHeight, const PixelWindow& window, FilmPixels pixels)
+    : fullWidth_(fullWidth), fullHeight_(fullHeight), window_(window) {
   GLINT_CHECK(window.x0 >= 0 && window.x1 <= fullWidth && window.x0 < window.x1);
   GLINT_CHECK(window.y0 >= 0 && window.y1 <= fullHeight && window.y0 < window.y1);
+  const size_t values = static_cast<size_t>(window.area()) * 4;
+  if (pixels == FilmPixels::Zeroed)
+    rgba_.assign(values, 0.0);
+  else
+    rgba_.resize(values);
 }
 
 size_t Film::offset(int x, int y) const {

@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/unwritten_allocator.h"
+
 namespace glint {
 
 // Pixel bounds [x0, x1) × [y0, y1) inside a full frame of width × height.
@@ -25,9 +27,14 @@ struct FilmPlane {
   std::vector<double> values;  // window area × channels
 };
 
+// Whether a new film's RGBA starts at zero, or unwritten: for a film whose every pixel its maker
+// writes, or whose RGBA nothing reads, so that no thread zeroes what is written again later.
+enum class FilmPixels { Zeroed, Unwritten };
+
 class Film {
  public:
-  Film(int fullWidth, int fullHeight, const PixelWindow& window);
+  Film(int fullWidth, int fullHeight, const PixelWindow& window,
+       FilmPixels pixels = FilmPixels::Zeroed);
 
   int fullWidth() const { return fullWidth_; }
   int fullHeight() const { return fullHeight_; }
@@ -60,7 +67,7 @@ class Film {
   size_t offset(int x, int y) const;
   int fullWidth_, fullHeight_;
   PixelWindow window_;
-  std::vector<double> rgba_;
+  std::vector<double, UnwrittenAllocator<double>> rgba_;
   std::vector<FilmPlane> planes_;
   std::vector<std::pair<std::string, std::string>> stringAttributes_;
   std::vector<std::pair<std::string, int>> intAttributes_;

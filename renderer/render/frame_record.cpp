@@ -380,9 +380,8 @@ void writeFrameRecord(const FrameRecord& r, ExrMetadata& m) {
   if (r.worldToNdc) m.matrices.emplace_back("worldToNDC", *r.worldToNdc);
 }
 
-void writeResumeState(Film& film, ExrMetadata& metadata,
-                      const std::vector<PixelEstimate>& estimates, const PassPosition& position,
-                      const FrameRecord& record) {
+void writeResumeState(Film& film, ExrMetadata& metadata, std::span<const PixelEstimate> estimates,
+                      const PassPosition& position, const FrameRecord& record) {
   addResumeState(film, metadata, estimates, position,
                  record.resumeHash ? hexDigits(*record.resumeHash) : std::string());
 }

@@ -9,6 +9,7 @@
 // glint:settings_hash, converge for glint:passes, --resume for its hash and state.
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -92,9 +93,8 @@ FrameRecord frameRecord(const Scene& scene, const FrameSettings& settings, const
 void writeFrameRecord(const FrameRecord& record, ExrMetadata& metadata);
 // Adds the state --resume continues from to `film` and `metadata` (addResumeState), its
 // checksum over the record's resume hash.
-void writeResumeState(Film& film, ExrMetadata& metadata,
-                      const std::vector<PixelEstimate>& estimates, const PassPosition& position,
-                      const FrameRecord& record);
+void writeResumeState(Film& film, ExrMetadata& metadata, std::span<const PixelEstimate> estimates,
+                      const PassPosition& position, const FrameRecord& record);
 
 // The record of `path`'s part 0. Throws UsageError naming the file and the attribute when one is
 // of another type than Glint writes or holds what Glint does not write (a hash that is not 16 hex

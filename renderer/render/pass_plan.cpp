@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -80,10 +81,10 @@ std::string PassPlan::describe() const {
 // way for any thread count, so the choices and statistics do not depend on the threads. Run on
 // one thread, they would be a serial step between passes that every other thread waits out.
 
-int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int width, int end,
+int64_t PassPlan::choosePixels(std::span<const PixelEstimate> pixels, int width, int end,
                                const FrameSpread& spread, ChoiceCache& kept,
                                std::vector<uint8_t>& sampled) const {
-  sampled.assign(pixels.size(), 0);
+  sampled.resize(pixels.size());  // every entry is written below
   const int height = width > 0 ? static_cast<int>(pixels.size() / size_t(width)) : 0;
   // A ratio is read only where a pixel has its first pass and is below this one's end.
   if (adaptive() && end > minSpp) refreshRatios(pixels, width, height, spread, kept);
@@ -110,25 +111,31 @@ int64_t PassPlan::choosePixels(const std::vector<PixelEstimate>& pixels, int wid
   return std::accumulate(chosen.begin(), chosen.end(), int64_t{0});
 }
 
-void PassPlan::refreshRatios(const std::vector<PixelEstimate>& pixels, int width, int height,
+void PassPlan::refreshRatios(std::span<const PixelEstimate> pixels, int width, int height,
                              const FrameSpread& spread, ChoiceCache& kept) const {
   const size_t size = pixels.size();
   if (kept.samples.size() != size || kept.width != width || !(kept.target == target) ||
       !(kept.spread == spread)) {
-    kept.ratio.assign(size, 0);
-    kept.edgeRatio.assign(size, 0);
-    kept.means.assign(3 * size, 0);
-    kept.samples.assign(size, -1);
+    kept.ratio.resize(size);
+    kept.edgeRatio.resize(size);
+    kept.means.resize(3 * size);
+    kept.samples.resize(size);
+    forEachBlock(size, [&](size_t begin, size_t end) {
+      std::fill(kept.ratio.begin() + begin, kept.ratio.begin() + end, 0.0);
+      std::fill(kept.edgeRatio.begin() + begin, kept.edgeRatio.begin() + end, 0.0);
+      std::fill(kept.means.begin() + 3 * begin, kept.means.begin() + 3 * end, 0.0);
+      std::fill(kept.samples.begin() + begin, kept.samples.begin() + end, int64_t{-1});
+    });
     kept.target = target;
     kept.spread = spread;
     kept.width = width;
   }
   // Each pixel's ratio by its halves' estimate, where its samples moved.
-  std::vector<uint8_t> moved(size, 0);
+  std::vector<uint8_t, UnwrittenAllocator<uint8_t>> moved(size);
   forEachRow(0, height, [&](int y) {
     for (size_t p = size_t(y) * size_t(width), last = p + size_t(width); p < last; ++p) {
-      if (pixels[p].samples() == kept.samples[p]) continue;
-      moved[p] = 1;
+      moved[p] = pixels[p].samples() != kept.samples[p];
+      if (!moved[p]) continue;
       kept.samples[p] = pixels[p].samples();
       kept.ratio[p] = target.ratio(pixels[p], spread);
       double value[4];
@@ -162,24 +169,28 @@ void PassPlan::refreshRatios(const std::vector<PixelEstimate>& pixels, int width
   });
 }
 
-FrameError estimateFrameError(const std::vector<PixelEstimate>& pixels, SamplerKind sampler) {
-  FrameError e;
-  if (sampler == SamplerKind::Regular || pixels.empty()) return e;
+FrameSummary summariseFrame(std::span<const PixelEstimate> pixels, SamplerKind sampler) {
   struct Sums {
     double squared = 0, relative = 0;
-    bool complete = true;  // every pixel has an estimate
+    bool complete = true;  // every pixel so far has an estimate
+    int64_t fewest = std::numeric_limits<int64_t>::max(), most = 0, total = 0;
   };
+  const bool estimated = sampler != SamplerKind::Regular;
   // Deterministic: the range is cut into the same blocks, summed in the same order, for any
-  // thread count, so the figures' bits do not depend on it.
+  // thread count, so the figures' bits do not depend on it. One read of the pixels for all
+  // the figures: the loop is bound by memory, and runs after every pass.
   constexpr size_t kBlock = 4096;
   const Sums sums = tbb::parallel_deterministic_reduce(
       tbb::blocked_range<size_t>(0, pixels.size(), kBlock), Sums{},
       [&](const tbb::blocked_range<size_t>& r, Sums s) {
         for (size_t i = r.begin(); i != r.end(); ++i) {
+          const int64_t n = pixels[i].samples();
+          s.fewest = std::min(s.fewest, n), s.most = std::max(s.most, n), s.total += n;
+          if (!estimated || !s.complete) continue;
           PixelError pixel;
           if (!PixelError::of(pixels[i], pixel)) {
             s.complete = false;
-            break;
+            continue;
           }
           s.squared += pixel.mse;
           s.relative += pixel.relmse;
@@ -187,13 +198,23 @@ FrameError estimateFrameError(const std::vector<PixelEstimate>& pixels, SamplerK
         return s;
       },
       [](Sums a, const Sums& b) {
-        return Sums{a.squared + b.squared, a.relative + b.relative, a.complete && b.complete};
+        return Sums{a.squared + b.squared,    a.relative + b.relative,
+                    a.complete && b.complete, std::min(a.fewest, b.fewest),
+                    std::max(a.most, b.most), a.total + b.total};
       });
-  if (!sums.complete) return e;
+  FrameSummary out;
+  out.fewestSamples = pixels.empty() ? 0 : sums.fewest;
+  out.mostSamples = sums.most;
+  out.samples = sums.total;
+  if (!estimated || pixels.empty() || !sums.complete) return out;
   const double n = static_cast<double>(pixels.size());
-  e.rmse = std::sqrt(sums.squared / n);
-  e.relmse = sums.relative / n;
-  return e;
+  out.error.rmse = std::sqrt(sums.squared / n);
+  out.error.relmse = sums.relative / n;
+  return out;
+}
+
+FrameError estimateFrameError(std::span<const PixelEstimate> pixels, SamplerKind sampler) {
+  return summariseFrame(pixels, sampler).error;
 }
 
 ProbeLattice ProbeLattice::of(int width, int height) {

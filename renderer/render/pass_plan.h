@@ -5,6 +5,7 @@
 // the passes before it left, never on time or threads, except where a time limit stops it.
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -36,9 +37,10 @@ inline constexpr int kDefaultFirstPassSpp = 8;
 // target, spread and frame. A pass changes a pixel only by adding samples, so a choice recomputes
 // them only where the sample count moved (and the edge ratios of those pixels' 4-neighbours):
 // taken anew over the whole frame at every pass, each short pass paid for the whole frame's.
+// Its arrays are first written on the render's threads (ChoiceCache::reset).
 struct ChoiceCache {
-  std::vector<double> ratio, edgeRatio, means;
-  std::vector<int64_t> samples;  // -1 where not taken yet
+  std::vector<double, UnwrittenAllocator<double>> ratio, edgeRatio, means;
+  std::vector<int64_t, UnwrittenAllocator<int64_t>> samples;  // -1 where not taken yet
   ErrorTarget target;
   FrameSpread spread;
   int width = 0;
@@ -91,7 +93,7 @@ struct PassPlan {
   // 2.7x uniform's samples to reach uniform's 128-spp error, with it 0.51x
   // (docs/performance.md, Adaptive sampling). Every input lies within one pixel.
   // `kept` carries each pixel's inputs from one choice to the next (ChoiceCache).
-  int64_t choosePixels(const std::vector<PixelEstimate>& pixels, int width, int end,
+  int64_t choosePixels(std::span<const PixelEstimate> pixels, int width, int end,
                        const FrameSpread& spread, ChoiceCache& kept,
                        std::vector<uint8_t>& sampled) const;
   // How far a pixel's samples depend on other pixels': one pixel per adaptive decision, one
@@ -101,7 +103,7 @@ struct PassPlan {
 
  private:
   // Brings `kept` up to date with `pixels` and `spread` (ChoiceCache).
-  void refreshRatios(const std::vector<PixelEstimate>& pixels, int width, int height,
+  void refreshRatios(std::span<const PixelEstimate> pixels, int width, int height,
                      const FrameSpread& spread, ChoiceCache& kept) const;
 };
 
@@ -123,6 +125,14 @@ struct ProbeLattice {
 struct FrameError {
   std::optional<double> rmse, relmse;
 };
-FrameError estimateFrameError(const std::vector<PixelEstimate>& pixels, SamplerKind sampler);
+FrameError estimateFrameError(std::span<const PixelEstimate> pixels, SamplerKind sampler);
+
+// The frame's estimated error (estimateFrameError) and the fewest, most and total samples of
+// its pixels, in one read of them.
+struct FrameSummary {
+  FrameError error;
+  int64_t fewestSamples = 0, mostSamples = 0, samples = 0;
+};
+FrameSummary summariseFrame(std::span<const PixelEstimate> pixels, SamplerKind sampler);
 
 }  // namespace glint

@@ -6,8 +6,10 @@
 // estimate) and what a sample of the pixel costs. Samples are added in index order within a
 // half, so the state is the same bits whatever the passes, threads or tiles that added them.
 #include <cstdint>
+#include <span>
 #include <vector>
 
+#include "core/unwritten_allocator.h"
 #include "integrator/radiance.h"
 
 namespace glint {
@@ -47,6 +49,10 @@ struct PixelEstimate {
   // empty (one sample).
   bool varianceOfMean(double out[3]) const;
 };
+
+// The states of a frame's pixels. Made with a size, its elements are unwritten: the render
+// session writes them on the render's threads (initialiseInBlocks) before any is read.
+using PixelEstimates = std::vector<PixelEstimate, UnwrittenAllocator<PixelEstimate>>;
 
 // A pixel's estimated squared error, as `glint compare` averages it over channels: its mean's
 // variance (MSE), and that over value² + kRelMseEpsilon (relMSE). False where the pixel has no

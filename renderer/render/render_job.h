@@ -14,6 +14,7 @@
 #include "integrator/radiance.h"
 #include "integrator/ray_counters.h"
 #include "render/pass_plan.h"
+#include "render/pass_timing.h"
 #include "render/resume_state.h"
 #include "render/tile_scheduler.h"
 #include "scene/scene.h"
@@ -128,15 +129,16 @@ struct RenderStats {
   FrameError estimated;                           // of the frame as written
   int minPixelSpp = 0, maxPixelSpp = 0;           // the fewest and most samples of a pixel
   bool timeLimitReached = false;                  // a pass was cut short by --time-limit
+  RenderTiming timing;                            // the passes' phases (pass_timing.h)
 };
 
 struct RenderResult {
   Film film;
   RenderStats stats;
-  bool partial = false;  // cancelled before every pixel had the samples the plan gave it
-  int tileSize = 0;      // the effective tile edge
-  std::vector<PixelEstimate> estimates;  // each pixel's state, to resume from
-  PassPosition position;                 // where the passes stood, to resume from
+  bool partial = false;      // cancelled before every pixel had the samples the plan gave it
+  int tileSize = 0;          // the effective tile edge
+  PixelEstimates estimates;  // each pixel's state, to resume from
+  PassPosition position;     // where the passes stood, to resume from
 };
 
 // Throws UsageError, naming the numbers and the light, when one pixel's set of samples (`spp`,

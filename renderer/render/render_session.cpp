@@ -3,13 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
-#include <limits>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
+#include <tbb/parallel_for.h>
 
 #include "core/check.h"
 #include "core/error.h"
@@ -91,8 +90,8 @@ RenderOptions withoutResumeState(RenderOptions opt) {
 }
 
 // The pixels' states inside `window` (of the sampled window), row-major.
-std::vector<PixelEstimate> estimatesIn(const FrameContext& f, const PixelWindow& window) {
-  std::vector<PixelEstimate> out;
+PixelEstimates estimatesIn(const FrameContext& f, const PixelWindow& window) {
+  PixelEstimates out;
   out.reserve(static_cast<size_t>(window.area()));
   for (int y = window.y0; y < window.y1; ++y)
     for (int x = window.x0; x < window.x1; ++x) out.push_back(f.estimate(x, y));
@@ -113,12 +112,13 @@ std::vector<uint8_t> windowPart(const std::vector<uint8_t>& mask, const PixelWin
 // The frame as it stands in `window`: each pixel's mean and the AOVs' finished values.
 Film resolveFrame(const FrameContext& f, const PixelWindow& window) {
   const Film& sums = f.aovSums;
-  Film out(sums.fullWidth(), sums.fullHeight(), window);
+  Film out(sums.fullWidth(), sums.fullHeight(), window, FilmPixels::Unwritten);
   for (const FilmPlane& plane : sums.planes())
     out.addPlane(plane.name, plane.channels, plane.isUint);
   for (const auto& [key, value] : sums.stringAttributes()) out.addAttribute(key, value);
   for (const auto& [key, value] : sums.intAttributes()) out.addAttribute(key, value);
-  // On the render's threads: each pixel is written from its own state alone.
+  // On the render's threads: each pixel is written from its own state alone, every one of
+  // the window's (the film's first writes).
   forEachRow(window.y0, window.y1, [&](int y) {
     for (int x = window.x0; x < window.x1; ++x) {
       const PixelEstimate& pixel = f.estimate(x, y);
@@ -133,28 +133,14 @@ Film resolveFrame(const FrameContext& f, const PixelWindow& window) {
 
 // The statistics of the frame as it stands, besides the rays and time; returns the samples its
 // pixels hold.
-int64_t describeSamples(const std::vector<PixelEstimate>& estimates, SamplerKind sampler,
+int64_t describeSamples(std::span<const PixelEstimate> estimates, SamplerKind sampler,
                         RenderStats& stats) {
+  const FrameSummary summary = summariseFrame(estimates, sampler);
   stats.sampler = sampler;
-  stats.estimated = estimateFrameError(estimates, sampler);
-  struct Counts {
-    int64_t fewest = std::numeric_limits<int64_t>::max(), most = 0, total = 0;
-  };
-  const Counts counts = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, estimates.size()), Counts{},
-      [&](const tbb::blocked_range<size_t>& r, Counts c) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-          const int64_t n = estimates[i].samples();
-          c = {std::min(c.fewest, n), std::max(c.most, n), c.total + n};
-        }
-        return c;
-      },
-      [](const Counts& a, const Counts& b) {
-        return Counts{std::min(a.fewest, b.fewest), std::max(a.most, b.most), a.total + b.total};
-      });
-  stats.minPixelSpp = estimates.empty() ? 0 : static_cast<int>(counts.fewest);
-  stats.maxPixelSpp = static_cast<int>(counts.most);
-  return counts.total;
+  stats.estimated = summary.error;
+  stats.minPixelSpp = static_cast<int>(summary.fewestSamples);
+  stats.maxPixelSpp = static_cast<int>(summary.mostSamples);
+  return summary.samples;
 }
 
 }  // namespace
@@ -192,14 +178,15 @@ RenderSession::RenderSession(const Scene& scene, const Accelerator& accel, const
       camera_(scene.cameraDesc, scene.render.width, scene.render.height),
       cameraSampling_(scene, camera_),
       sampler_(plan_.sampler, plan_.maxSpp, scene.render.seed),
-      aovSums_(scene.render.width, scene.render.height, shape_.sampledWindow),
+      // Only its AOV planes are read: its RGBA stays unwritten, and untouched.
+      aovSums_(scene.render.width, scene.render.height, shape_.sampledWindow,
+               FilmPixels::Unwritten),
       aovLayout_(AovLayout::create(opt.aovs, scene, aovSums_)),
       aovTables_(aovLayout_, shape_.sampledWindow),
       integrator_(makeTilePasses(opt.integrator, scene, accel, plan_.footprintSpp())),
       progress_(progressPlan(plan_, shape_.sampledWindow, opt.resumeFrom != nullptr), opt.progress,
                 start_),
-      estimates_(opt.resumeFrom ? opt.resumeFrom->estimates
-                                : std::vector<PixelEstimate>(size_t(shape_.sampledWindow.area()))),
+      estimates_(size_t(shape_.sampledWindow.area())),
       sampled_(estimates_.size(), 1),
       tileCounters_(tiles_.size()),
       frame_{scene_,          accel_,   opt_,       camera_,
@@ -212,6 +199,28 @@ RenderSession::RenderSession(const Scene& scene, const Accelerator& accel, const
     resumedAt_ = opt.resumeFrom->position;
     position_ = *resumedAt_;
   }
+  // The pixels' states are first written on the render's threads, block by block, so that the
+  // first pass does not wait for one thread to zero them.
+  timing_.threads = threads_;
+  timing_.width = shape_.sampledWindow.width();
+  timing_.height = shape_.sampledWindow.height();
+  timing_.tileSize = tileSize_;
+  const Clock::time_point initStart = Clock::now();
+  timing_.setupSeconds = std::chrono::duration<double>(initStart - start_).count();
+  arena_.run([&] {
+    const std::span<PixelEstimate> states(estimates_);
+    if (opt.resumeFrom) {
+      const PixelEstimates& from = opt.resumeFrom->estimates;
+      forEachBlock(states.size(), [&](size_t begin, size_t end) {
+        std::copy(from.begin() + ptrdiff_t(begin), from.begin() + ptrdiff_t(end),
+                  states.begin() + ptrdiff_t(begin));
+      });
+    } else {
+      fillInBlocks(states, PixelEstimate{});
+    }
+  });
+  phaseEnd_ = Clock::now();
+  timing_.initSeconds = std::chrono::duration<double>(phaseEnd_ - initStart).count();
 }
 
 RenderSession::~RenderSession() = default;
@@ -262,8 +271,12 @@ RenderResult RenderSession::finish() {
   std::optional<Film> film;
   arena_.run([&] {
     progress_.finish(stats_.timeLimitReached ? "the time limit" : partial ? "an interrupt" : "");
-    film.emplace(resolveFrame(frame_, shape_.window));
+    timedLoops([&] { film.emplace(resolveFrame(frame_, shape_.window)); });
     refreshStats();
+    timing_.finishLoopSeconds = loopSeconds_;
+    timing_.finishSeconds =
+        std::chrono::duration<double>(Clock::now() - phaseEnd_).count() - loopSeconds_;
+    stats_.timing = timing_;
   });
   boundedStop_.reset();
   RenderResult result{std::move(*film),    std::move(stats_), partial, tileSize_, {},
@@ -312,15 +325,13 @@ bool RenderSession::measureSpreadOnThreads() {
       cameraSampling_, sampler_, aovLayout_,    loggedNonfinite_,
       probes,          aovSums_, aovTables_,    PixelSlots::probes(lattice, rs.width, rs.height)};
   const std::vector<uint8_t> all(probes.size(), 1);
-  std::atomic<bool> never{false}, stopped{false};
+  std::atomic<bool> never{false};
   const PassContext pass{plan_.minSpp, all, std::nullopt, never};
   Progress silent({}, false);
   const std::vector<PixelWindow> frameTiles =
       makeTiles(PixelWindow{0, rs.width, 0, rs.height}, tileSize_, opt_.tileOrder);
   probeCounters_.assign(frameTiles.size(), {});
-  TileWork work{frameTiles, probeCounters_, silent, stopped, threads_};
-  integrator_->render(probeFrame, pass, work);
-  if (stopped) {
+  if (renderTiles(probeFrame, pass, frameTiles, probeCounters_, silent, 0)) {
     partial_ = ended_ = true;
     refreshStats();
     return false;
@@ -336,8 +347,12 @@ int64_t RenderSession::choosePixels(int end) {
     sampled_ = resumedAt_->cutChosen;
     return std::count(sampled_.begin(), sampled_.end(), uint8_t{1});
   }
-  return plan_.choosePixels(estimates_, shape_.sampledWindow.width(), end,
-                            spread_.value_or(FrameSpread{}), choiceCache_, sampled_);
+  int64_t chosen = 0;
+  timedLoops([&] {
+    chosen = plan_.choosePixels(estimates_, shape_.sampledWindow.width(), end,
+                                spread_.value_or(FrameSpread{}), choiceCache_, sampled_);
+  });
+  return chosen;
 }
 
 // Renders the next pass on the pixels chosen; returns false when a stop cut it short.
@@ -350,12 +365,44 @@ bool RenderSession::renderChosen(int64_t pixels) {
     deadline = start_ + std::chrono::duration_cast<Clock::duration>(
                             std::chrono::duration<double>(std::min(plan_.timeLimitSeconds, 1e9)));
   const PassContext pass{plan_.ends[k], sampled_, deadline, deadlinePassed_};
-  std::atomic<bool> stopped{false};
-  TileWork work{tiles_, tileCounters_, progress_, stopped, threads_};
-  integrator_->render(frame_, pass, work);
-  if (!stopped) return true;
+  if (!renderTiles(frame_, pass, tiles_, tileCounters_, progress_, plan_.ends[k])) return true;
   passCut(plan_.ends[k]);
   return false;
+}
+
+bool RenderSession::renderTiles(const FrameContext& frame, const PassContext& pass,
+                                const std::vector<PixelWindow>& tiles,
+                                std::vector<RayCounters>& counters, Progress& progress, int spp) {
+  PassTiming& timing = timing_.passes.emplace_back();
+  timing.spp = spp;
+  // A tile's expected cost: its pixels that take part, each costing the rays a sample of the
+  // tile has traced so far (its counters: no pixel state is read, a loop bound by memory).
+  std::vector<double> costs(tiles.size(), 0.0);
+  timedLoops([&] {
+    tbb::parallel_for(size_t{0}, tiles.size(), [&](size_t i) {
+      const PixelWindow& tile = tiles[i];
+      int64_t taking = 0;
+      for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; ++x)
+          taking += frame.slots.holds(x, y) && pass.sampled[frame.slots.slot(x, y)];
+      const RayCounters& c = counters[i];
+      const double raysPerSample = c.camera > 0 ? double(c.total()) / double(c.camera) : 1.0;
+      costs[i] = double(taking) * raysPerSample;
+    });
+  });
+  const std::vector<uint32_t> order = orderByCost(costs);
+  const Clock::time_point begin = Clock::now();
+  timing.loopSeconds = loopSeconds_;
+  timing.serialSeconds = std::chrono::duration<double>(begin - phaseEnd_).count() - loopSeconds_;
+  loopSeconds_ = 0;
+  std::atomic<bool> stopped{false};
+  TileWork work{tiles, counters, progress, stopped, threads_, {order, &timing.tiles}};
+  // A pass with no work leaves every tile as it is: an empty order would mean every tile.
+  summaryFresh_ = false;
+  if (!order.empty()) integrator_->render(frame, pass, work);
+  phaseEnd_ = Clock::now();
+  timing.tilesSeconds = std::chrono::duration<double>(phaseEnd_ - begin).count();
+  return stopped;
 }
 
 // A stop cut the pass to `end` short: the frame ends there, keeping the pass's choice so that a
@@ -380,11 +427,18 @@ int64_t RenderSession::refreshStats() {
   for (const RayCounters& c : probeCounters_) stats_.rays += c;
   stats_.integrator = opt_.integrator;
   stats_.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
-  return describeSamples(windowEstimates(), plan_.sampler, stats_);
+  stats_.timing = timing_;
+  // The pixels are read again only where a phase has changed them since (finish() after the
+  // last pass's statistics would read the whole frame for nothing).
+  if (!summaryFresh_)
+    timedLoops(
+        [&] { summarySamples_ = describeSamples(windowEstimates(), plan_.sampler, stats_); });
+  summaryFresh_ = true;
+  return summarySamples_;
 }
 
 // The pixels' states in the window: the frame's own where it samples no apron, else a copy.
-const std::vector<PixelEstimate>& RenderSession::windowEstimates() {
+const PixelEstimates& RenderSession::windowEstimates() {
   if (shape_.sampledWindow.area() == shape_.window.area()) return estimates_;
   cropEstimates_ = estimatesIn(frame_, shape_.window);
   return cropEstimates_;

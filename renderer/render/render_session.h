@@ -94,12 +94,17 @@ class RenderSession {
   bool measureSpreadOnThreads();
   int64_t choosePixels(int end);
   bool renderChosen(int64_t pixels);
+  // Renders one phase of tiles (a pass, or the probes) in the order of their expected cost,
+  // noting its timing; returns whether a stop cut it short.
+  bool renderTiles(const FrameContext& frame, const PassContext& pass,
+                   const std::vector<PixelWindow>& tiles, std::vector<RayCounters>& counters,
+                   Progress& progress, int spp);
   void passCut(int end);
   void passFinished(int end);
   // Brings stats_ up to the frame as it stands (rays, seconds, samples, estimated error);
   // returns the samples the window's pixels hold.
   int64_t refreshStats();
-  const std::vector<PixelEstimate>& windowEstimates();
+  const PixelEstimates& windowEstimates();
 
   // What the frame is made of, fixed by the constructor.
   const Scene& scene_;
@@ -125,8 +130,8 @@ class RenderSession {
   Progress progress_;
 
   // What the passes change.
-  std::vector<PixelEstimate> estimates_;  // per pixel of the sampled window, row-major
-  std::vector<uint8_t> sampled_;          // the pixels the pass being taken chose
+  PixelEstimates estimates_;      // per pixel of the sampled window, row-major
+  std::vector<uint8_t> sampled_;  // the pixels the pass being taken chose
   ChoiceCache choiceCache_;
   std::optional<FrameSpread> spread_;
   PassPosition position_;                  // where the passes stand
@@ -136,9 +141,23 @@ class RenderSession {
   std::atomic<int> loggedNonfinite_{0};
   std::atomic<bool> deadlinePassed_{false};
   RenderStats stats_;
-  std::vector<PixelEstimate> cropEstimates_;  // the window's, where an apron is sampled
-  bool partial_ = false;                      // a cancel cut the frame short
-  bool ended_ = false;                        // a stop ended the frame
+  PixelEstimates cropEstimates_;  // the window's, where an apron is sampled
+  RenderTiming timing_;
+  Clock::time_point phaseEnd_;  // when the last phase of tiles ended
+  double loopSeconds_ = 0;      // in timedLoops since then
+  bool summaryFresh_ = false;   // stats_ describes the pixels as they are (refreshStats)
+  int64_t summarySamples_ = 0;
+
+  // Runs `loops` (the loops over the frame's pixels between phases, on the render's threads),
+  // adding their time to loopSeconds_.
+  template <class Loops>
+  void timedLoops(Loops&& loops) {
+    const Clock::time_point begin = Clock::now();
+    loops();
+    loopSeconds_ += std::chrono::duration<double>(Clock::now() - begin).count();
+  }
+  bool partial_ = false;  // a cancel cut the frame short
+  bool ended_ = false;    // a stop ended the frame
   bool finished_ = false;
 
   // The tiles' view of all the above.

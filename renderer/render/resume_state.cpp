@@ -50,7 +50,7 @@ std::string channelName(int i) {
 double* doublesOf(HalfEstimate& h, int k) { return k < 3 ? &h.mean[k] : &h.alpha; }
 
 // Every word the state holds, in file order, with the position and the frame's resume hash.
-std::string checksumOf(const std::vector<PixelEstimate>& estimates, const PassPosition& position,
+std::string checksumOf(std::span<const PixelEstimate> estimates, const PassPosition& position,
                        const std::string& resumeHash) {
   uint64_t h =
       hashKey(hashBytes(resumeHash), uint64_t(position.finishedEnd), uint64_t(position.cutEnd));
@@ -70,7 +70,7 @@ std::string checksumOf(const std::vector<PixelEstimate>& estimates, const PassPo
 
 }  // namespace
 
-void addResumeState(Film& film, ExrMetadata& metadata, const std::vector<PixelEstimate>& estimates,
+void addResumeState(Film& film, ExrMetadata& metadata, std::span<const PixelEstimate> estimates,
                     const PassPosition& position, const std::string& resumeHash) {
   const std::vector<uint8_t>& chosen = position.cutChosen;
   std::vector<std::string> names;
@@ -148,8 +148,8 @@ ResumeState readResumeState(const std::string& path, const PixelWindow& window, 
   checkImageFits(path, "data window", w.width, w.height, double(pixelBytes));
   std::vector<uint32_t> words;
   readPixelsInBands(path, *file, 0, slices, pixelBytes, words);
-  std::vector<PixelEstimate>& out = state.estimates;
-  out.resize(size_t(window.area()));
+  PixelEstimates& out = state.estimates;
+  out.resize(size_t(window.area()));  // every pixel is written below, or the read throws
   if (position.cutEnd > 0) position.cutChosen.resize(out.size());
   for (size_t p = 0; p < out.size(); ++p) {
     const uint32_t* in = words.data() + p * kChannels;

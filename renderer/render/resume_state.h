@@ -8,6 +8,7 @@
 // a resumed render adds its samples to exactly the state a straight one would have, and takes
 // the same choices, so it writes the same pixels.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -34,13 +35,13 @@ struct PassPosition {
 };
 
 struct ResumeState {
-  std::vector<PixelEstimate> estimates;  // the window's pixels, row-major
+  PixelEstimates estimates;  // the window's pixels, row-major
   PassPosition position;
 };
 
 // Adds the state plane to `film` (whose window the estimates cover, row-major) and the
 // position's attributes to `metadata`, with a checksum over both and `resumeHash`.
-void addResumeState(Film& film, ExrMetadata& metadata, const std::vector<PixelEstimate>& estimates,
+void addResumeState(Film& film, ExrMetadata& metadata, std::span<const PixelEstimate> estimates,
                     const PassPosition& position, const std::string& resumeHash);
 
 // The state of `path`'s part 0, which must cover exactly `window` of a full frame of

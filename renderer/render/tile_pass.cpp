@@ -165,7 +165,7 @@ bool renderTilePass(const FrameContext& f, const PassContext& pass, Shading& sha
 template <class RenderOneTile>
 void forEachTile(const FrameContext& f, const PassContext& pass, TileWork& work,
                  RenderOneTile&& tile) {
-  runTiles(work.tiles, work.threads, [&](size_t i) {
+  runTiles(work.tiles, work.threads, work.schedule, [&](size_t i) {
     if (stopped(f.opt, pass)) {
       work.stopped = true;
       return;

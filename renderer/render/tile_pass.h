@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "accel/accelerator.h"
@@ -22,6 +23,7 @@
 #include "render/pixel_estimate.h"
 #include "render/progress.h"
 #include "render/render_job.h"
+#include "render/tile_scheduler.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -58,7 +60,7 @@ struct FrameContext {
   const AovLayout& aovLayout;
   std::atomic<int>& loggedNonfinite;
   // The state passes leave, one entry per pixel of `slots`, and the AOV sums.
-  std::vector<PixelEstimate>& estimates;
+  std::span<PixelEstimate> estimates;
   Film& aovSums;
   AovTables& aovTables;
   PixelSlots slots;
@@ -82,6 +84,7 @@ struct TileWork {
   Progress& progress;
   std::atomic<bool>& stopped;  // set when a cancel or the time limit cut the pass short
   int threads;
+  TileSchedule schedule = {};  // the order tiles are taken in, and where their times go
 };
 
 // Renders passes with one integrator: the production kernel, or its oracle.

@@ -3,10 +3,14 @@
 #include <tbb/blocked_range.h>
 #include <tbb/info.h>
 #include <tbb/parallel_for.h>
+#include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cstdint>
+#include <numeric>
 
 #include "core/fp_env.h"
 
@@ -92,21 +96,56 @@ void ThreadArena::run(const std::function<void()>& body) const {
 
 void withThreads(int threads, const std::function<void()>& body) { ThreadArena(threads).run(body); }
 
-void runTiles(const std::vector<PixelWindow>& tiles, int threads,
+std::vector<uint32_t> orderByCost(std::span<const double> costs) {
+  std::vector<uint32_t> order;
+  for (size_t i = 0; i < costs.size(); ++i)
+    if (costs[i] > 0) order.push_back(static_cast<uint32_t>(i));
+  std::stable_sort(order.begin(), order.end(),
+                   [&](uint32_t a, uint32_t b) { return costs[a] > costs[b]; });
+  return order;
+}
+
+void runTiles(const std::vector<PixelWindow>& tiles, int threads, const TileSchedule& schedule,
               const std::function<void(size_t)>& renderTile) {
+  const size_t count = schedule.order.empty() ? tiles.size() : schedule.order.size();
+  if (schedule.times) schedule.times->assign(count, {});
+  std::atomic<size_t> next{0};
+  const auto passStart = std::chrono::steady_clock::now();
+  const auto seconds = [&](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<float>(t - passStart).count();
+  };
+  // One taker per thread, each taking the next tile until none is left: a thread that joins
+  // late finds the tiles taken and returns.
+  const auto take = [&] {
+    // Cheap, and TBB workers are not ours to set up; restored after, since the calling thread
+    // takes tiles too.
+    const FlushToZeroScope flushToZero;
+    for (size_t k; (k = next.fetch_add(1, std::memory_order_relaxed)) < count;) {
+      const size_t tile = schedule.order.empty() ? k : schedule.order[k];
+      const auto start = std::chrono::steady_clock::now();
+      renderTile(tile);
+      if (schedule.times)
+        (*schedule.times)[k] = {static_cast<uint32_t>(tile), seconds(start),
+                                seconds(std::chrono::steady_clock::now()) - seconds(start),
+                                tbb::this_task_arena::current_thread_index()};
+    }
+  };
   const auto run = [&] {
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, tiles.size(), 1),
-                      [&](const tbb::blocked_range<size_t>& r) {
-                        // Cheap, and TBB workers are not ours to set up; restored after, since
-                        // the calling thread runs ranges too.
-                        const FlushToZeroScope flushToZero;
-                        for (size_t i = r.begin(); i != r.end(); ++i) renderTile(i);
-                      });
+    const int takers = tArenaThreads > 0 ? tArenaThreads : threadCount(threads);
+    tbb::parallel_for(
+        0, takers, [&](int) { take(); }, tbb::simple_partitioner());
   };
   if (tArenaThreads == threadCount(threads))
     run();
   else
     withThreads(threads, run);
+}
+
+void forEachBlock(size_t count, const std::function<void(size_t, size_t)>& block) {
+  const size_t blocks = (count + kBlockItems - 1) / kBlockItems;
+  tbb::parallel_for(size_t{0}, blocks, [&](size_t b) {
+    block(b * kBlockItems, std::min(count, (b + 1) * kBlockItems));
+  });
 }
 
 void forEachRow(int y0, int y1, const std::function<void(int)>& row) {

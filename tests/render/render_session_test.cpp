@@ -10,6 +10,8 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <set>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -57,12 +59,20 @@ std::vector<double> pixelsOf(const Film& film) {
   return v;
 }
 
-// Whether two pixels' states are the same bits (means, coverage, rays, counts).
+// Whether two pixels' states are the same bits (means, coverage, rays, counts); field by field,
+// since the padding between them is not part of the state.
 bool sameBits(const PixelEstimate& a, const PixelEstimate& b) {
-  return std::memcmp(&a, &b, sizeof a) == 0;
+  for (int h = 0; h < 2; ++h) {
+    const HalfEstimate &x = a.half[h], &y = b.half[h];
+    if (std::memcmp(x.mean, y.mean, sizeof x.mean) != 0 ||
+        std::memcmp(&x.alpha, &y.alpha, sizeof x.alpha) != 0 || x.rays != y.rays ||
+        x.count != y.count)
+      return false;
+  }
+  return true;
 }
 
-bool sameBits(const std::vector<PixelEstimate>& a, const std::vector<PixelEstimate>& b) {
+bool sameBits(std::span<const PixelEstimate> a, std::span<const PixelEstimate> b) {
   if (a.size() != b.size()) return false;
   for (size_t i = 0; i < a.size(); ++i)
     if (!sameBits(a[i], b[i])) return false;
@@ -252,6 +262,70 @@ TEST(RenderSession, FinishingWithPassesLeftGivesAPartialFrame) {
   opt.resumeFrom = &left;
   EXPECT_EQ(pixelsOf(renderScene(scene, *accel, opt).film),
             pixelsOf(renderScene(scene, *accel, quiet()).film));
+}
+
+TEST(RenderSession, AnAdaptiveFrameIsTheSameBitsForAnyThreadCountAndTileSize) {
+  // Tiles are taken costliest first (by the rays their pixels' samples traced so far) and the
+  // frame's states are first written on the render's threads: neither may change a bit. 1, 2
+  // and 7 threads, tiles of 8 and 16 (7 threads and 8: tiles left over at every pass's end).
+  const Scene scene = softShadows(16, SamplerKind::Stratified);
+  const auto accel = makeAccelerator(AccelKind::Embree, scene);
+  RenderOptions base = adaptive();
+  base.threads = 1;
+  const RenderResult one = renderScene(scene, *accel, base);
+  ASSERT_LT(one.stats.minPixelSpp, one.stats.maxPixelSpp);  // the later passes are short
+  for (const int threads : {2, 7})
+    for (const int tileSize : {8, 16}) {
+      RenderOptions opt = adaptive();
+      opt.threads = threads;
+      opt.tileSize = tileSize;
+      const RenderResult r = renderScene(scene, *accel, opt);
+      EXPECT_EQ(pixelsOf(r.film), pixelsOf(one.film)) << threads << " threads, " << tileSize;
+      EXPECT_TRUE(sameBits(r.estimates, one.estimates)) << threads << " threads, " << tileSize;
+      EXPECT_EQ(passEnds(r.stats), passEnds(one.stats)) << threads << " threads, " << tileSize;
+      EXPECT_EQ(r.stats.rays.total(), one.stats.rays.total()) << threads << ", " << tileSize;
+    }
+}
+
+TEST(RenderSession, BeforeItsFirstPassAFramesStatesAreZeroOnAnyThreads) {
+  // The states are first written in blocks on the render's threads: a snapshot before any
+  // pass holds what zeroed states hold (no samples, black and transparent) for 1 and 7 threads.
+  const Scene scene = softShadows(16, SamplerKind::Stratified);
+  const auto accel = makeAccelerator(AccelKind::Embree, scene);
+  const std::vector<PixelEstimate> zero(48 * 32);
+  for (const int threads : {1, 7}) {
+    RenderSession session(scene, *accel, quiet(threads));
+    const RenderResult snap = session.snapshot();
+    EXPECT_TRUE(sameBits(snap.estimates, zero)) << threads << " threads";
+    EXPECT_EQ(pixelsOf(snap.film), std::vector<double>(48 * 32 * 4, 0.0)) << threads;
+  }
+}
+
+TEST(RenderSession, TheScheduleNotesEachPhasesTilesWithWorkOnce) {
+  // An adaptive frame's phases: each pass, and the probes (spp 0) that measure the spread
+  // before the second. The first pass samples every pixel, so it takes every tile; later
+  // passes only tiles with a pixel chosen; no phase takes a tile twice.
+  const Scene scene = softShadows(16, SamplerKind::Stratified);
+  const auto accel = makeAccelerator(AccelKind::Embree, scene);
+  RenderOptions opt = adaptive();
+  opt.tileSize = 8;  // 6 x 4 = 24 tiles of the 48 x 32 frame
+  const RenderResult r = renderScene(scene, *accel, opt);
+  const RenderTiming& t = r.stats.timing;
+  EXPECT_EQ(t.threads, 2);
+  ASSERT_EQ(t.passes.size(), r.stats.passes.size() + 1);
+  std::vector<int> ends;
+  for (size_t i = 0; i < t.passes.size(); ++i) {
+    std::set<uint32_t> taken;
+    for (const TileTime& tile : t.passes[i].tiles) {
+      EXPECT_LT(tile.tile, 24u) << i;
+      EXPECT_TRUE(taken.insert(tile.tile).second) << "phase " << i << " tile " << tile.tile;
+    }
+    if (i != 1) ends.push_back(t.passes[i].spp);
+  }
+  EXPECT_EQ(t.passes[1].spp, 0);  // the probes
+  EXPECT_EQ(ends, passEnds(r.stats));
+  EXPECT_EQ(t.passes[0].tiles.size(), 24u);
+  EXPECT_LT(t.passes.back().tiles.size(), 24u);  // the last pass's pixels are a few regions
 }
 
 }  // namespace
