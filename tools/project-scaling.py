@@ -6,6 +6,7 @@
                              [--scenes "default soft_shadows ..."]
                              [--adaptive SCENE "RENDER OPTIONS"]
     tools/project-scaling.py --from STATS.json [--project 16]   # one render's --stats-json
+    tools/project-scaling.py OUTDIR --reuse ...   # again from the renders OUTDIR/raw holds
 
 Each scene (and an adaptive render, by default soft_shadows --target-rmse 0.002 --max-spp 256,
 as tools/scaling-study.sh) is rendered R times at each --measure thread count with --stats-json;
@@ -16,10 +17,14 @@ phase before and each tile's seconds, in the order the threads took them. The mo
 
     T(P) = setup + init / P + sum over phases (serial + loops / P + makespan_P(tiles))
            + finish + finish_loops / P
-    E(P) = T1 / (P * T(P)),  T1 = the 1-thread render's "seconds"
+    E(P) = T1 / (P * T(P)),  T1 = T(1), the same sum for one thread
+
+both from one 1-thread render cut into the tiles P threads take (`--tile-size`).
 
 makespan_P is the end of the phase when P threads take its tiles in the order recorded, each
-the next when it finishes one, with the tiles' 1-thread seconds (as runTiles hands them out):
+the next when it finishes one, with the tiles' 1-thread seconds (as runTiles hands them out;
+each tile's thread CPU time, so that a busy machine taking the thread off its core does not
+count as the tile's cost; the 1-thread render's measured seconds are shown beside T1):
 the work / P plus the idle at the phase's end. "loops" are the loops over the frame's pixels
 between phases (choices, tile costs, statistics, the resolved frame), which run on the
 render's threads in fixed blocks; "serial" is the rest of the time between phases, on the
@@ -43,6 +48,12 @@ SCENES = "default soft_shadows depth_of_field real_assets lamp_in_mirror"
 ADAPTIVE = ("soft_shadows", "--target-rmse 0.002 --max-spp 256")
 
 
+def tile_seconds(phase):
+    """Each tile's seconds in the order taken: its thread's CPU time where noted (a busy
+    machine's descheduling left out), else its wall time."""
+    return [t[4] if len(t) > 4 and t[4] >= 0 else t[2] for t in phase["tiles"]]
+
+
 def makespan(seconds, threads):
     """The end of a phase whose tiles, in this order, are taken by `threads` threads."""
     free = [0.0] * threads
@@ -61,7 +72,7 @@ def model(stats, threads, loops_scale=True):
     loops = sch["finish_loop_seconds"]
     work = idle = 0.0
     for phase in sch["phases"]:
-        seconds = [t[2] for t in phase["tiles"]]
+        seconds = tile_seconds(phase)
         span = makespan(seconds, threads)
         serial += phase["serial_seconds"]
         loops += phase["loop_seconds"]
@@ -91,7 +102,10 @@ def measured_idle(stats):
                for p in sch["phases"])
 
 
-def render(glint, scene, threads, out, extra):
+def render(glint, scene, threads, out, extra, reuse=False):
+    if reuse and os.path.exists(out + ".json"):
+        with open(out + ".json") as f:
+            return json.load(f)
     cmd = [glint, "render", os.path.join(ROOT, "scenes", scene + ".json"), "-o", out + ".exr",
            "--quiet", "--threads", str(threads), "--stats-json", out + ".json"] + extra
     subprocess.run(cmd, check=True)
@@ -99,9 +113,12 @@ def render(glint, scene, threads, out, extra):
         return json.load(f)
 
 
+REUSE = False
+
+
 def best(glint, scene, threads, raw, name, extra, runs):
     runs_stats = [render(glint, scene, threads, os.path.join(raw, f"{name}.t{threads}.r{r}"),
-                         extra) for r in range(runs)]
+                         extra, REUSE) for r in range(runs)]
     return min(runs_stats, key=lambda s: s["seconds"])
 
 
@@ -110,8 +127,8 @@ def row(label, one, cut, p, others):
     from `one`), and at each other count the measured seconds beside the model's from `one`."""
     m = model(cut, p)
     bound = model(cut, p, loops_scale=False)
-    t1 = one["seconds"]
-    cells = [label, f"{t1:.3f}", f"{m['serial'] * 1e3:.1f} ms",
+    t1 = model(cut, 1)["total"]
+    cells = [label, f"{one['seconds']:.3f} / {model(one, 1)['total']:.3f}", f"{m['serial'] * 1e3:.1f} ms",
              f"{(m['init'] + m['loops']) * 1e3:.1f} ms", f"{m['serial'] / m['total'] * 100:.1f} %",
              f"{m['idle'] / m['total'] * 100:.1f} %", f"{m['total']:.4f}",
              f"**{t1 / (p * m['total']):.3f}**", f"{t1 / (p * bound['total']):.3f}"]
@@ -131,16 +148,21 @@ def main():
     ap.add_argument("--scenes", default=SCENES)
     ap.add_argument("--adaptive", nargs=2, default=ADAPTIVE, metavar=("SCENE", "OPTIONS"))
     ap.add_argument("--from", dest="from_stats")
+    ap.add_argument("--reuse", action="store_true",
+                    help="read the renders an earlier run left in OUTDIR/raw instead of rendering")
     a = ap.parse_args()
     p = a.project
+    global REUSE
+    REUSE = a.reuse
     if p < 1 or a.runs < 1:
         ap.error("--project and --runs must be positive")
     if a.from_stats:
         with open(a.from_stats) as f:
             stats = json.load(f)
-        m = model(stats, p)
-        print(json.dumps({"threads": p, "t1": stats["seconds"], "projected_seconds": m["total"],
-                          "efficiency": stats["seconds"] / (p * m["total"]), **m}, indent=1))
+        m, t1 = model(stats, p), model(stats, 1)["total"]
+        print(json.dumps({"threads": p, "t1": t1, "t1_measured": stats["seconds"],
+                          "projected_seconds": m["total"], "efficiency": t1 / (p * m["total"]),
+                          **m}, indent=1))
         return 0
     if not a.out:
         ap.error("give an output directory, or --from STATS.json")
@@ -157,7 +179,7 @@ def main():
     lines = ["# Scaling with cores: a projection", "",
              f"glint: {subprocess.run([a.glint, '--version'], capture_output=True, text=True).stdout.splitlines()[0]};"
              f" {os.cpu_count()} cores here; best of {a.runs} runs", "",
-             f"| scene | 1 thread | serial | loops | serial at {p} | end-of-pass idle at {p} "
+             f"| scene | 1 thread: measured / modelled | serial | loops | serial at {p} | end-of-pass idle at {p} "
              f"| projected seconds at {p} | projected efficiency at {p} | loops not scaling |"
              + "".join(f" measured / modelled at {t}, measured idle |" for t in measure[1:]),
              "|---|---:|---:|---:|---:|---:|---:|---:|---:|" + "---|" * (len(measure) - 1)]
@@ -165,7 +187,7 @@ def main():
         scene = name.split(".")[0]
         one = best(a.glint, scene, 1, raw, name, extra, a.runs)
         # The phases are modelled with the tiles P threads cut the frame into (smaller than one
-        # thread's where the frame is small); T1 stays the 1-thread render's own.
+        # thread's where the frame is small), T1 too, so that both come from one render.
         size = tile_size_at(one, p)
         cut = one
         if size != one["schedule"]["tile_size"]:

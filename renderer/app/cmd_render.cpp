@@ -101,14 +101,14 @@ std::vector<std::pair<uint32_t, std::string>> worldObjects(const Scene& scene) {
 }
 
 // Where the render's time went around its parallel phases (render/pass_timing.h), for
-// tools/project-scaling.py: each phase's tiles as [tile, start, seconds, thread], in the order
-// taken.
+// tools/project-scaling.py: each phase's tiles as [tile, start, seconds, thread, CPU seconds], in
+// the order taken.
 nlohmann::json scheduleJson(const RenderTiming& t) {
   nlohmann::json phases = nlohmann::json::array();
   for (const PassTiming& p : t.passes) {
     nlohmann::json tiles = nlohmann::json::array();
     for (const TileTime& tile : p.tiles)
-      tiles.push_back({tile.tile, tile.start, tile.seconds, tile.thread});
+      tiles.push_back({tile.tile, tile.start, tile.seconds, tile.thread, tile.cpuSeconds});
     phases.push_back({{"spp", p.spp},
                       {"loop_seconds", p.loopSeconds},
                       {"serial_seconds", p.serialSeconds},
@@ -225,6 +225,7 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   opt.tileSize = a.tileSize;
   parseIntegratorKind(a.integrator, opt.integrator);
   opt.progress = !a.quiet;
+  opt.tileCpuTimes = !a.statsJson.empty();  // the schedule's, for tools/project-scaling.py
   opt.tileOrder = a.tileOrder == "row" ? TileOrder::RowMajor : TileOrder::Morton;
   opt.cancel = &interrupt::requested();
   opt.aovs = AovSet::parse(a.aovs);

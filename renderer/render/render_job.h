@@ -40,6 +40,9 @@ struct RenderOptions {
   // pixels go on from there, and its passes from where they stood. Null: from nothing.
   const ResumeState* resumeFrom = nullptr;
   AovSet aovs;  // none by default
+  // Whether each tile's thread CPU time is noted in RenderStats::timing besides its wall time
+  // (a system call per tile: only for `--stats-json`).
+  bool tileCpuTimes = false;
   // The production kernel (integrator/batched_kernel.h), or its oracle, the depth-first
   // reference integrator (integrator/reference.h: `--integrator reference`, beauty only).
   IntegratorKind integrator = IntegratorKind::Production;

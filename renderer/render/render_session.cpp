@@ -396,7 +396,8 @@ bool RenderSession::renderTiles(const FrameContext& frame, const PassContext& pa
   timing.serialSeconds = std::chrono::duration<double>(begin - phaseEnd_).count() - loopSeconds_;
   loopSeconds_ = 0;
   std::atomic<bool> stopped{false};
-  TileWork work{tiles, counters, progress, stopped, threads_, {order, &timing.tiles}};
+  TileWork work{tiles,   counters, progress,
+                stopped, threads_, {order, &timing.tiles, opt_.tileCpuTimes}};
   // A pass with no work leaves every tile as it is: an empty order would mean every tile.
   summaryFresh_ = false;
   if (!order.empty()) integrator_->render(frame, pass, work);

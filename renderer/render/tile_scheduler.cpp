@@ -6,6 +6,8 @@
 #include <tbb/partitioner.h>
 #include <tbb/task_arena.h>
 
+#include <time.h>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -17,6 +19,12 @@
 namespace glint {
 
 namespace {
+
+double threadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
 
 // Interleaves the bits of x and y (x in the even bits): the Morton code of a tile.
 uint64_t morton(uint32_t x, uint32_t y) {
@@ -123,11 +131,14 @@ void runTiles(const std::vector<PixelWindow>& tiles, int threads, const TileSche
     for (size_t k; (k = next.fetch_add(1, std::memory_order_relaxed)) < count;) {
       const size_t tile = schedule.order.empty() ? k : schedule.order[k];
       const auto start = std::chrono::steady_clock::now();
+      const double cpuStart = schedule.cpuTimes ? threadCpuSeconds() : 0;
       renderTile(tile);
       if (schedule.times)
-        (*schedule.times)[k] = {static_cast<uint32_t>(tile), seconds(start),
-                                seconds(std::chrono::steady_clock::now()) - seconds(start),
-                                tbb::this_task_arena::current_thread_index()};
+        (*schedule.times)[k] = {
+            static_cast<uint32_t>(tile), seconds(start),
+            seconds(std::chrono::steady_clock::now()) - seconds(start),
+            tbb::this_task_arena::current_thread_index(),
+            schedule.cpuTimes ? static_cast<float>(threadCpuSeconds() - cpuStart) : -1.0f};
     }
   };
   const auto run = [&] {

@@ -52,14 +52,17 @@ void withThreads(int threads, const std::function<void()>& body);
 struct TileTime {
   uint32_t tile = 0;  // its index in the pass's tiles
   float start = 0, seconds = 0;
-  int32_t thread = 0;  // the thread's index in the arena
+  int32_t thread = 0;     // the thread's index in the arena
+  float cpuSeconds = -1;  // its thread's CPU time in it, where asked for (TileSchedule::cpuTimes)
 };
 
 // The order in which a pass hands its tiles out (every tile in index order where empty), and
 // where it notes their times (one per tile handed out, in that order; none where null).
+// Thread CPU times leave out the time a busy machine takes a thread off its core.
 struct TileSchedule {
   std::span<const uint32_t> order;
   std::vector<TileTime>* times = nullptr;
+  bool cpuTimes = false;
 };
 
 // The tiles whose expected cost is above zero, the costliest first (ties in tile order): each
