@@ -398,8 +398,8 @@ bool RenderSession::renderTiles(const FrameContext& frame, const PassContext& pa
   std::atomic<bool> stopped{false};
   TileWork work{tiles,   counters, progress,
                 stopped, threads_, {order, &timing.tiles, opt_.tileCpuTimes}};
-  // A pass with no work leaves every tile as it is: an empty order would mean every tile.
   summaryFresh_ = false;
+  // A pass with no work leaves every tile as it is: an empty order would mean every tile.
   if (!order.empty()) integrator_->render(frame, pass, work);
   phaseEnd_ = Clock::now();
   timing.tilesSeconds = std::chrono::duration<double>(phaseEnd_ - begin).count();

@@ -12,7 +12,6 @@
 #include <atomic>
 #include <chrono>
 #include <cstdint>
-#include <numeric>
 
 #include "core/fp_env.h"
 
