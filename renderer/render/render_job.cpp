@@ -19,6 +19,42 @@ bool parseIntegratorKind(const std::string& name, IntegratorKind& out) {
   return true;
 }
 
+void CameraSampling::chunkRays(const SampleKey* keys, int count, Ray* out, Points& p) const {
+  const Sampler& sampler = *keys[0].sampler;
+  // The lens and time dimensions only where there is a lens, or motion under an open shutter.
+  const bool drawLens = camera_.hasLens(), drawTime = openShutter_;
+  const uint32_t dims[Points::kDims] = {dimension(Dim::Pixel), dimension(Dim::Lens),
+                                        dimension(Dim::Time)};
+  const bool drawn[Points::kDims] = {true, drawLens, drawTime};
+  // Half 0's points (or the whole sets') before half 1's: at odd spp the halves' sets differ
+  // in size, and a block of lanes draws from sets of one size.
+  int m = 0, sets = 0;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int i = 0; i < count; ++i) {
+      const SampleKey& key = keys[i];
+      if ((key.half == 1) != (pass == 1)) continue;
+      const SampleKey* const before = m > 0 ? &keys[p.sample[m - 1]] : nullptr;
+      if (!before || before->px != key.px || before->py != key.py || before->half != key.half) {
+        for (int d = 0; d < Points::kDims; ++d)
+          if (drawn[d]) p.sets[d][size_t(sets)] = key.pattern(dims[d]);
+        ++sets;
+      }
+      for (int d = 0; d < Points::kDims; ++d) p.at[d][m] = &p.sets[d][size_t(sets - 1)];
+      p.flat[m] = static_cast<uint32_t>(key.index);
+      p.sample[m++] = i;
+    }
+  for (int d = 0; d < Points::kDims; ++d)
+    if (drawn[d]) sampler.get2DAt(p.at[d], 1, p.flat, count, p.points[d].data());
+  for (int j = 0; j < count; ++j) {
+    const SampleKey& key = keys[p.sample[j]];
+    const Vec2f pixel = p.points[0][size_t(j)];
+    Ray& r = out[p.sample[j]];
+    camera_.generateRay(static_cast<float>(key.px) + pixel.x, static_cast<float>(key.py) + pixel.y,
+                        drawLens ? p.points[1][size_t(j)] : Vec2f{}, r);
+    r.time = drawTime ? open_ + (close_ - open_) * p.points[2][size_t(j)].x : open_;
+  }
+}
+
 void checkSampleSets(const Scene& scene, int64_t spp) {
   const std::string limit = "the sampler's limit of " + std::to_string(kMaxSampleSet);
   if (spp > kMaxSampleSet)

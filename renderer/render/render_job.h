@@ -9,6 +9,8 @@
 
 #include "accel/accelerator.h"
 #include "camera/camera.h"
+#include "core/sampler.h"
+#include "core/uninitialized_array.h"
 #include "film/film.h"
 #include "integrator/aov.h"
 #include "integrator/radiance.h"
@@ -66,33 +68,26 @@ class CameraSampling {
         close_(scene.cameraDesc.shutterClose),
         openShutter_(scene.features.motion && close_ > open_) {}
 
-  // Where rays() keeps a run's sample points: one per tile or thread. Declared inside rays(),
-  // the arrays were cleared per call (a `rep stos` that a 1-spp render paid per camera ray).
+  // Where rays() keeps a chunk's sets and points: one per tile or thread. Declared inside
+  // rays(), the arrays were cleared per call (a `rep stos` that a 1-spp render paid per camera
+  // ray).
   struct Points {
-    static constexpr int kRun = 16;  // points per sampler call: enough for its vector lanes
-    Vec2f pixel[kRun], lens[kRun], time[kRun];
+    static constexpr int kDims = 3;  // pixel, lens, time
+    // Each pixel half's set of each dimension in the chunk, made once for all its samples.
+    UninitializedArray<SamplePattern, kCameraChunk> sets[kDims];
+    // Per point, in the order drawn: its set, its index in the set, its sample in the chunk.
+    const SamplePattern* at[kDims][kCameraChunk];
+    uint32_t flat[kCameraChunk];
+    int sample[kCameraChunk];
+    UninitializedArray<Vec2f, kCameraChunk> points[kDims];
   };
-  // The rays of `count` consecutive samples of one pixel (keys[i].index = keys[0].index + i),
-  // into out: each dimension's points are drawn in runs, where the sampler draws them side by
-  // side (sampler.cpp).
+  // The rays of `count` samples, any pixels' and halves', into out, where the keys of one
+  // pixel half's samples stand next to each other. A chunk's points of a dimension are drawn
+  // side by side, several pixels' sets in one block of lanes (Sampler::get2DAt): at low spp a
+  // pixel half adds one or two samples a pass, which drawn apart paid for a block each.
   void rays(const SampleKey* keys, int count, Ray* out, Points& points) const {
-    const SampleKey& key = keys[0];
-    // The lens and time dimensions only where there is a lens, or motion under an open shutter.
-    const bool drawLens = camera_.hasLens(), drawTime = openShutter_;
-    for (int first = 0; first < count; first += Points::kRun) {
-      const int n = std::min(Points::kRun, count - first);
-      // Samples key.index + first + i: flat indices of sets with one sub-sample per sample.
-      key.get2D(key.pattern(dimension(Dim::Pixel)), first, n, 1, points.pixel);
-      if (drawLens) key.get2D(key.pattern(dimension(Dim::Lens)), first, n, 1, points.lens);
-      if (drawTime) key.get2D(key.pattern(dimension(Dim::Time)), first, n, 1, points.time);
-      for (int i = 0; i < n; ++i) {
-        Ray& r = out[first + i];
-        camera_.generateRay(static_cast<float>(key.px) + points.pixel[i].x,
-                            static_cast<float>(key.py) + points.pixel[i].y,
-                            drawLens ? points.lens[i] : Vec2f{}, r);
-        r.time = drawTime ? open_ + (close_ - open_) * points.time[i].x : open_;
-      }
-    }
+    for (int first = 0; first < count; first += kCameraChunk)
+      chunkRays(keys + first, std::min(kCameraChunk, count - first), out + first, points);
   }
   // The keys and rays of samples [first, first + count) of pixel (x, y).
   void pixelRays(const Sampler& sampler, int x, int y, int first, int count, SampleKey* keys,
@@ -101,14 +96,10 @@ class CameraSampling {
     for (int i = 0; i < count; ++i) keys[i] = SampleKey(&sampler, x, y, first + i, pixelKey);
     rays(keys, count, out, points);
   }
-  Ray ray(const SampleKey& key) const {
-    Ray r;
-    Points points;
-    rays(&key, 1, &r, points);
-    return r;
-  }
 
  private:
+  void chunkRays(const SampleKey* keys, int count, Ray* out, Points& points) const;
+
   const Camera& camera_;
   float open_, close_;
   bool openShutter_;

@@ -91,6 +91,8 @@ bool renderTilePass(const FrameContext& f, const PassContext& pass, Shading& sha
   const auto flush = [&]() {
     if (count == 0) return true;
     if (stopped(f.opt, pass)) return false;
+    // The whole chunk's rays at once: its pixels' points share blocks of the sampler's lanes.
+    f.cameraSampling.rays(keys, count, rays, cameraPoints);
     if (aovSamples)
       for (int i = 0; i < count; ++i) {
         records[i] = AovSample{};
@@ -152,7 +154,6 @@ bool renderTilePass(const FrameContext& f, const PassContext& pass, Shading& sha
           }
           if (first) stateOf[count] = state;
           first = false;
-          f.cameraSampling.rays(keys + count, run, rays + count, cameraPoints);
           count += run;
           j += run;
         }
