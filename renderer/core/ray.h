@@ -66,6 +66,17 @@ inline float nextFloatUp(float x) {
 }
 inline float nextFloatDown(float x) { return -nextFloatUp(-x); }
 
+// p + offset, each coordinate then rounded one more ulp in the offset's direction:
+// offsetRayOrigin's last step.
+[[gnu::always_inline]] inline Vec3f offsetAway(const Vec3f& p, const Vec3f& offset) {
+  const Vec3f po = p + offset;
+  // Per coordinate, not through po[i]: indexing kept po in memory (store forwarding).
+  const auto away = [](float x, float o) {
+    return o > 0 ? nextFloatUp(x) : o < 0 ? nextFloatDown(x) : x;
+  };
+  return {away(po.x, offset.x), away(po.y, offset.y), away(po.z, offset.z)};
+}
+
 // Moves p off its surface so that a ray leaving towards `w` cannot hit that surface again:
 // the offset along the geometric normal ng is the projection of p's error bound pError onto
 // ng, and each coordinate is then rounded one more ulp away (pbrt-v4's OffsetRayOrigin). The
@@ -73,15 +84,9 @@ inline float nextFloatDown(float x) { return -nextFloatUp(-x); }
 // every scale and distance from the origin.
 [[gnu::always_inline]] inline Vec3f offsetRayOrigin(const Vec3f& p, const Vec3f& pError,
                                                     const Vec3f& ng, const Vec3f& w) {
-  const float d = dot(abs(ng), pError);
-  Vec3f offset = d * ng;
+  Vec3f offset = dot(abs(ng), pError) * ng;
   if (dot(w, ng) < 0) offset = -offset;
-  const Vec3f po = p + offset;
-  // Per coordinate, not through po[i]: indexing kept po in memory (store forwarding).
-  const auto away = [](float x, float o) {
-    return o > 0 ? nextFloatUp(x) : o < 0 ? nextFloatDown(x) : x;
-  };
-  return {away(po.x, offset.x), away(po.y, offset.y), away(po.z, offset.z)};
+  return offsetAway(p, offset);
 }
 
 }  // namespace glint

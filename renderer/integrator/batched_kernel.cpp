@@ -306,7 +306,33 @@ SamplePattern BatchedKernel::lightPattern(const LitPoint& pt, size_t li) const {
 
 void BatchedKernel::queueLight(const LitPoint& pt, size_t li, SubSampleStream& draws, int size,
                                ShadowQueue& queue) const {
-  for (int j = 0; j < size; ++j) queueSample(pt, li, draws.next(), queue);
+  const Light& light = scene_.lights[li];
+  if (const auto* q = std::get_if<QuadLight>(&light))
+    return queueAreaSamples(pt, *q, li, draws, size, queue);
+  if (const auto* d = std::get_if<DiskLight>(&light))
+    return queueAreaSamples(pt, *d, li, draws, size, queue);
+  for (int j = 0; j < size; ++j) queueSample(pt, li, draws.next(), queue);  // the environment
+}
+
+template <class AreaLight>
+void BatchedKernel::queueAreaSamples(const LitPoint& pt, const AreaLight& light, size_t li,
+                                     SubSampleStream& draws, int size, ShadowQueue& queue) const {
+  const ShadowOrigin from(pt.sp);
+  const uint32_t origin = ray_origin::light(li);
+  const int begin = queue.size;
+  int q = begin;
+  for (int j = 0; j < size; ++j) {
+    const LightSample ls = sampleArea(light, pt.sp.p, draws.next());
+    if (!facesLight(pt.at, ls.wi) || ls.intensity.isBlack()) continue;
+    const Rgb f = reflectedLight(pt.material->surface, pt.sp, pt.at, ls.wi);
+    from.spawnTo(queue.rays[q], ls.target, pt.time, origin);
+    queue.term[q] = f * ls.intensity;
+    queue.atInfinity[q] = false;
+    ++q;
+  }
+  queue.size = q;
+  if (transparentShadows())
+    std::fill(queue.media.data() + begin, queue.media.data() + q, &pt.branch->media);
 }
 
 void BatchedKernel::traceShadows(ShadowQueue& queue, RayCounters& counters) const {

@@ -208,6 +208,11 @@ class BatchedKernel {
   // Queues the point's next `size` samples of area light `li`, drawn from `draws`.
   void queueLight(const LitPoint& pt, size_t li, SubSampleStream& draws, int size,
                   ShadowQueue& queue) const;
+  // queueLight for a quad or disk light: queueSample's work, with what depends only on the
+  // point or only on the light (its type, the shadow rays' origin) done once for the samples.
+  template <class AreaLight>
+  void queueAreaSamples(const LitPoint& pt, const AreaLight& light, size_t li,
+                        SubSampleStream& draws, int size, ShadowQueue& queue) const;
   // The direct light of the points pending in the scratch, added to their ray's local:
   // queueShadowRays, traceShadows, addDirectLight. Empties the pending list and the queue.
   void lightPendingPoints(Scratch& scratch, typename Generation::Sum* sums, AovSample* const* aovs,

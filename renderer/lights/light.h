@@ -156,6 +156,18 @@ inline Rgb meanOverSamples(const Rgb& sum, int count) {
   return s;
 }
 
+// The sample of a quad or disk light at u in [0, 1)², seen from p: sampleLight's, for callers
+// that have looked the light's type up once for many samples.
+[[gnu::always_inline]] inline LightSample sampleArea(const QuadLight& q, const Vec3f& p, Vec2f u) {
+  return lightSampleFrom(p, q.corner() + u.x * q.edge1() + u.y * q.edge2(), q.intensity, q.falloff,
+                         q.emission, q.normal(), q.area());
+}
+[[gnu::always_inline]] inline LightSample sampleArea(const DiskLight& d, const Vec3f& p, Vec2f u) {
+  const Vec2f disk = squareToDiskConcentric(u);
+  return lightSampleFrom(p, d.center() + disk.x * d.axisX() + disk.y * d.axisY(), d.intensity,
+                         d.falloff, d.emission, d.normal(), d.area());
+}
+
 // `u` in [0, 1)² picks the point on an area light, or the direction of the environment, which
 // a uniform sky draws about n, the point's unit shading normal; delta lights ignore both. An
 // environment's sample arrives from infinity with radiance / pdf as its intensity: times k_d·cos θ
@@ -171,14 +183,8 @@ inline Rgb meanOverSamples(const Rgb& sum, int count) {
       s.intensity = s.intensity * pl->coneFactor(s.wi);
     return s;
   }
-  if (const auto* q = std::get_if<QuadLight>(&light))
-    return lightSampleFrom(p, q->corner() + u.x * q->edge1() + u.y * q->edge2(), q->intensity,
-                           q->falloff, q->emission, q->normal(), q->area());
-  if (const auto* d = std::get_if<DiskLight>(&light)) {
-    const Vec2f disk = squareToDiskConcentric(u);
-    return lightSampleFrom(p, d->center() + disk.x * d->axisX() + disk.y * d->axisY(), d->intensity,
-                           d->falloff, d->emission, d->normal(), d->area());
-  }
+  if (const auto* q = std::get_if<QuadLight>(&light)) return sampleArea(*q, p, u);
+  if (const auto* d = std::get_if<DiskLight>(&light)) return sampleArea(*d, p, u);
   LightSample s;
   s.atInfinity = true;
   // The environment last: a directional light's sample makes no more tests than before it was
