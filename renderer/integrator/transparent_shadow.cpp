@@ -22,7 +22,7 @@ Rgb transparentShadow(const Scene& scene, const Accelerator& accel, Ray shadow, 
     const Vec3f dir = normalize(shadow.d);
     // The interface's transmittance for the straight ray, with the media on both sides.
     const Crossing c = crossingAt(media, hit, next.materialId, dir, next.ng, scene.materials);
-    T *= 1 - m.dielectric.reflectance(std::fabs(dot(dir, next.ng)), c.etaI, c.etaT);
+    T *= m.dielectric.transmittance(std::fabs(dot(dir, next.ng)), c.etaI, c.etaT);
     if (T.maxChannel() < minThroughput) return {};
     media = c.across;
     // On over the rest of the segment from just past this interface.

@@ -1,7 +1,8 @@
 #pragma once
 // Shadow rays through transparent objects (seed 002 §9.1): a shadow ray that meets only
-// dielectrics carries the product of their transmissions k_t, here the Fresnel transmittance
-// 1 − R at each interface and Beer's law over each distance inside, instead of being blocked.
+// dielectrics carries the product of their transmissions k_t, the Fresnel transmittance 1 − R
+// (or a constant k_t, materials/dielectric.h) at each interface and Beer's law over each
+// distance inside, instead of being blocked.
 // As the seed says, the shadow ray itself is not refracted: it runs straight to the light.
 // Both integrators call this; it traces one ray at a time.
 #include "accel/accelerator.h"

@@ -76,5 +76,9 @@ void addCsg(SceneBuilder& b, const JsonNode& obj, uint32_t groupId, uint32_t obj
             const Placement& place);
 // In double; validated as a float transform (non-singular, affine).
 Affine parseTransform(const JsonNode& node);
+// The scene's "camera" at the animation's frame (camera_loader.cpp); `origin` is set to the
+// eye's world position, which render space is placed around (io/placement.h).
+void parseCamera(const JsonNode& n, const std::optional<Animation>& animation, CameraDesc& c,
+                 Vec3d& origin);
 
 }  // namespace glint

@@ -57,96 +57,6 @@ void parseRender(const JsonNode& n, RenderSettings& r) {
   if (auto v = n.get("transparent_background")) r.transparentBackground = v->boolean();
 }
 
-// "window": [l, r, b, t] with l < r and b < t (seed 000 eq. 4.1).
-ImageWindow parseWindow(const JsonNode& n) {
-  if (!n.isArray() || n.size() != 4) n.fail("must be [l, r, b, t]");
-  const ImageWindow w{n[0].number(), n[1].number(), n[2].number(), n[3].number()};
-  if (!(w.l < w.r)) n.fail("l must be less than r");
-  if (!(w.b < w.t)) n.fail("b must be less than t");
-  // Within ±kMaxRayOrigin every span (r − l, t − b) is a float and every ray it makes is one
-  // Embree takes (camera/camera.cpp checks the derived rays again).
-  for (size_t i = 0; i < 4; ++i)
-    if (!(std::fabs(n[i].number()) <= kMaxRayOrigin))
-      n[i].fail(
-          "window values must lie within ±1e18 (the range of rays Glint traces; r − l "
-          "and t − b must be floats)");
-  return w;
-}
-
-// The lens: "aperture_radius", or a photographer's "focal_length" F and "f_number" a (seed 002
-// §9.3: the lens diameter is D = F/a, so the radius F/(2a)).
-void parseLens(const JsonNode& n, CameraDesc& c) {
-  const bool byRadius = n.has("aperture_radius");
-  const bool byNumber = n.has("focal_length") || n.has("f_number");
-  if (byRadius && byNumber)
-    n.at("aperture_radius")
-        .fail(
-            "is given with focal_length / f_number: give the lens one way (aperture_radius = "
-            "focal_length / (2 f_number))");
-  if (byRadius) c.apertureRadius = n.at("aperture_radius").number(0, 3.4e38f);
-  if (byNumber) {
-    for (const char* key : {"focal_length", "f_number"})
-      if (!n.has(key))
-        n.fail(std::string("focal_length and f_number go together: ") + key + " is missing");
-    const float focalLength = n.at("focal_length").number(0, 3.4e38f, true);
-    const float fNumber = n.at("f_number").number(0, 3.4e38f, true);
-    c.apertureRadius = focalLength / (2 * fNumber);
-  }
-}
-
-void parseCamera(const JsonNode& n, const std::optional<Animation>& animation, CameraDesc& c,
-                 Vec3d& origin) {
-  const std::string type =
-      n.has("type") ? n.at("type").choice({"perspective", "orthographic"}) : "perspective";
-  c.projection = type == "perspective" ? Projection::Perspective : Projection::Orthographic;
-  // The window replaces the extent that vfov (or height) would give.
-  const char* extent = c.projection == Projection::Perspective ? "vfov" : "height";
-  if (n.has("window") && n.has(extent))
-    n.at("window").fail(std::string("is given with ") + extent +
-                        ": the window sets the image's extent itself");
-  if (c.projection == Projection::Perspective) {
-    n.checkKeys({"type", "eye", "look_at", "up", "vfov", "window", "image_plane_normal",
-                 "aperture_radius", "focal_length", "f_number", "focus_distance", "lens", "shutter",
-                 "keys"});
-    if (auto v = n.get("vfov")) c.vfovDegrees = v->number(0, 179.9f, true);
-  } else {
-    n.checkKeys({"type", "eye", "look_at", "up", "height", "window", "image_plane_normal",
-                 "shutter", "keys"});
-    if (!n.has("window")) c.orthoHeight = n.at("height").number(0, 3.4e38f, true);
-  }
-  if (auto v = n.get("window")) c.window = parseWindow(*v);
-  if (auto v = n.get("image_plane_normal")) c.imagePlaneNormal = v->direction();
-  // Render space puts the eye at the origin (io/placement.h): an animated camera's eye at this
-  // frame, so each frame is rendered around its own viewpoint.
-  const CameraPose pose = parseCameraPose(n, animation);
-  origin = pose.eye;
-  c.eye = {0, 0, 0};
-  c.lookAt = toFloat(pose.lookAt - origin);
-  c.up = pose.up;
-  parseLens(n, c);
-  if (auto v = n.get("lens"))
-    c.lensShape = v->choice({"disk", "square"}) == "disk" ? LensShape::Disk : LensShape::Square;
-  c.focusDistance = length(c.lookAt - c.eye);
-  if (auto v = n.get("focus_distance")) c.focusDistance = v->number(0, 3.4e38f, true);
-  // Eq. 9.24: a lens brings to focus on the film only what lies beyond its focal length.
-  if (auto f = n.get("focal_length"); f && !(c.focusDistance > f->number()))
-    (n.has("focus_distance") ? n.at("focus_distance") : n)
-        .fail("the focus distance " + formatNumber(c.focusDistance) +
-              " is not beyond the focal length " + formatNumber(f->number()) +
-              ": a lens focuses only on what lies farther than its focal length");
-  if (auto v = n.get("shutter")) {
-    if (v->size() != 2) v->fail("must be [open, close]");
-    c.shutterOpen = (*v)[0].number(0, 1);
-    c.shutterClose = (*v)[1].number(0, 1);
-    if (c.shutterClose < c.shutterOpen) v->fail("close must not be before open");
-  }
-  try {
-    Camera check(c, 1, 1);
-  } catch (const std::invalid_argument& e) {
-    n.fail(e.what());
-  }
-}
-
 // A solid pattern: {"checker" | "noise" | "marble" | "wood": {"scale", "a", "b"}}.
 ColorTexture parseSolidTexture(const JsonNode& n, TexturePattern pattern) {
   n.checkKeys({"scale", "a", "b"});
@@ -258,6 +168,49 @@ ColorTexture parseColorTexture(SceneBuilder& b, const JsonNode& n) {
   return parseSolidTexture(n.at(kind), pattern);
 }
 
+// "gloss" / "blur": a number, the width of seed 000's square (§13.4.4), or {"phong": n}, the
+// exponent of seed 002's Phong lobe cosⁿ α (§9.3; n = 0 spreads over the whole hemisphere about
+// the ideal direction).
+float parseLobe(const JsonNode& n, GlossShape& shape) {
+  if (n.isNumber()) {
+    shape = GlossShape::Square;
+    return n.number(0, 3.4e38f);
+  }
+  if (n.isObject()) {
+    n.checkKeys({"phong"});
+    if (n.has("phong")) {
+      shape = GlossShape::Phong;
+      return n.at("phong").number(0, 3.4e38f);
+    }
+  }
+  n.fail(
+      "must be a number (the width of seed 000's square) or {\"phong\": n} (seed 002's "
+      "lobe cos^n about the ideal direction)");
+}
+
+// A dielectric's "fresnel": "exact", "schlick", or "none" with "kt" (seed 002 eq. 9.22: the
+// interface transmits k_t, and km is its k_r).
+void parseInterfaceCoefficients(const JsonNode& n, Dielectric& d) {
+  const std::optional<JsonNode> fresnel = n.get("fresnel");
+  const std::string model = fresnel ? fresnel->choice({"exact", "schlick", "none"}) : "exact";
+  d.fresnel = model == "exact"     ? FresnelModel::Exact
+              : model == "schlick" ? FresnelModel::Schlick
+                                   : FresnelModel::None;
+  const std::optional<JsonNode> kt = n.get("kt");
+  if (!d.constantCoefficients()) {
+    if (kt)
+      kt->fail("applies with \"fresnel\": \"none\" only; under the " + model +
+               " Fresnel law the interface transmits 1 − R");
+    return;
+  }
+  if (!kt)
+    fresnel->fail(
+        "\"none\" needs \"kt\", the transmission coefficient k_t (seed 002 eq. 9.22) that "
+        "replaces Fresnel's 1 − R");
+  d.kt = kt->color();
+  if (d.kt.maxChannel() > 1) kt->fail("each channel must be in [0, 1]");
+}
+
 // Every material type is the general surface of seed 002 §9.1 with its own defaults
 // (materials/material.h); a dielectric adds its interface.
 Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode& n) {
@@ -279,7 +232,7 @@ Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode&
                                    "normal_map",
                                    "bump_map"};
   if (kind == MaterialKind::Dielectric)
-    keys.insert(keys.end(), {"ior", "attenuation", "fresnel", "blur"});
+    keys.insert(keys.end(), {"ior", "attenuation", "fresnel", "kt", "blur"});
   n.checkKeys(keys);
   Material m = defaultMaterial(kind);
   m.name = name;
@@ -296,7 +249,7 @@ Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode&
   if (auto v = n.get("specular_model"))
     s.specularModel =
         v->choice({"blinn", "phong"}) == "blinn" ? SpecularModel::BlinnPhong : SpecularModel::Phong;
-  if (auto v = n.get("gloss")) s.gloss = v->number(0, 3.4e38f);
+  if (auto v = n.get("gloss")) s.gloss = parseLobe(*v, s.glossShape);
   s.normalMaps = parseShadingMaps(b, n);
   if (n.has("opacity"))
     m.cutout = parseCutout(b, n);
@@ -310,10 +263,8 @@ Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode&
     if (a.maxChannel() > 1) v->fail("each channel must be in [0, 1]");
     d.absorption = BeerMedium(a);
   }
-  if (auto v = n.get("fresnel"))
-    d.fresnel =
-        v->choice({"exact", "schlick"}) == "exact" ? FresnelModel::Exact : FresnelModel::Schlick;
-  if (auto v = n.get("blur")) d.blur = v->number(0, 3.4e38f);
+  parseInterfaceCoefficients(n, d);
+  if (auto v = n.get("blur")) d.blur = parseLobe(*v, d.blurShape);
   return m;
 }
 

@@ -7,7 +7,9 @@
 
 namespace glint {
 
-enum class FresnelModel { Exact, Schlick };
+// None: no Fresnel law at all; the interface's constant coefficients stand in for it
+// (materials/dielectric.h), and fresnel() is never asked for it.
+enum class FresnelModel { Exact, Schlick, None };
 
 // The exact unpolarised Fresnel reflectance (the mean of the s and p polarisations) for light
 // arriving at cosine cosI from a medium of index etaI into one of index etaT. 1 under total

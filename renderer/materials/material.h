@@ -54,9 +54,9 @@ template <class Send>
     // The sample is drawn wherever the surface can be glossy (its maps vary at.gloss below
     // s.gloss): where it is drawn does not depend on the texel.
     const Surface& s = m.surface;
-    const Vec2f u = s.gloss > 0 ? key.get2D(dimension(Dim::Gloss, depth)) : Vec2f{};
+    const Vec2f u = s.glossy() ? key.get2D(dimension(Dim::Gloss, depth)) : Vec2f{};
     Vec3f r;
-    if (mirrorDirection(d, at.n, at.gloss, u, r)) send(r, at.km, false);
+    if (mirrorDirection(d, at.n, at.gloss, s.glossShape, u, r)) send(r, at.km, false);
   }
   if (!m.refracts()) return;
   // The interface: the normal is the geometric one turned against the ray, never the shading
@@ -64,17 +64,18 @@ template <class Send>
   const Dielectric& g = m.dielectric;
   const Vec3f n = dot(d, sp.ng) < 0 ? sp.ng : -sp.ng;
   const Dielectric::Split split = g.split(d, n, etaI, etaT);
-  send(split.reflected, Rgb{split.R, split.R, split.R}, false);
+  // With seed 002's constant coefficients the interface reflects nothing of its own.
+  if (!g.constantCoefficients()) send(split.reflected, Rgb{split.R, split.R, split.R}, false);
   if (!split.refracts) return;
   Vec3f t = split.refracted;
-  if (g.blur > 0) {
-    // Blurred translucency (seed 002 §9.3): the same square perturbation around t; a ray that
+  if (g.blurs()) {
+    // Blurred translucency (seed 002 §9.3): t spread by the same lobes as gloss; a ray that
     // ends up back on the incoming side returns black.
-    t = perturb(t, g.blur, key.get2D(dimension(Dim::Gloss, depth, 1)));
+    t = spread(t, g.blurShape, g.blur, key.get2D(dimension(Dim::Gloss, depth, 1)));
     if (dot(t, n) >= 0) return;
   }
   const float T = 1 - split.R;
-  send(t, Rgb{T, T, T}, true);
+  send(t, g.constantCoefficients() ? g.kt : Rgb{T, T, T}, true);
 }
 
 // What the albedo AOV shows: k_d where the surface is diffuse, else k_m; 1 for a dielectric.

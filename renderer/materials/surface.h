@@ -5,7 +5,7 @@
 //   - per light source, the diffuse and specular light it reflects      (reflectedLight)
 //     k_d·I·max(0, n·l) + k_s·I·max(0, n·h)^p   (Blinn-Phong; Phong: max(0, r·v)^p)
 //   - coherently reflected light k_m·L(r), r the mirror direction,      (mirrorDirection)
-//     perturbed over a square of width `gloss` for a glossy surface
+//     spread by a glossy surface over a square of width `gloss` or a Phong lobe cos^gloss
 // each per RGB channel. The seeds' coefficients multiply intensities directly: there is no 1/π,
 // so a white Lambert surface under a unit light at normal incidence reads 1 (docs/shading.md).
 // Surfaces are two-sided: the shading normal is turned towards the viewer.
@@ -36,7 +36,8 @@ struct Surface {
   bool ambientFollowsDiffuse = false;
   float exponent = 32;
   SpecularModel specularModel = SpecularModel::BlinnPhong;
-  float gloss = 0;
+  float gloss = 0;  // the square's width, or the Phong lobe's exponent
+  GlossShape glossShape = GlossShape::Square;
   EmissionSides emissionSides = EmissionSides::Both;
   // Normal and bump maps; null for a surface without (nearly all): then no hit or light sample
   // reads them.
@@ -50,6 +51,7 @@ struct Surface {
   // Whether AccLightSource's loop over the lights can add anything (k_d or k_s not black).
   [[gnu::always_inline]] bool reflectsLights() const { return !kd.isBlack() || !ks.isBlack(); }
   [[gnu::always_inline]] bool reflectsCoherently() const { return !km.isBlack(); }
+  [[gnu::always_inline]] bool glossy() const { return spreads(glossShape, gloss); }
   [[gnu::always_inline]] bool emits() const { return !ke.isBlack(); }
 };
 
@@ -161,14 +163,14 @@ inline float specularPower(float cosine, float exponent) {
 }
 
 // The direction coherent reflection leaves in, for unit d arriving at a point whose normal n
-// faces against d: the mirror direction r = d − 2(d·n)n (seed 000 §4.8), perturbed by `gloss`
-// with the sample u for a glossy surface. False where a perturbed ray would leave below the
-// surface (it returns black).
+// faces against d: the mirror direction r = d − 2(d·n)n (seed 000 §4.8), spread by the lobe of
+// `shape` sized `gloss` with the sample u for a glossy surface. False where a spread ray would
+// leave below the surface (it returns black).
 [[gnu::always_inline]] inline bool mirrorDirection(const Vec3f& d, const Vec3f& n, float gloss,
-                                                   Vec2f u, Vec3f& r) {
+                                                   GlossShape shape, Vec2f u, Vec3f& r) {
   r = reflect(d, n);
-  if (gloss <= 0) return true;
-  r = perturb(r, gloss, u);
+  if (!spreads(shape, gloss)) return true;
+  r = spread(r, shape, gloss, u);
   return dot(r, n) > 0;
 }
 

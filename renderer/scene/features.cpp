@@ -64,7 +64,7 @@ Features computeFeatures(const Scene& scene) {
     const Surface& s = m.surface;
     f.specular |= !s.ks.isBlack();
     f.reflection |= s.reflectsCoherently();
-    f.gloss |= s.reflectsCoherently() && s.gloss > 0;
+    f.gloss |= s.reflectsCoherently() && s.glossy();
     f.emission |= s.emits();
     f.cutouts |= m.cutout.active();
     if (s.normalMaps) {
@@ -90,7 +90,7 @@ Features computeFeatures(const Scene& scene) {
     if (m.refracts()) {
       f.refraction = f.reflection = true;
       f.absorption |= m.dielectric.absorption.absorbs();
-      f.gloss |= m.dielectric.blur > 0;
+      f.gloss |= m.dielectric.blurs();
     }
   }
   f.surfaceCoordinates |= f.normalMaps;

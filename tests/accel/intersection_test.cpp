@@ -109,6 +109,46 @@ TEST_P(Backends, OcclusionRespectsTheSegment) {
   EXPECT_TRUE(accel_->occluded(r));
 }
 
+// Seed 000 §4's exercise 1 has two roots, t = 1 ∓ 1/√3: every backend, Glint's own structures
+// included, finds the near one from the ray's start and the far one from past it.
+class EveryBackend : public Backends {};
+
+TEST_P(EveryBackend, SeedExerciseUnitSphereBothRoots) {
+  const Scene s =
+      oneObject(R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"})");
+  accel_ = makeAccelerator(GetParam(), s);
+  const double third = 1 / std::sqrt(3.0);
+  const float c = static_cast<float>(third);
+  // tMin 0: the near root, where the outward normal (1,1,1)/√3 faces back along the ray; tMin
+  // 1 (the centre, past the near root): the far root, at p = −(1,1,1)/√3, the outward normal
+  // −(1,1,1)/√3 along the ray.
+  struct Root {
+    float tMin;
+    double t;
+    float side;
+  };
+  for (const auto& [tMin, root, side] : {Root{0, 1 - third, 1}, Root{1, 1 + third, -1}}) {
+    Ray r;
+    r.o = {1, 1, 1};
+    r.d = {-1, -1, -1};
+    r.tMin = tMin;
+    const Hit h = accel_->intersect(r);
+    ASSERT_TRUE(h) << tMin;
+    EXPECT_NEAR(h.t, root, 1e-6) << tMin;
+    const ShadingPoint sp = s.shadingPoint(r, h);
+    for (float n : {sp.ng.x, sp.ng.y, sp.ng.z}) EXPECT_NEAR(n, side * c, 1e-6) << tMin;
+    EXPECT_NEAR(sp.p.x, side * c, 2.4e-7) << tMin;
+    EXPECT_NEAR(length(sp.p), 1, 2.4e-7) << tMin;  // re-projected: within 2 ulps of 1
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(All, EveryBackend,
+                         ::testing::Values(AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce,
+                                           AccelKind::Grid, AccelKind::Octree, AccelKind::KdTree,
+                                           AccelKind::OctreeGenerateAndTest, AccelKind::RayClass,
+                                           AccelKind::Coherence, AccelKind::Spheres),
+                         [](const auto& p) { return std::string(accelName(p.param)); });
+
 INSTANTIATE_TEST_SUITE_P(All, Backends,
                          ::testing::Values(AccelKind::Embree, AccelKind::Bvh, AccelKind::BruteForce,
                                            AccelKind::Grid),

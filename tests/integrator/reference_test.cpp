@@ -134,6 +134,48 @@ TEST(ReferenceIntegrator, AgreesWhereOnePointsLightsOutnumberTheQueue) {
   EXPECT_EQ(test::expectReferenceAgrees(scene, *accel, quiet(), production, "600 lights"), 0);
 }
 
+TEST(ReferenceIntegrator, AgreesBitForBitOnTheDocumentsDistributedShading) {
+  // Seed 002's Phong lobes for gloss and blur, its constant k_t with transparent shadows and
+  // Beer inside, and seed 001's screen-corner camera, under each sampler: the same rays, drawn
+  // from the same dimensions, summed in the same order.
+  for (const char* sampler : {"stratified", "sobol", "regular", "random"}) {
+    const Scene scene = test::sceneFromText(R"({ "render": { "width": 24, "height": 16, "spp": 4,
+        "max_depth": 4, "seed": 9, "sampler": ")" +
+                                            std::string(sampler) + R"(",
+        "background": [0.2, 0.25, 0.3], "ambient": [0.05, 0.05, 0.05],
+        "transparent_shadows": true },
+      "camera": { "eye": [0, 1.5, 6], "up": [0, 1, 0],
+                  "screen": { "corner_min": [-1.6, 0.3, 3], "corner_max": [1.6, 2.7, 3] } },
+      "materials": {
+        "floor": { "type": "phong", "kd": { "checker": { "scale": 0.5, "a": [0.8, 0.8, 0.8],
+                                                         "b": [0.2, 0.2, 0.2] } } },
+        "satin": { "type": "mirror", "km": [0.8, 0.7, 0.6], "gloss": { "phong": 30 } },
+        "matte": { "type": "phong", "kd": [0.3, 0.5, 0.2], "km": [0.2, 0.2, 0.2],
+                   "gloss": { "phong": 0 } },
+        "frosted": { "type": "dielectric", "ior": 1.4, "fresnel": "none", "kt": [0.8, 0.7, 0.9],
+                     "km": [0.1, 0.1, 0.1], "gloss": { "phong": 100 }, "blur": { "phong": 60 },
+                     "attenuation": [0.7, 0.8, 0.9] },
+        "glass": { "type": "dielectric", "blur": { "phong": 500 } } },
+      "lights": [ { "type": "point", "position": [2, 5, 3], "intensity": [0.8, 0.8, 0.8] },
+                  { "type": "quad", "corner": [-2, 4, -1], "edge1": [1, 0, 0],
+                    "edge2": [0, 0, 1], "intensity": [0.4, 0.4, 0.4], "samples": 2 } ],
+      "objects": [
+        { "type": "plane", "point": [0, 0, 0], "normal": [0, 1, 0], "material": "floor" },
+        { "type": "sphere", "center": [-1.2, 0.7, 0], "radius": 0.7, "material": "satin" },
+        { "type": "sphere", "center": [1.3, 0.6, 0.3], "radius": 0.6, "material": "matte" },
+        { "type": "box", "min": [-0.4, 0, 0.8], "max": [0.4, 1.2, 1.2], "material": "frosted" },
+        { "type": "sphere", "center": [0.2, 0.4, 2], "radius": 0.4, "material": "glass" } ] })");
+    ASSERT_TRUE(scene.features.gloss);
+    for (const AccelKind kind : {AccelKind::Bvh, AccelKind::Embree}) {
+      const auto accel = makeAccelerator(kind, scene);
+      const RenderResult production = renderScene(scene, *accel, quiet());
+      EXPECT_GT(production.stats.rays.refraction, 0u);
+      EXPECT_EQ(test::expectReferenceAgrees(scene, *accel, quiet(), production, sampler), 0)
+          << sampler << " " << accelName(kind);
+    }
+  }
+}
+
 TEST(ReferenceIntegrator, CountsTheSameRays) {
   // Both trace the same tree: the same camera, shadow, reflection and refraction rays.
   const Scene scene = small(std::string(GLINT_SCENES_DIR) + "/whitted.json", 32, 24, 2);

@@ -209,6 +209,96 @@ TEST(SceneError, OpacityCutOutsCheckTheirRangesAndNeedAnOpacity) {
             "scene.json:2: materials.m.opacity_cutoff: needs an \"opacity\" to cut");
 }
 
+TEST(SceneError, LobesAndConstantCoefficientsAreChecked) {
+  const auto material = [](const std::string& type, const std::string& keys) {
+    return test::sceneErrorOf(
+        "{\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0]},\n"
+        "\"materials\": {\"m\": {\"type\": \"" +
+        type + "\", " + keys + "}}, \"objects\": []}");
+  };
+  // The lobe's exponent is finite and >= 0 (n = 0 is the whole hemisphere).
+  EXPECT_EQ(material("mirror", "\"gloss\": {\"phong\": -1}"),
+            "scene.json:2: materials.m.gloss.phong: must be >= 0, got -1");
+  EXPECT_EQ(material("mirror", "\"gloss\": {\"phong\": 1e999}"),
+            "scene.json:2: number 1e999 is out of range: numbers must be finite");
+  EXPECT_EQ(material("mirror", "\"gloss\": {\"phnog\": 10}"),
+            "scene.json:2: materials.m.gloss.phnog: unknown key (did you mean \"phong\"?)");
+  EXPECT_EQ(material("dielectric", "\"blur\": {}"),
+            "scene.json:2: materials.m.blur: must be a number (the width of seed 000's square) or "
+            "{\"phong\": n} (seed 002's lobe cos^n about the ideal direction)");
+  EXPECT_EQ(material("mirror", "\"gloss\": \"phong\""),
+            "scene.json:2: materials.m.gloss: must be a number (the width of seed 000's square) "
+            "or {\"phong\": n} (seed 002's lobe cos^n about the ideal direction)");
+  EXPECT_EQ(material("mirror", "\"gloss\": -0.5"),
+            "scene.json:2: materials.m.gloss: must be >= 0, got -0.5");
+  // k_t belongs to "fresnel": "none", which needs it, each channel a fraction.
+  EXPECT_EQ(material("dielectric", "\"kt\": [0.5, 0.5, 0.5]"),
+            "scene.json:2: materials.m.kt: applies with \"fresnel\": \"none\" only; under the "
+            "exact Fresnel law the interface transmits 1 − R");
+  EXPECT_EQ(material("dielectric", "\"fresnel\": \"schlick\", \"kt\": [0.5, 0.5, 0.5]"),
+            "scene.json:2: materials.m.kt: applies with \"fresnel\": \"none\" only; under the "
+            "schlick Fresnel law the interface transmits 1 − R");
+  EXPECT_EQ(material("dielectric", "\"fresnel\": \"none\""),
+            "scene.json:2: materials.m.fresnel: \"none\" needs \"kt\", the transmission "
+            "coefficient k_t (seed 002 eq. 9.22) that replaces Fresnel's 1 − R");
+  EXPECT_EQ(material("dielectric", "\"fresnel\": \"none\", \"kt\": [0.5, 1.5, 0.5]"),
+            "scene.json:2: materials.m.kt: each channel must be in [0, 1]");
+  EXPECT_EQ(material("dielectric", "\"fresnel\": \"none\", \"kt\": [0.5, -0.5, 0.5]"),
+            "scene.json:2: materials.m.kt[1]: must be >= 0, got -0.5");
+  EXPECT_EQ(material("dielectric", "\"fresnel\": \"nnoe\", \"kt\": [0.5, 0.5, 0.5]"),
+            "scene.json:2: materials.m.fresnel: must be one of \"exact\", \"schlick\", \"none\", "
+            "got \"nnoe\" (did you mean \"none\"?)");
+  EXPECT_EQ(material("phong", "\"kt\": [0.5, 0.5, 0.5]"),
+            "scene.json:2: materials.m.kt: unknown key (did you mean \"ka\"?)");
+}
+
+TEST(SceneError, AScreenCameraIsChecked) {
+  const auto camera = [](const std::string& keys) {
+    return test::sceneErrorOf("{\n\"camera\": {" + keys + "},\n\"objects\": []}");
+  };
+  EXPECT_EQ(camera("\"eye\": [0,0,5], \"screen\": {\"corner_min\": [-1,-1,0], "
+                   "\"corner_max\": [1,1,1]}"),
+            "scene.json:2: camera.screen: the corners are not equidistant from the eye "
+            "(corner_min at 5.19615242, corner_max at 4.24264069; they must agree to 1 part in "
+            "1e4): the window would be tilted against the line of sight and the image distorted "
+            "(seed 001 §8)");
+  EXPECT_EQ(camera("\"eye\": [0,0,0], \"screen\": {\"corner_min\": [-1,-1,0], "
+                   "\"corner_max\": [1,1,0]}"),
+            "scene.json:2: camera.screen: the eye lies in the window's plane (its distance to "
+            "the window's centre, 0, is not above 1e-3 of the half-diagonal, 1.41421356): it "
+            "would see the window edge-on");
+  EXPECT_EQ(camera("\"eye\": [0,0,5], \"screen\": {\"corner_min\": [1,1,0], "
+                   "\"corner_max\": [-1,-1,0]}"),
+            "scene.json:2: camera.screen: corner_max − corner_min runs -2 along the window's "
+            "right and -2 along its up: corner_min must be the window's lower-left corner and "
+            "corner_max its upper-right, as seen from the eye with this up");
+  EXPECT_EQ(camera("\"eye\": [0,0,5], \"screen\": {\"corner_min\": [1,1,0], "
+                   "\"corner_max\": [1,1,0]}"),
+            "scene.json:2: camera.screen: corner_min and corner_max are the same point: the "
+            "window has no extent");
+  EXPECT_EQ(camera("\"eye\": [0,0,5], \"up\": [0,0,1], \"screen\": {\"corner_min\": [-1,-1,0], "
+                   "\"corner_max\": [1,1,0]}"),
+            "scene.json:2: camera.screen: up is parallel to the line of sight from the eye to "
+            "the window's centre");
+  EXPECT_EQ(camera("\"eye\": [0,0,5], \"screen\": {\"corner_min\": [-1,-1,0], "
+                   "\"corner_mx\": [1,1,0]}"),
+            "scene.json:2: camera.screen.corner_mx: unknown key (did you mean \"corner_max\"?)");
+  EXPECT_EQ(camera("\"eye\": [0,0,5], \"screen\": {\"corner_min\": [-1,-1,0]}"),
+            "scene.json:2: camera.screen: missing required key \"corner_max\"");
+  EXPECT_EQ(camera("\"eye\": [0,0,5], \"look_at\": [0,0,0], \"screen\": {\"corner_min\": "
+                   "[-1,-1,0], \"corner_max\": [1,1,0]}"),
+            "scene.json:2: camera.look_at: is given with \"screen\": the screen's corners set "
+            "where the camera looks, the image plane and its extent themselves");
+  EXPECT_EQ(camera("\"eye\": [0,0,5], \"vfov\": 30, \"screen\": {\"corner_min\": [-1,-1,0], "
+                   "\"corner_max\": [1,1,0]}"),
+            "scene.json:2: camera.vfov: is given with \"screen\": the screen's corners set "
+            "where the camera looks, the image plane and its extent themselves");
+  EXPECT_EQ(camera("\"type\": \"orthographic\", \"eye\": [0,0,5], \"screen\": {\"corner_min\": "
+                   "[-1,-1,0], \"corner_max\": [1,1,0]}"),
+            "scene.json:2: camera.screen: is a perspective camera's (seed 001 §8: the eye looks "
+            "through the window); an orthographic view is set by look_at and height or window");
+}
+
 TEST(SceneError, ASpotLightsInnerConeMustFitInItsOuter) {
   EXPECT_EQ(test::sceneErrorOf(std::string(kHead) +
                                "\"lights\": [{\"type\": \"spot\", \"position\": [0,1,0], "

@@ -113,6 +113,60 @@ TEST(SceneParse, MaterialsKeepEveryKey) {
   EXPECT_TRUE(s.features.specular);
 }
 
+TEST(SceneParse, SeedTwosLobesAndCoefficients) {
+  // Seed 002 §9.3's Phong lobe for gloss and blur, and its constant k_t (eq. 9.22); seed 000's
+  // square stays the number form.
+  const Scene s = sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
+    "materials": {
+      "lobe": {"type": "mirror", "gloss": {"phong": 50}},
+      "square": {"type": "mirror", "gloss": 0.2},
+      "hemisphere": {"type": "mirror", "gloss": {"phong": 0}},
+      "glass": {"type": "dielectric", "fresnel": "none", "kt": [0.9, 0.8, 0.7], "km": [0.1,0.1,0.1],
+                "blur": {"phong": 200}, "attenuation": [0.5, 0.5, 0.5]}
+    }, "objects": []})");
+  const auto named = [&](const std::string& name) -> const Material& {
+    for (const auto& m : s.materials)
+      if (m.name == name) return m;
+    throw std::runtime_error("no material " + name);
+  };
+  EXPECT_EQ(named("lobe").surface.glossShape, GlossShape::Phong);
+  EXPECT_EQ(named("lobe").surface.gloss, 50);
+  EXPECT_EQ(named("square").surface.glossShape, GlossShape::Square);
+  EXPECT_EQ(named("square").surface.gloss, 0.2f);
+  // n = 0 is a lobe too: uniform over the hemisphere about the mirror direction.
+  EXPECT_TRUE(named("hemisphere").surface.glossy());
+  const Dielectric& g = named("glass").dielectric;
+  EXPECT_TRUE(g.constantCoefficients());
+  EXPECT_EQ(g.kt, (Rgb{0.9f, 0.8f, 0.7f}));
+  EXPECT_EQ(g.blurShape, GlossShape::Phong);
+  EXPECT_EQ(g.blur, 200);
+  EXPECT_TRUE(g.blurs());
+  EXPECT_EQ(g.absorption.attenuation(), (Rgb{0.5f, 0.5f, 0.5f}));
+  EXPECT_TRUE(s.features.gloss);
+  // Fresnel stays the default: no k_t read.
+  const Scene plain = sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
+    "materials": {"glass": {"type": "dielectric"}}, "objects": []})");
+  EXPECT_EQ(plain.materials[0].dielectric.fresnel, FresnelModel::Exact);
+  EXPECT_FALSE(plain.materials[0].dielectric.constantCoefficients());
+  EXPECT_FALSE(plain.features.gloss);
+}
+
+TEST(SceneParse, AScreenCameraBecomesLookAtAndAWindow) {
+  // Seed 001 §8: the eye 2 from the window's centre (1, 1, 0), the window 3 × 2 wide: at
+  // distance 1, ±0.75 × ±0.5; render space puts the eye at the origin.
+  const Scene s = sceneFromText(R"({"camera": {"eye": [1, 1, 2],
+      "screen": {"corner_min": [-0.5, 0, 0], "corner_max": [2.5, 2, 0]}}, "objects": []})");
+  const CameraDesc& c = s.cameraDesc;
+  EXPECT_EQ(c.lookAt, (Vec3f{0, 0, -2}));
+  ASSERT_TRUE(c.window);
+  EXPECT_EQ(c.window->l, -0.75f);
+  EXPECT_EQ(c.window->r, 0.75f);
+  EXPECT_EQ(c.window->b, -0.5f);
+  EXPECT_EQ(c.window->t, 0.5f);
+  EXPECT_EQ(c.focusDistance, 2.0f);
+  EXPECT_EQ(s.worldOrigin, (Vec3d{1, 1, 2}));
+}
+
 TEST(SceneParse, InterfaceKeysBelongToDielectricsOnly) {
   EXPECT_EQ(test::sceneErrorOf(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
     "materials": {"p": {"type": "phong",

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 namespace glint {
@@ -119,26 +120,63 @@ TEST(Surface, MirrorDirectionAndGloss) {
   // r = d − 2(d·n)n: a ray down at 30° leaves up at 30° on the other side.
   const Vec3f d = -at(-30), n{0, 1, 0};
   Vec3f r;
-  ASSERT_TRUE(mirrorDirection(d, n, 0, {}, r));
+  ASSERT_TRUE(mirrorDirection(d, n, 0, GlossShape::Square, {}, r));
   EXPECT_NEAR(r.x, at(30).x, 1e-7);
   EXPECT_NEAR(r.y, at(30).y, 1e-7);
   // A glossy ray stays within the square of width a around r: its offset from r, in r's
   // tangent plane, is at most a/√2 before normalising (u at a corner of [0, 1)²).
   const float a = 0.2f;
   for (Vec2f u : {Vec2f{0, 0}, Vec2f{0.999f, 0.999f}, Vec2f{0.5f, 0.5f}, Vec2f{0.1f, 0.8f}}) {
-    ASSERT_TRUE(mirrorDirection(d, n, a, u, r));
+    ASSERT_TRUE(mirrorDirection(d, n, a, GlossShape::Square, u, r));
     EXPECT_NEAR(length(r), 1, 1e-6);
     EXPECT_GE(dot(r, at(30)), 1 / std::sqrt(1 + a * a / 2) - 1e-6);
   }
   // The square's centre is the mirror direction itself.
-  ASSERT_TRUE(mirrorDirection(d, n, a, {0.5f, 0.5f}, r));
+  ASSERT_TRUE(mirrorDirection(d, n, a, GlossShape::Square, {0.5f, 0.5f}, r));
   EXPECT_NEAR(dot(r, at(30)), 1, 1e-6);
   // A grazing ray perturbed by a wide square ends up below the surface: no ray.
   const Vec3f grazing = normalize(Vec3f{1, -0.01f, 0});
   int below = 0;
   for (float ux = 0; ux < 1; ux += 0.125f)
-    for (float uy = 0; uy < 1; uy += 0.125f) below += !mirrorDirection(grazing, n, 1, {ux, uy}, r);
+    for (float uy = 0; uy < 1; uy += 0.125f)
+      below += !mirrorDirection(grazing, n, 1, GlossShape::Square, {ux, uy}, r);
   EXPECT_GT(below, 0);
+}
+
+TEST(Surface, PhongLobeDrawsByTheLobesDistribution) {
+  // Seed 002 §9.3's lobe (n + 1)/(2π)·cosⁿ α about r: cos α = u₁^(1/(n+1)) (the inverse of
+  // P(cos α ≤ c) = c^(n+1)) and φ = 2π·u₂ about r in its tangent frame.
+  const Vec3f r = normalize(Vec3f{1, 2, 3});
+  Vec3f e1, e2;
+  orthonormalBasis(r, e1, e2);
+  for (const float n : {0.0f, 1.0f, 20.0f, 1000.0f}) {
+    const Vec3f s = samplePhongLobe(r, n, {0.3f, 0.7f});
+    EXPECT_NEAR(length(s), 1, 1e-6) << n;
+    EXPECT_NEAR(dot(s, r), std::pow(0.3, 1 / (n + 1.0)), 1e-6) << n;
+    EXPECT_NEAR(std::atan2(dot(s, e2), dot(s, e1)), 2 * kPi * 0.7 - 2 * kPi, 1e-5) << n;
+  }
+  // The mean of cos α over the lobe is ∫ μ·(n + 1)μⁿ dμ = (n + 1)/(n + 2): the midpoint rule
+  // over u₁ (10⁴ points) reaches it to ~10⁻⁶.
+  for (const float n : {0.0f, 5.0f, 50.0f}) {
+    double mean = 0;
+    for (int i = 0; i < 10000; ++i)
+      mean += dot(samplePhongLobe(r, n, {(i + 0.5f) / 10000, 0.25f}), r) / 10000;
+    EXPECT_NEAR(mean, (n + 1) / (n + 2), 1e-5) << n;
+  }
+  // As gloss: spreads() for every exponent, n = 0 included; a lobe about the normal never
+  // leaves below the surface, one about a grazing mirror direction loses about half its rays.
+  EXPECT_TRUE(spreads(GlossShape::Phong, 0));
+  EXPECT_FALSE(spreads(GlossShape::Square, 0));
+  const Vec3f n{0, 1, 0};
+  Vec3f out;
+  int below = 0;
+  for (float ux = 0.0625f; ux < 1; ux += 0.125f)
+    for (float uy = 0.0625f; uy < 1; uy += 0.125f) {
+      EXPECT_TRUE(mirrorDirection(-n, n, 10, GlossShape::Phong, {ux, uy}, out));
+      below +=
+          !mirrorDirection(normalize(Vec3f{1, -1e-4f, 0}), n, 10, GlossShape::Phong, {ux, uy}, out);
+    }
+  EXPECT_NEAR(below, 32, 4);
 }
 
 }  // namespace
