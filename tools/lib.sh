@@ -14,6 +14,8 @@ GLINT_PACKAGES=(
   libopencolorio-dev opencolorio-tools nlohmann-json3-dev libcli11-dev libassimp-dev
   libgtest-dev libbenchmark-dev
   assimp-testmodels # Assimp's real and deliberately broken models (tests/app/assimp_models_test.cpp)
+  # The Python module (python/, docs/python.md), its tests and its example, for /usr/bin/python3.
+  pybind11-dev python3-pybind11 python3-dev python3-pytest python3-numpy python3-matplotlib
   slurm-wlm munge # the farm tests run a one-node Slurm cluster (docs/farm.md)
 )
 

@@ -7,6 +7,7 @@
 #include "app/accel_options.h"
 #include "app/commands.h"
 #include "app/farm_plan.h"
+#include "app/frame_output.h"
 #include "app/option_arity.h"
 #include "app/render_output.h"
 #include "app/scene_source.h"
@@ -83,77 +84,6 @@ std::optional<PixelWindow> cropWindow(const RenderArgs& a, const RenderSettings&
                          ") must be non-empty and inside the " + std::to_string(r.width) + "x" +
                          std::to_string(r.height) + " frame");
   return w;
-}
-
-// An estimate, or null where there is none (one sample, a regular grid).
-nlohmann::json orNull(const std::optional<double>& v) {
-  return v ? nlohmann::json(*v) : nlohmann::json();
-}
-
-// The objects of the world by id (the objectid AOV's id, objects' id + 1) and name, as the
-// manifests list them.
-std::vector<std::pair<uint32_t, std::string>> worldObjects(const Scene& scene) {
-  const std::vector<bool> inWorld = scene.objectIdsInWorld();
-  std::vector<std::pair<uint32_t, std::string>> objects;
-  for (uint32_t i = 0; i < inWorld.size(); ++i)
-    if (inWorld[i]) objects.emplace_back(i + 1, scene.objectName(i));
-  return objects;
-}
-
-// Where the render's time went around its parallel phases (render/pass_timing.h), for
-// tools/project-scaling.py: each phase's tiles as [tile, start, seconds, thread, CPU seconds], in
-// the order taken.
-nlohmann::json scheduleJson(const RenderTiming& t) {
-  nlohmann::json phases = nlohmann::json::array();
-  for (const PassTiming& p : t.passes) {
-    nlohmann::json tiles = nlohmann::json::array();
-    for (const TileTime& tile : p.tiles)
-      tiles.push_back({tile.tile, tile.start, tile.seconds, tile.thread, tile.cpuSeconds});
-    phases.push_back({{"spp", p.spp},
-                      {"loop_seconds", p.loopSeconds},
-                      {"serial_seconds", p.serialSeconds},
-                      {"tiles_seconds", p.tilesSeconds},
-                      {"tiles", std::move(tiles)}});
-  }
-  return {{"threads", t.threads},
-          {"pixels", {t.width, t.height}},
-          {"tile_size", t.tileSize},
-          {"setup_seconds", t.setupSeconds},
-          {"init_seconds", t.initSeconds},
-          {"phases", std::move(phases)},
-          {"finish_loop_seconds", t.finishLoopSeconds},
-          {"finish_seconds", t.finishSeconds}};
-}
-
-nlohmann::json statsJson(const Scene& scene, const RenderStats& st, uint64_t clampedValues) {
-  nlohmann::json j;
-  j["seconds"] = st.seconds;
-  j["rays_total"] = st.rays.total();
-  j["rays"] = {{"camera", st.rays.camera},
-               {"shadow", st.rays.shadow},
-               {"reflection", st.rays.reflection},
-               {"refraction", st.rays.refraction}};
-  j["nonfinite_samples"] = st.rays.nonfiniteSamples;
-  j["clamped_values"] = clampedValues;  // beyond the EXR channel type's range (writeExr)
-  j["features_used"] = scene.features.used();
-  j["features_left_out"] = scene.features.leftOut();
-  j["objects"] = nlohmann::json::array();
-  for (const auto& [id, name] : worldObjects(scene))
-    j["objects"].push_back({{"id", id}, {"name", name}});
-  j["lights"] = nlohmann::json::array();
-  for (size_t k = 0; k < scene.lights.size(); ++k) j["lights"].push_back(scene.lightName(k));
-  j["integrator"] = st.integrator == IntegratorKind::Reference ? "reference" : "production";
-  j["sampler"] = samplerName(st.sampler);
-  // The estimates of the frame's error from its own samples (docs/validation.md).
-  j["estimated_rmse"] = orNull(st.estimated.rmse);
-  j["estimated_relmse"] = orNull(st.estimated.relmse);
-  j["passes"] = nlohmann::json::parse(passesJson(st.passes));  // as glint:passes holds them
-  j["pixel_spp"] = {{"min", st.minPixelSpp}, {"max", st.maxPixelSpp}};
-  j["time_limit_reached"] = st.timeLimitReached;
-  j["schedule"] = scheduleJson(st.timing);
-  // Of the whole process up to now: scene, acceleration structure, film and the EXR written.
-  j["peak_rss_bytes"] = peakResidentBytes();
-  return j;
 }
 
 void printStats(const Scene& scene, const RenderStats& st) {
@@ -295,15 +225,8 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
         if (!partial) writeDisplayImage(job.out, r.film, a.ocio, transparent);
         return 0;
       }
-      const FrameRecord record = frameRecord(scene, frameSettings(a), plan, r, partial);
-      ExrMetadata m;
-      writeFrameRecord(record, m);
-      const bool resumable =
-          a.sampling.progressive || partial || r.stats.timeLimitReached || !a.resume.empty();
-      if (!resumable) return writeExr(job.out, r.film, m, {a.half, a.compression, a.multipart});
-      Film withState = r.film;
-      writeResumeState(withState, m, r.estimates, r.position, record);
-      return writeExr(job.out, withState, m, {a.half, a.compression, a.multipart});
+      return writeFrameExr(job.out, scene, frameSettings(a), plan, r, partial,
+                           {a.half, a.compression, a.multipart}, !a.resume.empty());
     };
     // --preview-every: the frame so far, written as the frame is (atomically), marked partial.
     auto lastPreview = std::chrono::steady_clock::now();
@@ -336,7 +259,7 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
                    " were clamped to it (glint:clamped_values)");
     if (!display.empty()) writeDisplayImage(display, result.film, a.ocio, transparent);
     if (!stats.empty())
-      writeTextFileAtomically(stats, statsJson(scene, result.stats, clamped).dump(2) + "\n");
+      writeTextFileAtomically(stats, renderStatsJson(scene, result.stats, clamped).dump(2) + "\n");
     if (a.stats) printStats(scene, result.stats);
     if (result.stats.rays.nonfiniteSamples > 0)
       log::warning(std::to_string(result.stats.rays.nonfiniteSamples) +

@@ -169,7 +169,8 @@ RenderSession::RenderSession(const Scene& scene, const Accelerator& accel, const
       opt_(withoutResumeState(opt)),
       probeOptions_(withoutAovs(opt_)),
       start_(Clock::now()),
-      boundedStop_(std::in_place),
+      boundedStop_(opt.cancel == &interrupt::requested() ? std::make_optional<interrupt::Sampling>()
+                                                         : std::nullopt),
       shape_(planFrame(scene, opt)),
       threads_(threadCount(opt.threads)),
       tileSize_(effectiveTileSize(shape_.sampledWindow, opt.tileSize, threads_)),

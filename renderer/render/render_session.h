@@ -10,8 +10,9 @@
 //   the film  snapshot() resolves the frame as it stands (a preview, a partial); finish()
 //             resolves the frame as written and its statistics.
 //
-// `glint render` (with its previews and interrupts) and renderScene (`glint bench`, `glint
-// converge`, the tests) drive it the same way: construct, runPass() or runToEnd(), finish(). Every
+// `glint render` (with its previews and interrupts), the Python module's Scene.render (pass by
+// pass, for its progress callback) and renderScene (`glint bench`, `glint converge`, the tests)
+// drive it the same way: construct, runPass() or runToEnd(), finish(). Every
 // pass's result depends only on the state the passes before it left, so a frame driven pass by
 // pass, snapshotted between passes, or continued from a snapshot's estimates and position gives the
 // same bytes as one rendered straight through.
@@ -70,6 +71,10 @@ class RenderSession {
   // finished but the last, between passes, inside the render's arena (PassCallback).
   void runToEnd(const PassCallback& onPass = {});
 
+  // The passes finished so far, the last one's figures as of its end: for a driver's progress
+  // between passes, without resolving the frame (snapshot()).
+  const std::vector<PassRecord>& passesFinished() const { return stats_.passes; }
+
   // The frame as it stands: each pixel's finished passes resolved, the statistics as of the
   // last pass finished or cut, the estimates and position to continue it from, partial when a
   // cancel has cut it.
@@ -113,7 +118,8 @@ class RenderSession {
   const RenderOptions probeOptions_;  // the probes': beauty only
   const Clock::time_point start_;
   // A stop asked for by a signal must be seen in bounded time, whatever the threads wait on;
-  // until finish().
+  // until finish(). Only where the signal's flag is the cancel flag (`glint render`): another
+  // driver (the Python module) keeps its process's signals and alarms as they are.
   std::optional<interrupt::Sampling> boundedStop_;
   const Shape shape_;
   const PassPlan& plan_ = shape_.plan;

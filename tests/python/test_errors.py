@@ -1,0 +1,94 @@
+"""Mistakes in scenes and arguments: clean Python exceptions, never a crash."""
+import math
+
+import pytest
+
+import glint
+
+
+def test_scene_error_names_file_line_and_path(tmp_path):
+    path = tmp_path / "bad.json"
+    lines = ['{', '  "camera": {"eye": [0, 1, 5], "look_at": [0, 0, 0]},',
+             '  "materials": {"m": {"type": "phong", "kd": [0.5, 0.5, 0.5]}},',
+             '  "objects": [',
+             '    {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"},',
+             '    {"type": "sphere", "center": [0, 0, 2], "radius": 1, "material": "m",',
+             '     "colour": [1, 0, 0]}',
+             '  ]', '}']
+    path.write_text("\n".join(lines))
+    with pytest.raises(glint.SceneError) as e:
+        glint.load_scene(str(path))
+    assert isinstance(e.value, ValueError)
+    assert e.value.file == str(path)
+    assert e.value.line == 7  # the line of the unknown key
+    assert e.value.path == "objects[1].colour"
+    assert str(e.value).startswith(f"{path}:7: objects[1].colour")
+
+
+def test_dict_scene_error_names_the_path(scene_dict):
+    scene_dict["objects"][2]["radius"] = -1
+    with pytest.raises(glint.SceneError) as e:
+        glint.Scene.from_dict(scene_dict)
+    assert e.value.file == "<dict>" and e.value.line > 0
+    assert e.value.path == "objects[2].radius"
+
+
+def test_non_json_values_are_scene_errors(scene_dict):
+    scene_dict["objects"][1]["radius"] = math.nan
+    with pytest.raises(glint.SceneError, match="objects\\[1\\].radius: must be a finite number"):
+        glint.Scene.from_dict(scene_dict)
+    scene_dict["objects"][1]["radius"] = object()
+    with pytest.raises(glint.SceneError, match="objects\\[1\\].radius"):
+        glint.Scene.from_dict(scene_dict)
+    loop = {}
+    loop["render"] = loop
+    with pytest.raises(glint.SceneError, match="nested deeper"):
+        glint.Scene.from_dict(loop)
+    with pytest.raises(TypeError):
+        glint.Scene.from_dict([1, 2])
+    with pytest.raises(glint.SceneError):
+        glint.Scene.from_dict({1: 2})
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(spp=-1), "spp must be from 1"),
+    (dict(spp=0), "spp must be from 1"),
+    (dict(spp=1 << 40), "spp must be from 1"),
+    (dict(width=1 << 20), "width must be from 1"),
+    (dict(threads=0), "threads must be from 1"),
+    (dict(seed=-5), "seed must be 0 or more"),
+    (dict(crop=(0, 10)), "crop is"),
+    (dict(crop=(10, 5, 0, 4)), "must be non-empty and inside"),
+    (dict(crop=(0, 33, 0, 4)), "must be non-empty and inside"),
+    (dict(aovs=["depth", "shadows"]), "shadows"),
+    (dict(sampler="halton"), "sampler must be"),
+    (dict(target_rmse=math.nan), "target_rmse must be a finite number above 0"),
+    (dict(time_limit=-1.0), "time_limit must be"),
+    (dict(accel="octopus"), "accel"),
+])
+def test_bad_render_arguments_raise_value_errors(scene_dict, kwargs, message):
+    scene = glint.Scene.from_dict(scene_dict)
+    with pytest.raises(ValueError, match=message):
+        scene.render(**kwargs)
+
+
+def test_bad_argument_types_raise_type_errors(scene_dict):
+    scene = glint.Scene.from_dict(scene_dict)
+    with pytest.raises(TypeError):
+        scene.render(spp="many")
+    with pytest.raises(TypeError):
+        scene.render(progress=3)
+    with pytest.raises(TypeError):
+        scene.render(16)  # keywords only
+
+
+def test_missing_files_and_bad_outputs(tmp_path, scene_dict):
+    with pytest.raises(ValueError):
+        glint.load_scene(str(tmp_path / "none.json"))
+    with pytest.raises(ValueError):
+        glint.read_frame(tmp_path / "none.exr")
+    frame = glint.Scene.from_dict(scene_dict).render(spp=1)
+    with pytest.raises(ValueError):
+        frame.write(tmp_path / "frame.bmp")
+    with pytest.raises(KeyError):
+        frame.channel("nope")
