@@ -14,7 +14,7 @@ glint_sanitized_build() {
   grep -qs '^CMAKE_C_COMPILER:.*clang' "$dir/CMakeCache.txt" || rm -rf "$dir/CMakeCache.txt" "$dir/CMakeFiles"
   cmake -S "$GLINT_ROOT" -B "$dir" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_C_COMPILER=clang \
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \
-    -DGLINT_SANITIZE="$sanitizers" >/dev/null
+    -DGLINT_SANITIZE="$sanitizers" -DGLINT_PYTHON=OFF >/dev/null  # pytest runs in run-tests.sh only
   GLINT_BUILD="$dir" glint_build
 }
 
