@@ -1,8 +1,11 @@
 #include "camera/camera.h"
 
+#include <xmmintrin.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -103,6 +106,92 @@ void Camera::generateRay(float x, float y, Vec2f lens, Ray& ray) const {
   } else {
     ray.o = desc_.eye + su * u_ + sv * v_;
     ray.d = view_;
+  }
+}
+
+namespace {
+
+using F32x4 = float __attribute__((vector_size(16)));
+
+// Four vectors side by side, and generateRay's vector operations on them, rounded in its order.
+struct Vec3x4 {
+  F32x4 x, y, z;
+};
+[[gnu::always_inline]] inline Vec3x4 normalize(const Vec3x4& a) {
+  const F32x4 inverse = 1.0f / F32x4(_mm_sqrt_ps(a.x * a.x + a.y * a.y + a.z * a.z));
+  return {a.x * inverse, a.y * inverse, a.z * inverse};
+}
+// The x and y of points p[0 .. 3] into lanes.
+[[gnu::always_inline]] inline void loadLanes(const Vec2f* p, F32x4& x, F32x4& y) {
+  F32x4 low, high;
+  std::memcpy(&low, p, sizeof low);
+  std::memcpy(&high, p + 2, sizeof high);
+  x = __builtin_shufflevector(low, high, 0, 2, 4, 6);
+  y = __builtin_shufflevector(low, high, 1, 3, 5, 7);
+}
+// s·a + t·b.
+[[gnu::always_inline]] inline Vec3x4 span(F32x4 s, const Vec3f& a, F32x4 t, const Vec3f& b) {
+  return {a.x * s + b.x * t, a.y * s + b.y * t, a.z * s + b.z * t};
+}
+
+}  // namespace
+
+void Camera::generateRays(const Vec2f* film, const Vec2f* lens, int n, Ray* out,
+                          const int* slot) const {
+  const bool perspective = desc_.projection == Projection::Perspective;
+  const bool thinLens = perspective && hasLens();
+  const bool disk = desc_.lensShape == LensShape::Disk;
+  const Vec3f eye = desc_.eye, negW = -w_;
+  for (int first = 0; first < n; first += 4) {
+    F32x4 x, y, lx{}, ly{};
+    if (first + 4 <= n) {
+      loadLanes(film + first, x, y);
+      if (thinLens) loadLanes(lens + first, lx, ly);
+    } else {
+      // Lanes past n repeat the last ray, so that every lane holds numbers from the film.
+      Vec2f tail[2][4];
+      for (int l = 0; l < 4; ++l) {
+        tail[0][l] = film[std::min(first + l, n - 1)];
+        if (thinLens) tail[1][l] = lens[std::min(first + l, n - 1)];
+      }
+      loadLanes(tail[0], x, y);
+      if (thinLens) loadLanes(tail[1], lx, ly);
+    }
+    const F32x4 su = window_.l + uPerPixel_ * x;
+    const F32x4 sv = window_.t - vPerPixel_ * y;
+    Vec3x4 o{}, d{};
+    if (perspective) {
+      const Vec3x4 s = span(su, u_, sv, v_);
+      d = normalize({s.x + view_.x, s.y + view_.y, s.z + view_.z});
+      if (thinLens) {
+        F32x4 ex, ey;
+        if (disk) {
+          squareToDiskConcentricLanes(lx, ly, ex, ey);
+        } else {
+          ex = 2 * lx - 1;
+          ey = 2 * ly - 1;
+        }
+        const F32x4 along = desc_.focusDistance / (d.x * negW.x + d.y * negW.y + d.z * negW.z);
+        const Vec3x4 focus = {eye.x + d.x * along, eye.y + d.y * along, eye.z + d.z * along};
+        const Vec3x4 e = span(ex, u_, ey, v_);
+        const float a = desc_.apertureRadius;
+        o = {eye.x + e.x * a, eye.y + e.y * a, eye.z + e.z * a};
+        d = normalize({focus.x - o.x, focus.y - o.y, focus.z - o.z});
+      }
+    } else {
+      o = {eye.x + u_.x * su + v_.x * sv, eye.y + u_.y * su + v_.y * sv,
+           eye.z + u_.z * su + v_.z * sv};
+    }
+    for (int l = 0; l < 4 && first + l < n; ++l) {
+      Ray& ray = out[slot[first + l]];
+      // A pinhole's rays start at the eye, an orthographic camera's all point along view_.
+      ray.o = thinLens || !perspective ? Vec3f{o.x[l], o.y[l], o.z[l]} : eye;
+      ray.d = perspective ? Vec3f{d.x[l], d.y[l], d.z[l]} : view_;
+      ray.tMin = 0;
+      ray.tMax = kInfinity;
+      ray.time = 0;
+      ray.origin = ray_origin::kEye;
+    }
   }
 }
 

@@ -45,14 +45,18 @@ void CameraSampling::chunkRays(const SampleKey* keys, int count, Ray* out, Point
     }
   for (int d = 0; d < Points::kDims; ++d)
     if (drawn[d]) sampler.get2DAt(p.at[d], 1, p.flat, count, p.points[d].data());
+  // Film positions over the pixel offsets: nothing reads the offsets again.
+  Vec2f* const film = p.points[0].data();
   for (int j = 0; j < count; ++j) {
     const SampleKey& key = keys[p.sample[j]];
-    const Vec2f pixel = p.points[0][size_t(j)];
-    Ray& r = out[p.sample[j]];
-    camera_.generateRay(static_cast<float>(key.px) + pixel.x, static_cast<float>(key.py) + pixel.y,
-                        drawLens ? p.points[1][size_t(j)] : Vec2f{}, r);
-    r.time = drawTime ? open_ + (close_ - open_) * p.points[2][size_t(j)].x : open_;
+    film[j] = {static_cast<float>(key.px) + film[j].x, static_cast<float>(key.py) + film[j].y};
   }
+  camera_.generateRays(film, drawLens ? p.points[1].data() : nullptr, count, out, p.sample);
+  if (drawTime)
+    for (int j = 0; j < count; ++j)
+      out[p.sample[j]].time = open_ + (close_ - open_) * p.points[2][size_t(j)].x;
+  else
+    for (int i = 0; i < count; ++i) out[i].time = open_;
 }
 
 void checkSampleSets(const Scene& scene, int64_t spp) {

@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+#include <vector>
+
 namespace glint {
 namespace {
 
@@ -120,6 +124,52 @@ TEST(Camera, ObliquePerspectiveAndParallelViewsFollowSectionFourThree) {
   // A plane that would contain the view direction makes no image.
   d.imagePlaneNormal = Vec3f{1, 0, 0};
   EXPECT_THROW(Camera(d, 2, 2), std::invalid_argument);
+}
+
+// The render makes its camera rays four at a time (generateRays); each must be generateRay's
+// ray to the bit, for every kind of camera: both projections, oblique and off-centre views,
+// pinholes and thin lenses of both shapes, full blocks and a short last one, and rays written
+// where `slot` sends them.
+TEST(Camera, RaysSideBySideEqualOneRayAtATime) {
+  for (const Projection projection : {Projection::Perspective, Projection::Orthographic})
+    for (const bool oblique : {false, true})
+      for (const float aperture : {0.0f, 0.05f})
+        for (const LensShape shape : {LensShape::Disk, LensShape::Square}) {
+          CameraDesc d;
+          d.projection = projection;
+          d.eye = {1, 2, 3};
+          d.lookAt = {0, 1.5f, -1};
+          if (oblique)
+            d.imagePlaneNormal = Vec3f{0.3f, 0.4f, 1};
+          else
+            d.window = ImageWindow{-0.2f, 0.7f, -0.1f, 0.5f};
+          d.apertureRadius = aperture;
+          d.focusDistance = 3.5f;
+          d.lensShape = shape;
+          const Camera cam(d, 16, 9);
+          const int n = 23;
+          std::vector<Vec2f> film, lens;
+          std::vector<int> slot;
+          for (int i = 0; i < n; ++i) {
+            const auto t = static_cast<float>(i);
+            film.push_back({std::fmod(t * 3.7f, 16.0f), std::fmod(t * 1.3f, 9.0f)});
+            // The lens's centre and corners, then points inside.
+            lens.push_back(
+                i < 5 ? Vec2f{i == 0 ? 0.5f : float(i & 1), i == 0 ? 0.5f : float(i >> 1 & 1)}
+                      : Vec2f{std::fmod(t * 0.618f, 1.0f), std::fmod(t * 0.382f, 1.0f)});
+            slot.push_back((i * 7) % n);
+          }
+          std::vector<Ray> rays(n);
+          cam.generateRays(film.data(), lens.data(), n, rays.data(), slot.data());
+          for (int i = 0; i < n; ++i) {
+            Ray alone;
+            alone.time = 0.5f;
+            cam.generateRay(film[size_t(i)].x, film[size_t(i)].y, lens[size_t(i)], alone);
+            const Ray& r = rays[size_t(slot[size_t(i)])];
+            EXPECT_EQ(std::memcmp(&r, &alone, sizeof r), 0)
+                << int(projection) << oblique << aperture << int(shape) << " ray " << i;
+          }
+        }
 }
 
 // worldToNDC (the EXR's) maps every point of a pixel's ray to that pixel's place in the image,

@@ -7,7 +7,10 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
 #include <set>
+#include <vector>
 
 namespace glint {
 namespace {
@@ -81,6 +84,37 @@ TEST(Sampling, ConcentricMapMatchesItsPolarForm) {
       EXPECT_NEAR(d.x, r * std::cos(theta), 3e-7) << u.x << ", " << u.y;
       EXPECT_NEAR(d.y, r * std::sin(theta), 3e-7) << u.x << ", " << u.y;
     }
+}
+
+// The camera maps four lens points at once (camera.cpp): each lane must be the scalar map's
+// bits, on the grid above (both wedges, the diagonals where |ox| = |oy|, the centre) and at
+// points a float's ulp from them, or a thin lens's image would change with how samples fall
+// into lanes.
+TEST(Sampling, ConcentricMapLanesEqualOnePointAtATime) {
+  using F32x4 = float __attribute__((vector_size(16)));
+  std::vector<Vec2f> points;
+  for (int i = 0; i <= 64; ++i)
+    for (int j = 0; j <= 64; ++j) {
+      const float x = static_cast<float>(i) / 64, y = static_cast<float>(j) / 64;
+      points.push_back({x, y});
+      points.push_back({std::nextafter(x, 1.0f), y});
+      points.push_back({x, std::nextafter(y, 0.0f)});
+    }
+  for (uint32_t k = 0; k < 4096; ++k) {
+    const uint64_t h = mix64(k);
+    points.push_back({toUnitFloat(h), toUnitFloat(h << 32)});
+  }
+  while (points.size() % 4 != 0) points.push_back({0.5f, 0.5f});
+  for (size_t i = 0; i < points.size(); i += 4) {
+    F32x4 ux, uy, dx, dy;
+    for (int l = 0; l < 4; ++l) ux[l] = points[i + size_t(l)].x, uy[l] = points[i + size_t(l)].y;
+    squareToDiskConcentricLanes(ux, uy, dx, dy);
+    for (int l = 0; l < 4; ++l) {
+      const Vec2f u = points[i + size_t(l)], d = squareToDiskConcentric(u);
+      EXPECT_EQ(std::bit_cast<uint32_t>(dx[l]), std::bit_cast<uint32_t>(d.x)) << u.x << ", " << u.y;
+      EXPECT_EQ(std::bit_cast<uint32_t>(dy[l]), std::bit_cast<uint32_t>(d.y)) << u.x << ", " << u.y;
+    }
+  }
 }
 
 // Sample `index` of dimension `dim` in pixel (px, py), `sub` of `count` sub-samples.
