@@ -5,6 +5,7 @@
 
 #include "core/frame.h"
 #include "core/sampling.h"
+#include "lights/guided_cdf.h"
 
 namespace glint {
 
@@ -12,17 +13,6 @@ namespace {
 
 // Rec. 709 luminance: what the eye, and a grey surface, take of a colour.
 double luminance(const Rgb& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
-
-// The cell i of a cumulative table cdf[0..n] (cdf[0] = 0, cdf[n] = 1) with cdf[i] ≤ u <
-// cdf[i + 1], and where u falls within it, in [0, 1). Cells of zero probability are never
-// chosen: no u lies in them.
-int findCell(const float* cdf, int n, float u, float& within) {
-  const float* above = std::upper_bound(cdf + 1, cdf + n + 1, u);
-  const int i = std::clamp(static_cast<int>(above - cdf) - 1, 0, n - 1);
-  const float width = cdf[i + 1] - cdf[i];
-  within = width > 0 ? std::clamp((u - cdf[i]) / width, 0.0f, 0x1.fffffep-1f) : 0.5f;
-  return i;
-}
 
 // Builds a cumulative table of `n` non-negative weights, normalised to end at exactly 1;
 // returns their total (0: all zero, and the table stays 0).
@@ -48,6 +38,18 @@ struct EnvironmentLight::Map {
   float rotation = 0;           // radians about +Y
   std::vector<float> rowCdf;    // height + 1
   std::vector<float> texelCdf;  // per row, width + 1
+  // Their guides (lights/guided_cdf.h): without them the two binary searches were the largest
+  // part of a sample.
+  int rowBins = 1, texelBins = 1;
+  std::vector<uint32_t> rowGuide;    // rowBins + 1
+  std::vector<uint32_t> texelGuide;  // per row, texelBins + 1
+
+  GuidedCdf rows() const { return {rowCdf.data(), image.height, rowGuide.data(), rowBins}; }
+  GuidedCdf texelsOfRow(int y) const {
+    const auto row = static_cast<size_t>(y);
+    return {texelCdf.data() + row * (static_cast<size_t>(image.width) + 1), image.width,
+            texelGuide.data() + row * (static_cast<size_t>(texelBins) + 1), texelBins};
+  }
   // Per texel, the density over the (u, v) square with which it is drawn: its weight over the
   // mean weight (0 everywhere when the image is black).
   std::vector<float> density;
@@ -95,6 +97,17 @@ EnvironmentLight::EnvironmentLight(LatLongImage image, float intensity, float ro
         cumulate(weight.data(), w, map->texelCdf.data() + static_cast<size_t>(y) * (w + 1));
   }
   const double total = cumulate(rowWeight.data(), h, map->rowCdf.data());
+  map->rowBins = guideBinsFor(h);
+  map->texelBins = guideBinsFor(w);
+  map->rowGuide.resize(static_cast<size_t>(map->rowBins) + 1);
+  map->texelGuide.resize(static_cast<size_t>(h) * (static_cast<size_t>(map->texelBins) + 1));
+  GuidedCdf::buildGuide(map->rowCdf.data(), h, map->rowBins, map->rowGuide.data());
+  for (int y = 0; y < h; ++y) {
+    const auto row = static_cast<size_t>(y);
+    GuidedCdf::buildGuide(map->texelCdf.data() + row * (static_cast<size_t>(w) + 1), w,
+                          map->texelBins,
+                          map->texelGuide.data() + row * (static_cast<size_t>(map->texelBins) + 1));
+  }
   if (total > 0) {
     const double mean = total / (double(w) * double(h));
     for (int y = 0; y < h; ++y) {
@@ -129,8 +142,8 @@ EnvironmentSample EnvironmentLight::sample(const Vec3f& n, Vec2f u) const {
   const Map& m = *map_;
   const int w = m.image.width, h = m.image.height;
   float withinRow, withinTexel;
-  const int y = findCell(m.rowCdf.data(), h, u.y, withinRow);
-  const int x = findCell(m.texelCdf.data() + static_cast<size_t>(y) * (w + 1), w, u.x, withinTexel);
+  const int y = m.rows().find(u.y, withinRow);
+  const int x = m.texelsOfRow(y).find(u.x, withinTexel);
   const float theta = kPi * (static_cast<float>(y) + withinRow) / static_cast<float>(h);
   const float phi =
       2 * kPi * ((static_cast<float>(x) + withinTexel) / static_cast<float>(w) - 0.5f) - m.rotation;

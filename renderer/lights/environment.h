@@ -37,7 +37,7 @@ class EnvironmentLight {
   // A uniform sky of radiance L.
   EnvironmentLight(const Rgb& radiance, int samples);
   // An image, its texels scaled by `intensity`, turned by `rotationDegrees` about +Y. Builds the
-  // sampling distribution: about 8 bytes per texel beside the image's 12.
+  // sampling distribution: about 12 bytes per texel beside the image's 12.
   EnvironmentLight(LatLongImage image, float intensity, float rotationDegrees, int samples);
 
   int samples = 16;  // shadow rays per shading point
@@ -55,7 +55,7 @@ class EnvironmentLight {
 
   // Bytes an image of `texels` texels takes with its distribution (the loader checks that they
   // fit the memory budget before any is made).
-  static double bytesFor(double texels) { return 20 * texels; }
+  static double bytesFor(double texels) { return 24 * texels; }
 
  private:
   struct Map;
