@@ -81,9 +81,9 @@ inline constexpr float kShadowRayEnd = 1.0f - 1.0f / 4096.0f;
   const Vec3f from = sp.p + sp.shadowLift;
   spawnRayFrom(r, from, sp.pError + gamma(2) * abs(from), sp.ng, toPoint, v, time, origin);
 }
-// spawnShadowRayInto towards points, for many targets from one point: where the shadow rays
+// spawnShadowRayInto for many targets (or directions) from one point: where the shadow rays
 // leave from on either side of the surface is worked out once, and each ray only picks its
-// side (the same values, bit for bit, as spawnShadowRayInto's with toPoint).
+// side (the same values, bit for bit, as spawnShadowRayInto's).
 class ShadowOrigin {
  public:
   explicit ShadowOrigin(const ShadingPoint& sp) : ng_(sp.ng) {
@@ -103,6 +103,16 @@ class ShadowOrigin {
     r.d = target - r.o;
     r.tMin = 0;
     r.tMax = kShadowRayEnd;
+    r.time = time;
+    r.origin = origin;
+  }
+  // spawnShadowRayInto along unit direction wi (a light at infinity): unbounded.
+  [[gnu::always_inline]] void spawnAlong(Ray& r, const Vec3f& wi, float time,
+                                         uint32_t origin) const {
+    r.o = dot(wi, ng_) < 0 ? back_ : front_;
+    r.d = wi;
+    r.tMin = 0;
+    r.tMax = kInfinity;
     r.time = time;
     r.origin = origin;
   }

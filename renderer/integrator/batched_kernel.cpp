@@ -311,7 +311,28 @@ void BatchedKernel::queueLight(const LitPoint& pt, size_t li, SubSampleStream& d
     return queueAreaSamples(pt, *q, li, draws, size, queue);
   if (const auto* d = std::get_if<DiskLight>(&light))
     return queueAreaSamples(pt, *d, li, draws, size, queue);
-  for (int j = 0; j < size; ++j) queueSample(pt, li, draws.next(), queue);  // the environment
+  queueEnvironmentSamples(pt, std::get<EnvironmentLight>(light), li, draws, size, queue);
+}
+
+void BatchedKernel::queueEnvironmentSamples(const LitPoint& pt, const EnvironmentLight& light,
+                                            size_t li, SubSampleStream& draws, int size,
+                                            ShadowQueue& queue) const {
+  const ShadowOrigin from(pt.sp);
+  const uint32_t origin = ray_origin::light(li);
+  const int begin = queue.size;
+  int q = begin;
+  for (int j = 0; j < size; ++j) {
+    const EnvironmentSample s = light.sample(pt.at.n, draws.next());
+    if (!facesLight(pt.at, s.wi) || s.radianceOverPdf.isBlack()) continue;
+    const Rgb f = reflectedLight(pt.material->surface, pt.sp, pt.at, s.wi);
+    from.spawnAlong(queue.rays[q], s.wi, pt.time, origin);
+    queue.term[q] = f * s.radianceOverPdf;
+    queue.atInfinity[q] = true;
+    ++q;
+  }
+  queue.size = q;
+  if (transparentShadows())
+    std::fill(queue.media.data() + begin, queue.media.data() + q, &pt.branch->media);
 }
 
 template <class AreaLight>

@@ -213,6 +213,9 @@ class BatchedKernel {
   template <class AreaLight>
   void queueAreaSamples(const LitPoint& pt, const AreaLight& light, size_t li,
                         SubSampleStream& draws, int size, ShadowQueue& queue) const;
+  // queueLight for an environment, likewise.
+  void queueEnvironmentSamples(const LitPoint& pt, const EnvironmentLight& light, size_t li,
+                               SubSampleStream& draws, int size, ShadowQueue& queue) const;
   // The direct light of the points pending in the scratch, added to their ray's local:
   // queueShadowRays, traceShadows, addDirectLight. Empties the pending list and the queue.
   void lightPendingPoints(Scratch& scratch, typename Generation::Sum* sums, AovSample* const* aovs,
