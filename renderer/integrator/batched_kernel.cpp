@@ -321,14 +321,23 @@ void BatchedKernel::queueEnvironmentSamples(const LitPoint& pt, const Environmen
   const uint32_t origin = ray_origin::light(li);
   const int begin = queue.size;
   int q = begin;
-  for (int j = 0; j < size; ++j) {
-    const EnvironmentSample s = light.sample(pt.at.n, draws.next());
-    if (!facesLight(pt.at, s.wi) || s.radianceOverPdf.isBlack()) continue;
-    const Rgb f = reflectedLight(pt.material->surface, pt.sp, pt.at, s.wi);
-    from.spawnAlong(queue.rays[q], s.wi, pt.time, origin);
-    queue.term[q] = f * s.radianceOverPdf;
-    queue.atInfinity[q] = true;
-    ++q;
+  // Drawn a block at a time: the light samples a block's directions side by side.
+  constexpr int kBlock = 64;
+  Vec2f u[kBlock];
+  EnvironmentSample samples[kBlock];
+  for (int first = 0; first < size; first += kBlock) {
+    const int block = std::min(kBlock, size - first);
+    for (int j = 0; j < block; ++j) u[j] = draws.next();
+    light.sample(pt.at.n, u, block, samples);
+    for (int j = 0; j < block; ++j) {
+      const EnvironmentSample& s = samples[j];
+      if (!facesLight(pt.at, s.wi) || s.radianceOverPdf.isBlack()) continue;
+      const Rgb f = reflectedLight(pt.material->surface, pt.sp, pt.at, s.wi);
+      from.spawnAlong(queue.rays[q], s.wi, pt.time, origin);
+      queue.term[q] = f * s.radianceOverPdf;
+      queue.atInfinity[q] = true;
+      ++q;
+    }
   }
   queue.size = q;
   if (transparentShadows())

@@ -58,6 +58,39 @@ struct EnvironmentLight::Map {
     return image
         .texels[static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x)];
   }
+  // A sample's place in the (u, v) square: its row y (θ) from the marginal table, its texel x
+  // (φ) from that row's conditional table, and where in the texel it lies.
+  struct Cell {
+    int x, y;
+    float withinTexel, withinRow;
+  };
+  Cell cellOf(Vec2f u) const {
+    Cell c;
+    c.y = rows().find(u.y, c.withinRow);
+    c.x = texelsOfRow(c.y).find(u.x, c.withinTexel);
+    // What sampleAt reads next, fetched while the next samples' tables are searched.
+    const size_t i =
+        static_cast<size_t>(c.y) * static_cast<size_t>(image.width) + static_cast<size_t>(c.x);
+    __builtin_prefetch(&density[i]);
+    __builtin_prefetch(&image.texels[i]);
+    return c;
+  }
+  // The direction at a cell and the radiance along it over the density of drawing it.
+  EnvironmentSample sampleAt(const Cell& c) const {
+    EnvironmentSample s;
+    const int w = image.width, h = image.height;
+    const float theta = kPi * (static_cast<float>(c.y) + c.withinRow) / static_cast<float>(h);
+    const float phi =
+        2 * kPi * ((static_cast<float>(c.x) + c.withinTexel) / static_cast<float>(w) - 0.5f) -
+        rotation;
+    const float sinTheta = std::sin(theta);
+    s.wi = {sinTheta * std::sin(phi), std::cos(theta), -sinTheta * std::cos(phi)};
+    const float d =
+        density[static_cast<size_t>(c.y) * static_cast<size_t>(w) + static_cast<size_t>(c.x)];
+    // The (u, v) square maps onto the sphere with dω = 2π² sin θ du dv.
+    if (d > 0 && sinTheta > 0) s.radianceOverPdf = texel(c.x, c.y) * (2 * kPi * kPi * sinTheta / d);
+    return s;
+  }
   // The texel a direction falls in, for unit-or-not d.
   void texelOf(const Vec3f& d, int& x, int& y) const {
     const float phi = std::atan2(d.x, -d.z) + rotation;  // 0 at the image's centre
@@ -128,31 +161,36 @@ Rgb EnvironmentLight::radiance(const Vec3f& d) const {
 }
 
 EnvironmentSample EnvironmentLight::sample(const Vec3f& n, Vec2f u) const {
-  EnvironmentSample s;
+  if (!map_) return sampleUniform(n, u);
+  return map_->sampleAt(map_->cellOf(u));
+}
+
+void EnvironmentLight::sample(const Vec3f& n, const Vec2f* u, int count,
+                              EnvironmentSample* out) const {
   if (!map_) {
-    // Cosine-weighted about n: pdf cos θ/π, so L/pdf·cos θ is π·L whatever u is.
-    const Vec2f disk = squareToDiskConcentric(u);
-    const float z = std::sqrt(std::max(0.0f, 1 - disk.x * disk.x - disk.y * disk.y));
-    Vec3f t, b;
-    orthonormalBasis(n, t, b);
-    s.wi = normalize(disk.x * t + disk.y * b + z * n);
-    if (z > 0) s.radianceOverPdf = uniform_ * (kPi / z);
-    return s;
+    for (int i = 0; i < count; ++i) out[i] = sampleUniform(n, u[i]);
+    return;
   }
-  const Map& m = *map_;
-  const int w = m.image.width, h = m.image.height;
-  float withinRow, withinTexel;
-  const int y = m.rows().find(u.y, withinRow);
-  const int x = m.texelsOfRow(y).find(u.x, withinTexel);
-  const float theta = kPi * (static_cast<float>(y) + withinRow) / static_cast<float>(h);
-  const float phi =
-      2 * kPi * ((static_cast<float>(x) + withinTexel) / static_cast<float>(w) - 0.5f) - m.rotation;
-  const float sinTheta = std::sin(theta);
-  s.wi = {sinTheta * std::sin(phi), std::cos(theta), -sinTheta * std::cos(phi)};
-  const float density = m.density[static_cast<size_t>(y) * static_cast<size_t>(w) + x];
-  // The (u, v) square maps onto the sphere with dω = 2π² sin θ du dv.
-  if (density > 0 && sinTheta > 0)
-    s.radianceOverPdf = m.texel(x, y) * (2 * kPi * kPi * sinTheta / density);
+  // Every sample's cells first, then every sample's direction: a sample's table reads depend
+  // on each other, and one sample at a time waited on each; side by side they overlap.
+  constexpr int kBlock = 32;
+  Map::Cell cells[kBlock];
+  for (int first = 0; first < count; first += kBlock) {
+    const int size = std::min(kBlock, count - first);
+    for (int i = 0; i < size; ++i) cells[i] = map_->cellOf(u[first + i]);
+    for (int i = 0; i < size; ++i) out[first + i] = map_->sampleAt(cells[i]);
+  }
+}
+
+EnvironmentSample EnvironmentLight::sampleUniform(const Vec3f& n, Vec2f u) const {
+  // Cosine-weighted about n: pdf cos θ/π, so L/pdf·cos θ is π·L whatever u is.
+  EnvironmentSample s;
+  const Vec2f disk = squareToDiskConcentric(u);
+  const float z = std::sqrt(std::max(0.0f, 1 - disk.x * disk.x - disk.y * disk.y));
+  Vec3f t, b;
+  orthonormalBasis(n, t, b);
+  s.wi = normalize(disk.x * t + disk.y * b + z * n);
+  if (z > 0) s.radianceOverPdf = uniform_ * (kPi / z);
   return s;
 }
 

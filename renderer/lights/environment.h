@@ -49,6 +49,8 @@ class EnvironmentLight {
   // with zero density (below the horizon of a uniform sky, or a black image) comes back with
   // black radianceOverPdf.
   EnvironmentSample sample(const Vec3f& n, Vec2f u) const;
+  // sample() for `count` draws u[i] at once, into out[i]: the same directions and values.
+  void sample(const Vec3f& n, const Vec2f* u, int count, EnvironmentSample* out) const;
   // The density, per steradian, with which sample() draws unit direction d for a point whose
   // unit shading normal is n (an image's does not depend on n; a uniform sky's is cos θ/π).
   float pdf(const Vec3f& n, const Vec3f& d) const;
@@ -59,6 +61,7 @@ class EnvironmentLight {
 
  private:
   struct Map;
+  EnvironmentSample sampleUniform(const Vec3f& n, Vec2f u) const;
   Rgb uniform_;
   std::shared_ptr<const Map> map_;  // null for a uniform sky
 };
