@@ -34,7 +34,7 @@ std::vector<Footing> footings(int fine, int coarse) {
 
 // A coordinate along an axis reduced to one period of its wrap mode, so that the texel index
 // computed from it is small (and exact) whatever the coordinate.
-float reduced(float s, TextureWrap wrap) {
+[[gnu::always_inline]] inline float reduced(float s, TextureWrap wrap) {
   switch (wrap) {
     case TextureWrap::Repeat:
       return s - std::floor(s);
@@ -47,7 +47,7 @@ float reduced(float s, TextureWrap wrap) {
 
 // Texel i of an axis of n as the wrap mode continues it; i lies within a texel of the period
 // `reduced` left it in.
-int wrapped(int i, int n, TextureWrap wrap) {
+[[gnu::always_inline]] inline int wrapped(int i, int n, TextureWrap wrap) {
   switch (wrap) {
     case TextureWrap::Repeat:
       return i < 0 ? i + n : i >= n ? i - n : i;
@@ -101,26 +101,38 @@ double MipPyramid::bytesFor(int width, int height, int channels) {
   return texels * channels * double(sizeof(float));
 }
 
+// The two texels a bilinear lookup reads along an axis of n, from the first one's index i.
+// Inside the axis (nearly every lookup) every wrap mode leaves them where they are.
+[[gnu::always_inline]] inline void texelPair(int i, int n, TextureWrap wrap, int& a, int& b) {
+  if (static_cast<unsigned>(i) < static_cast<unsigned>(n - 1)) {
+    a = i;
+    b = i + 1;
+  } else {
+    a = wrapped(i, n, wrap);
+    b = wrapped(i + 1, n, wrap);
+  }
+}
+
 template <int kCount>
-void MipPyramid::bilinear(const Level& level, float s, float t, const ImageFootprint& at, int first,
-                          float weight, float* sum) const {
-  const float x = reduced(s, at.wrapS) * float(level.width) - 0.5f;
-  const float y = reduced(t, at.wrapT) * float(level.height) - 0.5f;
+void MipPyramid::bilinear(const Level& level, float rs, float rt, const ImageFootprint& at,
+                          int first, float weight, float* sum) const {
+  const float x = rs * float(level.width) - 0.5f;
+  const float y = rt * float(level.height) - 0.5f;
   const float xFloor = std::floor(x), yFloor = std::floor(y);
   const float fx = x - xFloor, fy = y - yFloor;
-  const int x0 = int(xFloor), y0 = int(yFloor);
+  int xa, xb, ya, yb;
+  texelPair(int(xFloor), level.width, at.wrapS, xa, xb);
+  texelPair(int(yFloor), level.height, at.wrapT, ya, yb);
   const size_t c = size_t(channels_);
-  const size_t xa = size_t(wrapped(x0, level.width, at.wrapS)) * c + size_t(first);
-  const size_t xb = size_t(wrapped(x0 + 1, level.width, at.wrapS)) * c + size_t(first);
   const size_t rowSize = size_t(level.width) * c;
-  const float* row0 = level.texels.data() + size_t(wrapped(y0, level.height, at.wrapT)) * rowSize;
-  const float* row1 =
-      level.texels.data() + size_t(wrapped(y0 + 1, level.height, at.wrapT)) * rowSize;
+  const float* row0 = level.texels.data() + size_t(ya) * rowSize + size_t(first);
+  const float* row1 = level.texels.data() + size_t(yb) * rowSize + size_t(first);
+  const size_t ia = size_t(xa) * c, ib = size_t(xb) * c;
   const float w00 = weight * (1 - fx) * (1 - fy), w10 = weight * fx * (1 - fy);
   const float w01 = weight * (1 - fx) * fy, w11 = weight * fx * fy;
   for (int k = 0; k < kCount; ++k)
-    sum[k] += w00 * row0[xa + size_t(k)] + w10 * row0[xb + size_t(k)] + w01 * row1[xa + size_t(k)] +
-              w11 * row1[xb + size_t(k)];
+    sum[k] += w00 * row0[ia + size_t(k)] + w10 * row0[ib + size_t(k)] + w01 * row1[ia + size_t(k)] +
+              w11 * row1[ib + size_t(k)];
 }
 
 template <int kCount>
@@ -143,13 +155,14 @@ void MipPyramid::filterChannels(const ImageFootprint& at, int first, float* out)
   const float major = std::sqrt(major2);
   // At most a texel (or no footprint: a cut-out's outline, or a NaN one): the finest level.
   if (!(major > 1)) {
-    bilinear<kCount>(levels_[0], s, t, at, first, 1, sum);
+    bilinear<kCount>(levels_[0], reduced(s, at.wrapS), reduced(t, at.wrapT), at, first, 1, sum);
     for (int k = 0; k < kCount; ++k) out[k] = sum[k];
     return;
   }
   const int last = int(levels_.size()) - 1;
   if (!(major <= std::numeric_limits<float>::max())) {
-    bilinear<kCount>(levels_[size_t(last)], s, t, at, first, 1, sum);
+    bilinear<kCount>(levels_[size_t(last)], reduced(s, at.wrapS), reduced(t, at.wrapT), at, first,
+                     1, sum);
     for (int k = 0; k < kCount; ++k) out[k] = sum[k];
     return;
   }
@@ -189,9 +202,11 @@ void MipPyramid::filterChannels(const ImageFootprint& at, int first, float* out)
   const float share = 1.0f / float(points);
   for (int i = 0; i < points; ++i) {
     const float ps = s + (start + float(i)) * stepS, pt = t + (start + float(i)) * stepT;
-    bilinear<kCount>(levels_[size_t(level)], ps, pt, at, first, share * (1 - upper), sum);
+    // Reduced once for both levels: the same point on each.
+    const float rs = reduced(ps, at.wrapS), rt = reduced(pt, at.wrapT);
+    bilinear<kCount>(levels_[size_t(level)], rs, rt, at, first, share * (1 - upper), sum);
     if (upper > 0)
-      bilinear<kCount>(levels_[size_t(level + 1)], ps, pt, at, first, share * upper, sum);
+      bilinear<kCount>(levels_[size_t(level + 1)], rs, rt, at, first, share * upper, sum);
   }
   for (int k = 0; k < kCount; ++k) out[k] = sum[k];
 }

@@ -51,8 +51,9 @@ class MipPyramid {
   };
   template <int kCount>
   void filterChannels(const ImageFootprint& at, int first, float* out) const;
+  // (rs, rt): the lookup's (s, t) reduced to one period of its wrap modes.
   template <int kCount>
-  void bilinear(const Level& level, float s, float t, const ImageFootprint& at, int first,
+  void bilinear(const Level& level, float rs, float rt, const ImageFootprint& at, int first,
                 float weight, float* sum) const;
 
   std::vector<Level> levels_;
