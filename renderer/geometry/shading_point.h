@@ -24,7 +24,7 @@ struct ShadingPoint {
   uint32_t objectId = 0;
   uint32_t origin = ray_origin::kNone;  // the world entry hit: what rays leaving it carry
   // The surface's texture coordinates and their tangents dp/du, dp/dv (world space), filled
-  // only in scenes with image textures (Features::surfaceCoordinates): every other hit leaves
+  // only on hits whose material reads them (Features::readsCoordinates): every other hit leaves
   // them out.
   Vec2f uv;
   Vec3f dpdu, dpdv;

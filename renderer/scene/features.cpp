@@ -67,14 +67,15 @@ Features computeFeatures(const Scene& scene) {
     f.gloss |= s.reflectsCoherently() && s.glossy();
     f.emission |= s.emits();
     f.cutouts |= m.cutout.active();
+    bool coordinates = false;
     if (s.normalMaps) {
-      f.normalMaps = f.surfaceCoordinates = true;
+      f.normalMaps = coordinates = true;
       f.secondUvSet |=
           s.normalMaps->normal.uvTransform.uvSet == 1 || s.normalMaps->bump.uvTransform.uvSet == 1;
     }
     for (const ColorTexture* t : {&s.ka, &s.kd, &s.ks, &s.km, &s.ke}) {
       f.textures |= t->pattern != TexturePattern::Constant;
-      f.surfaceCoordinates |= t->pattern == TexturePattern::Image;
+      coordinates |= t->pattern == TexturePattern::Image;
       f.secondUvSet |= t->pattern == TexturePattern::Image && t->uvTransform.uvSet == 1;
       f.vertexColors |= t->pattern == TexturePattern::VertexColor || t->timesVertexColor;
     }
@@ -83,10 +84,12 @@ Features computeFeatures(const Scene& scene) {
            {std::pair{s.maps->metallicRoughness.get(), &s.maps->metallicRoughnessUv},
             std::pair{s.maps->occlusion.get(), &s.maps->occlusionUv}})
         if (image) {
-          f.textures = f.surfaceCoordinates = true;
+          f.textures = coordinates = true;
           f.secondUvSet |= uv->uvSet == 1;
         }
     }
+    f.coordinatesByMaterial.push_back(coordinates);
+    f.surfaceCoordinates |= coordinates;
     if (m.refracts()) {
       f.refraction = f.reflection = true;
       f.absorption |= m.dielectric.absorption.absorbs();

@@ -5,6 +5,7 @@
 // without them, no AOV records unless asked for; `glint render --stats` lists both sides. (No
 // capability is compiled out: specialised kernels saved too little to pay for keeping several,
 // docs/performance.md, "Leaving out what a scene does not need".)
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,10 @@ struct Features {
   bool surfaceCoordinates = false;
   // Some image texture reads a mesh's second coordinate set (ShadingPoint::uv1).
   bool secondUvSet = false;
+  // Per material id, whether its surface reads texture coordinates (an image texture, a
+  // normal, bump, metallic-roughness or occlusion map): only its hits compute them
+  // (readsCoordinates), since finding them costs more than shading an untextured hit.
+  std::vector<bool> coordinatesByMaterial;
   bool vertexColors = false;  // some slot multiplies by a mesh's vertex colours
   // Some material has a normal or bump map: hits compute their surface coordinates and tangent
   // frame (ShadingPoint::tangent), and meshes under a normal map carry vertex tangents.
@@ -41,6 +46,11 @@ struct Features {
   bool emission = false;  // some surface emits (k_e, or a visible area light)
   bool ambient = false;
   bool transparentShadows = false;  // asked for and some dielectric can cast them
+
+  // Whether hits on material `id` need their surface coordinates: yes for one not listed.
+  bool readsCoordinates(uint32_t id) const {
+    return id >= coordinatesByMaterial.size() || coordinatesByMaterial[id];
+  }
 
   std::vector<std::string> used() const;
   std::vector<std::string> leftOut() const;

@@ -233,7 +233,9 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
   storeWhole(sp.ns, smoothMesh ? smoothNormal(*smoothMesh, hit, worldFromObject, ng) : ng);
   sp.lifted = smoothMesh != nullptr;
   if (smoothMesh) storeWhole(sp.shadowLift, worldFromObject ? worldFromObject->vector(lift) : lift);
-  if (features.surfaceCoordinates) [[unlikely]]
+  // A CSG solid's operands carry their own materials: its hits always compute them.
+  if (features.surfaceCoordinates &&
+      (g.kind == GeomKind::Csg || features.readsCoordinates(g.materialId))) [[unlikely]]
     surfaceCoordinates(g, hit, pObject, ray.time, worldFromObject, sp);
   if (features.vertexColors) [[unlikely]] {
     sp.vertexColor = Rgb{1, 1, 1};
