@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
+#include <variant>
 
 #include "integrator/transparent_shadow.h"
 
@@ -17,6 +19,9 @@ BatchedKernel::BatchedKernel(const Scene& scene, const Accelerator& accel, float
     lights_.push_back({lightSampleCount(light), isDeltaLight(light)});
     shadowRaysPerPoint_ += lights_.back().samples;
   }
+  for (const Material& m : scene.materials)
+    materials_.push_back(
+        {m.surface.reflectsLights(), m.refracts() || m.surface.reflectsCoherently()});
 }
 
 Radiance BatchedKernel::trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
@@ -98,13 +103,15 @@ void BatchedKernel::shadeHits(const Ray* rays, const Hit* hits, const Branch* br
       sum.childEnd = gen.children;
       continue;
     }
-    const Material& m = scene_.materials[scene_.materialId(hit)];
+    const uint32_t materialId = scene_.materialId(hit);
+    const Material& m = scene_.materials[materialId];
+    const MaterialFlags flags = materials_[materialId];
     AovSample* aov = aovs ? aovs[i] : nullptr;
     const Vec3f wo = normalize(-ray.d);
     const float distance = distanceAt(ray, hit, branch);
     // AccLightSource: what the surface emits and reflects of the ambient light now; the light
     // sources' share, for a surface that reflects them, when the pending points are lit.
-    if (!m.surface.reflectsLights()) {
+    if (!flags.reflectsLights) {
       ShadingPoint sp;
       scene_.shadingPoint(ray, hit, sp);
       const SurfacePoint at =
@@ -112,7 +119,7 @@ void BatchedKernel::shadeHits(const Ray* rays, const Hit* hits, const Branch* br
       if (aov) recordAov(ray, hit, m, sp, at, *aov);
       local = ambientAndEmission(m.surface, at, sp, scene_.render.ambient, scene_.worldOrigin);
       if (aov) aov->direct = local;
-      if (m.refracts() || m.surface.reflectsCoherently())
+      if (flags.spawnsRays)
         spawnCoherent(hit, m, sp, at, ray, -wo, branch, distance, gen, counters,
                       scratch.raysOfRoot(branch));
       sum.childEnd = gen.children;
@@ -131,12 +138,12 @@ void BatchedKernel::shadeHits(const Ray* rays, const Hit* hits, const Branch* br
     pt.time = ray.time;
     pt.branch = &branch;
     p.ray = i;
+    p.rays = &scratch.raysOfRoot(branch);
     if (aov) recordAov(ray, hit, m, pt.sp, pt.at, *aov);
     local = ambientAndEmission(m.surface, pt.at, pt.sp, scene_.render.ambient, scene_.worldOrigin);
     // Asked here, not in the call: a matte surface's hit paid the call's set-up for nothing.
-    if (m.refracts() || m.surface.reflectsCoherently())
-      spawnCoherent(hit, m, pt.sp, pt.at, ray, -wo, branch, distance, gen, counters,
-                    scratch.raysOfRoot(branch));
+    if (flags.spawnsRays)
+      spawnCoherent(hit, m, pt.sp, pt.at, ray, -wo, branch, distance, gen, counters, *p.rays);
     sum.childEnd = gen.children;
   }
 }
@@ -202,57 +209,74 @@ void BatchedKernel::lightPendingPoints(Scratch& scratch, Generation::Sum* sums,
                                        AovSample* const* aovs, RayCounters& counters) const {
   const int pending = scratch.pendingCount;
   if (pending == 0) return;
-  for (int k = 0; k < pending; ++k) scratch.pending[k].shadowRays = 0;
   // Light by light, every point's samples: the queue comes out sorted by light, and each
   // light's rays, which start close together and converge on it, leave as one coherent run.
   for (size_t li = 0; li < scene_.lights.size(); ++li)
     queueShadowRays(scratch, li, sums, aovs, counters);
   flushShadows(scratch, sums, aovs, counters);
-  for (int k = 0; k < pending; ++k) {
-    const auto& p = scratch.pending[k];
-    scratch.raysOfRoot(*p.pt.branch) += p.shadowRays;
-    if (aovs && aovs[p.ray]) aovs[p.ray]->direct = sums[p.ray].local;
+  if (aovs) {
+    for (int k = 0; k < pending; ++k) {
+      const auto& p = scratch.pending[k];
+      if (aovs[p.ray]) aovs[p.ray]->direct = sums[p.ray].local;
+    }
   }
   scratch.pendingCount = 0;
 }
 
 void BatchedKernel::queueShadowRays(Scratch& scratch, size_t li, Generation::Sum* sums,
                                     AovSample* const* aovs, RayCounters& counters) const {
+  std::visit(
+      [&](const auto& light) { queueShadowRaysOf(scratch, light, li, sums, aovs, counters); },
+      scene_.lights[li]);
+}
+
+template <class L>
+void BatchedKernel::queueShadowRaysOf(Scratch& scratch, const L& light, size_t li,
+                                      Generation::Sum* sums, AovSample* const* aovs,
+                                      RayCounters& counters) const {
   auto& queue = scratch.queue;
-  const int light = static_cast<int>(li);
-  if (lights_[li].delta) {
-    // One shadow ray per point and no sample drawn: the loop says so once per light.
+  const int index = static_cast<int>(li);
+  if constexpr (std::is_same_v<L, PointLight> || std::is_same_v<L, DirectionalLight>) {
+    // One shadow ray per point and no sample drawn: one run of the light's rays, each naming
+    // its point, closed where the queue is traced.
+    if (queue.full()) flushShadows(scratch, sums, aovs, counters);
+    int begin = queue.size;
     for (int k = 0; k < scratch.pendingCount; ++k) {
-      if (queue.full()) flushShadows(scratch, sums, aovs, counters);
-      queueSample(scratch.pending[k].pt, li, {0.5f, 0.5f}, queue);
-      queue.addRun(k, light, false, true);
+      if (queue.size == ShadowQueue::kCapacity) {
+        queue.addRun(ShadowRun::kEachRay, index, false, true);
+        flushShadows(scratch, sums, aovs, counters);
+        begin = 0;
+      }
+      queue.pointOf[queue.size] = k;  // read only if the sample is queued
+      queueSamples(scratch.pending[k].pt, light, li, nullptr, 1, queue);
     }
-    return;
-  }
-  const int count = lights_[li].samples;
-  // Every point's samples of the light drawn a window ahead, several points' side by side.
-  SamplePattern patterns[kChunk];
-  int indices[kChunk];
-  for (int k = 0; k < scratch.pendingCount; ++k) {
-    const Branch& b = *scratch.pending[k].pt.branch;
-    indices[k] = b.key->index;
-    // Consecutive samples of a pixel's half, pending side by side, share its set.
-    const Branch* before = k > 0 ? scratch.pending[k - 1].pt.branch : nullptr;
-    if (before && before->depth == b.depth && before->key->pixelKey == b.key->pixelKey &&
-        before->key->half == b.key->half)
-      patterns[k] = patterns[k - 1];
-    else
-      patterns[k] = lightPattern(scratch.pending[k].pt, li);
-  }
-  SubSampleStream draws(*scratch.pending[0].pt.branch->key->sampler, count, patterns, indices,
-                        scratch.pendingCount);
-  for (int k = 0; k < scratch.pendingCount; ++k) {
-    for (int first = 0; first < count;) {
-      if (queue.full()) flushShadows(scratch, sums, aovs, counters);
-      const int size = std::min(count - first, queue.kCapacity - queue.size);
-      queueLight(scratch.pending[k].pt, li, draws, size, queue);
-      queue.addRun(k, light, first > 0, first + size == count);
-      first += size;
+    if (queue.size > begin) queue.addRun(ShadowRun::kEachRay, index, false, true);
+  } else {
+    const int count = lights_[li].samples;
+    // Every point's samples of the light drawn a window ahead, several points' side by side.
+    SamplePattern patterns[kChunk];
+    int indices[kChunk];
+    for (int k = 0; k < scratch.pendingCount; ++k) {
+      const Branch& b = *scratch.pending[k].pt.branch;
+      indices[k] = b.key->index;
+      // Consecutive samples of a pixel's half, pending side by side, share its set.
+      const Branch* before = k > 0 ? scratch.pending[k - 1].pt.branch : nullptr;
+      if (before && before->depth == b.depth && before->key->pixelKey == b.key->pixelKey &&
+          before->key->half == b.key->half)
+        patterns[k] = patterns[k - 1];
+      else
+        patterns[k] = lightPattern(scratch.pending[k].pt, li);
+    }
+    SubSampleStream draws(*scratch.pending[0].pt.branch->key->sampler, count, patterns, indices,
+                          scratch.pendingCount);
+    for (int k = 0; k < scratch.pendingCount; ++k) {
+      for (int first = 0; first < count;) {
+        if (queue.full()) flushShadows(scratch, sums, aovs, counters);
+        const int size = std::min(count - first, queue.kCapacity - queue.size);
+        queueSamples(scratch.pending[k].pt, light, li, &draws, size, queue);
+        queue.addRun(k, index, first > 0, first + size == count);
+        first += size;
+      }
     }
   }
 }
@@ -270,9 +294,21 @@ void BatchedKernel::addDirectLight(Scratch& scratch, Generation::Sum* sums,
   const auto& queue = scratch.queue;
   for (int r = 0, begin = 0; r < queue.runCount; begin = queue.runs[r++].end) {
     const ShadowRun& run = queue.runs[r];
+    if (run.point == ShadowRun::kEachRay) {
+      // A delta light's: each ray its point's whole sample (a point whose sample was behind or
+      // black has no ray, and adds nothing).
+      for (int q = begin; q < run.end; ++q) {
+        auto& p = scratch.pending[queue.pointOf[q]];
+        *p.rays += tracedIn(queue, q, q + 1);
+        AovSample* aov = aovs ? aovs[p.ray] : nullptr;
+        addContribution(sumVisible(queue, q, q + 1), static_cast<size_t>(run.light),
+                        sums[p.ray].local, aov ? aov->perLight : nullptr);
+      }
+      continue;
+    }
     auto& p = scratch.pending[run.point];
     const Rgb sum = sumVisible(queue, begin, run.end, run.continues ? p.lightSum : Rgb{});
-    p.shadowRays += tracedIn(queue, begin, run.end);
+    *p.rays += tracedIn(queue, begin, run.end);
     if (!run.lastOfLight) {
       p.lightSum = sum;
       continue;
@@ -304,30 +340,55 @@ SamplePattern BatchedKernel::lightPattern(const LitPoint& pt, size_t li) const {
   return pt.branch->key->pattern(dimension(Dim::Light, pt.branch->depth, static_cast<int>(li)));
 }
 
-void BatchedKernel::queueLight(const LitPoint& pt, size_t li, SubSampleStream& draws, int size,
-                               ShadowQueue& queue) const {
-  const Light& light = scene_.lights[li];
-  if (const auto* q = std::get_if<QuadLight>(&light))
-    return queueAreaSamples(pt, *q, li, draws, size, queue);
-  if (const auto* d = std::get_if<DiskLight>(&light))
-    return queueAreaSamples(pt, *d, li, draws, size, queue);
-  queueEnvironmentSamples(pt, std::get<EnvironmentLight>(light), li, draws, size, queue);
+template <class L>
+void BatchedKernel::queueSamples(const LitPoint& pt, const L& light, size_t li,
+                                 SubSampleStream* draws, int size, ShadowQueue& queue) const {
+  constexpr bool delta = std::is_same_v<L, PointLight> || std::is_same_v<L, DirectionalLight>;
+  constexpr bool atInfinity =
+      std::is_same_v<L, DirectionalLight> || std::is_same_v<L, EnvironmentLight>;
+  [[maybe_unused]] const uint32_t origin = ray_origin::light(li);
+  // One ray of a delta light leaves from the side it needs; many rays pick one of two sides.
+  [[maybe_unused]] const auto from = [&] {
+    if constexpr (delta)
+      return 0;
+    else
+      return ShadowOrigin(pt.sp);
+  }();
+  const int begin = queue.size;
+  int q = begin;
+  for (int j = 0; j < size; ++j) {
+    const LightSample ls =
+        sampleLight(light, pt.sp.p, pt.at.n, delta ? Vec2f{0.5f, 0.5f} : draws->next());
+    if (!facesLight(pt.at, ls.wi) || ls.intensity.isBlack()) continue;
+    const Rgb f = reflectedLight(pt.material->surface, pt.sp, pt.at, ls.wi);
+    if constexpr (delta)
+      spawnShadowRayInto(queue.rays[q], pt.sp, !atInfinity, atInfinity ? ls.wi : ls.target, pt.time,
+                         li);
+    else if constexpr (atInfinity)
+      from.spawnAlong(queue.rays[q], ls.wi, pt.time, origin);
+    else
+      from.spawnTo(queue.rays[q], ls.target, pt.time, origin);
+    queue.term[q] = f * ls.intensity;
+    queue.atInfinity[q] = atInfinity;
+    ++q;
+  }
+  queue.size = q;
+  if (transparentShadows())
+    std::fill(queue.media.data() + begin, queue.media.data() + q, &pt.branch->media);
 }
 
-void BatchedKernel::queueEnvironmentSamples(const LitPoint& pt, const EnvironmentLight& light,
-                                            size_t li, SubSampleStream& draws, int size,
-                                            ShadowQueue& queue) const {
+void BatchedKernel::queueSamples(const LitPoint& pt, const EnvironmentLight& light, size_t li,
+                                 SubSampleStream* draws, int size, ShadowQueue& queue) const {
   const ShadowOrigin from(pt.sp);
   const uint32_t origin = ray_origin::light(li);
   const int begin = queue.size;
   int q = begin;
-  // Drawn a block at a time: the light samples a block's directions side by side.
   constexpr int kBlock = 64;
   Vec2f u[kBlock];
   EnvironmentSample samples[kBlock];
   for (int first = 0; first < size; first += kBlock) {
     const int block = std::min(kBlock, size - first);
-    for (int j = 0; j < block; ++j) u[j] = draws.next();
+    for (int j = 0; j < block; ++j) u[j] = draws->next();
     light.sample(pt.at.n, u, block, samples);
     for (int j = 0; j < block; ++j) {
       const EnvironmentSample& s = samples[j];
@@ -338,27 +399,6 @@ void BatchedKernel::queueEnvironmentSamples(const LitPoint& pt, const Environmen
       queue.atInfinity[q] = true;
       ++q;
     }
-  }
-  queue.size = q;
-  if (transparentShadows())
-    std::fill(queue.media.data() + begin, queue.media.data() + q, &pt.branch->media);
-}
-
-template <class AreaLight>
-void BatchedKernel::queueAreaSamples(const LitPoint& pt, const AreaLight& light, size_t li,
-                                     SubSampleStream& draws, int size, ShadowQueue& queue) const {
-  const ShadowOrigin from(pt.sp);
-  const uint32_t origin = ray_origin::light(li);
-  const int begin = queue.size;
-  int q = begin;
-  for (int j = 0; j < size; ++j) {
-    const LightSample ls = sampleArea(light, pt.sp.p, draws.next());
-    if (!facesLight(pt.at, ls.wi) || ls.intensity.isBlack()) continue;
-    const Rgb f = reflectedLight(pt.material->surface, pt.sp, pt.at, ls.wi);
-    from.spawnTo(queue.rays[q], ls.target, pt.time, origin);
-    queue.term[q] = f * ls.intensity;
-    queue.atInfinity[q] = false;
-    ++q;
   }
   queue.size = q;
   if (transparentShadows())

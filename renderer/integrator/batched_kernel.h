@@ -148,16 +148,19 @@ class BatchedKernel {
   };
   // A run of the shadow queue: samples of one light at one pending point, in sample order. A
   // point's samples of a light that outnumber the queue's room are split over runs of several
-  // tracings.
+  // tracings. A delta light's one sample per point is a run of its own light's rays at many
+  // points instead, each ray naming its point (ShadowQueue::pointOf): a run per point and sample
+  // cost more than the sample.
   struct ShadowRun {
-    int point;  // its index in the pending list
+    int point;  // its index in the pending list; kEachRay: a delta light's run
     int light;
     int end;           // one past its last ray in the queue; it begins where the previous ends
     bool continues;    // the light's samples at the point began in an earlier tracing
     bool lastOfLight;  // its light's samples at the point are all queued: the light's sum is whole
+    static constexpr int kEachRay = -1;
   };
   // One shadow ray per light sample that can contribute, with what it adds unblocked, in runs.
-  // Slots [0, size) are written by queueLight and traceShadows before anything reads them.
+  // Slots [0, size) are written by queueSamples and traceShadows before anything reads them.
   struct ShadowQueue {
     static constexpr int kCapacity = 512;
     // Full when either is: a run can be empty (every sample behind the surface).
@@ -172,6 +175,7 @@ class BatchedKernel {
     bool atInfinity[kCapacity];
     // Where each ray starts: the interior list of its point's ray (transparent shadows).
     UninitializedArray<const MediumStack*, kCapacity> media;
+    UninitializedArray<int, kCapacity> pointOf;  // in a delta light's run, each ray's point
     int size = 0;
     // Filled by traceShadows: with opaque shadows whether each ray is blocked; with transparent
     // ones (transparentShadows()) the fraction of the light arriving.
@@ -189,41 +193,30 @@ class BatchedKernel {
     return n;
   }
   bool transparentShadows() const { return scene_.render.transparentShadows; }
-  // Queues the shadow ray of one sample of light `li` at the point, u its point on the light
-  // (ignored by a delta light), unless the light is behind the surface or black: the shadow
-  // ray and what the light adds if it is not blocked.
-  [[gnu::always_inline]] void queueSample(const LitPoint& pt, size_t li, Vec2f u,
-                                          ShadowQueue& queue) const {
-    const Light& light = scene_.lights[li];
-    const LightSample ls = sampleLight(light, pt.sp.p, pt.at.n, u);
-    if (!facesLight(pt.at, ls.wi) || ls.intensity.isBlack()) return;
-    const Rgb f = reflectedLight(pt.material->surface, pt.sp, pt.at, ls.wi);
-    const int q = queue.size++;
-    spawnShadowRayInto(queue.rays[q], pt.sp, !ls.atInfinity, ls.atInfinity ? ls.wi : ls.target,
-                       pt.time, li);
-    queue.term[q] = f * ls.intensity;
-    queue.atInfinity[q] = ls.atInfinity;
-    if (transparentShadows()) queue.media[q] = &pt.branch->media;
-  }
-  // Queues the point's next `size` samples of area light `li`, drawn from `draws`.
-  void queueLight(const LitPoint& pt, size_t li, SubSampleStream& draws, int size,
-                  ShadowQueue& queue) const;
-  // queueLight for a quad or disk light: queueSample's work, with what depends only on the
-  // point or only on the light (its type, the shadow rays' origin) done once for the samples.
-  template <class AreaLight>
-  void queueAreaSamples(const LitPoint& pt, const AreaLight& light, size_t li,
-                        SubSampleStream& draws, int size, ShadowQueue& queue) const;
-  // queueLight for an environment, likewise.
-  void queueEnvironmentSamples(const LitPoint& pt, const EnvironmentLight& light, size_t li,
-                               SubSampleStream& draws, int size, ShadowQueue& queue) const;
+  // Queues `size` samples of `light` (light li, of type L) at the point, each u drawn from
+  // `draws` (a delta light draws none: then `size` is 1), except those from behind the surface
+  // or black: per sample the shadow ray and what the light adds if it is not blocked. The type
+  // is known here, so that what depends only on the point or the light (the shadow rays' origin
+  // on both sides of the surface) is done once for the samples, and a sample never passes
+  // through memory on its way from sampleLight.
+  template <class L>
+  void queueSamples(const LitPoint& pt, const L& light, size_t li, SubSampleStream* draws, int size,
+                    ShadowQueue& queue) const;
+  // queueSamples for an environment: its samples drawn a block at a time, so that the light
+  // finds a block's table cells before their directions (EnvironmentLight::sample's block form).
+  void queueSamples(const LitPoint& pt, const EnvironmentLight& light, size_t li,
+                    SubSampleStream* draws, int size, ShadowQueue& queue) const;
   // The direct light of the points pending in the scratch, added to their ray's local:
   // queueShadowRays, traceShadows, addDirectLight. Empties the pending list and the queue.
   void lightPendingPoints(Scratch& scratch, typename Generation::Sum* sums, AovSample* const* aovs,
                           RayCounters& counters) const;
   // Light li's samples at every pending point queued as runs, the queue traced and its light
-  // added (flushShadows) whenever it is full.
+  // added (flushShadows) whenever it is full; queueShadowRaysOf once the light's type is known.
   void queueShadowRays(Scratch& scratch, size_t li, Generation::Sum* sums, AovSample* const* aovs,
                        RayCounters& counters) const;
+  template <class L>
+  void queueShadowRaysOf(Scratch& scratch, const L& light, size_t li, Generation::Sum* sums,
+                         AovSample* const* aovs, RayCounters& counters) const;
   // Whether each queued shadow ray is blocked (or, with transparent shadows, what it lets
   // through).
   void traceShadows(ShadowQueue& queue, RayCounters& counters) const;
@@ -269,6 +262,13 @@ class BatchedKernel {
   float minThroughput_;
   PixelCone cone_;
   std::vector<LightInfo> lights_;
+  // Per material, what shadeHits asks at every hit, decided once: asked of the material, each is
+  // a test of its textures' kinds and constants.
+  struct MaterialFlags {
+    bool reflectsLights;  // materials' reflectsLights: the point waits for its direct light
+    bool spawnsRays;      // it refracts or reflects coherently: forEachCoherentRay may send rays
+  };
+  std::vector<MaterialFlags> materials_;
   int64_t shadowRaysPerPoint_ = 0;  // at most, over all lights: what a lit point may queue
 
  public:
@@ -276,9 +276,9 @@ class BatchedKernel {
     // The lit points of a chunk whose direct light is still to be found.
     struct Pending {
       LitPoint pt;
-      int ray = 0;              // its ray's index in the chunk
-      Rgb lightSum;             // a light's samples so far, where they span tracings
-      uint64_t shadowRays = 0;  // traced for it (Radiance::rays)
+      int ray = 0;               // its ray's index in the chunk
+      Rgb lightSum;              // a light's samples so far, where they span tracings
+      uint64_t* rays = nullptr;  // where its camera sample counts the shadow rays traced for it
     };
     Pending pending[kChunk];
     int pendingCount = 0;

@@ -156,49 +156,63 @@ inline Rgb meanOverSamples(const Rgb& sum, int count) {
   return s;
 }
 
-// The sample of a quad or disk light at u in [0, 1)², seen from p: sampleLight's, for callers
-// that have looked the light's type up once for many samples.
-[[gnu::always_inline]] inline LightSample sampleArea(const QuadLight& q, const Vec3f& p, Vec2f u) {
+// The sample of each type of light, seen from p: sampleLight's (below), for callers that look a
+// light's type up once for many samples. u in [0, 1)² picks the point on an area light or the
+// direction of the environment, which a uniform sky draws about n, the point's unit shading
+// normal; delta lights ignore both. An environment's sample arrives from infinity with
+// radiance / pdf as its intensity: times k_d·cos θ it estimates k_d × E, E = ∫ L cos θ dω, as a
+// radiance-mode area light's does.
+[[gnu::always_inline]] inline LightSample sampleLight(const PointLight& pl, const Vec3f& p,
+                                                      const Vec3f&, Vec2f) {
+  LightSample s = lightSampleFrom(p, pl.position, pl.intensity, pl.falloff, Emission::Seed, {}, 0);
+  if (pl.isSpot()) [[unlikely]]
+    s.intensity = s.intensity * pl.coneFactor(s.wi);
+  return s;
+}
+[[gnu::always_inline]] inline LightSample sampleLight(const QuadLight& q, const Vec3f& p,
+                                                      const Vec3f&, Vec2f u) {
   return lightSampleFrom(p, q.corner() + u.x * q.edge1() + u.y * q.edge2(), q.intensity, q.falloff,
                          q.emission, q.normal(), q.area());
 }
-[[gnu::always_inline]] inline LightSample sampleArea(const DiskLight& d, const Vec3f& p, Vec2f u) {
+[[gnu::always_inline]] inline LightSample sampleLight(const DiskLight& d, const Vec3f& p,
+                                                      const Vec3f&, Vec2f u) {
   const Vec2f disk = squareToDiskConcentric(u);
   return lightSampleFrom(p, d.center() + disk.x * d.axisX() + disk.y * d.axisY(), d.intensity,
                          d.falloff, d.emission, d.normal(), d.area());
 }
-
-// `u` in [0, 1)² picks the point on an area light, or the direction of the environment, which
-// a uniform sky draws about n, the point's unit shading normal; delta lights ignore both. An
-// environment's sample arrives from infinity with radiance / pdf as its intensity: times k_d·cos θ
-// it estimates k_d × E, E = ∫ L cos θ dω, as a radiance-mode area light's does. Inline: out of
-// line, every sample came back through memory, a 40-byte struct stored field by field and
-// loaded in 16-byte moves, which stalls the load (store forwarding).
-[[gnu::always_inline]] inline LightSample sampleLight(const Light& light, const Vec3f& p,
-                                                      const Vec3f& n, Vec2f u) {
-  if (const auto* pl = std::get_if<PointLight>(&light)) {
-    LightSample s =
-        lightSampleFrom(p, pl->position, pl->intensity, pl->falloff, Emission::Seed, {}, 0);
-    if (pl->isSpot()) [[unlikely]]
-      s.intensity = s.intensity * pl->coneFactor(s.wi);
-    return s;
-  }
-  if (const auto* q = std::get_if<QuadLight>(&light)) return sampleArea(*q, p, u);
-  if (const auto* d = std::get_if<DiskLight>(&light)) return sampleArea(*d, p, u);
+[[gnu::always_inline]] inline LightSample sampleLight(const DirectionalLight& dl, const Vec3f& p,
+                                                      const Vec3f&, Vec2f) {
   LightSample s;
   s.atInfinity = true;
-  // The environment last: a directional light's sample makes no more tests than before it was
-  // added (each is paid per point and light).
-  if (const auto* dl = std::get_if<DirectionalLight>(&light)) [[likely]] {
-    s.wi = -dl->direction;
-    s.intensity = dl->intensity;
-  } else {
-    const EnvironmentSample e = std::get<EnvironmentLight>(light).sample(n, u);
-    s.wi = e.wi;
-    s.intensity = e.radianceOverPdf;
-  }
+  s.wi = -dl.direction;
+  s.intensity = dl.intensity;
   s.target = p + s.wi;
   return s;
+}
+[[gnu::always_inline]] inline LightSample sampleLight(const EnvironmentLight& env, const Vec3f& p,
+                                                      const Vec3f& n, Vec2f u) {
+  LightSample s;
+  s.atInfinity = true;
+  const EnvironmentSample e = env.sample(n, u);
+  s.wi = e.wi;
+  s.intensity = e.radianceOverPdf;
+  s.target = p + s.wi;
+  return s;
+}
+
+// The sample of any light (the typed forms above). Inline: out of line, every sample came back
+// through memory, a 40-byte struct stored field by field and loaded in 16-byte moves, which
+// stalls the load (store forwarding).
+[[gnu::always_inline]] inline LightSample sampleLight(const Light& light, const Vec3f& p,
+                                                      const Vec3f& n, Vec2f u) {
+  if (const auto* pl = std::get_if<PointLight>(&light)) return sampleLight(*pl, p, n, u);
+  if (const auto* q = std::get_if<QuadLight>(&light)) return sampleLight(*q, p, n, u);
+  if (const auto* d = std::get_if<DiskLight>(&light)) return sampleLight(*d, p, n, u);
+  // The environment last: a directional light's sample makes no more tests than before it was
+  // added (each is paid per point and light).
+  if (const auto* dl = std::get_if<DirectionalLight>(&light)) [[likely]]
+    return sampleLight(*dl, p, n, u);
+  return sampleLight(std::get<EnvironmentLight>(light), p, n, u);
 }
 
 }  // namespace glint
