@@ -58,7 +58,10 @@ def test_sigint_raises_keyboard_interrupt_with_the_finished_passes():
     # with the finished passes on the exception, within the command's latency (the chunk of
     # samples in flight), far inside the bound given here.
     child = textwrap.dedent(f"""
-        import sys, time
+        import signal, sys, time
+        # Python keeps SIGINT ignored when it starts ignored (a background job of a script, as CI
+        # may run this suite); a terminal's user has Python's own handler, which this installs.
+        signal.signal(signal.SIGINT, signal.default_int_handler)
         sys.path.insert(0, {str(BUILD / 'python')!r})
         import glint
         scene = glint.default_scene()
