@@ -73,8 +73,13 @@ Frame::Frame(Rendered r) {
 }
 
 Frame::Frame(const std::string& path) {
-  Image img = readImage(path);
-  record_ = readFrameRecord(path);
+  Image img;
+  {
+    // Only the file's reading goes without the GIL: the members hold Python objects.
+    py::gil_scoped_release unlocked;
+    img = readImage(path);
+    record_ = readFrameRecord(path);
+  }
   width_ = img.width;
   height_ = img.height;
   x0_ = img.x;

@@ -38,7 +38,8 @@ class Frame {
   // A render's frame: RGBA, then each AOV plane's channels, rounded to float as the EXR holds
   // them (values beyond float's range clamped to it, counted in stats' clamped_values).
   explicit Frame(Rendered rendered);
-  // An EXR read back: every channel in readImage's order, the layers by their EXR names.
+  // An EXR read back: every channel in readImage's order, the layers by their EXR names. Called
+  // with the GIL, which it releases while it reads.
   explicit Frame(const std::string& path);
 
   int width() const { return width_; }

@@ -87,9 +87,7 @@ PYBIND11_MODULE(_glint, m) {
   m.def(
       "read_frame",
       [](const py::object& path) {
-        const std::string p = pathOf(path);
-        py::gil_scoped_release unlocked;
-        return std::make_shared<Frame>(p);
+        return std::make_shared<Frame>(pathOf(path));  // reads the file without the GIL
       },
       py::arg("path"),
       "An EXR frame: every channel as NumPy views (.rgba, .aovs by layer, .channel(name)) and "
@@ -124,7 +122,8 @@ PYBIND11_MODULE(_glint, m) {
         {
           py::gil_scoped_release unlocked;
           const ValidationBackends backends(s, settings);
-          figures = validateScene(s, backends, settings, false);
+          Scene rendered = s;  // validateScene sets its spp; the Python scene stays as it was
+          figures = validateScene(rendered, backends, settings, false);
         }
         return toPython(figures);
       },

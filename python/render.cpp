@@ -80,14 +80,27 @@ py::dict passDict(const PassRecord& p, size_t index, size_t planned) {
 // The render session on its own thread, and what the waiting thread hears from it.
 class RenderThread {
  public:
-  RenderThread(const Scene& scene, const Accelerator& accel, const RenderOptions& opt)
-      : thread_([&scene, &accel, opt, this] { run(scene, accel, opt); }) {}
+  // With `lockstep`, each pass waits until the caller has heard of the one before
+  // (acknowledge): a progress callback that cancels after pass k always gets k passes.
+  RenderThread(const Scene& scene, const Accelerator& accel, const RenderOptions& opt,
+               bool lockstep)
+      : lockstep_(lockstep), thread_([&scene, &accel, opt, this] { run(scene, accel, opt); }) {}
   ~RenderThread() {
-    cancel_.store(true);
+    stop();
     if (thread_.joinable()) thread_.join();
   }
 
-  std::atomic<bool>& cancel() { return cancel_; }
+  void stop() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    cancel_.store(true);
+    changed_.notify_all();
+  }
+  // The caller has heard of `passes` passes: the next may start.
+  void acknowledge(size_t passes) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    acknowledged_ = passes;
+    changed_.notify_all();
+  }
   // Waits up to kPollInterval for news; returns whether the render is over, and the passes
   // finished since the last call in `fresh`.
   bool wait(std::vector<PassRecord>& fresh) {
@@ -108,10 +121,11 @@ class RenderThread {
     try {
       opt.cancel = &cancel_;
       RenderSession session(scene, accel, opt);
-      while (session.runPass()) {
-        std::lock_guard<std::mutex> lock(mutex_);
+      for (size_t passes = 1; session.runPass(); ++passes) {
+        std::unique_lock<std::mutex> lock(mutex_);
         news_.push_back(session.passesFinished().back());
         changed_.notify_all();
+        if (lockstep_) changed_.wait(lock, [&] { return acknowledged_ >= passes || cancel_; });
       }
       result_.emplace(session.finish());
     } catch (...) {
@@ -122,11 +136,13 @@ class RenderThread {
     changed_.notify_all();
   }
 
+  const bool lockstep_;
   std::atomic<bool> cancel_{false};
   std::mutex mutex_;
   std::condition_variable changed_;
   std::vector<PassRecord> news_;
   bool done_ = false;
+  size_t acknowledged_ = 0;
   std::optional<RenderResult> result_;
   std::exception_ptr error_;
   std::thread thread_;  // last: started once the rest exists
@@ -198,7 +214,7 @@ std::shared_ptr<Frame> render(const PyScene& source, const RenderRequest& q,
   py::object stopped;  // the exception that stopped the render: KeyboardInterrupt, the callback's
   std::optional<RenderResult> result;
   {
-    RenderThread thread(*scene, *accel, opt);
+    RenderThread thread(*scene, *accel, opt, !progress.is_none());
     std::vector<PassRecord> fresh;
     size_t reported = 0;
     for (bool done = false; !done;) {
@@ -210,14 +226,17 @@ std::shared_ptr<Frame> render(const PyScene& source, const RenderRequest& q,
         if (progress.is_none() || stopped) break;
         try {
           const py::object answer = progress(passDict(p, reported++, plan.ends.size()));
-          if (!answer.is_none() && PyObject_IsTrue(answer.ptr()) == 0) thread.cancel().store(true);
+          const int truth = answer.is_none() ? 1 : PyObject_IsTrue(answer.ptr());
+          if (truth < 0) throw py::error_already_set();  // an answer with no truth value
+          if (truth == 0) thread.stop();
         } catch (py::error_already_set& e) {
-          thread.cancel().store(true);
+          thread.stop();
           stopped = e.value();
         }
       }
+      thread.acknowledge(reported);
       if (!stopped && PyErr_CheckSignals() != 0) {
-        thread.cancel().store(true);
+        thread.stop();
         py::error_already_set e;
         stopped = e.value();
       }

@@ -29,15 +29,26 @@ def test_progress_returning_false_cancels(scene_dict):
         calls.append(info)
         return False
 
-    frame = glint.Scene.from_dict(scene_dict).render(spp=64, seed=1, threads=1,
-                                                     progress=stop_after_first)
-    # Cancelled after the first pass: the frame keeps the passes finished, marked partial, and
-    # far short of the 64 samples asked for.
-    assert frame.partial
-    assert calls and calls[0]["spp"] < 64
-    assert frame.stats["pixel_spp"]["min"] < 64
+    scene = glint.Scene.from_dict(scene_dict)
+    frame = scene.render(spp=64, seed=1, threads=1, progress=stop_after_first)
+    # Cancelled after the first pass (the next pass waits for the callback's answer): one call,
+    # and the frame is that pass's, marked partial, far short of the 64 samples asked for.
+    assert len(calls) == 1 and frame.partial
+    assert [p["spp"] for p in frame.stats["passes"]] == [calls[0]["spp"]] and calls[0]["spp"] < 64
     assert frame.record["glint:partial"] is True
-    assert frame.rgba[..., 3].max() == 1.0  # the pixels of the finished pass
+    # Every pixel holds the first pass's samples, and no pixel more.
+    assert frame.stats["pixel_spp"]["min"] == frame.stats["pixel_spp"]["max"] == calls[0]["spp"]
+
+
+def test_a_callback_answer_without_a_truth_value_is_raised(scene_dict):
+    # NumPy refuses bool() of a two-element array: that error, not a SystemError, comes back.
+    try:
+        glint.Scene.from_dict(scene_dict).render(spp=16, threads=1,
+                                                 progress=lambda info: np.array([1, 0]))
+    except ValueError as e:
+        assert "truth value" in str(e) and e.frame.partial
+    else:
+        raise AssertionError("the answer's error was lost")
 
 
 def test_progress_exception_stops_and_propagates(scene_dict):
