@@ -53,6 +53,9 @@ nlohmann::json toJsonAt(const py::handle& v, const std::string& path, int depth)
       out.push_back(toJsonAt(item, path + "[" + std::to_string(i++) + "]", depth + 1));
     return out;
   }
+  // NumPy arrays (an eye or a colour from a notebook): as the nested lists they hold.
+  if (py::hasattr(v, "tolist") && py::hasattr(v, "ndim") && v.attr("ndim").cast<int>() > 0)
+    return toJsonAt(v.attr("tolist")(), path, depth + 1);
   // NumPy scalars and other numbers: by their float value.
   if (py::hasattr(v, "__float__") && !py::isinstance<py::bytes>(v)) {
     const double d = v.attr("__float__")().cast<double>();

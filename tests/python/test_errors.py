@@ -33,6 +33,16 @@ def test_dict_scene_error_names_the_path(scene_dict):
     assert e.value.path == "objects[2].radius"
 
 
+def test_numpy_values_in_a_dict_scene_are_their_lists(scene_dict):
+    # A notebook's eye or colour as NumPy values renders as the same scene given as lists.
+    import numpy as np
+    with_arrays = {**scene_dict, "camera": {**scene_dict["camera"],
+                                            "eye": np.array(scene_dict["camera"]["eye"])}}
+    a = glint.Scene.from_dict(scene_dict).render(spp=2, seed=3)
+    b = glint.Scene.from_dict(with_arrays).render(spp=2, seed=3)
+    np.testing.assert_array_equal(a.rgba, b.rgba)
+
+
 def test_non_json_values_are_scene_errors(scene_dict):
     scene_dict["objects"][1]["radius"] = math.nan
     with pytest.raises(glint.SceneError, match="objects\\[1\\].radius: must be a finite number"):
