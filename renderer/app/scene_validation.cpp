@@ -31,7 +31,7 @@ std::vector<const Accelerator*> ValidationBackends::others() const {
   return all;
 }
 
-nlohmann::json validateScene(Scene scene, const ValidationBackends& b, const ValidateSettings& a,
+nlohmann::json validateScene(Scene& scene, const ValidationBackends& b, const ValidateSettings& a,
                              bool print) {
   const auto say = [print](const char* format, auto... values) {
     if (print) std::printf(format, values...);

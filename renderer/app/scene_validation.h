@@ -48,10 +48,11 @@ struct ValidationBackends {
   std::unique_ptr<BruteForce> brute;  // null for a large scene, or --no-brute
 };
 
-// Casts the scene's rays (at settings.spp) and the random rays through every backend; prints the
-// report on standard output when `print`; returns the figures (`glint validate --json`).
-// Throws UsageError when the distances kept would not fit in memory.
-nlohmann::json validateScene(Scene scene, const ValidationBackends& backends,
+// Casts the scene's rays (at settings.spp, which it sets in scene.render: no copy of a big mesh's
+// scene) and the random rays through every backend; prints the report on standard output when
+// `print`; returns the figures (`glint validate --json`). Throws UsageError when the distances
+// kept would not fit in memory.
+nlohmann::json validateScene(Scene& scene, const ValidationBackends& backends,
                              const ValidateSettings& a, bool print);
 
 }  // namespace glint
