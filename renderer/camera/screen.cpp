@@ -55,6 +55,14 @@ ScreenView viewThroughScreen(const Vec3d& eye, const Vec3d& cornerMin, const Vec
   const Vec3d u = right * (1 / length(right));
   const Vec3d v = cross(w, u);
   const double width = dot(diagonal, u), height = dot(diagonal, v);
+  // Corners on one level (or one vertical) line: no window to look through, whichever corner
+  // is named first.
+  const double flat = 1e-6 * 2 * halfDiagonal;
+  if (!(std::fabs(width) > flat && std::fabs(height) > flat))
+    throw std::invalid_argument(
+        "corner_max − corner_min runs " + number(width) + " along the window's right and " +
+        number(height) + " along its up, as seen from the eye with this up: the window has no " +
+        (std::fabs(height) > flat ? "width" : "height"));
   if (!(width > 0 && height > 0))
     throw std::invalid_argument(
         "corner_max − corner_min runs " + number(width) + " along the window's right and " +

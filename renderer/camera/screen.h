@@ -28,8 +28,10 @@ struct ScreenView {
 
 // The look_at + window form of the screen (eye, corners in world space). Throws
 // std::invalid_argument, saying which rule the screen breaks, when the corners coincide, the eye
-// lies in (or nearly in) the window's plane, the corners are not equidistant from the eye, up
-// is parallel to the line of sight, or corner_min is not the lower-left corner as seen with up.
+// is at (or nearly at) the window's centre, the corners are not equidistant from the eye, up
+// is parallel to the line of sight, the corners lie on one line along the window's right or up
+// (an eye in the corners' plane but off the centre), or corner_min is not the lower-left corner
+// as seen with up.
 ScreenView viewThroughScreen(const Vec3d& eye, const Vec3d& cornerMin, const Vec3d& cornerMax,
                              const Vec3f& up);
 

@@ -102,6 +102,11 @@ TEST(ScreenCamera, ConversionRefusesWhatIsNoScreen) {
   EXPECT_NE(refusal(eye, {1, 1, 0}, {-1, -1, 0}).find("lower-left"), std::string::npos);
   EXPECT_NE(refusal(eye, {-1, 1, 0}, {1, -1, 0}).find("lower-left"), std::string::npos);
   EXPECT_NE(refusal(eye, {1, 1, 0}, {1, 1, 0}).find("same point"), std::string::npos);
+  // An eye off the window's centre but in the corners' plane, both corners 2 away: the
+  // window stands perpendicular to the line of sight (1, −1, 0), so with up = +y its right is
+  // ∓z, along which the corners do not differ: a window of no width.
+  EXPECT_NE(refusal({1, -1, 0}, {-1, -1, 0}, {1, 1, 0}).find("the window has no width"),
+            std::string::npos);
 }
 
 }  // namespace
