@@ -54,10 +54,11 @@ struct EnvironmentLight::Map {
   // mean weight (0 everywhere when the image is black).
   std::vector<float> density;
 
-  const Rgb& texel(int x, int y) const {
-    return image
-        .texels[static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x)];
+  // Where texel (x, y) is in image.texels and density.
+  size_t indexOf(int x, int y) const {
+    return static_cast<size_t>(y) * static_cast<size_t>(image.width) + static_cast<size_t>(x);
   }
+  const Rgb& texel(int x, int y) const { return image.texels[indexOf(x, y)]; }
   // A sample's place in the (u, v) square: its row y (θ) from the marginal table, its texel x
   // (φ) from that row's conditional table, and where in the texel it lies.
   struct Cell {
@@ -69,8 +70,7 @@ struct EnvironmentLight::Map {
     c.y = rows().find(u.y, c.withinRow);
     c.x = texelsOfRow(c.y).find(u.x, c.withinTexel);
     // What sampleAt reads next, fetched while the next samples' tables are searched.
-    const size_t i =
-        static_cast<size_t>(c.y) * static_cast<size_t>(image.width) + static_cast<size_t>(c.x);
+    const size_t i = indexOf(c.x, c.y);
     __builtin_prefetch(&density[i]);
     __builtin_prefetch(&image.texels[i]);
     return c;
@@ -85,8 +85,7 @@ struct EnvironmentLight::Map {
         rotation;
     const float sinTheta = std::sin(theta);
     s.wi = {sinTheta * std::sin(phi), std::cos(theta), -sinTheta * std::cos(phi)};
-    const float d =
-        density[static_cast<size_t>(c.y) * static_cast<size_t>(w) + static_cast<size_t>(c.x)];
+    const float d = density[indexOf(c.x, c.y)];
     // The (u, v) square maps onto the sphere with dω = 2π² sin θ du dv.
     if (d > 0 && sinTheta > 0) s.radianceOverPdf = texel(c.x, c.y) * (2 * kPi * kPi * sinTheta / d);
     return s;
@@ -146,7 +145,7 @@ EnvironmentLight::EnvironmentLight(LatLongImage image, float intensity, float ro
     for (int y = 0; y < h; ++y) {
       const double sinTheta = std::sin(kPi * (y + 0.5) / h);
       for (int x = 0; x < w; ++x)
-        map->density[static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x)] =
+        map->density[map->indexOf(x, y)] =
             static_cast<float>(luminance(map->texel(x, y)) * sinTheta / mean);
     }
   }
