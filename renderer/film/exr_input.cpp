@@ -7,6 +7,7 @@
 #include <OpenEXR/ImfTileDescription.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -170,10 +171,66 @@ auto readingFile(const std::string& path, Read&& read) {
 
 }  // namespace
 
+namespace {
+
+// The scan lines OpenEXR decodes together, by compression method (its numLinesInBuffer, which
+// it does not export); 0 for a method it does not know.
+int linesPerBlock(Imf::Compression compression) {
+  switch (compression) {
+    case Imf::NO_COMPRESSION:
+    case Imf::RLE_COMPRESSION:
+    case Imf::ZIPS_COMPRESSION:
+      return 1;
+    case Imf::ZIP_COMPRESSION:
+    case Imf::PXR24_COMPRESSION:
+      return 16;
+    case Imf::PIZ_COMPRESSION:
+    case Imf::B44_COMPRESSION:
+    case Imf::B44A_COMPRESSION:
+    case Imf::DWAA_COMPRESSION:
+      return 32;
+    case Imf::DWAB_COMPRESSION:
+      return 256;
+    default:
+      return 0;
+  }
+}
+
+// The bytes of one decoded block of a part (a run of scan lines, or a tile), as OpenEXR sizes
+// its buffers: every channel's samples across the data window (or tile), by the block's lines.
+// In floating point: a hostile header's channels and width may overflow 64 bits.
+double exrBlockBytes(const std::string& path, const Imf::Header& header) {
+  const Imath::Box2i dw = header.dataWindow();
+  double width = double(int64_t{dw.max.x} - dw.min.x + 1), lines = 0;
+  if (header.hasTileDescription()) {
+    width = header.tileDescription().xSize;
+    lines = header.tileDescription().ySize;
+  } else {
+    lines = linesPerBlock(header.compression());
+    if (lines == 0)
+      throw UsageError("cannot read " + path + ": unknown compression method " +
+                       std::to_string(int(header.compression())));
+  }
+  double rowBytes = 0;
+  for (auto c = header.channels().begin(); c != header.channels().end(); ++c)
+    rowBytes += double(pixelTypeSize(c.channel().type)) *
+                (std::floor(width / std::max(1, c.channel().xSampling)) + 1);
+  return rowBytes * lines;
+}
+
+std::string megabytes(double bytes) {
+  return std::to_string(std::llround(std::min(bytes, 1e18) / (1 << 20))) + " MB";
+}
+
+}  // namespace
+
 std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path) {
   checkExrHeaders(path);
   return readingFile(path, [&] {
-    auto file = std::make_unique<Imf::MultiPartInputFile>(path.c_str());
+    // OpenEXR reads only the headers and chunk tables here; a part's buffers are allocated when
+    // it is first read, at the thread count given now, so that is chosen below.
+    auto file = std::make_unique<Imf::MultiPartInputFile>(path.c_str(), 0);
+    double largestBlock = 0;
     for (int part = 0; part < file->parts(); ++part) {
       const Imf::Header& h = file->header(part);
       if (h.hasType() && Imf::isDeepData(h.type()))
@@ -188,7 +245,22 @@ std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path) {
                          std::to_string(h.tileDescription().xSize) + " x " +
                          std::to_string(h.tileDescription().ySize) + " pixels; at most " +
                          std::to_string(kMaxTileEdge) + " a side are read");
+      // OpenEXR sizes a part's line or tile buffers, and its decompressor's scratch, by the
+      // block: a 2 kB file declaring a 500000-pixel-wide RGBA float image in DWAB's 256-line
+      // blocks asked for 2.16 GB at once (found by glint_fuzz_exr).
+      const double block = exrBlockBytes(path, h);
+      if (block > double(kMaxExrBlockBytes))
+        throw UsageError("cannot read " + path + ": part " + std::to_string(part) +
+                         " is decoded in blocks of " + megabytes(block) + "; at most " +
+                         megabytes(double(kMaxExrBlockBytes)) + " are read");
+      largestBlock = std::max(largestBlock, block);
     }
+    // OpenEXR keeps two buffers a thread, each a block and its decompressor's scratch: the
+    // threads are as many as Glint's EXR threads while those buffers fit the decoding budget.
+    const double perThread = 2.0 * kExrScratchPerBlock * std::max(largestBlock, 1.0);
+    const int threads = int(std::min(double(std::max(0, Imf::globalThreadCount())),
+                                     std::floor(double(kExrDecodingBudget) / perThread)));
+    if (threads > 0) file = std::make_unique<Imf::MultiPartInputFile>(path.c_str(), threads);
     return file;
   });
 }

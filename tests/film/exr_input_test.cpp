@@ -5,16 +5,22 @@
 // the file's data does not back. The hostile headers are tests/fuzz/regressions-exr/ (written by
 // tests/fuzz/make-hostile-exrs.py, 0.3–10 kB each).
 #include <gtest/gtest.h>
+#include <malloc.h>
 #include <sys/resource.h>
+
+#include <OpenEXR/ImfCompression.h>
+#include <OpenEXR/ImfInputPart.h>
 
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <random>
 
+#include "film/exr_input.h"
 #include "film/exr_output.h"
 #include "film/image_limits.h"
 #include "film/merge.h"
@@ -141,6 +147,53 @@ TEST(ExrInput, TilesLargerThan4096PixelsAreRefusedNamingTheFile) {
   const std::string error = readError(path);
   EXPECT_EQ(error.rfind("cannot read " + path + ": ", 0), 0u) << error;
   EXPECT_NE(error.find("tile"), std::string::npos) << error;
+}
+
+TEST(ExrInput, BlocksLargerThan256MbAreRefusedNamingThePart) {
+  // OpenEXR sizes its line buffers and decompressor by the block: 500000 RGBA floats in DWAB's
+  // 256-line blocks are 1953 MiB in a 339-byte file (glint_fuzz_exr found a 2.16 GB allocation).
+  const std::string path = (kHostile / "line-block-of-2-GB.exr").string();
+  EXPECT_NE(
+      readError(path).find("cannot read " + path +
+                           ": part 0 is decoded in blocks of 1953 MB; at most 256 MB are read"),
+      std::string::npos)
+      << readError(path);
+}
+
+// Bytes malloc has handed out and not taken back, touched or not.
+size_t allocatedBytes() {
+  const struct mallinfo2 info = mallinfo2();
+  return info.uordblks + info.hblkhd;
+}
+
+TEST(ExrInput, DecodingBuffersStayWithinTheBudgetAtAnyThreadCount) {
+  if (test::kAddressSanitizer)
+    GTEST_SKIP() << "AddressSanitizer's allocator does not keep mallinfo2's counts";
+  // A 50000-pixel RGBA float row (blocks of up to 195 MiB, within the limit) under every
+  // compression method, read with 16 EXR threads: OpenEXR would set up two buffers a thread,
+  // each a block and its decompressor's scratch (6.4 GB of DWAB blocks alone). What it
+  // allocates when the part is opened must stay within kExrDecodingBudget, in every case.
+  std::ifstream in(kHostile / "line-block-of-205-MB.exr", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string attribute("compression\0compression\0", 24);
+  const size_t at = bytes.find(attribute) + attribute.size() + 4;  // after the value's size
+  ASSERT_LT(at, bytes.size());
+  const int threads = Imf::globalThreadCount();
+  setExrThreads(16);
+  for (int method = 0; method < Imf::NUM_COMPRESSION_METHODS; ++method) {
+    bytes[at] = char(method);
+    const std::string path = tmp("block-" + std::to_string(method) + ".exr");
+    std::ofstream(path, std::ios::binary) << bytes;
+    const auto file = openExr(path);
+    const size_t before = allocatedBytes();
+    size_t opened = 0;
+    {
+      Imf::InputPart part(*file, 0);
+      opened = allocatedBytes() - before;
+    }
+    EXPECT_LE(opened, kExrDecodingBudget) << "compression method " << method;
+  }
+  setExrThreads(threads);
 }
 
 TEST(ExrInput, AHeaderAttributeLargerThanTheFileIsRefused) {

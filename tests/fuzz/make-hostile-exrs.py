@@ -48,3 +48,10 @@ h=header(['B','G','R'],(0,0,1,0),(0,0,1,0),comp=0,extra=extra)
 nan=struct.unpack('<f',struct.pack('<I',0x7fc00000))[0]
 row=struct.pack('<ii',0,24)+struct.pack('<6f',0.5,nan,0.5,nan,0.5,nan)
 write('nan-pixel-copied-into-the-merged-frame.exr', h+struct.pack('<Q',len(h)+8)+row)
+# 7. A 500000 x 1 RGBA float image in DWAB's 256-line blocks: OpenEXR sizes a block's buffers at
+# 2 GB (glint_fuzz_exr found a 2.16 GB allocation); header only.
+h=header(['A','B','G','R'],(0,0,499999,0),(0,0,499999,0),comp=9)
+write('line-block-of-2-GB.exr', h+struct.pack('<Q',len(h)+8))
+# 8. The same 50000 pixels wide: blocks of 205 MB, within the limit, and no pixel data.
+h=header(['A','B','G','R'],(0,0,49999,0),(0,0,49999,0),comp=9)
+write('line-block-of-205-MB.exr', h+struct.pack('<Q',len(h)+8))
