@@ -231,8 +231,14 @@ Material parseMaterial(SceneBuilder& b, const std::string& name, const JsonNode&
                                    "opacity_cutoff",
                                    "normal_map",
                                    "bump_map"};
+  static const std::vector<std::string> kInterfaceKeys = {"ior", "attenuation", "fresnel", "kt",
+                                                          "blur"};
   if (kind == MaterialKind::Dielectric)
-    keys.insert(keys.end(), {"ior", "attenuation", "fresnel", "kt", "blur"});
+    keys.insert(keys.end(), kInterfaceKeys.begin(), kInterfaceKeys.end());
+  else
+    for (const std::string& key : kInterfaceKeys)  // clearer than a near name's "did you mean"
+      if (auto v = n.get(key))
+        v->fail("belongs to a \"dielectric\" material, not a \"" + type + "\" one");
   n.checkKeys(keys);
   Material m = defaultMaterial(kind);
   m.name = name;

@@ -249,7 +249,11 @@ TEST(SceneError, LobesAndConstantCoefficientsAreChecked) {
             "scene.json:2: materials.m.fresnel: must be one of \"exact\", \"schlick\", \"none\", "
             "got \"nnoe\" (did you mean \"none\"?)");
   EXPECT_EQ(material("phong", "\"kt\": [0.5, 0.5, 0.5]"),
-            "scene.json:2: materials.m.kt: unknown key (did you mean \"ka\"?)");
+            "scene.json:2: materials.m.kt: belongs to a \"dielectric\" material, not a "
+            "\"phong\" one");
+  EXPECT_EQ(material("mirror", "\"ior\": 1.5"),
+            "scene.json:2: materials.m.ior: belongs to a \"dielectric\" material, not a "
+            "\"mirror\" one");
 }
 
 TEST(SceneError, AScreenCameraIsChecked) {

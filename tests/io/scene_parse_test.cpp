@@ -171,7 +171,8 @@ TEST(SceneParse, InterfaceKeysBelongToDielectricsOnly) {
   EXPECT_EQ(test::sceneErrorOf(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-5]},
     "materials": {"p": {"type": "phong",
       "ior": 1.5}}, "objects": []})"),
-            "scene.json:3: materials.p.ior: unknown key");
+            "scene.json:3: materials.p.ior: belongs to a \"dielectric\" material, not a \"phong\" "
+            "one");
 }
 
 // Without "ka" the ambient reflectance is the diffuse texture (SCENE_FORMAT.md), and the
