@@ -113,9 +113,12 @@ double MipPyramid::bytesFor(int width, int height, int channels) {
   }
 }
 
+// Inlined into filterChannels: there `sum` is a local array the texels cannot alias, so the
+// compiler keeps it in registers instead of checking for overlap and storing at every call.
 template <int kCount>
-void MipPyramid::bilinear(const Level& level, float rs, float rt, const ImageFootprint& at,
-                          int first, float weight, float* sum) const {
+[[gnu::always_inline]] inline void MipPyramid::bilinear(const Level& level, float rs, float rt,
+                                                        const ImageFootprint& at, int first,
+                                                        float weight, float* sum) const {
   const float x = rs * float(level.width) - 0.5f;
   const float y = rt * float(level.height) - 0.5f;
   const float xFloor = std::floor(x), yFloor = std::floor(y);

@@ -53,8 +53,9 @@ class MipPyramid {
   void filterChannels(const ImageFootprint& at, int first, float* out) const;
   // (rs, rt): the lookup's (s, t) reduced to one period of its wrap modes.
   template <int kCount>
-  void bilinear(const Level& level, float rs, float rt, const ImageFootprint& at, int first,
-                float weight, float* sum) const;
+  [[gnu::always_inline]] inline void bilinear(const Level& level, float rs, float rt,
+                                              const ImageFootprint& at, int first, float weight,
+                                              float* sum) const;
 
   std::vector<Level> levels_;
   int channels_;
