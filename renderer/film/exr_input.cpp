@@ -173,8 +173,8 @@ auto readingFile(const std::string& path, Read&& read) {
 
 namespace {
 
-// The scan lines OpenEXR decodes together, by compression method (its numLinesInBuffer, which
-// it does not export); 0 for a method it does not know.
+// The scan lines OpenEXR decodes together, by compression method (its numLinesInBuffer, whose
+// header is not installed).
 int linesPerBlock(Imf::Compression compression) {
   switch (compression) {
     case Imf::NO_COMPRESSION:
@@ -189,37 +189,30 @@ int linesPerBlock(Imf::Compression compression) {
     case Imf::B44A_COMPRESSION:
     case Imf::DWAA_COMPRESSION:
       return 32;
-    case Imf::DWAB_COMPRESSION:
+    default:  // DWAB; OpenEXR refuses a method it does not know before this is asked
       return 256;
-    default:
-      return 0;
   }
 }
 
-// The bytes of one decoded block of a part (a run of scan lines, or a tile), as OpenEXR sizes
-// its buffers: every channel's samples across the data window (or tile), by the block's lines.
-// In floating point: a hostile header's channels and width may overflow 64 bits.
-double exrBlockBytes(const std::string& path, const Imf::Header& header) {
+// The bytes of one block of a part as OpenEXR sizes its decoding buffers: a scan-line part's
+// lines decoded together, across the data window; a tiled part's row of tiles, which it caches
+// whole as floats, and by which DWA sizes its scratch. Subsampled channels count in full, as
+// DWA counts them. In floating point: a hostile header's channels and width overflow 64 bits.
+double exrBlockBytes(const Imf::Header& header) {
   const Imath::Box2i dw = header.dataWindow();
-  double width = double(int64_t{dw.max.x} - dw.min.x + 1), lines = 0;
-  if (header.hasTileDescription()) {
-    width = header.tileDescription().xSize;
-    lines = header.tileDescription().ySize;
-  } else {
-    lines = linesPerBlock(header.compression());
-    if (lines == 0)
-      throw UsageError("cannot read " + path + ": unknown compression method " +
-                       std::to_string(int(header.compression())));
-  }
+  const double width = double(int64_t{dw.max.x} - dw.min.x + 1);
   double rowBytes = 0;
   for (auto c = header.channels().begin(); c != header.channels().end(); ++c)
-    rowBytes += double(pixelTypeSize(c.channel().type)) *
-                (std::floor(width / std::max(1, c.channel().xSampling)) + 1);
-  return rowBytes * lines;
+    rowBytes += header.hasTileDescription() ? 4 : double(pixelTypeSize(c.channel().type));
+  if (!header.hasTileDescription())
+    return rowBytes * (width + 1) * linesPerBlock(header.compression());
+  const Imf::TileDescription& tiles = header.tileDescription();
+  const double tileWidth = std::max(1u, tiles.xSize);
+  return rowBytes * std::ceil(width / tileWidth) * tileWidth * tiles.ySize;
 }
 
-std::string megabytes(double bytes) {
-  return std::to_string(std::llround(std::min(bytes, 1e18) / (1 << 20))) + " MB";
+std::string mebibytes(double bytes) {
+  return std::to_string(std::llround(std::min(bytes, 1e18) / (1 << 20))) + " MiB";
 }
 
 }  // namespace
@@ -245,14 +238,15 @@ std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path) {
                          std::to_string(h.tileDescription().xSize) + " x " +
                          std::to_string(h.tileDescription().ySize) + " pixels; at most " +
                          std::to_string(kMaxTileEdge) + " a side are read");
-      // OpenEXR sizes a part's line or tile buffers, and its decompressor's scratch, by the
-      // block: a 2 kB file declaring a 500000-pixel-wide RGBA float image in DWAB's 256-line
-      // blocks asked for 2.16 GB at once (found by glint_fuzz_exr).
-      const double block = exrBlockBytes(path, h);
+      // OpenEXR sizes a part's line or tile buffers, its row-of-tiles cache and its
+      // decompressor's scratch by the block: a few-kB file whose 256-line DWAB blocks were 2 GB
+      // wide asked for 2.16 GB at once (found by glint_fuzz_exr).
+      const double block = exrBlockBytes(h);
       if (block > double(kMaxExrBlockBytes))
         throw UsageError("cannot read " + path + ": part " + std::to_string(part) +
-                         " is decoded in blocks of " + megabytes(block) + "; at most " +
-                         megabytes(double(kMaxExrBlockBytes)) + " are read");
+                         " is decoded in blocks of " + mebibytes(block) +
+                         " (its width by the lines decoded together); blocks of at most " +
+                         mebibytes(double(kMaxExrBlockBytes)) + " are read");
       largestBlock = std::max(largestBlock, block);
     }
     // OpenEXR keeps two buffers a thread, each a block and its decompressor's scratch: the
@@ -260,7 +254,10 @@ std::unique_ptr<Imf::MultiPartInputFile> openExr(const std::string& path) {
     const double perThread = 2.0 * kExrScratchPerBlock * std::max(largestBlock, 1.0);
     const int threads = int(std::min(double(std::max(0, Imf::globalThreadCount())),
                                      std::floor(double(kExrDecodingBudget) / perThread)));
-    if (threads > 0) file = std::make_unique<Imf::MultiPartInputFile>(path.c_str(), threads);
+    if (threads > 0) {
+      file.reset();
+      file = std::make_unique<Imf::MultiPartInputFile>(path.c_str(), threads);
+    }
     return file;
   });
 }

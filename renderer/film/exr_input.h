@@ -24,12 +24,12 @@ inline constexpr int kMaxTileEdge = 4096;
 // others. Channels Glint reads must sample every pixel.
 inline constexpr int kMaxChannelSampling = 16;
 
-// The largest block (scan lines decoded together, or a tile) read, and the memory OpenEXR's
-// decoding buffers may take. It sets up two buffers a thread, each a block and its
-// decompressor's scratch (up to 3.5 blocks, RLE's), so openExr opens a file of large blocks
-// with fewer threads (none: one buffer).
-inline constexpr uint64_t kMaxExrBlockBytes = uint64_t{256} << 20;
-inline constexpr uint64_t kExrScratchPerBlock = 4;
+// The largest block (scan lines decoded together, or a row of tiles) read, and the memory
+// OpenEXR's decoding buffers may take. It sets up two buffers a thread, each a block and its
+// decompressor's scratch (up to 5 blocks with the buffer, DWA's), so openExr opens a file of
+// large blocks with fewer threads (none: one buffer).
+inline constexpr uint64_t kMaxExrBlockBytes = uint64_t{200} << 20;
+inline constexpr uint64_t kExrScratchPerBlock = 5;
 inline constexpr uint64_t kExrDecodingBudget = uint64_t{1} << 30;
 
 // Throws UsageError naming `path` when the checks below fail, its blocks exceed

@@ -55,3 +55,15 @@ write('line-block-of-2-GB.exr', h+struct.pack('<Q',len(h)+8))
 # 8. The same 50000 pixels wide: blocks of 205 MB, within the limit, and no pixel data.
 h=header(['A','B','G','R'],(0,0,49999,0),(0,0,49999,0),comp=9)
 write('line-block-of-205-MB.exr', h+struct.pack('<Q',len(h)+8))
+# 9. Tiled, one channel, 4096 x 4096 tiles: OpenEXR caches a row of tiles across the data window
+# as floats, and DWA sizes its scratch by it. 1000000 pixels wide (ZIP): a 15.6 GB cache from a
+# 2.4 kB file; 12000 wide (DWAA, one all-zero 88-byte DWA chunk): rows of 192 MiB, within the
+# limit.
+def tiled(name, width, comp):
+    h=header(['A'],(0,0,width-1,0),(0,0,width-1,0),comp=comp)
+    h=h[:4]+struct.pack('<i',2|0x200)+h[8:-1]+attr('tiles','tiledesc',struct.pack('<IIB',4096,4096,0))+b'\0'
+    n=(width+4095)//4096
+    chunk=struct.pack('<5i',0,0,0,0,88)+b'\0'*88
+    write(name, h+b''.join(struct.pack('<Q',len(h)+8*n) for _ in range(n))+chunk)
+tiled('tiled-row-of-15-GB.exr', 1000000, 3)
+tiled('tiled-dwaa-row-of-192-MiB.exr', 12000, 8)
