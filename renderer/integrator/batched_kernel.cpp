@@ -433,12 +433,13 @@ void BatchedKernel::queueSamples(const LitPoint& pt, const EnvironmentLight& lig
   const int begin = queue.size;
   int q = begin;
   constexpr int kBlock = 64;
-  Vec2f u[kBlock];
-  EnvironmentSample samples[kBlock];
+  // Written before they are read: zeroing them took a share of a sky's samples.
+  UninitializedArray<Vec2f, kBlock> u;
+  UninitializedArray<EnvironmentSample, kBlock> samples;
   for (int first = 0; first < size; first += kBlock) {
     const int block = std::min(kBlock, size - first);
     for (int j = 0; j < block; ++j) u[j] = draws->next();
-    light.sample(pt.at.n, u, block, samples);
+    light.sample(pt.at.n, u.data(), block, samples.data());
     for (int j = 0; j < block; ++j) {
       const EnvironmentSample& s = samples[j];
       if (!facesLight(pt.at, s.wi) || s.radianceOverPdf.isBlack()) continue;

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <type_traits>
 
 #include "core/frame.h"
+#include "core/lanes.h"
 #include "core/sampling.h"
 #include "lights/guided_cdf.h"
 
@@ -171,13 +174,72 @@ void EnvironmentLight::sample(const Vec3f& n, const Vec2f* u, int count,
     return;
   }
   // Every sample's cells first, then every sample's direction: a sample's table reads depend
-  // on each other, and one sample at a time waited on each; side by side they overlap.
-  constexpr int kBlock = 32;
-  Map::Cell cells[kBlock];
+  // on each other, and one sample at a time waited on each; side by side they overlap. The
+  // arithmetic between the searches and the sines runs in lanes, with sampleAt's operations.
+  const Map& m = *map_;
+  const int w = m.image.width, h = m.image.height;
+  // SSE's own width: GCC splits wider vectors' comparisons into single lanes.
+  using F32x4 = float __attribute__((vector_size(16)));
+  using I32x4 = int32_t __attribute__((vector_size(16)));
+  constexpr int kLanes = 4, kBlock = 32;
+  alignas(16) int xs[kBlock], ys[kBlock];
+  alignas(16) float us[kBlock], vs[kBlock], rowLo[kBlock], rowHi[kBlock], texelLo[kBlock],
+      texelHi[kBlock], theta[kBlock], phi[kBlock];
+  const auto load = [](const auto* a) {
+    using T = std::remove_cv_t<std::remove_pointer_t<decltype(a)>>;
+    std::conditional_t<std::is_same_v<T, int>, I32x4, F32x4> v;
+    std::memcpy(&v, a, sizeof v);
+    return v;
+  };
+  const auto store = [](auto v, auto* a) { std::memcpy(a, &v, sizeof v); };
   for (int first = 0; first < count; first += kBlock) {
     const int size = std::min(kBlock, count - first);
-    for (int i = 0; i < size; ++i) cells[i] = map_->cellOf(u[first + i]);
-    for (int i = 0; i < size; ++i) out[first + i] = map_->sampleAt(cells[i]);
+    for (int i = 0; i < size; ++i) {
+      const Vec2f ui = u[first + i];
+      const int y = m.rows().cell(ui.y);
+      const GuidedCdf texels = m.texelsOfRow(y);
+      const int x = texels.cell(ui.x);
+      const size_t at = m.indexOf(x, y);
+      __builtin_prefetch(&m.density[at]);
+      __builtin_prefetch(&m.image.texels[at]);
+      xs[i] = x;
+      ys[i] = y;
+      us[i] = ui.x;
+      vs[i] = ui.y;
+      rowLo[i] = m.rowCdf[static_cast<size_t>(y)];
+      rowHi[i] = m.rowCdf[static_cast<size_t>(y) + 1];
+      texelLo[i] = texels.cdf[x];
+      texelHi[i] = texels.cdf[x + 1];
+    }
+    // Lanes past the block's end hold any cell; their values are never read.
+    const int lanes = (size + kLanes - 1) / kLanes * kLanes;
+    for (int i = size; i < lanes; ++i) {
+      xs[i] = ys[i] = 0;
+      us[i] = vs[i] = rowLo[i] = texelLo[i] = 0;
+      rowHi[i] = texelHi[i] = 1;
+    }
+    for (int i = 0; i < lanes; i += kLanes) {
+      const F32x4 withinRow = GuidedCdf::within(load(vs + i), load(rowLo + i), load(rowHi + i));
+      const F32x4 withinTexel =
+          GuidedCdf::within(load(us + i), load(texelLo + i), load(texelHi + i));
+      store(kPi * (convertLanes<F32x4>(load(ys + i)) + withinRow) / static_cast<float>(h),
+            theta + i);
+      store(2 * kPi *
+                    ((convertLanes<F32x4>(load(xs + i)) + withinTexel) / static_cast<float>(w) -
+                     0.5f) -
+                m.rotation,
+            phi + i);
+    }
+    for (int i = 0; i < size; ++i) {
+      const float sinTheta = std::sin(theta[i]);
+      EnvironmentSample& s = out[first + i];
+      s.wi = {sinTheta * std::sin(phi[i]), std::cos(theta[i]), -sinTheta * std::cos(phi[i])};
+      const size_t at = m.indexOf(xs[i], ys[i]);
+      const float d = m.density[at];
+      // The (u, v) square maps onto the sphere with dω = 2π² sin θ du dv (sampleAt).
+      s.radianceOverPdf =
+          d > 0 && sinTheta > 0 ? m.image.texels[at] * (2 * kPi * kPi * sinTheta / d) : Rgb{};
+    }
   }
 }
 

@@ -6,7 +6,9 @@
 // then ends between its edge's answer and the next edge's, so the search of that short stretch
 // returns the very cell a search of the whole table would, for every float u.
 #include <algorithm>
+#include <bit>
 #include <cstdint>
+#include <type_traits>
 
 namespace glint {
 
@@ -35,9 +37,9 @@ struct GuidedCdf {
     }
   }
 
-  // The cell i, in [0, n), with cdf[i] ≤ u < cdf[i + 1], and where u falls within it, in
-  // [0, 1). Cells of zero probability are never chosen: no u lies in them.
-  [[gnu::always_inline]] int find(float u, float& within) const {
+  // The cell i, in [0, n), with cdf[i] ≤ u < cdf[i + 1]. Cells of zero probability are never
+  // chosen: no u lies in them.
+  [[gnu::always_inline]] int cell(float u) const {
     const float* above;
     if (u >= 0 && u < 1) [[likely]] {
       const int j = static_cast<int>(u * static_cast<float>(bins));
@@ -45,9 +47,34 @@ struct GuidedCdf {
     } else {
       above = std::upper_bound(cdf + 1, cdf + n + 1, u);
     }
-    const int i = std::clamp(static_cast<int>(above - cdf) - 1, 0, n - 1);
-    const float width = cdf[i + 1] - cdf[i];
-    within = width > 0 ? std::clamp((u - cdf[i]) / width, 0.0f, 0x1.fffffep-1f) : 0.5f;
+    return std::clamp(static_cast<int>(above - cdf) - 1, 0, n - 1);
+  }
+
+  // Where u falls, in [0, 1), within the cell from lo = cdf[i] to hi = cdf[i + 1]: for one float
+  // or for lanes of them (F, a GNU vector of floats), which round alike.
+  template <class F>
+  [[gnu::always_inline]] static F within(F u, F lo, F hi) {
+    const F width = hi - lo;
+    if constexpr (std::is_same_v<F, float>) {
+      return width > 0 ? std::clamp((u - lo) / width, 0.0f, 0x1.fffffep-1f) : 0.5f;
+    } else {
+      // std::clamp's comparisons, lane by lane, chosen by masks (a vector ?: is lane by lane
+      // without SSE4.1's blend).
+      using I = decltype(u < u);
+      const auto bits = [](F x) { return std::bit_cast<I>(x); };
+      const F top = F{} + 0x1.fffffep-1f, half = F{} + 0.5f;
+      const F q = (u - lo) / width;
+      const I aboveTop = top < q;
+      const I clamped = ~(q < 0.0f) & ((bits(top) & aboveTop) | (bits(q) & ~aboveTop));
+      const I positive = width > 0.0f;
+      return std::bit_cast<F>((clamped & positive) | (bits(half) & ~positive));
+    }
+  }
+
+  // cell() and where u falls within it.
+  [[gnu::always_inline]] int find(float u, float& w) const {
+    const int i = cell(u);
+    w = within(u, cdf[i], cdf[i + 1]);
     return i;
   }
 };

@@ -109,6 +109,39 @@ TEST(Environment, SamplesCarryRadianceOverTheirDensity) {
   }
 }
 
+TEST(Environment, DrawsSideBySideAreTheDrawsOneAtATime) {
+  // The production kernel draws a point's samples in blocks (in lanes) and the reference
+  // integrator one at a time; their images are equal only if every direction and value is the
+  // same float. Blocks of 37 cross the block form's inner block and leave a partial lane; the
+  // image has black texels and rows (zero-width cells) and u reaches 0 and just below 1.
+  const EnvironmentLight env(
+      image(64, 32,
+            [](int x, int y) {
+              return y % 5 == 0 || x % 7 == 0 ? Rgb{} : Rgb{float(x + 1), 0.5f, float(y)};
+            }),
+      0.7f, 30, 1);
+  constexpr int kCount = 37;
+  Vec2f u[kCount];
+  EnvironmentSample block[kCount];
+  for (int round = 0; round < 20; ++round) {
+    for (int k = 0; k < kCount; ++k) {
+      const int i = round * kCount + k;
+      u[k] = {float((i * 37) % 101) / 101, float((i * 53) % 97) / 97};
+    }
+    if (round == 0) u[3] = {0x1.fffffep-1f, 0x1.fffffep-1f};
+    env.sample({0, 1, 0}, u, kCount, block);
+    for (int k = 0; k < kCount; ++k) {
+      const EnvironmentSample one = env.sample({0, 1, 0}, u[k]);
+      EXPECT_EQ(block[k].wi.x, one.wi.x) << round << " " << k;
+      EXPECT_EQ(block[k].wi.y, one.wi.y) << round << " " << k;
+      EXPECT_EQ(block[k].wi.z, one.wi.z) << round << " " << k;
+      EXPECT_EQ(block[k].radianceOverPdf.r, one.radianceOverPdf.r) << round << " " << k;
+      EXPECT_EQ(block[k].radianceOverPdf.g, one.radianceOverPdf.g) << round << " " << k;
+      EXPECT_EQ(block[k].radianceOverPdf.b, one.radianceOverPdf.b) << round << " " << k;
+    }
+  }
+}
+
 TEST(Environment, ASunIsFoundWithFarLessVarianceThanByUniformDirections) {
   // The irradiance on an upward surface, E = ∫ L max(0, cos θ) dω, estimated per sample by
   // importance sampling (L/pdf · cos θ) and by uniform directions over the sphere (4π L cos θ),
