@@ -10,6 +10,11 @@
 
 namespace glint {
 
+namespace {
+// What a hit whose material draws no lobe samples spreads by: nothing reads it.
+constexpr LobeSamples kNoLobeSamples{};
+}  // namespace
+
 BatchedKernel::BatchedKernel(const Scene& scene, const Accelerator& accel, float minThroughput,
                              int footprintSpp)
     : scene_(scene),
@@ -20,9 +25,11 @@ BatchedKernel::BatchedKernel(const Scene& scene, const Accelerator& accel, float
     lights_.push_back({lightSampleCount(light), isDeltaLight(light)});
     shadowRaysPerPoint_ += lights_.back().samples;
   }
-  for (const Material& m : scene.materials)
-    materials_.push_back(
-        {m.surface.reflectsLights(), m.refracts() || m.surface.reflectsCoherently()});
+  for (const Material& m : scene.materials) {
+    materials_.push_back({m.surface.reflectsLights(),
+                          m.refracts() || m.surface.reflectsCoherently(), drawsLobeSamples(m)});
+    drawsLobes_ |= drawsLobeSamples(m);
+  }
 }
 
 Radiance BatchedKernel::trace(const Ray& cameraRay, const SampleKey& key, RayCounters& counters,
@@ -80,6 +87,22 @@ void BatchedKernel::shadeHits(const Ray* rays, const Hit* hits, const Branch* br
   gen.children = 0;
   scratch.pendingCount = 0;
   const bool pastDepthLimit = branches[0].depth > scene_.render.maxDepth;
+  // The glossy and blurred hits' lobe samples, drawn side by side (materials' drawLobeSamples).
+  UninitializedArray<LobeSamples, kChunk> lobes;
+  if (drawsLobes_ && !pastDepthLimit) {
+    const Material* lobeMaterials[kChunk];
+    const SampleKey* lobeKeys[kChunk];
+    int lobeRays[kChunk], count = 0;
+    for (int i = 0; i < n; ++i) {
+      if (!hits[i]) continue;
+      const uint32_t id = scene_.materialId(hits[i]);
+      if (!materials_[id].drawsLobes) continue;
+      lobeMaterials[count] = &scene_.materials[id];
+      lobeKeys[count] = branches[i].key;
+      lobeRays[count++] = i;
+    }
+    drawLobeSamples(lobeMaterials, lobeKeys, lobeRays, branches[0].depth, count, lobes.data());
+  }
   for (int i = 0; i < n; ++i) {
     auto& sum = gen.sums[i];
     Rgb& local = sum.local;
@@ -121,7 +144,8 @@ void BatchedKernel::shadeHits(const Ray* rays, const Hit* hits, const Branch* br
       local = ambientAndEmission(m.surface, at, sp, scene_.render.ambient, scene_.worldOrigin);
       if (aov) aov->direct = local;
       if (flags.spawnsRays)
-        spawnCoherent(hit, m, sp, at, ray, -wo, branch, distance, gen, counters,
+        spawnCoherent(hit, m, sp, at, ray, -wo, branch, distance,
+                      flags.drawsLobes ? lobes[size_t(i)] : kNoLobeSamples, gen, counters,
                       scratch.raysOfRoot(branch));
       sum.childEnd = gen.children;
       continue;
@@ -144,7 +168,8 @@ void BatchedKernel::shadeHits(const Ray* rays, const Hit* hits, const Branch* br
     local = ambientAndEmission(m.surface, pt.at, pt.sp, scene_.render.ambient, scene_.worldOrigin);
     // Asked here, not in the call: a matte surface's hit paid the call's set-up for nothing.
     if (flags.spawnsRays)
-      spawnCoherent(hit, m, pt.sp, pt.at, ray, -wo, branch, distance, gen, counters, *p.rays);
+      spawnCoherent(hit, m, pt.sp, pt.at, ray, -wo, branch, distance,
+                    flags.drawsLobes ? lobes[size_t(i)] : kNoLobeSamples, gen, counters, *p.rays);
     sum.childEnd = gen.children;
   }
 }
@@ -180,8 +205,9 @@ void BatchedKernel::sumRadiance(const Generation& gen, int n, Rgb* radiance) {
 
 void BatchedKernel::spawnCoherent(const Hit& hit, const Material& m, const ShadingPoint& sp,
                                   const SurfacePoint& at, const Ray& ray, const Vec3f& d,
-                                  const Branch& branch, float distance, Generation& gen,
-                                  RayCounters& counters, uint64_t& sampleRays) const {
+                                  const Branch& branch, float distance, const LobeSamples& u,
+                                  Generation& gen, RayCounters& counters,
+                                  uint64_t& sampleRays) const {
   const bool traced = branch.depth + 1 <= scene_.render.maxDepth;
   // Spawns each ray that its throughput keeps; `across`: the interior list beyond the surface.
   const auto spawnInto = [&](const MediumStack& across) {
@@ -199,11 +225,10 @@ void BatchedKernel::spawnCoherent(const Hit& hit, const Material& m, const Shadi
   if (m.refracts()) {
     // The indices on both sides, from the interior list.
     const Crossing c = crossingAt(branch.media, hit, sp.materialId, d, sp.ng, scene_.materials);
-    forEachCoherentRay(m, sp, at, d, c.etaI, c.etaT, *branch.key, branch.depth,
-                       spawnInto(c.across));
+    forEachCoherentRay(m, sp, at, d, c.etaI, c.etaT, u, spawnInto(c.across));
     return;
   }
-  forEachCoherentRay(m, sp, at, d, 1, 1, *branch.key, branch.depth, spawnInto(branch.media));
+  forEachCoherentRay(m, sp, at, d, 1, 1, u, spawnInto(branch.media));
 }
 
 void BatchedKernel::lightPendingPoints(Scratch& scratch, Generation::Sum* sums,

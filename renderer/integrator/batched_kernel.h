@@ -126,11 +126,12 @@ class BatchedKernel {
   Generation& generation(Scratch& scratch, int depth) const;
   // Spawns into `gen` the rays the material at a hit sends on (materials' forEachCoherentRay),
   // each that its throughput keeps, for `ray` arriving along unit d: the interior list goes
-  // with a refracted ray across the surface. Counts the traced ones in `sampleRays`. Called
-  // only for a material that refracts or reflects coherently.
+  // with a refracted ray across the surface; `u` spreads a glossy or blurred lobe. Counts the
+  // traced ones in `sampleRays`. Called only for a material that refracts or reflects
+  // coherently.
   void spawnCoherent(const Hit& hit, const Material& m, const ShadingPoint& sp,
                      const SurfacePoint& at, const Ray& ray, const Vec3f& d, const Branch& branch,
-                     float distance, Generation& gen, RayCounters& counters,
+                     float distance, const LobeSamples& u, Generation& gen, RayCounters& counters,
                      uint64_t& sampleRays) const;
   // How far a ray's pixel cone has come at its hit (image textures only; else 0).
   float distanceAt(const Ray& ray, const Hit& hit, const Branch& branch) const {
@@ -273,8 +274,10 @@ class BatchedKernel {
   struct MaterialFlags {
     bool reflectsLights;  // materials' reflectsLights: the point waits for its direct light
     bool spawnsRays;      // it refracts or reflects coherently: forEachCoherentRay may send rays
+    bool drawsLobes;      // materials' drawsLobeSamples: a glossy or blurred lobe's sample
   };
   std::vector<MaterialFlags> materials_;
+  bool drawsLobes_ = false;  // some material draws lobe samples (materials' drawsLobeSamples)
   int64_t shadowRaysPerPoint_ = 0;  // at most, over all lights: what a lit point may queue
 
  public:

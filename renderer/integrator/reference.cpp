@@ -38,7 +38,8 @@ Rgb ReferenceIntegrator::trace(const Ray& r, const Hit& q, const Branch& branch,
     const Crossing crossing =
         m.refracts() ? crossingAt(branch.media, q, sp.materialId, d, sp.ng, scene_.materials)
                      : Crossing{};
-    forEachCoherentRay(m, sp, at, d, crossing.etaI, crossing.etaT, *branch.key, branch.depth,
+    forEachCoherentRay(m, sp, at, d, crossing.etaI, crossing.etaT,
+                       lobeSamples(m, *branch.key, branch.depth),
                        [&](const Vec3f& direction, const Rgb& weight, bool crosses) {
                          Branch child;
                          child.depth = branch.depth + 1;

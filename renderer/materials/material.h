@@ -36,27 +36,51 @@ Material defaultMaterial(MaterialKind kind);
 // reflection and refraction.
 inline constexpr int kMaxCoherentRays = 3;
 
+// The samples that spread a hit's lobes: the glossy mirror's and the blurred refraction's,
+// each from its own dimension of the arriving ray's camera sample at the ray's depth.
+struct LobeSamples {
+  Vec2f gloss, blur;
+};
+
+// Whether the material draws any (lobeSamples): a surface that can be glossy (its maps vary
+// the gloss below the surface's, so where a sample is drawn does not depend on the texel), or
+// a blurred refraction.
+inline bool drawsLobeSamples(const Material& m) {
+  return m.surface.glossy() || (m.refracts() && m.dielectric.blurs());
+}
+
+// The lobe samples of material m for the ray of camera sample `key` arriving at `depth`.
+inline LobeSamples lobeSamples(const Material& m, const SampleKey& key, int depth) {
+  LobeSamples u{};
+  if (m.surface.glossy()) u.gloss = key.get2D(dimension(Dim::Gloss, depth));
+  if (m.refracts() && m.dielectric.blurs()) u.blur = key.get2D(dimension(Dim::Gloss, depth, 1));
+  return u;
+}
+
+// lobeSamples(*materials[k], *keys[k], depth) into out[slot[k]] for k in [0, n), the same
+// values: n rays' samples drawn side by side (Sampler::get2DAt), each pixel half's pattern made
+// once for its run of rays. Drawn one at a time, a glossy hit paid for a whole stratified draw
+// and a pattern.
+void drawLobeSamples(const Material* const* materials, const SampleKey* const* keys,
+                     const int* slot, int depth, int n, LobeSamples* out);
+
 // The rays a hit sends on (Trace's r_r and r_t, seed 002 §9.1), for unit d arriving at the
 // point (sp, at), each handed to send(direction, weight, crosses) in Trace's order: the
 // surface's mirror ray (k_m), then a dielectric's reflected and refracted rays. `weight`
 // multiplies the radiance the ray brings back; `crosses` says it crosses the surface into or
 // out of the object. etaI and etaT are the indices on the ray's side and across (the interior
-// list knows them; read only for a dielectric). A glossy mirror or a blurred refraction draws
-// its sample from `key` at `depth`, the depth of the arriving ray. (A callback rather than an
-// array of rays: rays written to memory and read back at once stalled on store forwarding.)
+// list knows them; read only for a dielectric). A glossy mirror or a blurred refraction spreads
+// its ray with the arriving ray's sample `u` (lobeSamples). (A callback rather than an array of
+// rays: rays written to memory and read back at once stalled on store forwarding.)
 template <class Send>
 [[gnu::always_inline]] inline void forEachCoherentRay(const Material& m, const ShadingPoint& sp,
                                                       const SurfacePoint& at, const Vec3f& d,
-                                                      float etaI, float etaT, const SampleKey& key,
-                                                      int depth, Send&& send) {
+                                                      float etaI, float etaT, const LobeSamples& u,
+                                                      Send&& send) {
   // The surface's coherent reflection k_m·L(r).
   if (!at.km.isBlack()) {
-    // The sample is drawn wherever the surface can be glossy (its maps vary at.gloss below
-    // s.gloss): where it is drawn does not depend on the texel.
-    const Surface& s = m.surface;
-    const Vec2f u = s.glossy() ? key.get2D(dimension(Dim::Gloss, depth)) : Vec2f{};
     Vec3f r;
-    if (mirrorDirection(d, at.n, at.gloss, s.glossShape, u, r)) send(r, at.km, false);
+    if (mirrorDirection(d, at.n, at.gloss, m.surface.glossShape, u.gloss, r)) send(r, at.km, false);
   }
   if (!m.refracts()) return;
   // The interface: the normal is the geometric one turned against the ray, never the shading
@@ -71,7 +95,7 @@ template <class Send>
   if (g.blurs()) {
     // Blurred translucency (seed 002 §9.3): t spread by the same lobes as gloss; a ray that
     // ends up back on the incoming side returns black.
-    t = spread(t, g.blurShape, g.blur, key.get2D(dimension(Dim::Gloss, depth, 1)));
+    t = spread(t, g.blurShape, g.blur, u.blur);
     if (dot(t, n) >= 0) return;
   }
   const float T = 1 - split.R;

@@ -26,7 +26,7 @@ struct CoherentRay {
 std::vector<CoherentRay> raysFrom(const Material& m, const ShadingPoint& sp, const Vec3f& d,
                                   const SampleKey& key, float etaI = 1, float etaT = 1.5f) {
   std::vector<CoherentRay> out;
-  forEachCoherentRay(m, sp, lookUp(m.surface, sp, -d, 0, {}), d, etaI, etaT, key, 0,
+  forEachCoherentRay(m, sp, lookUp(m.surface, sp, -d, 0, {}), d, etaI, etaT, lobeSamples(m, key, 0),
                      [&](const Vec3f& direction, const Rgb& weight, bool crosses) {
                        out.push_back({direction, weight, crosses});
                      });
@@ -130,6 +130,54 @@ TEST(Material, BlurredRefractionThatTurnsBackIsDropped) {
   }
   EXPECT_GT(dropped, 0);
   EXPECT_GT(crossing, 0);
+}
+
+TEST(Material, LobeSamplesDrawnTogetherAreEachRaysOwn) {
+  // The kernel draws a chunk's lobe samples side by side (drawLobeSamples); each must be the
+  // sample the reference integrator draws for that ray alone (lobeSamples), bit for bit, or
+  // the two integrators' images part. Rays of several pixels and both halves (of different
+  // sizes at an odd spp), runs of one pixel half, and materials drawing none, one or both.
+  // Whatever the order: the kernel writes each to its ray's slot.
+  Material phong = defaultMaterial(MaterialKind::Phong);
+  Material glossy = defaultMaterial(MaterialKind::Mirror);
+  glossy.surface.gloss = 0.2f;
+  Material frosted = defaultMaterial(MaterialKind::Dielectric);
+  frosted.dielectric.blur = 0.3f;
+  Material both = frosted;
+  both.surface.km = ColorTexture::uniform({0.2f, 0.2f, 0.2f});
+  both.surface.gloss = 12;
+  both.surface.glossShape = GlossShape::Phong;
+  const Material* kinds[] = {&glossy, &frosted, &both, &phong};
+  for (SamplerKind kind : {SamplerKind::Stratified, SamplerKind::Sobol, SamplerKind::Random}) {
+    const Sampler sampler(kind, 7, 3);
+    constexpr int kRays = 40;
+    SampleKey keys[kRays];
+    const SampleKey* keyOf[kRays];
+    const Material* materialOf[kRays];
+    int slot[kRays];
+    for (int i = 0; i < kRays; ++i) {
+      const int px = i / 9, half = (i / 3) % 2;
+      keys[i] = SampleKey(&sampler, px, 2, i % 3, sampler.pixelKey(px, 2), half);
+      keyOf[i] = &keys[i];
+      materialOf[i] = kinds[(i * 7) % 4];
+      slot[i] = kRays - 1 - i;  // written out of order, as the kernel's rays that draw
+    }
+    LobeSamples out[kRays];
+    drawLobeSamples(materialOf, keyOf, slot, 2, kRays, out);
+    for (int i = 0; i < kRays; ++i) {
+      const LobeSamples alone = lobeSamples(*materialOf[i], keys[i], 2);
+      const LobeSamples& drawn = out[slot[i]];
+      EXPECT_EQ(drawn.gloss.x, alone.gloss.x) << i;
+      EXPECT_EQ(drawn.gloss.y, alone.gloss.y) << i;
+      EXPECT_EQ(drawn.blur.x, alone.blur.x) << i;
+      EXPECT_EQ(drawn.blur.y, alone.blur.y) << i;
+    }
+    // Not a vacuous match: the glossy and blurred rays did draw.
+    EXPECT_NE(out[slot[0]].gloss.x, 0.0f);  // glossy
+    EXPECT_NE(out[slot[2]].gloss.x, 0.0f);  // both
+    EXPECT_NE(out[slot[2]].blur.x, 0.0f);
+    EXPECT_NE(out[slot[3]].blur.x, 0.0f);  // frosted
+  }
 }
 
 TEST(Material, AlbedoIsKdElseKmAndOneForGlass) {
