@@ -4,11 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <stdexcept>
 #include <string>
 
+#include "core/lanes.h"
 #include "core/sampling.h"
 
 namespace glint {
@@ -113,25 +115,124 @@ namespace {
 
 using F32x4 = float __attribute__((vector_size(16)));
 
-// Four vectors side by side, and generateRay's vector operations on them, rounded in its order.
-struct Vec3x4 {
-  F32x4 x, y, z;
+// Eight vectors side by side, and generateRay's vector operations on them, rounded in its order.
+struct Vec3x8 {
+  F32x8 x, y, z;
 };
-[[gnu::always_inline]] inline Vec3x4 normalize(const Vec3x4& a) {
-  const F32x4 inverse = 1.0f / F32x4(_mm_sqrt_ps(a.x * a.x + a.y * a.y + a.z * a.z));
+[[gnu::always_inline]] inline F32x8 sqrtLanes(F32x8 a) {
+  // Two halves through SSE's root: baseline x86-64 has no wider one, and AVX2 code joins them.
+  const F32x4 low = _mm_sqrt_ps(F32x4{a[0], a[1], a[2], a[3]});
+  const F32x4 high = _mm_sqrt_ps(F32x4{a[4], a[5], a[6], a[7]});
+  return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
+}
+[[gnu::always_inline]] inline Vec3x8 normalize(const Vec3x8& a) {
+  const F32x8 inverse = 1.0f / sqrtLanes(a.x * a.x + a.y * a.y + a.z * a.z);
   return {a.x * inverse, a.y * inverse, a.z * inverse};
 }
-// The x and y of points p[0 .. 3] into lanes.
-[[gnu::always_inline]] inline void loadLanes(const Vec2f* p, F32x4& x, F32x4& y) {
-  F32x4 low, high;
+// The x and y of points p[0 .. 7] into lanes.
+[[gnu::always_inline]] inline void loadLanes(const Vec2f* p, F32x8& x, F32x8& y) {
+  F32x8 low, high;
   std::memcpy(&low, p, sizeof low);
-  std::memcpy(&high, p + 2, sizeof high);
-  x = __builtin_shufflevector(low, high, 0, 2, 4, 6);
-  y = __builtin_shufflevector(low, high, 1, 3, 5, 7);
+  std::memcpy(&high, p + 4, sizeof high);
+  x = __builtin_shufflevector(low, high, 0, 2, 4, 6, 8, 10, 12, 14);
+  y = __builtin_shufflevector(low, high, 1, 3, 5, 7, 9, 11, 13, 15);
 }
 // s·a + t·b.
-[[gnu::always_inline]] inline Vec3x4 span(F32x4 s, const Vec3f& a, F32x4 t, const Vec3f& b) {
+[[gnu::always_inline]] inline Vec3x8 span(F32x8 s, const Vec3f& a, F32x8 t, const Vec3f& b) {
   return {a.x * s + b.x * t, a.y * s + b.y * t, a.z * s + b.z * t};
+}
+
+// out[l] = (a[l], b[l], c[l], d[l]) for the eight lanes.
+[[gnu::always_inline]] inline void transposeLanes(F32x8 a, F32x8 b, F32x8 c, F32x8 d, F32x4* out) {
+  const F32x8 ab01 = __builtin_shufflevector(a, b, 0, 8, 1, 9, 4, 12, 5, 13);
+  const F32x8 ab23 = __builtin_shufflevector(a, b, 2, 10, 3, 11, 6, 14, 7, 15);
+  const F32x8 cd01 = __builtin_shufflevector(c, d, 0, 8, 1, 9, 4, 12, 5, 13);
+  const F32x8 cd23 = __builtin_shufflevector(c, d, 2, 10, 3, 11, 6, 14, 7, 15);
+  const F32x8 rows[4] = {__builtin_shufflevector(ab01, cd01, 0, 1, 8, 9, 4, 5, 12, 13),
+                         __builtin_shufflevector(ab01, cd01, 2, 3, 10, 11, 6, 7, 14, 15),
+                         __builtin_shufflevector(ab23, cd23, 0, 1, 8, 9, 4, 5, 12, 13),
+                         __builtin_shufflevector(ab23, cd23, 2, 3, 10, 11, 6, 7, 14, 15)};
+  for (int r = 0; r < 4; ++r) {
+    out[r] = __builtin_shufflevector(rows[r], rows[r], 0, 1, 2, 3);
+    out[r + 4] = __builtin_shufflevector(rows[r], rows[r], 4, 5, 6, 7);
+  }
+}
+
+// The layout the transposed stores write: o, d, tMin, tMax in the first 32 bytes.
+static_assert(offsetof(Ray, o) == 0 && offsetof(Ray, d) == 12 && offsetof(Ray, tMin) == 24 &&
+              offsetof(Ray, tMax) == 28 && sizeof(float) == 4);
+
+// What Camera::generateRays reads of the camera.
+struct RayFrame {
+  Vec3f eye, u, v, view, negW;
+  ImageWindow window;
+  float uPerPixel, vPerPixel, focusDistance, apertureRadius;
+  bool perspective, thinLens, disk;
+};
+
+// Camera::generateRays, eight rays side by side. Built for baseline x86-64 and for AVX2, chosen
+// when the program loads by what the CPU has: AVX2 holds eight lanes in one register, where a
+// thin lens's chain of divisions and roots took two.
+[[gnu::target_clones("avx2", "default")]] void raysInLanes(const RayFrame& c, const Vec2f* film,
+                                                           const Vec2f* lens, int n, Ray* out,
+                                                           const int* slot) {
+  const bool perspective = c.perspective, thinLens = c.thinLens;
+  const Vec3f eye = c.eye, negW = c.negW, u = c.u, v = c.v, view = c.view;
+  for (int first = 0; first < n; first += 8) {
+    F32x8 x, y, lx{}, ly{};
+    if (first + 8 <= n) {
+      loadLanes(film + first, x, y);
+      if (thinLens) loadLanes(lens + first, lx, ly);
+    } else {
+      // Lanes past n repeat the last ray, so that every lane holds numbers from the film.
+      Vec2f tail[2][8];
+      for (int l = 0; l < 8; ++l) {
+        tail[0][l] = film[std::min(first + l, n - 1)];
+        if (thinLens) tail[1][l] = lens[std::min(first + l, n - 1)];
+      }
+      loadLanes(tail[0], x, y);
+      if (thinLens) loadLanes(tail[1], lx, ly);
+    }
+    const F32x8 su = c.window.l + c.uPerPixel * x;
+    const F32x8 sv = c.window.t - c.vPerPixel * y;
+    Vec3x8 o{}, d{};
+    if (perspective) {
+      const Vec3x8 s = span(su, u, sv, v);
+      d = normalize({s.x + view.x, s.y + view.y, s.z + view.z});
+      if (thinLens) {
+        F32x8 ex, ey;
+        if (c.disk) {
+          squareToDiskConcentricLanes(lx, ly, ex, ey);
+        } else {
+          ex = 2 * lx - 1;
+          ey = 2 * ly - 1;
+        }
+        const F32x8 along = c.focusDistance / (d.x * negW.x + d.y * negW.y + d.z * negW.z);
+        const Vec3x8 focus = {eye.x + d.x * along, eye.y + d.y * along, eye.z + d.z * along};
+        const Vec3x8 e = span(ex, u, ey, v);
+        const float a = c.apertureRadius;
+        o = {eye.x + e.x * a, eye.y + e.y * a, eye.z + e.z * a};
+        d = normalize({focus.x - o.x, focus.y - o.y, focus.z - o.z});
+      }
+    } else {
+      o = {eye.x + u.x * su + v.x * sv, eye.y + u.y * su + v.y * sv, eye.z + u.z * su + v.z * sv};
+    }
+    // A pinhole's rays start at the eye, an orthographic camera's all point along view.
+    if (perspective && !thinLens) o = {F32x8{} + eye.x, F32x8{} + eye.y, F32x8{} + eye.z};
+    if (!perspective) d = {F32x8{} + view.x, F32x8{} + view.y, F32x8{} + view.z};
+    // Each ray's first 32 bytes, (o, d.x) and (d.y, d.z, tMin, tMax), from the lanes by two
+    // transposes: written a float at a time, each ray paid for six lane extractions.
+    F32x4 front[8], back[8];
+    transposeLanes(o.x, o.y, o.z, d.x, front);
+    transposeLanes(d.y, d.z, F32x8{}, F32x8{} + kInfinity, back);
+    for (int l = 0; l < 8 && first + l < n; ++l) {
+      Ray& ray = out[slot[first + l]];
+      std::memcpy(static_cast<void*>(&ray), &front[l], sizeof front[l]);
+      std::memcpy(reinterpret_cast<char*>(&ray) + sizeof front[l], &back[l], sizeof back[l]);
+      ray.time = 0;
+      ray.origin = ray_origin::kEye;
+    }
+  }
 }
 
 }  // namespace
@@ -139,60 +240,20 @@ struct Vec3x4 {
 void Camera::generateRays(const Vec2f* film, const Vec2f* lens, int n, Ray* out,
                           const int* slot) const {
   const bool perspective = desc_.projection == Projection::Perspective;
-  const bool thinLens = perspective && hasLens();
-  const bool disk = desc_.lensShape == LensShape::Disk;
-  const Vec3f eye = desc_.eye, negW = -w_;
-  for (int first = 0; first < n; first += 4) {
-    F32x4 x, y, lx{}, ly{};
-    if (first + 4 <= n) {
-      loadLanes(film + first, x, y);
-      if (thinLens) loadLanes(lens + first, lx, ly);
-    } else {
-      // Lanes past n repeat the last ray, so that every lane holds numbers from the film.
-      Vec2f tail[2][4];
-      for (int l = 0; l < 4; ++l) {
-        tail[0][l] = film[std::min(first + l, n - 1)];
-        if (thinLens) tail[1][l] = lens[std::min(first + l, n - 1)];
-      }
-      loadLanes(tail[0], x, y);
-      if (thinLens) loadLanes(tail[1], lx, ly);
-    }
-    const F32x4 su = window_.l + uPerPixel_ * x;
-    const F32x4 sv = window_.t - vPerPixel_ * y;
-    Vec3x4 o{}, d{};
-    if (perspective) {
-      const Vec3x4 s = span(su, u_, sv, v_);
-      d = normalize({s.x + view_.x, s.y + view_.y, s.z + view_.z});
-      if (thinLens) {
-        F32x4 ex, ey;
-        if (disk) {
-          squareToDiskConcentricLanes(lx, ly, ex, ey);
-        } else {
-          ex = 2 * lx - 1;
-          ey = 2 * ly - 1;
-        }
-        const F32x4 along = desc_.focusDistance / (d.x * negW.x + d.y * negW.y + d.z * negW.z);
-        const Vec3x4 focus = {eye.x + d.x * along, eye.y + d.y * along, eye.z + d.z * along};
-        const Vec3x4 e = span(ex, u_, ey, v_);
-        const float a = desc_.apertureRadius;
-        o = {eye.x + e.x * a, eye.y + e.y * a, eye.z + e.z * a};
-        d = normalize({focus.x - o.x, focus.y - o.y, focus.z - o.z});
-      }
-    } else {
-      o = {eye.x + u_.x * su + v_.x * sv, eye.y + u_.y * su + v_.y * sv,
-           eye.z + u_.z * su + v_.z * sv};
-    }
-    for (int l = 0; l < 4 && first + l < n; ++l) {
-      Ray& ray = out[slot[first + l]];
-      // A pinhole's rays start at the eye, an orthographic camera's all point along view_.
-      ray.o = thinLens || !perspective ? Vec3f{o.x[l], o.y[l], o.z[l]} : eye;
-      ray.d = perspective ? Vec3f{d.x[l], d.y[l], d.z[l]} : view_;
-      ray.tMin = 0;
-      ray.tMax = kInfinity;
-      ray.time = 0;
-      ray.origin = ray_origin::kEye;
-    }
-  }
+  const RayFrame frame{desc_.eye,
+                       u_,
+                       v_,
+                       view_,
+                       -w_,
+                       window_,
+                       uPerPixel_,
+                       vPerPixel_,
+                       desc_.focusDistance,
+                       desc_.apertureRadius,
+                       perspective,
+                       perspective && hasLens(),
+                       desc_.lensShape == LensShape::Disk};
+  raysInLanes(frame, film, lens, n, out, slot);
 }
 
 Mat4 Camera::worldToCamera() const {

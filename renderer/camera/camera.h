@@ -59,7 +59,7 @@ class Camera {
   // The same, written into `ray` (all fields; a returned copy stalled on store forwarding).
   void generateRay(float x, float y, Vec2f lens, Ray& ray) const;
   // generateRay(film[i].x, film[i].y, lens[i], out[slot[i]]) for i in [0, n), the same bits;
-  // `lens` may be null for a camera without one. Four rays side by side: one at a time, a thin
+  // `lens` may be null for a camera without one. Eight rays side by side: one at a time, a thin
   // lens's ray waited on its chain of divisions and square roots.
   void generateRays(const Vec2f* film, const Vec2f* lens, int n, Ray* out, const int* slot) const;
   bool hasLens() const { return desc_.apertureRadius > 0; }

@@ -1,5 +1,7 @@
 #include "render/render_job.h"
 
+#include <bit>
+#include <cstdint>
 #include <string>
 
 #include "core/error.h"
@@ -27,35 +29,45 @@ void CameraSampling::chunkRays(const SampleKey* keys, int count, Ray* out, Point
                                         dimension(Dim::Time)};
   const bool drawn[Points::kDims] = {true, drawLens, drawTime};
   // Half 0's points (or the whole sets') before half 1's: at odd spp the halves' sets differ
-  // in size, and a block of lanes draws from sets of one size.
-  int m = 0, sets = 0;
-  for (int pass = 0; pass < 2; ++pass)
-    for (int i = 0; i < count; ++i) {
-      const SampleKey& key = keys[i];
-      if ((key.half == 1) != (pass == 1)) continue;
-      const SampleKey* const before = m > 0 ? &keys[p.sample[m - 1]] : nullptr;
-      if (!before || before->px != key.px || before->py != key.py || before->half != key.half) {
-        for (int d = 0; d < Points::kDims; ++d)
-          if (drawn[d]) p.sets[d][size_t(sets)] = key.pattern(dims[d]);
-        ++sets;
-      }
-      for (int d = 0; d < Points::kDims; ++d) p.at[d][m] = &p.sets[d][size_t(sets - 1)];
-      p.flat[m] = static_cast<uint32_t>(key.index);
-      p.sample[m++] = i;
+  // in size, and a block of lanes draws from sets of one size. Half 1's samples are set aside
+  // in one pass over the keys rather than found in a second.
+  int m = 0, sets = 0, later = 0;
+  int half1[kCameraChunk];
+  float pixelX[kCameraChunk], pixelY[kCameraChunk];
+  const SampleKey* before = nullptr;
+  const auto place = [&](int i) {
+    const SampleKey& key = keys[i];
+    if (!before || before->px != key.px || before->py != key.py || before->half != key.half) {
+      for (int d = 0; d < Points::kDims; ++d)
+        if (drawn[d]) p.sets[d][size_t(sets)] = key.pattern(dims[d]);
+      ++sets;
     }
+    before = &key;
+    for (int d = 0; d < Points::kDims; ++d)
+      if (drawn[d]) p.at[d][m] = &p.sets[d][size_t(sets - 1)];
+    p.flat[m] = static_cast<uint32_t>(key.index);
+    pixelX[m] = static_cast<float>(key.px);
+    pixelY[m] = static_cast<float>(key.py);
+    p.sample[m++] = i;
+  };
+  for (int i = 0; i < count; ++i) {
+    if (keys[i].half == 1)
+      half1[later++] = i;
+    else
+      place(i);
+  }
+  for (int k = 0; k < later; ++k) place(half1[k]);
   for (int d = 0; d < Points::kDims; ++d)
     if (drawn[d]) sampler.get2DAt(p.at[d], 1, p.flat, count, p.points[d].data());
   // Film positions over the pixel offsets: nothing reads the offsets again.
   Vec2f* const film = p.points[0].data();
-  for (int j = 0; j < count; ++j) {
-    const SampleKey& key = keys[p.sample[j]];
-    film[j] = {static_cast<float>(key.px) + film[j].x, static_cast<float>(key.py) + film[j].y};
-  }
+  for (int j = 0; j < count; ++j) film[j] = {pixelX[j] + film[j].x, pixelY[j] + film[j].y};
   camera_.generateRays(film, drawLens ? p.points[1].data() : nullptr, count, out, p.sample);
   if (drawTime)
     for (int j = 0; j < count; ++j)
       out[p.sample[j]].time = open_ + (close_ - open_) * p.points[2][size_t(j)].x;
-  else
+  else if (std::bit_cast<uint32_t>(open_) != 0)
+    // generateRays's rays leave at time +0, where nearly every shutter opens.
     for (int i = 0; i < count; ++i) out[i].time = open_;
 }
 
