@@ -3,7 +3,6 @@
 #include <immintrin.h>
 
 #include <algorithm>
-#include <bit>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -11,8 +10,8 @@
 #include "core/check.h"
 #include "core/ray.h"
 
-// The helpers below take and return 32-byte vectors only inlined, never across a call, whose
-// ABI GCC warns would differ between the two builds.
+// 32-byte vectors never cross a call here, not even to an inlined helper: Clang refuses one
+// passed or returned between the AVX2 clone and a function built without AVX.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace glint {
@@ -24,24 +23,13 @@ using F = float __attribute__((vector_size(32)));
 using I = int32_t __attribute__((vector_size(32)));
 using F4 = float __attribute__((vector_size(16)));
 constexpr int32_t kSignBit = std::numeric_limits<int32_t>::min();
+constexpr int32_t kMagnitude = std::numeric_limits<int32_t>::max();
 
-[[gnu::always_inline]] inline F select(I mask, F a, F b) {
-  return std::bit_cast<F>((mask & std::bit_cast<I>(a)) | (~mask & std::bit_cast<I>(b)));
-}
-[[gnu::always_inline]] inline F absOf(F v) {
-  return std::bit_cast<F>(std::bit_cast<I>(v) & std::numeric_limits<int32_t>::max());
-}
 // Whether any lane's sign bit is set (a mask's lanes are all ones or zero), four at a time.
-[[gnu::always_inline]] inline bool anyOf(I mask) {
-  const F m = std::bit_cast<F>(mask);
+[[gnu::always_inline]] inline bool anyOf(const I& mask) {
+  const F m = (F)mask;
   return (_mm_movemask_ps(__builtin_shufflevector(m, m, 0, 1, 2, 3)) |
           _mm_movemask_ps(__builtin_shufflevector(m, m, 4, 5, 6, 7))) != 0;
-}
-// Square roots four lanes at a time (SSE), which every build has.
-[[gnu::always_inline]] inline F sqrtOf(F v) {
-  const F4 lo = _mm_sqrt_ps(__builtin_shufflevector(v, v, 0, 1, 2, 3));
-  const F4 hi = _mm_sqrt_ps(__builtin_shufflevector(v, v, 4, 5, 6, 7));
-  return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
 }
 
 // x, y, z of eight Vec3f as three lanes: each vector and the float after it (still inside its
@@ -65,18 +53,17 @@ constexpr int32_t kSignBit = std::numeric_limits<int32_t>::min();
 // (nextFloatUp, nextFloatDown): where x is finite its bits' magnitude grows where x and o agree
 // in sign and shrinks where they differ; ±0 becomes the smallest subnormal of o's sign; o = ±0
 // leaves x. Lanes with ±∞ or NaN (never, in practice) take the scalar rule.
-[[gnu::always_inline]] inline F away(F x, F o) {
-  if (anyOf(~(absOf(x) < kInfinity))) [[unlikely]] {
-    F r;
+[[gnu::always_inline]] inline void away(const F& x, const F& o, F& out) {
+  if (anyOf(~(((F)((I)x & kMagnitude)) < kInfinity))) [[unlikely]] {
     for (int l = 0; l < kWidth; ++l)
-      r[l] = o[l] > 0 ? nextFloatUp(x[l]) : o[l] < 0 ? nextFloatDown(x[l]) : x[l];
-    return r;
+      out[l] = o[l] > 0 ? nextFloatUp(x[l]) : o[l] < 0 ? nextFloatDown(x[l]) : x[l];
+    return;
   }
-  const I xb = std::bit_cast<I>(x), ob = std::bit_cast<I>(o);
+  const I xb = (I)x, ob = (I)o;
   const I moves = o != F{};
   const I step = moves & (((xb ^ ob) >> 31) | 1);
   const I fromZero = moves & (x == F{});
-  return std::bit_cast<F>((fromZero & ((ob & kSignBit) | 1)) | (~fromZero & (xb + step)));
+  out = (F)((fromZero & ((ob & kSignBit) | 1)) | (~fromZero & (xb + step)));
 }
 
 }  // namespace
@@ -108,7 +95,10 @@ constexpr int32_t kSignBit = std::numeric_limits<int32_t>::min();
     // lightSampleFrom: one square root and one division serve the direction and the inverse
     // square.
     const F tx = position.x - p[0], ty = position.y - p[1], tz = position.z - p[2];
-    const F invDist = 1.0f / sqrtOf(tx * tx + ty * ty + tz * tz);
+    const F dist2 = tx * tx + ty * ty + tz * tz;
+    const F4 distLo = _mm_sqrt_ps(__builtin_shufflevector(dist2, dist2, 0, 1, 2, 3));
+    const F4 distHi = _mm_sqrt_ps(__builtin_shufflevector(dist2, dist2, 4, 5, 6, 7));
+    const F invDist = 1.0f / __builtin_shufflevector(distLo, distHi, 0, 1, 2, 3, 4, 5, 6, 7);
     const F wx = tx * invDist, wy = ty * invDist, wz = tz * invDist;
     const F cosine = nv[0] * wx + nv[1] * wy + nv[2] * wz;
     const F invDist2 = invDist * invDist;
@@ -137,17 +127,19 @@ constexpr int32_t kSignBit = std::numeric_limits<int32_t>::min();
                 lift);
       for (int c = 0; c < 3; ++c) {
         const F liftedFrom = p[c] + lift[c];
-        from[c] = select(lifted, liftedFrom, p[c]);
-        e[c] = select(lifted, err[c] + gamma(2) * absOf(liftedFrom), err[c]);
+        from[c] = lifted ? liftedFrom : p[c];
+        e[c] = lifted ? err[c] + gamma(2) * (F)((I)liftedFrom & kMagnitude) : err[c];
       }
     }
-    const F along = absOf(ng[0]) * e[0] + absOf(ng[1]) * e[1] + absOf(ng[2]) * e[2];
+    const F along = (F)((I)ng[0] & kMagnitude) * e[0] + (F)((I)ng[1] & kMagnitude) * e[1] +
+                    (F)((I)ng[2] & kMagnitude) * e[2];
     const F w[3] = {position.x - from[0], position.y - from[1], position.z - from[2]};
     // Negated (its sign bit flipped) where the light is behind the geometric normal.
     const I flip = ((w[0] * ng[0] + w[1] * ng[1] + w[2] * ng[2]) < F{}) & kSignBit;
     for (int c = 0; c < 3; ++c) {
-      const F offset = std::bit_cast<F>(std::bit_cast<I>(along * ng[c]) ^ flip);
-      const F o = away(from[c] + offset, offset);
+      const F offset = (F)((I)(along * ng[c]) ^ flip);
+      F o;
+      away(from[c] + offset, offset, o);
       const F d = position[c] - o;
       std::memcpy(out.o[c] + first, &o, sizeof o);
       std::memcpy(out.d[c] + first, &d, sizeof d);
