@@ -119,14 +119,14 @@ using F32x4 = float __attribute__((vector_size(16)));
 struct Vec3x8 {
   F32x8 x, y, z;
 };
-[[gnu::always_inline]] inline F32x8 sqrtLanes(F32x8 a) {
-  // Two halves through SSE's root: baseline x86-64 has no wider one, and AVX2 code joins them.
-  const F32x4 low = _mm_sqrt_ps(F32x4{a[0], a[1], a[2], a[3]});
-  const F32x4 high = _mm_sqrt_ps(F32x4{a[4], a[5], a[6], a[7]});
-  return __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
-}
+// Vectors pass to these by reference or in a struct: Clang refuses a 32-byte vector passed or
+// returned by value between the AVX2 clone and a function built without AVX, inlined or not.
 [[gnu::always_inline]] inline Vec3x8 normalize(const Vec3x8& a) {
-  const F32x8 inverse = 1.0f / sqrtLanes(a.x * a.x + a.y * a.y + a.z * a.z);
+  // The root in two halves through SSE: baseline x86-64 has no wider one; AVX2 code joins them.
+  const F32x8 length2 = a.x * a.x + a.y * a.y + a.z * a.z;
+  const F32x4 low = _mm_sqrt_ps(F32x4{length2[0], length2[1], length2[2], length2[3]});
+  const F32x4 high = _mm_sqrt_ps(F32x4{length2[4], length2[5], length2[6], length2[7]});
+  const F32x8 inverse = 1.0f / __builtin_shufflevector(low, high, 0, 1, 2, 3, 4, 5, 6, 7);
   return {a.x * inverse, a.y * inverse, a.z * inverse};
 }
 // The x and y of points p[0 .. 7] into lanes.
@@ -138,12 +138,14 @@ struct Vec3x8 {
   y = __builtin_shufflevector(low, high, 1, 3, 5, 7, 9, 11, 13, 15);
 }
 // s·a + t·b.
-[[gnu::always_inline]] inline Vec3x8 span(F32x8 s, const Vec3f& a, F32x8 t, const Vec3f& b) {
+[[gnu::always_inline]] inline Vec3x8 span(const F32x8& s, const Vec3f& a, const F32x8& t,
+                                          const Vec3f& b) {
   return {a.x * s + b.x * t, a.y * s + b.y * t, a.z * s + b.z * t};
 }
 
 // out[l] = (a[l], b[l], c[l], d[l]) for the eight lanes.
-[[gnu::always_inline]] inline void transposeLanes(F32x8 a, F32x8 b, F32x8 c, F32x8 d, F32x4* out) {
+[[gnu::always_inline]] inline void transposeLanes(const F32x8& a, const F32x8& b, const F32x8& c,
+                                                  const F32x8& d, F32x4* out) {
   const F32x8 ab01 = __builtin_shufflevector(a, b, 0, 8, 1, 9, 4, 12, 5, 13);
   const F32x8 ab23 = __builtin_shufflevector(a, b, 2, 10, 3, 11, 6, 14, 7, 15);
   const F32x8 cd01 = __builtin_shufflevector(c, d, 0, 8, 1, 9, 4, 12, 5, 13);

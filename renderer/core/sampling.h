@@ -1,6 +1,5 @@
 #pragma once
 // Warps from the unit square to the shapes that effects sample.
-#include <bit>
 #include <cmath>
 
 #include "core/vec.h"
@@ -12,7 +11,7 @@ namespace glint {
 // is no range reduction and no call. F: a float, or floats side by side in a GNU vector (the
 // same operations in the same order, so each lane gives the float's bits).
 template <class F>
-[[gnu::always_inline]] inline void cosSinQuarterPi(F phi, F& c, F& s) {
+[[gnu::always_inline]] inline void cosSinQuarterPi(const F& phi, F& c, F& s) {
   const F x2 = phi * phi;
   s = phi *
       (1.0f + x2 * (-1.0f / 6 + x2 * (1.0f / 120 + x2 * (-1.0f / 5040 + x2 * (1.0f / 362880)))));
@@ -41,13 +40,16 @@ inline Vec2f squareToDiskConcentric(Vec2f u) {
 
 // squareToDiskConcentric of points side by side (F: a GNU vector of floats), lane by lane the
 // same bits: both wedges' quotient and polynomial in every lane, the lane's wedge selected.
+// Vectors pass by reference and cast in place: Clang refuses a 32-byte vector passed by value
+// between an AVX2 clone and a function built without AVX, inlined or not.
 template <class F>
-[[gnu::always_inline]] inline void squareToDiskConcentricLanes(F ux, F uy, F& dx, F& dy) {
+[[gnu::always_inline]] inline void squareToDiskConcentricLanes(const F& ux, const F& uy, F& dx,
+                                                               F& dy) {
   using Mask = decltype(ux < uy);
   const F ox = 2.0f * ux - 1.0f, oy = 2.0f * uy - 1.0f;
   const Mask magnitude = Mask{} + 0x7fffffff;  // every bit but the sign
-  const F absX = std::bit_cast<F>(std::bit_cast<Mask>(ox) & magnitude);
-  const F absY = std::bit_cast<F>(std::bit_cast<Mask>(oy) & magnitude);
+  const F absX = (F)((Mask)ox & magnitude);
+  const F absY = (F)((Mask)oy & magnitude);
   const Mask alongX = absX > absY;
   const F r = alongX ? ox : oy;
   F c, s;
