@@ -267,13 +267,17 @@ void BatchedKernel::queueShadowRaysOf(Scratch& scratch, const L& light, size_t l
     // its point, closed where the queue is traced.
     if (queue.full()) flushShadows(scratch, sums, aovs, counters);
     int begin = queue.size;
+    // A point light's samples are set up eight points at a time, in lanes: one at a time, their
+    // arithmetic was most of what every lit point cost besides its rays.
+    [[maybe_unused]] PointLightLanes lanes;
+    [[maybe_unused]] bool inLanes = false;
     if constexpr (std::is_same_v<L, PointLight>) {
-      // A point light's samples are set up eight points at a time, in lanes: one at a time,
-      // their arithmetic was most of what every lit point cost besides its rays.
-      if (!light.isSpot()) {
-        queuePointLightLanes(scratch, light, li, begin, sums, aovs, counters);
-        return;
-      }
+      static_assert(kChunk <= PointLightLanes::kMaxPoints);
+      inLanes = !light.isSpot();
+      if (inLanes)
+        samplePointLight(light.position, light.intensity, light.falloff == Falloff::InverseSquare,
+                         &scratch.pending[0].pt.sp, &scratch.pending[0].pt.at.n,
+                         sizeof(Scratch::Pending), scratch.pendingCount, lanes);
     }
     for (int k = 0; k < scratch.pendingCount; ++k) {
       if (queue.size == ShadowQueue::kCapacity) {
@@ -282,6 +286,11 @@ void BatchedKernel::queueShadowRaysOf(Scratch& scratch, const L& light, size_t l
         begin = 0;
       }
       queue.pointOf[queue.size] = k;  // read only if the sample is queued
+      if constexpr (std::is_same_v<L, PointLight>)
+        if (inLanes) {
+          queueLaneSample(scratch.pending[k].pt, lanes, k, li, queue);
+          continue;
+        }
       queueSamples(scratch.pending[k].pt, light, li, nullptr, 1, queue);
     }
     if (queue.size > begin) queue.addRun(ShadowRun::kEachRay, index, false, true);
@@ -315,44 +324,24 @@ void BatchedKernel::queueShadowRaysOf(Scratch& scratch, const L& light, size_t l
   }
 }
 
-void BatchedKernel::queuePointLightLanes(Scratch& scratch, const PointLight& light, size_t li,
-                                         int begin, Generation::Sum* sums, AovSample* const* aovs,
-                                         RayCounters& counters) const {
-  auto& queue = scratch.queue;
-  const int index = static_cast<int>(li);
-  const uint32_t origin = ray_origin::light(li);
-  const int count = scratch.pendingCount;
-  static_assert(kChunk <= PointLightLanes::kMaxPoints);
-  PointLightLanes s;
-  samplePointLight(light.position, light.intensity, light.falloff == Falloff::InverseSquare,
-                   &scratch.pending[0].pt.sp, &scratch.pending[0].pt.at.n, sizeof(Scratch::Pending),
-                   count, s);
-  for (int k = 0; k < count; ++k) {
-    if (queue.size == ShadowQueue::kCapacity) {
-      queue.addRun(ShadowRun::kEachRay, index, false, true);
-      flushShadows(scratch, sums, aovs, counters);
-      begin = 0;
-    }
-    if (!s.contributes[k]) continue;
-    // queueSamples' shadow ray and term, from the point's sample.
-    const LitPoint& pt = scratch.pending[k].pt;
-    const int q = queue.size;
-    queue.pointOf[q] = k;
-    Ray& r = queue.rays[q];
-    r.o = {s.o[0][k], s.o[1][k], s.o[2][k]};
-    r.d = {s.d[0][k], s.d[1][k], s.d[2][k]};
-    r.tMin = 0;
-    r.tMax = kShadowRayEnd;
-    r.time = pt.time;
-    r.origin = origin;
-    const Vec3f wi{s.wi[0][k], s.wi[1][k], s.wi[2][k]};
-    const Rgb intensity{s.intensity[0][k], s.intensity[1][k], s.intensity[2][k]};
-    queue.term[q] = reflectedLight(pt.material->surface, pt.sp, pt.at, wi) * intensity;
-    queue.atInfinity[q] = false;
-    if (transparentShadows()) queue.media[q] = &pt.branch->media;
-    queue.size = q + 1;
-  }
-  if (queue.size > begin) queue.addRun(ShadowRun::kEachRay, index, false, true);
+void BatchedKernel::queueLaneSample(const LitPoint& pt, const PointLightLanes& lanes, int k,
+                                    size_t li, ShadowQueue& queue) const {
+  if (!lanes.contributes[k]) return;
+  // queueSamples' shadow ray and term, from the point's sample worked out in lanes.
+  const int q = queue.size;
+  Ray& r = queue.rays[q];
+  r.o = {lanes.o[0][k], lanes.o[1][k], lanes.o[2][k]};
+  r.d = {lanes.d[0][k], lanes.d[1][k], lanes.d[2][k]};
+  r.tMin = 0;
+  r.tMax = kShadowRayEnd;
+  r.time = pt.time;
+  r.origin = ray_origin::light(li);
+  const Vec3f wi{lanes.wi[0][k], lanes.wi[1][k], lanes.wi[2][k]};
+  const Rgb intensity{lanes.intensity[0][k], lanes.intensity[1][k], lanes.intensity[2][k]};
+  queue.term[q] = reflectedLight(pt.material->surface, pt.sp, pt.at, wi) * intensity;
+  queue.atInfinity[q] = false;
+  if (transparentShadows()) queue.media[q] = &pt.branch->media;
+  queue.size = q + 1;
 }
 
 void BatchedKernel::flushShadows(Scratch& scratch, Generation::Sum* sums, AovSample* const* aovs,

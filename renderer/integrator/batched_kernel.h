@@ -30,6 +30,8 @@
 
 namespace glint {
 
+struct PointLightLanes;
+
 class BatchedKernel {
  public:
   // `footprintSpp`: the samples each pixel's footprint is shared among (pixelCone); a render
@@ -218,12 +220,10 @@ class BatchedKernel {
   template <class L>
   void queueShadowRaysOf(Scratch& scratch, const L& light, size_t li, Generation::Sum* sums,
                          AovSample* const* aovs, RayCounters& counters) const;
-  // queueShadowRaysOf for a point light that is not a spot: each pending point's sample set up
-  // in lanes (integrator/point_light_lanes.h), the same bits as queueSamples'. `begin`: where
-  // the light's run starts in the queue.
-  void queuePointLightLanes(Scratch& scratch, const PointLight& light, size_t li, int begin,
-                            Generation::Sum* sums, AovSample* const* aovs,
-                            RayCounters& counters) const;
+  // queueSamples for point k of a point light that is not a spot, from its sample worked out
+  // with the other pending points' in lanes (integrator/point_light_lanes.h): the same bits.
+  void queueLaneSample(const LitPoint& pt, const PointLightLanes& lanes, int k, size_t li,
+                       ShadowQueue& queue) const;
   // Whether each queued shadow ray is blocked (or, with transparent shadows, what it lets
   // through).
   void traceShadows(ShadowQueue& queue, RayCounters& counters) const;
