@@ -3,10 +3,15 @@
 // value-initialised (vector(n), resize(n)): the frame's large buffers are then first written
 // by the render's threads, in parallel, instead of zeroed by one thread before the first pass,
 // and pages nothing writes are never touched. Every element must be written before it is read;
-// copies and elements made from a value are constructed as usual.
+// copies and elements made from a value are constructed as usual. Large buffers lie on huge
+// pages (core/huge_pages.h).
+#include <cstddef>
 #include <memory>
+#include <new>
 #include <type_traits>
 #include <utility>
+
+#include "core/huge_pages.h"
 
 namespace glint {
 
@@ -24,6 +29,12 @@ class UnwrittenAllocator : public std::allocator<T> {
   UnwrittenAllocator() = default;
   template <class U>
   UnwrittenAllocator(const UnwrittenAllocator<U>&) noexcept {}
+
+  T* allocate(std::size_t n) {
+    if (n > std::size_t(-1) / sizeof(T)) throw std::bad_array_new_length();
+    return static_cast<T*>(allocateBuffer(n * sizeof(T)));
+  }
+  void deallocate(T* p, std::size_t n) noexcept { freeBuffer(p, n * sizeof(T)); }
 
   template <class U>
   void construct(U*) noexcept {}

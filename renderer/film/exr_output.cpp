@@ -27,6 +27,7 @@
 
 #include "core/error.h"
 #include "core/input_files.h"
+#include "core/unwritten_allocator.h"
 #include "film/atomic_file.h"
 #include "film/exr_input.h"
 #include "film/image_limits.h"
@@ -73,8 +74,8 @@ namespace {
 struct Channel {
   std::string name;
   Imf::PixelType type;
-  const std::vector<double>* source;  // interleaved values
-  size_t stride, offset;              // channels per pixel in `source`, and this one's index
+  const double* source;   // interleaved values
+  size_t stride, offset;  // channels per pixel in `source`, and this one's index
 };
 
 struct Part {
@@ -82,14 +83,13 @@ struct Part {
   std::vector<Channel> channels;
 };
 
-std::vector<Part> layoutParts(const Film& film, const std::vector<double>& rgba, bool half,
-                              bool multipart) {
+std::vector<Part> layoutParts(const Film& film, bool half, bool multipart) {
   const Imf::PixelType beautyType = half ? Imf::HALF : Imf::FLOAT;
   std::vector<Part> parts(1);
   parts[0].name = "rgba";
   const char* rgbaNames[] = {"R", "G", "B", "A"};
   for (size_t c = 0; c < 4; ++c)
-    parts[0].channels.push_back({rgbaNames[c], beautyType, &rgba, 4, c});
+    parts[0].channels.push_back({rgbaNames[c], beautyType, film.rgba().data(), 4, c});
   for (const FilmPlane& plane : film.planes()) {
     // A UINT plane is Glint's own state (the resume state), not an image: it stays with the
     // beauty in part 0, where --resume reads it. In a part of its own it would hold no channel
@@ -98,7 +98,7 @@ std::vector<Part> layoutParts(const Film& film, const std::vector<double>& rgba,
     Part& part = multipart && plane.isUint ? parts.front() : parts.back();
     for (size_t c = 0; c < plane.channels.size(); ++c)
       part.channels.push_back({plane.channels[c], plane.isUint ? Imf::UINT : Imf::FLOAT,
-                               &plane.values, plane.channels.size(), c});
+                               plane.values.data(), plane.channels.size(), c});
   }
   return parts;
 }
@@ -136,7 +136,7 @@ uint64_t countClamped(const std::vector<Part>& parts, size_t pixels) {
     for (const Channel& c : part.channels) {
       if (c.type == Imf::UINT) continue;
       for (size_t p = 0; p < pixels; ++p) {
-        double v = (*c.source)[p * c.stride + c.offset];
+        double v = c.source[p * c.stride + c.offset];
         clamped += clampToType(v, c.type);
       }
     }
@@ -145,14 +145,17 @@ uint64_t countClamped(const std::vector<Part>& parts, size_t pixels) {
 
 // The pixels of a part in its native per-channel types, interleaved; values beyond a type's
 // finite range clamped to it: an EXR never holds Inf or NaN.
-std::vector<unsigned char> packPart(const Part& part, size_t pixels) {
+// Every byte is written.
+using PackedPart = std::vector<unsigned char, UnwrittenAllocator<unsigned char>>;
+
+PackedPart packPart(const Part& part, size_t pixels) {
   size_t bytesPerPixel = 0;
   for (const Channel& c : part.channels) bytesPerPixel += pixelTypeSize(c.type);
-  std::vector<unsigned char> out(pixels * bytesPerPixel);
+  PackedPart out(pixels * bytesPerPixel);
   unsigned char* dst = out.data();
   for (size_t p = 0; p < pixels; ++p)
     for (const Channel& c : part.channels) {
-      double v = (*c.source)[p * c.stride + c.offset];
+      double v = c.source[p * c.stride + c.offset];
       if (c.type == Imf::UINT) {
         const auto u = static_cast<uint32_t>(v);
         std::memcpy(dst, &u, 4);
@@ -176,12 +179,7 @@ std::vector<unsigned char> packPart(const Part& part, size_t pixels) {
 uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
                   const ExrOptions& options) {
   const PixelWindow& w = film.window();
-  std::vector<double> rgba(static_cast<size_t>(w.area()) * 4);
-  for (int y = w.y0; y < w.y1; ++y)
-    for (int x = w.x0; x < w.x1; ++x)
-      std::copy_n(film.pixel(x, y), 4,
-                  &rgba[(size_t(y - w.y0) * size_t(w.width()) + size_t(x - w.x0)) * 4]);
-  const std::vector<Part> parts = layoutParts(film, rgba, options.half, options.multipart);
+  const std::vector<Part> parts = layoutParts(film, options.half, options.multipart);
   const uint64_t clamped = countClamped(parts, size_t(w.area()));
   meta.ints.push_back(
       {"glint:clamped_values", static_cast<int>(std::min<uint64_t>(clamped, INT32_MAX))});
@@ -218,7 +216,7 @@ uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
   }
 
   // The pixels of part i as OpenEXR slices of its packed buffer.
-  const auto frameBufferOf = [&](size_t i, const std::vector<unsigned char>& data) {
+  const auto frameBufferOf = [&](size_t i, const PackedPart& data) {
     size_t pixelBytes = 0;
     for (const Channel& c : parts[i].channels) pixelBytes += pixelTypeSize(c.type);
     Imf::FrameBuffer frameBuffer;
@@ -235,14 +233,14 @@ uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
     writeExrStream(path, tmp, [&](Imf::OStream& stream) {
       if (parts.size() == 1) {
         Imf::OutputFile file(stream, headers[0]);
-        const std::vector<unsigned char> data = packPart(parts[0], size_t(w.area()));
+        const PackedPart data = packPart(parts[0], size_t(w.area()));
         file.setFrameBuffer(frameBufferOf(0, data));
         file.writePixels(w.height());
         return;
       }
       Imf::MultiPartOutputFile file(stream, headers.data(), int(headers.size()));
       for (size_t i = 0; i < parts.size(); ++i) {
-        const std::vector<unsigned char> data = packPart(parts[i], size_t(w.area()));
+        const PackedPart data = packPart(parts[i], size_t(w.area()));
         Imf::OutputPart out(file, int(i));
         out.setFrameBuffer(frameBufferOf(i, data));
         out.writePixels(w.height());

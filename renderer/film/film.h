@@ -3,6 +3,7 @@
 // double. Each pixel is written by exactly one tile task, so no synchronisation is needed.
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,6 +44,8 @@ class Film {
   // (x, y) in full-frame pixel coordinates, inside window().
   void setPixel(int x, int y, double r, double g, double b, double a);
   const double* pixel(int x, int y) const;  // 4 values: R, G, B, A
+  // The window's pixels row by row, 4 values each.
+  std::span<const double> rgba() const { return rgba_; }
 
   // Row-major float RGBA of the window, for image output.
   std::vector<float> toFloatRgba() const;
