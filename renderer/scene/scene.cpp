@@ -1,7 +1,11 @@
 #include "scene/scene.h"
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 
 #include "core/check.h"
 #include "core/frame.h"
@@ -53,6 +57,31 @@ Vec2f sphereUv(const Sphere& s, const Vec3f& p, Vec3f& tu, Vec3f& tv) {
               sinPhi = sinTheta > 0 ? q.z / sinTheta : 0;
   tv = -kPi * s.radius * Vec3f{q.y * cosPhi, -sinTheta, q.y * sinPhi};
   return {(phi < 0 ? phi + 2 * kPi : phi) / (2 * kPi), 1 - theta / kPi};
+}
+
+// The world's most common hits (static flat meshes, static spheres, planes) worked out in SSE
+// lanes x, y, z and a fourth nobody reads, with the Vec3f code's operations in the same order
+// (so the same bits): as Vec3f, GCC split each vector into a pair and a single and spilled them.
+using F4 = float __attribute__((vector_size(16)));
+using I4 = int32_t __attribute__((vector_size(16)));
+using F2 = float __attribute__((vector_size(8)));
+
+// One 8-byte and one 4-byte load: element by element, GCC moved x and y through a register.
+[[gnu::always_inline]] inline F4 lanesOf(const Vec3f& v) {
+  double xy;
+  std::memcpy(&xy, &v.x, sizeof xy);
+  return (F4)_mm_movelh_ps(_mm_castpd_ps(_mm_set_sd(xy)), _mm_set_ss(v.z));
+}
+[[gnu::always_inline]] inline F4 abs4(const F4& v) {
+  return (F4)((I4)v & std::numeric_limits<int32_t>::max());
+}
+// dot's sum, (x + y) + z.
+[[gnu::always_inline]] inline float sum3(const F4& v) { return v[0] + v[1] + v[2]; }
+// storeWhole's widths (8 + 4 bytes).
+[[gnu::always_inline]] inline void storeLanes(Vec3f& dst, const F4& v) {
+  const F2 xy = __builtin_shufflevector(v, v, 0, 1);
+  std::memcpy(&dst.x, &xy, sizeof xy);
+  dst.z = v[2];
 }
 
 }  // namespace
@@ -121,23 +150,85 @@ size_t Scene::timeSteps(const Geometry& g) const {
   }
 }
 
-void Scene::shadingPoint(const Ray& ray, const Hit& hit, ShadingPoint& sp) const {
-  GLINT_CHECK(bool(hit));
-  // Object space = world space outside instances; inside, go through the instance transform.
-  // (A pointer, not an optional Transform, whose 128 bytes GCC cleared on every call.)
-  if (hit.instId == kInvalidId) {
-    sp.origin = hit.geomId;
-    return shadingPoint<false>(ray, hit, nullptr, sp);
+bool Scene::worldPointInLanes(const Ray& ray, const Hit& hit, ShadingPoint& sp) const {
+  const Geometry& g = groups[0].geometries[hit.geomId];
+  F4 p, pError, n;
+  switch (g.kind) {
+    case GeomKind::Mesh: {  // trianglePoint
+      const TriangleMesh& m = meshes[g.index];
+      if (m.deforming() || m.smooth()) return false;
+      const uint32_t* tri = &m.indices[3 * size_t(hit.primId)];
+      const F4 p0 = lanesOf(m.positions[tri[0]]), p1 = lanesOf(m.positions[tri[1]]),
+               p2 = lanesOf(m.positions[tri[2]]);
+      const float b0 = 1 - hit.u - hit.v;
+      const F4 a = b0 * p0, b = hit.u * p1, c = hit.v * p2;
+      p = a + b + c;
+      pError = gamma(7) * (abs4(a) + abs4(b) + abs4(c));
+      const F4 e1 = p1 - p0, e2 = p2 - p0;
+      n = __builtin_shufflevector(e1, e1, 1, 2, 0, 3) *
+              __builtin_shufflevector(e2, e2, 2, 0, 1, 3) -
+          __builtin_shufflevector(e1, e1, 2, 0, 1, 3) * __builtin_shufflevector(e2, e2, 1, 2, 0, 3);
+      break;
+    }
+    case GeomKind::Sphere: {  // spherePoint
+      if (!sphereCenterKeys[g.index].empty()) return false;
+      const Sphere& s = spheres[g.index];
+      const F4 center = lanesOf(s.center);
+      n = (lanesOf(ray.o) + hit.t * lanesOf(ray.d)) - center;
+      const F4 q = n * (s.radius / std::sqrt(sum3(n * n)));
+      p = center + q;
+      pError = gamma(5) * abs4(q) + gamma(1) * abs4(p);
+      break;
+    }
+    case GeomKind::Plane: {  // projectOntoPlane
+      const F4 onRay = lanesOf(ray.o) + hit.t * lanesOf(ray.d);
+      const F4 point = lanesOf(planes[g.index].point);
+      n = lanesOf(planes[g.index].normal);
+      const F4 rel = onRay - point;
+      p = onRay - sum3(rel * n) * n;
+      pError = gamma(6) * (abs4(onRay) + abs4(point) + abs4(rel));
+      break;
+    }
+    default:
+      return false;
   }
-  sp.origin = hit.instId;
-  const Transform worldFromObject =
-      instances[groups[0].geometries[hit.instId].index].transformAt(ray.time);
-  shadingPoint<true>(ray, hit, &worldFromObject, sp);
+  sp.t = hit.t;
+  sp.materialId = g.materialId;
+  sp.objectId = g.objectId;
+  storeLanes(sp.p, p);
+  storeLanes(sp.pError, pError);
+  const F4 ng = n * (1.0f / std::sqrt(sum3(n * n)));
+  storeLanes(sp.ng, ng);
+  storeLanes(sp.ns, ng);
+  sp.lifted = false;
+  if (features.surfaceCoordinates || features.vertexColors) [[unlikely]]
+    addSurfaceData(g, hit, {p[0], p[1], p[2]}, ray.time, nullptr, sp);
+  return true;
 }
 
+void Scene::addSurfaceData(const Geometry& g, const Hit& hit, const Vec3f& pObject, float time,
+                           const Transform* worldFromObject, ShadingPoint& sp) const {
+  // A CSG solid's operands carry their own materials: its hits always compute them.
+  if (features.surfaceCoordinates &&
+      (g.kind == GeomKind::Csg || features.readsCoordinates(g.materialId))) [[unlikely]]
+    surfaceCoordinates(g, hit, pObject, time, worldFromObject, sp);
+  if (features.vertexColors) [[unlikely]] {
+    sp.vertexColor = Rgb{1, 1, 1};
+    if (g.kind == GeomKind::Mesh && !meshes[g.index].colors.empty()) {
+      const TriangleMesh& m = meshes[g.index];
+      const uint32_t* tri = &m.indices[3 * size_t(hit.primId)];
+      sp.vertexColor = m.colors[tri[0]] * (1 - hit.u - hit.v) + m.colors[tri[1]] * hit.u +
+                       m.colors[tri[2]] * hit.v;
+    }
+  }
+}
+
+// Out of line: inlined, its registers and stack were saved and restored on every hit that
+// worldPointInLanes takes.
 template <bool kInstanced>
-void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldFromObject,
-                         ShadingPoint& sp) const {
+[[gnu::noinline]] void Scene::shadingPoint(const Ray& ray, const Hit& hit,
+                                           const Transform* worldFromObject,
+                                           ShadingPoint& sp) const {
   if (!kInstanced) worldFromObject = nullptr;  // so the world's copy drops the transform's code
   const Geometry& g = kInstanced ? geometry(hit) : groups[0].geometries[hit.geomId];
   sp.t = hit.t;
@@ -233,19 +324,28 @@ void Scene::shadingPoint(const Ray& ray, const Hit& hit, const Transform* worldF
   storeWhole(sp.ns, smoothMesh ? smoothNormal(*smoothMesh, hit, worldFromObject, ng) : ng);
   sp.lifted = smoothMesh != nullptr;
   if (smoothMesh) storeWhole(sp.shadowLift, worldFromObject ? worldFromObject->vector(lift) : lift);
-  // A CSG solid's operands carry their own materials: its hits always compute them.
-  if (features.surfaceCoordinates &&
-      (g.kind == GeomKind::Csg || features.readsCoordinates(g.materialId))) [[unlikely]]
-    surfaceCoordinates(g, hit, pObject, ray.time, worldFromObject, sp);
-  if (features.vertexColors) [[unlikely]] {
-    sp.vertexColor = Rgb{1, 1, 1};
-    if (g.kind == GeomKind::Mesh && !meshes[g.index].colors.empty()) {
-      const TriangleMesh& m = meshes[g.index];
-      const uint32_t* tri = &m.indices[3 * size_t(hit.primId)];
-      sp.vertexColor = m.colors[tri[0]] * (1 - hit.u - hit.v) + m.colors[tri[1]] * hit.u +
-                       m.colors[tri[2]] * hit.v;
-    }
+  if (features.surfaceCoordinates || features.vertexColors) [[unlikely]]
+    addSurfaceData(g, hit, pObject, ray.time, worldFromObject, sp);
+}
+
+void Scene::shadingPoint(const Ray& ray, const Hit& hit, ShadingPoint& sp) const {
+  GLINT_CHECK(bool(hit));
+  // Object space = world space outside instances; inside, go through the instance transform.
+  // (A pointer, not an optional Transform, whose 128 bytes GCC cleared on every call.)
+  if (hit.instId == kInvalidId) {
+    sp.origin = hit.geomId;
+    if (worldPointInLanes(ray, hit, sp)) [[likely]]
+      return;
+    return shadingPoint<false>(ray, hit, nullptr, sp);
   }
+  instancePoint(ray, hit, sp);
+}
+
+void Scene::instancePoint(const Ray& ray, const Hit& hit, ShadingPoint& sp) const {
+  sp.origin = hit.instId;
+  const Transform worldFromObject =
+      instances[groups[0].geometries[hit.instId].index].transformAt(ray.time);
+  shadingPoint<true>(ray, hit, &worldFromObject, sp);
 }
 
 void Scene::surfaceCoordinates(const Geometry& g, const Hit& hit, const Vec3f& p, float time,
