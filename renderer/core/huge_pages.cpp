@@ -28,10 +28,11 @@ void* allocateBuffer(size_t bytes) {
 }
 
 void freeBuffer(void* p, size_t bytes) noexcept {
+  // Unsized: Clang takes sized deallocation only with -fsized-deallocation.
   if (bytes < kHugePageBytes)
-    ::operator delete(p, bytes);
+    ::operator delete(p);
   else
-    ::operator delete(p, roundedToHugePages(bytes), kHugePageAlignment);
+    ::operator delete(p, kHugePageAlignment);
 }
 
 }  // namespace glint
