@@ -153,7 +153,9 @@ std::shared_ptr<const ImageTexture> loadedTexture(const std::string& path, void*
   // Reading it whole now refuses a truncated or corrupt image here, with its reason, instead
   // of rendering black.
   const size_t row = size_t(info.width) * size_t(channels);
-  std::vector<float> texels(row * size_t(info.height));
+  std::vector<float> texels;
+  texels.reserve(row * size_t(info.height) + 1);  // with the pyramid's padding float
+  texels.resize(row * size_t(info.height));
   for (int y0 = 0; y0 < info.height; y0 += bandRows) {
     const int y1 = std::min(info.height, y0 + bandRows);
     char readError[512] = "";

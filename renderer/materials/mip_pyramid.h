@@ -19,7 +19,9 @@ class MipPyramid {
   // the number of points a lookup takes along the major axis is at most this.
   static constexpr int kMaxAnisotropy = 8;
 
-  // `texels`: width × height texels of `channels` floats (1 to 4), row 0 at the top.
+  // `texels`: width × height texels of `channels` floats (1 to 4), row 0 at the top. Each
+  // level holds one float more, read and never used by lookups of three channels at once: a
+  // vector of `texels` with room for it is not copied.
   MipPyramid(int width, int height, int channels, std::vector<float> texels);
 
   // The bytes a pyramid of width × height texels of `channels` floats holds: its finest level
@@ -30,7 +32,7 @@ class MipPyramid {
   int height() const { return levels_[0].height; }
   int channels() const { return channels_; }
   int levelCount() const { return int(levels_.size()); }
-  // The finest level's texels as given.
+  // The finest level's texels as given, and the padding float after them.
   const std::vector<float>& texels() const { return levels_[0].texels; }
   // Level `level`'s size and texel (x, y), channel c: what the box filter made of the finest.
   int levelWidth(int level) const { return levels_[size_t(level)].width; }
@@ -49,8 +51,10 @@ class MipPyramid {
     int width = 0, height = 0;
     std::vector<float> texels;
   };
+  friend void filterPyramid(const MipPyramid& pyramid, const ImageFootprint& at, int first,
+                            int count, float* out);
   template <int kCount>
-  void filterChannels(const ImageFootprint& at, int first, float* out) const;
+  inline void filterChannels(const ImageFootprint& at, int first, float* out) const;
   // (rs, rt): the lookup's (s, t) reduced to one period of its wrap modes.
   template <int kCount>
   [[gnu::always_inline]] inline void bilinear(const Level& level, float rs, float rt,
