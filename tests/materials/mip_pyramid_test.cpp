@@ -52,6 +52,23 @@ TEST(MipPyramid, ATexelCentreWithoutFootprintIsThatTexel) {
   EXPECT_FLOAT_EQ(rgb[2], 206);
 }
 
+TEST(MipPyramid, ThreeChannelsOfEachLevelsLastTexelAreThatTexel) {
+  // Three channels are read four at a time: at the last texel of a level the fourth is the
+  // level's padding, never part of the result. Every value here is a sum of quarters of small
+  // integers, exact in float.
+  const MipPyramid p = pyramidOf(4, 4, 3, [](int x, int y, int c) { return x + 4 * y + 100 * c; });
+  const auto rgbAt = [&](Vec2f st, Vec2f axis) {
+    std::vector<float> rgb(3);
+    p.filter({st, axis, {axis.y, axis.x}, TextureWrap::ClampToEdge, TextureWrap::ClampToEdge}, 0, 3,
+             rgb.data());
+    return rgb;
+  };
+  // Texel (3, 3), the finest level's last, without a footprint.
+  EXPECT_EQ(rgbAt({3.5f / 4, 3.5f / 4}, {0, 0}), (std::vector<float>{15, 115, 215}));
+  // A footprint twice the image's width reads the 1 × 1 level: the image's mean, 7.5 + 100c.
+  EXPECT_EQ(rgbAt({0.5f, 0.5f}, {2, 0}), (std::vector<float>{7.5f, 107.5f, 207.5f}));
+}
+
 TEST(MipPyramid, WrapModesContinueTheImageAsTheySay) {
   // One row of 4 texels 0, 1, 2, 3, read left of the image's edge: at s = −1/8, the centre of
   // texel −1, repeat gives texel 3, clamp texel 0, mirror texel 0 (−1 mirrors to 0); at
