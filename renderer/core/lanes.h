@@ -1,7 +1,8 @@
 #pragma once
-// Code written once for one value and for eight side by side. U names the 32-bit unsigned
-// lanes: uint32_t for one, or eight in a GNU vector type (GCC and Clang share the extension;
-// for baseline x86-64 a vector of eight 32-bit lanes is two SSE registers). Lanes<U> gives the
+// Code written once for one value and for eight or sixteen side by side. U names the 32-bit
+// unsigned lanes: uint32_t for one, or eight or sixteen in a GNU vector type (GCC and Clang share
+// the extension; for baseline x86-64 a vector of eight 32-bit lanes is two SSE registers, and
+// sixteen are meant for code built for AVX-512, where they are one register). Lanes<U> gives the
 // matching float, double and 64-bit types; the helpers below are the few operations whose
 // spelling differs between a scalar and a vector. The sampler draws its points with these
 // (sampler.cpp). Everything here is inlined, so vectors never cross a call boundary, and GCC's
@@ -20,6 +21,11 @@ using I32x8 = int32_t __attribute__((vector_size(32)));
 using F32x8 = float __attribute__((vector_size(32)));
 using U64x8 = uint64_t __attribute__((vector_size(64)));
 using F64x8 = double __attribute__((vector_size(64)));
+using U32x16 = uint32_t __attribute__((vector_size(64)));
+using I32x16 = int32_t __attribute__((vector_size(64)));
+using F32x16 = float __attribute__((vector_size(64)));
+using U64x16 = uint64_t __attribute__((vector_size(128)));
+using F64x16 = double __attribute__((vector_size(128)));
 
 template <class U>
 struct Lanes;
@@ -40,11 +46,41 @@ struct Lanes<U32x8> {
   using F64 = F64x8;
 };
 
+template <>
+struct Lanes<U32x16> {
+  static constexpr int kWidth = 16;
+  using I32 = I32x16;
+  using F32 = F32x16;
+  using U64 = U64x16;
+  using F64 = F64x16;
+};
+
+// Sixteen 32-bit lanes widened to 64 bits half by half, in builds without optimisation only:
+// there GCC 12 fails on the whole conversion for AVX-512 (an internal compiler error), and
+// optimised, the halves' shuffles stay in the code.
+#ifdef __OPTIMIZE__
+inline constexpr bool kWidenInHalves = false;
+#else
+inline constexpr bool kWidenInHalves = true;
+#endif
+template <class To, class Half, class ToHalf, class From>
+[[gnu::always_inline]] inline To widenInHalves(const From& x) {
+  const Half low = __builtin_shufflevector(x, x, 0, 1, 2, 3, 4, 5, 6, 7);
+  const Half high = __builtin_shufflevector(x, x, 8, 9, 10, 11, 12, 13, 14, 15);
+  const ToHalf a = __builtin_convertvector(low, ToHalf), b = __builtin_convertvector(high, ToHalf);
+  return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15);
+}
 // Each lane converted by value, as static_cast converts one.
 template <class To, class From>
 [[gnu::always_inline]] inline To convertLanes(From x) {
   if constexpr (std::is_arithmetic_v<From>)
     return static_cast<To>(x);
+  else if constexpr (kWidenInHalves && std::is_same_v<From, U32x16> && std::is_same_v<To, U64x16>)
+    return widenInHalves<To, U32x8, U64x8>(x);
+  else if constexpr (kWidenInHalves && std::is_same_v<From, I32x16> && std::is_same_v<To, F64x16>)
+    return widenInHalves<To, I32x8, F64x8>(x);
+  else if constexpr (kWidenInHalves && std::is_same_v<From, F32x16> && std::is_same_v<To, F64x16>)
+    return widenInHalves<To, F32x8, F64x8>(x);
   else
     return __builtin_convertvector(x, To);
 }
@@ -65,6 +101,11 @@ template <class T, class Comparison>
   using U64x4 = uint64_t __attribute__((vector_size(32)));
   const auto wide = std::bit_cast<U64x4>(x);
   return ((wide[0] | wide[1]) | (wide[2] | wide[3])) != 0;
+}
+[[gnu::always_inline]] inline bool anyLane(U32x16 x) {
+  const auto wide = std::bit_cast<U64x8>(x);
+  return (((wide[0] | wide[1]) | (wide[2] | wide[3])) |
+          ((wide[4] | wide[5]) | (wide[6] | wide[7]))) != 0;
 }
 
 }  // namespace glint

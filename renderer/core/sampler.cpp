@@ -1,6 +1,6 @@
 // The constructions are written once, as templates over the lanes U of core/lanes.h:
-// uint32_t draws one point, U32x8 eight side by side, and both give the same bits (Sampler.
-// LanesMatchOnePointAtATime).
+// uint32_t draws one point, U32x8 eight and U32x16 sixteen side by side, and all give the same
+// bits (Sampler.LanesMatchOnePointAtATime).
 #include "core/sampler.h"
 
 #include <algorithm>
@@ -76,11 +76,20 @@ template <class U>
     out[0] = {x, y};
   } else if (size < Lanes<U>::kWidth) {
     for (int l = 0; l < size; ++l) out[l] = {x[l], y[l]};
+  } else if constexpr (Lanes<U>::kWidth == 8) {
+    // Two interleaves of eight: one of sixteen went through the stack a float at a time, and
+    // the stores' reloads waited on it (store forwarding).
+    const F32x8 low = __builtin_shufflevector(x, y, 0, 8, 1, 9, 2, 10, 3, 11);
+    const F32x8 high = __builtin_shufflevector(x, y, 4, 12, 5, 13, 6, 14, 7, 15);
+    std::memcpy(static_cast<void*>(out), &low, sizeof low);
+    std::memcpy(static_cast<void*>(out + 4), &high, sizeof high);
   } else {
-    using F32x16 = float __attribute__((vector_size(64)));
-    const F32x16 xy =
-        __builtin_shufflevector(x, y, 0, 8, 1, 9, 2, 10, 3, 11, 4, 12, 5, 13, 6, 14, 7, 15);
-    std::memcpy(static_cast<void*>(out), &xy, sizeof xy);
+    const F32x16 low =
+        __builtin_shufflevector(x, y, 0, 16, 1, 17, 2, 18, 3, 19, 4, 20, 5, 21, 6, 22, 7, 23);
+    const F32x16 high =
+        __builtin_shufflevector(x, y, 8, 24, 9, 25, 10, 26, 11, 27, 12, 28, 13, 29, 14, 30, 15, 31);
+    std::memcpy(static_cast<void*>(out), &low, sizeof low);
+    std::memcpy(static_cast<void*>(out + 8), &high, sizeof high);
   }
 }
 
@@ -107,8 +116,8 @@ struct JitterGrid {
 };
 
 // What a point's draw reads of its pattern: one pattern's, the same in every lane (K = uint32_t,
-// K64 = uint64_t), or each lane's own (K = U32x8, K64 = U64x8: a block of points drawn from
-// several pixels' sets of one size).
+// K64 = uint64_t), or each lane's own (K = U32x8 or U32x16, K64 = U64x8 or U64x16: a block of
+// points drawn from several pixels' sets of one size).
 template <class K, class K64>
 struct PatternLanes {
   K scramble[3];
@@ -117,11 +126,12 @@ struct PatternLanes {
 PatternLanes<uint32_t, uint64_t> lanesOf(const SamplePattern& p) {
   return {{p.scramble[0], p.scramble[1], p.scramble[2]}, p.hash};
 }
-// Lane l from *patterns[l].
-[[gnu::always_inline]] inline PatternLanes<U32x8, U64x8> lanesOf(
+// Lane l of block U from *patterns[l].
+template <class U>
+[[gnu::always_inline]] inline PatternLanes<U, typename Lanes<U>::U64> lanesOf(
     const SamplePattern* const* patterns) {
-  PatternLanes<U32x8, U64x8> p;
-  for (int l = 0; l < 8; ++l) {
+  PatternLanes<U, typename Lanes<U>::U64> p;
+  for (int l = 0; l < Lanes<U>::kWidth; ++l) {
     for (int c = 0; c < 3; ++c) p.scramble[c][l] = patterns[l]->scramble[c];
     p.hash[l] = patterns[l]->hash;
   }
@@ -246,9 +256,17 @@ class RangeRun {
   RangeRun(const SamplePattern& pattern, uint32_t first)
       : lanes_(lanesOf(pattern)), first_(first) {}
   uint32_t index(int j) const { return first_ + static_cast<uint32_t>(j); }
-  U32x8 indexBlock(int j) const { return index(j) + U32x8{0, 1, 2, 3, 4, 5, 6, 7}; }
+  template <class U>
+  [[gnu::always_inline]] U indexBlock(int j) const {
+    U index;
+    for (int l = 0; l < Lanes<U>::kWidth; ++l) index[l] = static_cast<uint32_t>(l);
+    return this->index(j) + index;
+  }
   const PatternLanes<uint32_t, uint64_t>& patternAt(int) const { return lanes_; }
-  const PatternLanes<uint32_t, uint64_t>& patternBlock(int, int) const { return lanes_; }
+  template <class U>
+  [[gnu::always_inline]] const PatternLanes<uint32_t, uint64_t>& patternBlock(int, int) const {
+    return lanes_;
+  }
 
  private:
   PatternLanes<uint32_t, uint64_t> lanes_;
@@ -260,18 +278,22 @@ class ListRun {
   ListRun(const SamplePattern* const* patterns, const uint32_t* flat)
       : patterns_(patterns), flat_(flat) {}
   uint32_t index(int j) const { return flat_[j]; }
-  U32x8 indexBlock(int j) const {
-    U32x8 index;
+  template <class U>
+  [[gnu::always_inline]] U indexBlock(int j) const {
+    U index;
     std::memcpy(&index, flat_ + j, sizeof index);
     return index;
   }
   PatternLanes<uint32_t, uint64_t> patternAt(int j) const { return lanesOf(*patterns_[j]); }
-  // Lanes j .. j + 7, those at or past `size` repeating point size − 1.
-  PatternLanes<U32x8, U64x8> patternBlock(int j, int size) const {
-    if (j + 8 <= size) return lanesOf(patterns_ + j);
-    const SamplePattern* tail[8];
-    for (int l = 0; l < 8; ++l) tail[l] = patterns_[std::min(j + l, size - 1)];
-    return lanesOf(tail);
+  // The lanes of block U from j on, those at or past `size` repeating point size − 1.
+  template <class U>
+  [[gnu::always_inline]] PatternLanes<U, typename Lanes<U>::U64> patternBlock(int j,
+                                                                              int size) const {
+    constexpr int kWidth = Lanes<U>::kWidth;
+    if (j + kWidth <= size) return lanesOf<U>(patterns_ + j);
+    const SamplePattern* tail[kWidth];
+    for (int l = 0; l < kWidth; ++l) tail[l] = patterns_[std::min(j + l, size - 1)];
+    return lanesOf<U>(tail);
   }
 
  private:
@@ -279,49 +301,94 @@ class ListRun {
   const uint32_t* flat_;
 };
 
+// A run seen from its point `from` on.
+template <class Run>
+struct Offset {
+  const Run& run;
+  int from;
+  uint32_t index(int j) const { return run.index(from + j); }
+  template <class U>
+  [[gnu::always_inline]] U indexBlock(int j) const {
+    return run.template indexBlock<U>(from + j);
+  }
+  template <class U>
+  [[gnu::always_inline]] decltype(auto) patternBlock(int j, int size) const {
+    return run.template patternBlock<U>(from + j, from + size);
+  }
+};
+
 // Points [0, size) of a run, size ≥ kLanesFrom, drawn by draw(index lanes, pattern lanes,
-// lanes used, out) eight side by side. Fewer points are drawn one at a time (drawPoint): a block
-// of lanes is a long chain of dependent vector multiplies, worth it only for a few points or
-// more.
+// lanes used, out) in blocks of U's lanes side by side; a last block of eight or fewer in eight
+// lanes when U holds more. Fewer points are drawn one at a time (drawPoint): a block of lanes is
+// a long chain of dependent vector multiplies, worth it only for a few points or more.
 constexpr int kLanesFrom = 3;
-template <class Run, class Draw>
+template <class U, class Run, class Draw>
 [[gnu::always_inline]] inline void drawRun(const Run& run, int size, Vec2f* out, const Draw& draw) {
+  constexpr int kWidth = Lanes<U>::kWidth;
   int j = 0;
-  for (; j + 8 <= size; j += 8) draw(run.indexBlock(j), run.patternBlock(j, size), 8, out + j);
+  for (; j + kWidth <= size; j += kWidth)
+    draw(run.template indexBlock<U>(j), run.template patternBlock<U>(j, size), kWidth, out + j);
   if (j == size) return;
+  if constexpr (kWidth > 8)
+    if (size - j <= 8) return drawRun<U32x8>(Offset<Run>{run, j}, size - j, out + j, draw);
   // The last block's unused lanes repeat its last point: an index outside the set could start
   // a permutation's cycle walk on a cycle that never enters the domain.
-  U32x8 index;
-  for (int l = 0; l < 8; ++l) index[l] = run.index(std::min(j + l, size - 1));
-  draw(index, run.patternBlock(j, size), size - j, out + j);
+  U index;
+  for (int l = 0; l < kWidth; ++l) index[l] = run.index(std::min(j + l, size - 1));
+  draw(index, run.template patternBlock<U>(j, size), size - j, out + j);
 }
 
-template <class Run>
+template <class U, class Run>
 [[gnu::always_inline]] inline void drawSet(SamplerKind kind, uint32_t n, const Run& run, int size,
                                            Vec2f* out) {
   if (kind == SamplerKind::Sobol)
-    return drawRun(
+    return drawRun<U>(
         run, size,
         out, [&](auto i, const auto& p, int lanes, Vec2f* o) __attribute__((always_inline)) {
           sobol2D(p, i, lanes, o);
         });
   const StratifiedSet set(n);
-  drawRun(
+  drawRun<U>(
       run, size,
       out, [&](auto i, const auto& p, int lanes, Vec2f* o) __attribute__((always_inline)) {
         set.draw(i, p, lanes, o);
       });
 }
 
-// Points of Sobol or stratified sets of n points, at least kLanesFrom, in lanes: [first, first
-// + size) of `pattern` where it is given, else flat[j] of *patterns[j]. Built for baseline
-// x86-64 and for AVX2, chosen when the program loads by what the CPU has: AVX2 holds a block's
-// 64-bit and double lanes in registers, which SSE2 splits and passes through memory.
-[[gnu::target_clones("avx2", "default")]] void drawSetRun(
+template <class U>
+[[gnu::always_inline]] inline void drawSetRunIn(SamplerKind kind, uint32_t n,
+                                                const SamplePattern* pattern, uint32_t first,
+                                                const SamplePattern* const* patterns,
+                                                const uint32_t* flat, int size, Vec2f* out) {
+  if (pattern) return drawSet<U>(kind, n, RangeRun(*pattern, first), size, out);
+  drawSet<U>(kind, n, ListRun(patterns, flat), size, out);
+}
+
+// drawSetRun in blocks of eight, built for baseline x86-64 and for AVX2, chosen when the program
+// loads by what the CPU has: AVX2 holds a block's 64-bit and double lanes in registers, which
+// SSE2 splits and passes through memory.
+[[gnu::target_clones("avx2", "default")]] void drawSetRunIn8(
     SamplerKind kind, uint32_t n, const SamplePattern* pattern, uint32_t first,
     const SamplePattern* const* patterns, const uint32_t* flat, int size, Vec2f* out) {
-  if (pattern) return drawSet(kind, n, RangeRun(*pattern, first), size, out);
-  drawSet(kind, n, ListRun(patterns, flat), size, out);
+  drawSetRunIn<U32x8>(kind, n, pattern, first, patterns, flat, size, out);
+}
+// ... and in blocks of sixteen for AVX-512, which holds them in one register each and multiplies
+// 64-bit lanes in one instruction: two blocks' chains of dependent multiplies side by side.
+[[gnu::target("avx512f,avx512dq,avx512vl")]] void drawSetRunIn16(
+    SamplerKind kind, uint32_t n, const SamplePattern* pattern, uint32_t first,
+    const SamplePattern* const* patterns, const uint32_t* flat, int size, Vec2f* out) {
+  drawSetRunIn<U32x16>(kind, n, pattern, first, patterns, flat, size, out);
+}
+const bool kAvx512 = (__builtin_cpu_init(), __builtin_cpu_supports("avx512f") &&
+                                                __builtin_cpu_supports("avx512dq") &&
+                                                __builtin_cpu_supports("avx512vl"));
+
+// Points of Sobol or stratified sets of n points, at least kLanesFrom, in lanes: [first, first
+// + size) of `pattern` where it is given, else flat[j] of *patterns[j].
+void drawSetRun(SamplerKind kind, uint32_t n, const SamplePattern* pattern, uint32_t first,
+                const SamplePattern* const* patterns, const uint32_t* flat, int size, Vec2f* out) {
+  if (kAvx512) return drawSetRunIn16(kind, n, pattern, first, patterns, flat, size, out);
+  drawSetRunIn8(kind, n, pattern, first, patterns, flat, size, out);
 }
 
 // The point at flat index `index` of a Sobol or stratified set of n points, alone. Apart from

@@ -190,11 +190,13 @@ INSTANTIATE_TEST_SUITE_P(Counts, StratifiedCounts,
                                            4097, 4099));
 
 TEST(Sampler, LanesMatchOnePointAtATime) {
-  // Runs of three or more points are drawn eight side by side (sampler.cpp: vector lanes, where
-  // a permutation's cycle walking continues only in the lanes still outside its domain); one or
+  // Runs of three or more points are drawn eight side by side, or sixteen where the CPU has
+  // AVX-512, a last block of eight or fewer in eight (sampler.cpp: vector lanes, where a
+  // permutation's cycle walking continues only in the lanes still outside its domain); one or
   // two points are drawn alone. Both must give the same bits, for every kind, for sets of any
   // size (powers of two up to 2^28, where rounding to float often lands on a stratum's edge
-  // and steps back, and sizes that are not), for runs that start anywhere and end mid-block.
+  // and steps back, and sizes that are not), for runs that start anywhere and end mid-block
+  // (13 and 29: a last block of more than eight; 40: of eight).
   std::vector<int> sizes;
   for (int b = 0; b <= 28; ++b) sizes.push_back(1 << b);
   for (int n : {3, 9, 12, 50, 1000, 4097, 4099, 99991, (1 << 28) - 1}) sizes.push_back(n);
@@ -206,7 +208,7 @@ TEST(Sampler, LanesMatchOnePointAtATime) {
         for (const uint32_t dim : {dimension(Dim::Pixel), dimension(Dim::Light, 1, 2)}) {
           const SamplePattern pattern = s.pattern(s.pixelKey(pixel, 9), dim);
           const uint64_t spread = hashKey(static_cast<uint64_t>(n), static_cast<uint64_t>(pixel));
-          for (const int size : {3, 8, 13, 40}) {
+          for (const int size : {3, 8, 13, 29, 40}) {
             const int first = n <= size ? 0 : static_cast<int>(spread % uint64_t(n - size));
             const int count = std::min(size, n - first);
             Vec2f together[40];
@@ -238,11 +240,11 @@ TEST(Sampler, SubSampleRunsContinueIntoTheNextSample) {
 }
 
 TEST(Sampler, PointsOfSeveralPixelsSetsDrawnTogetherMatchOnePointAtATime) {
-  // get2DAt draws blocks of eight lanes whose points come from different pixels' sets, each
-  // lane with its own keys (sampler.cpp); each point must be what it is drawn alone, for every
-  // kind, for sets of many sizes (both halves of an odd spp differ in size, which splits the
-  // lanes into runs), for points anywhere in their sets, in runs ending mid-block (the lanes'
-  // tail repeats the last point) and of every length up to a few blocks.
+  // get2DAt draws blocks of eight (or sixteen) lanes whose points come from different pixels'
+  // sets, each lane with its own keys (sampler.cpp); each point must be what it is drawn alone,
+  // for every kind, for sets of many sizes (both halves of an odd spp differ in size, which
+  // splits the lanes into runs), for points anywhere in their sets, in runs ending mid-block
+  // (the lanes' tail repeats the last point) and of every length up to a few blocks.
   for (const SamplerKind kind :
        {SamplerKind::Regular, SamplerKind::Random, SamplerKind::Stratified, SamplerKind::Sobol})
     for (const int spp : {1, 2, 3, 4, 7, 16, 33, 64, 1000, 4097}) {
