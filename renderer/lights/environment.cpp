@@ -8,6 +8,7 @@
 #include "core/frame.h"
 #include "core/lanes.h"
 #include "core/sampling.h"
+#include "core/sin_cos.h"
 #include "lights/guided_cdf.h"
 
 namespace glint {
@@ -184,7 +185,8 @@ void EnvironmentLight::sample(const Vec3f& n, const Vec2f* u, int count,
   constexpr int kLanes = 4, kBlock = 32;
   alignas(16) int xs[kBlock], ys[kBlock];
   alignas(16) float us[kBlock], vs[kBlock], rowLo[kBlock], rowHi[kBlock], texelLo[kBlock],
-      texelHi[kBlock], theta[kBlock], phi[kBlock];
+      texelHi[kBlock], theta[kBlock], phi[kBlock], sinTheta[kBlock], cosTheta[kBlock],
+      sinPhi[kBlock], cosPhi[kBlock];
   const auto load = [](const auto* a) {
     using T = std::remove_cv_t<std::remove_pointer_t<decltype(a)>>;
     std::conditional_t<std::is_same_v<T, int>, I32x4, F32x4> v;
@@ -230,15 +232,18 @@ void EnvironmentLight::sample(const Vec3f& n, const Vec2f* u, int count,
                 m.rotation,
             phi + i);
     }
+    // The sines and cosines in lanes too, the same floats as std::sin's and std::cos's: one
+    // sample at a time they were a large part of a sky's samples.
+    sinCos(theta, lanes, sinTheta, cosTheta);
+    sinCos(phi, lanes, sinPhi, cosPhi);
     for (int i = 0; i < size; ++i) {
-      const float sinTheta = std::sin(theta[i]);
       EnvironmentSample& s = out[first + i];
-      s.wi = {sinTheta * std::sin(phi[i]), std::cos(theta[i]), -sinTheta * std::cos(phi[i])};
+      s.wi = {sinTheta[i] * sinPhi[i], cosTheta[i], -sinTheta[i] * cosPhi[i]};
       const size_t at = m.indexOf(xs[i], ys[i]);
       const float d = m.density[at];
       // The (u, v) square maps onto the sphere with dω = 2π² sin θ du dv (sampleAt).
       s.radianceOverPdf =
-          d > 0 && sinTheta > 0 ? m.image.texels[at] * (2 * kPi * kPi * sinTheta / d) : Rgb{};
+          d > 0 && sinTheta[i] > 0 ? m.image.texels[at] * (2 * kPi * kPi * sinTheta[i] / d) : Rgb{};
     }
   }
 }
