@@ -1,5 +1,7 @@
 #include "lights/environment.h"
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -105,7 +107,114 @@ struct EnvironmentLight::Map {
     x = std::clamp(static_cast<int>(u * static_cast<float>(image.width)), 0, image.width - 1);
     y = std::clamp(static_cast<int>(v * static_cast<float>(image.height)), 0, image.height - 1);
   }
+  // Whether cellsInLanes may run: AVX2's gathers, and every table index an int.
+  bool searchesInLanes() const;
+  // cellOf's x and y, and the bounds of each cell's row and texel in the tables, for the
+  // samples (us[i], vs[i]), i in [0, count), count a multiple of 8: eight searches side by side.
+  void cellsInLanes(const float* us, const float* vs, int count, int* xs, int* ys, float* rowLo,
+                    float* rowHi, float* texelLo, float* texelHi) const;
 };
+
+namespace {
+
+const bool kHaveAvx2 = (__builtin_cpu_init(), __builtin_cpu_supports("avx2"));
+
+// std::upper_bound of u over table[base + lo, base + hi) in each of eight lanes, as the index
+// (from base) of the first entry above u, or hi: the same steps, each lane going on while its
+// range is not empty.
+[[gnu::target("avx2")]] inline __m256i upperBoundLanes(const float* table, __m256i base, __m256i lo,
+                                                       __m256i hi, __m256 u) {
+  const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1);
+  __m256i len = _mm256_sub_epi32(hi, lo);
+  for (__m256i active = _mm256_cmpgt_epi32(len, zero); !_mm256_testz_si256(active, active);
+       active = _mm256_cmpgt_epi32(len, zero)) {
+    const __m256i half = _mm256_srli_epi32(len, 1);
+    const __m256i middle = _mm256_add_epi32(lo, half);
+    const __m256 at = _mm256_mask_i32gather_ps(
+        _mm256_setzero_ps(), table, _mm256_add_epi32(base, middle), _mm256_castsi256_ps(active), 4);
+    // upper_bound's step: past the middle unless u < *middle.
+    const __m256i past =
+        _mm256_andnot_si256(_mm256_castps_si256(_mm256_cmp_ps(u, at, _CMP_LT_OQ)), active);
+    lo = _mm256_blendv_epi8(lo, _mm256_add_epi32(middle, one), past);
+    len = _mm256_blendv_epi8(half, _mm256_sub_epi32(_mm256_sub_epi32(len, half), one), past);
+  }
+  return lo;
+}
+
+// GuidedCdf::cell's clamp of the index found into [0, n).
+[[gnu::target("avx2")]] inline __m256i cellLanes(__m256i above, int n) {
+  return _mm256_min_epi32(
+      _mm256_max_epi32(_mm256_sub_epi32(above, _mm256_set1_epi32(1)), _mm256_setzero_si256()),
+      _mm256_set1_epi32(n - 1));
+}
+
+// All ones where x is in [0, 1).
+[[gnu::target("avx2")]] inline __m256i inUnitLanes(__m256 x) {
+  return _mm256_castps_si256(_mm256_and_ps(_mm256_cmp_ps(x, _mm256_setzero_ps(), _CMP_GE_OQ),
+                                           _mm256_cmp_ps(x, _mm256_set1_ps(1), _CMP_LT_OQ)));
+}
+
+// GuidedCdf::cell's guide bin of x, 0 outside `valid`.
+[[gnu::target("avx2")]] inline __m256i binLanes(__m256 x, int bins, __m256i valid) {
+  return _mm256_and_si256(
+      _mm256_cvttps_epi32(_mm256_mul_ps(x, _mm256_set1_ps(static_cast<float>(bins)))), valid);
+}
+
+}  // namespace
+
+bool EnvironmentLight::Map::searchesInLanes() const {
+  return kHaveAvx2 && double(image.height) * (double(image.width) + 1) < 0x1p31 &&
+         double(image.height) * (double(texelBins) + 1) < 0x1p31;
+}
+
+[[gnu::target("avx2")]] void EnvironmentLight::Map::cellsInLanes(const float* us, const float* vs,
+                                                                 int count, int* xs, int* ys,
+                                                                 float* rowLo, float* rowHi,
+                                                                 float* texelLo,
+                                                                 float* texelHi) const {
+  const int w = image.width, h = image.height;
+  const __m256i one = _mm256_set1_epi32(1), zero = _mm256_setzero_si256();
+  const auto* rowGuideData = reinterpret_cast<const int*>(rowGuide.data());
+  const auto* texelGuideData = reinterpret_cast<const int*>(texelGuide.data());
+  for (int i = 0; i < count; i += 8) {
+    const __m256 u = _mm256_loadu_ps(us + i), v = _mm256_loadu_ps(vs + i);
+    // The guide serves u in [0, 1) (GuidedCdf::cell); other lanes search from bin 0 here and
+    // are searched again one at a time below.
+    const __m256i valid = _mm256_and_si256(inUnitLanes(u), inUnitLanes(v));
+    const __m256i rowBin = binLanes(v, rowBins, valid);
+    const __m256i y = cellLanes(
+        upperBoundLanes(rowCdf.data(), zero, _mm256_i32gather_epi32(rowGuideData, rowBin, 4),
+                        _mm256_i32gather_epi32(rowGuideData, _mm256_add_epi32(rowBin, one), 4), v),
+        h);
+    const __m256i tableBase = _mm256_mullo_epi32(y, _mm256_set1_epi32(w + 1));
+    const __m256i guideAt = _mm256_add_epi32(
+        _mm256_mullo_epi32(y, _mm256_set1_epi32(texelBins + 1)), binLanes(u, texelBins, valid));
+    const __m256i x = cellLanes(
+        upperBoundLanes(
+            texelCdf.data(), tableBase, _mm256_i32gather_epi32(texelGuideData, guideAt, 4),
+            _mm256_i32gather_epi32(texelGuideData, _mm256_add_epi32(guideAt, one), 4), u),
+        w);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(xs + i), x);
+    _mm256_storeu_si256(reinterpret_cast<__m256i*>(ys + i), y);
+    _mm256_storeu_ps(rowLo + i, _mm256_i32gather_ps(rowCdf.data(), y, 4));
+    _mm256_storeu_ps(rowHi + i, _mm256_i32gather_ps(rowCdf.data(), _mm256_add_epi32(y, one), 4));
+    const __m256i texelAt = _mm256_add_epi32(tableBase, x);
+    _mm256_storeu_ps(texelLo + i, _mm256_i32gather_ps(texelCdf.data(), texelAt, 4));
+    _mm256_storeu_ps(texelHi + i,
+                     _mm256_i32gather_ps(texelCdf.data(), _mm256_add_epi32(texelAt, one), 4));
+    for (int invalid = ~_mm256_movemask_ps(_mm256_castsi256_ps(valid)) & 0xff; invalid != 0;
+         invalid &= invalid - 1) {
+      const int k = i + __builtin_ctz(static_cast<unsigned>(invalid));
+      ys[k] = rows().cell(vs[k]);
+      const GuidedCdf texels = texelsOfRow(ys[k]);
+      xs[k] = texels.cell(us[k]);
+      rowLo[k] = rowCdf[static_cast<size_t>(ys[k])];
+      rowHi[k] = rowCdf[static_cast<size_t>(ys[k]) + 1];
+      texelLo[k] = texels.cdf[xs[k]];
+      texelHi[k] = texels.cdf[xs[k] + 1];
+    }
+  }
+}
 
 EnvironmentLight::EnvironmentLight(const Rgb& radiance, int n) : samples(n), uniform_(radiance) {}
 
@@ -194,31 +303,46 @@ void EnvironmentLight::sample(const Vec3f& n, const Vec2f* u, int count,
     return v;
   };
   const auto store = [](auto v, auto* a) { std::memcpy(a, &v, sizeof v); };
+  const bool searchInLanes = m.searchesInLanes();
   for (int first = 0; first < count; first += kBlock) {
     const int size = std::min(kBlock, count - first);
-    for (int i = 0; i < size; ++i) {
-      const Vec2f ui = u[first + i];
-      const int y = m.rows().cell(ui.y);
-      const GuidedCdf texels = m.texelsOfRow(y);
-      const int x = texels.cell(ui.x);
-      const size_t at = m.indexOf(x, y);
-      __builtin_prefetch(&m.density[at]);
-      __builtin_prefetch(&m.image.texels[at]);
-      xs[i] = x;
-      ys[i] = y;
-      us[i] = ui.x;
-      vs[i] = ui.y;
-      rowLo[i] = m.rowCdf[static_cast<size_t>(y)];
-      rowHi[i] = m.rowCdf[static_cast<size_t>(y) + 1];
-      texelLo[i] = texels.cdf[x];
-      texelHi[i] = texels.cdf[x + 1];
-    }
     // Lanes past the block's end hold any cell; their values are never read.
     const int lanes = (size + kLanes - 1) / kLanes * kLanes;
-    for (int i = size; i < lanes; ++i) {
-      xs[i] = ys[i] = 0;
-      us[i] = vs[i] = rowLo[i] = texelLo[i] = 0;
-      rowHi[i] = texelHi[i] = 1;
+    if (searchInLanes) {
+      // Eight searches side by side: one at a time, their branches and dependent loads were
+      // the largest part of a sample after its sines.
+      const int searched = (size + 7) / 8 * 8;
+      for (int i = 0; i < size; ++i) us[i] = u[first + i].x, vs[i] = u[first + i].y;
+      for (int i = size; i < searched; ++i) us[i] = vs[i] = 0;
+      m.cellsInLanes(us, vs, searched, xs, ys, rowLo, rowHi, texelLo, texelHi);
+      for (int i = 0; i < size; ++i) {
+        const size_t at = m.indexOf(xs[i], ys[i]);
+        __builtin_prefetch(&m.density[at]);
+        __builtin_prefetch(&m.image.texels[at]);
+      }
+    } else {
+      for (int i = 0; i < size; ++i) {
+        const Vec2f ui = u[first + i];
+        const int y = m.rows().cell(ui.y);
+        const GuidedCdf texels = m.texelsOfRow(y);
+        const int x = texels.cell(ui.x);
+        const size_t at = m.indexOf(x, y);
+        __builtin_prefetch(&m.density[at]);
+        __builtin_prefetch(&m.image.texels[at]);
+        xs[i] = x;
+        ys[i] = y;
+        us[i] = ui.x;
+        vs[i] = ui.y;
+        rowLo[i] = m.rowCdf[static_cast<size_t>(y)];
+        rowHi[i] = m.rowCdf[static_cast<size_t>(y) + 1];
+        texelLo[i] = texels.cdf[x];
+        texelHi[i] = texels.cdf[x + 1];
+      }
+      for (int i = size; i < lanes; ++i) {
+        xs[i] = ys[i] = 0;
+        us[i] = vs[i] = rowLo[i] = texelLo[i] = 0;
+        rowHi[i] = texelHi[i] = 1;
+      }
     }
     for (int i = 0; i < lanes; i += kLanes) {
       const F32x4 withinRow = GuidedCdf::within(load(vs + i), load(rowLo + i), load(rowHi + i));

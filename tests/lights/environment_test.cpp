@@ -113,7 +113,8 @@ TEST(Environment, DrawsSideBySideAreTheDrawsOneAtATime) {
   // The production kernel draws a point's samples in blocks (in lanes) and the reference
   // integrator one at a time; their images are equal only if every direction and value is the
   // same float. Blocks of 37 cross the block form's inner block and leave a partial lane; the
-  // image has black texels and rows (zero-width cells) and u reaches 0 and just below 1.
+  // image has black texels and rows (zero-width cells) and u reaches 0 and just below 1, and 1
+  // itself, which no sampler draws and the guide does not serve (each is searched whole).
   const EnvironmentLight env(
       image(64, 32,
             [](int x, int y) {
@@ -129,6 +130,7 @@ TEST(Environment, DrawsSideBySideAreTheDrawsOneAtATime) {
       u[k] = {float((i * 37) % 101) / 101, float((i * 53) % 97) / 97};
     }
     if (round == 0) u[3] = {0x1.fffffep-1f, 0x1.fffffep-1f};
+    if (round == 1) u[5] = {1, 0.5f}, u[12] = {0.25f, 1};
     env.sample({0, 1, 0}, u, kCount, block);
     for (int k = 0; k < kCount; ++k) {
       const EnvironmentSample one = env.sample({0, 1, 0}, u[k]);
