@@ -59,5 +59,9 @@ std::unique_ptr<Accelerator> makeAccelerator(AccelKind, const Scene&, const Acce
 // Closest plane hit of the world group closer than hit.t; updates `hit` in place.
 void intersectPlanes(const Scene& scene, const Ray& ray, Hit& hit);
 bool occludedByPlanes(const Scene& scene, const Ray& ray);
+// The same for n rays at once, each ray's answer that of the one-ray form: a backend that traces
+// rays in streams tests each plane against the whole stream.
+void intersectPlanes(const Scene& scene, const Ray* rays, Hit* hits, size_t n);
+void occludedByPlanes(const Scene& scene, const Ray* rays, bool* blocked, size_t n);
 
 }  // namespace glint

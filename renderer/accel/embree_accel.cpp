@@ -451,7 +451,8 @@ namespace {
 
 // Every ray Embree is given passes here: one outside `range` becomes an empty segment
 // (tnear 1 > tfar 0), which Embree accepts and which hits nothing and blocks nothing.
-RTCRay toRtcRay(const Ray& ray, const EmbreeAccel::RayRange& range) {
+// Inline: a call per ray costs the streams more than the copy itself.
+[[gnu::always_inline]] inline RTCRay toRtcRay(const Ray& ray, const EmbreeAccel::RayRange& range) {
   if (!range.takes(ray)) return {0, 0, 0, 1, 0, 0, 1, 0, 0, ~0u, 0, 0};
   return {ray.o.x, ray.o.y,  ray.o.z,  ray.tMin, ray.d.x, ray.d.y,
           ray.d.z, ray.time, ray.tMax, ~0u,      0,       0};
@@ -494,10 +495,8 @@ void EmbreeAccel::intersectStream(const Ray* rays, Hit* hits, size_t n, bool coh
     const size_t count = std::min(kChunk, n - begin);
     for (size_t i = 0; i < count; ++i) rh[i] = toRtcRayHit(rays[begin + i], range_);
     rtcIntersect1M(groupScenes_[0], &context, rh, static_cast<unsigned>(count), sizeof(RTCRayHit));
-    for (size_t i = 0; i < count; ++i) {
-      hits[begin + i] = fromRtcRayHit(rh[i]);
-      intersectPlanes(scene_, rays[begin + i], hits[begin + i]);
-    }
+    for (size_t i = 0; i < count; ++i) hits[begin + i] = fromRtcRayHit(rh[i]);
+    intersectPlanes(scene_, rays + begin, hits + begin, count);
   }
 }
 
@@ -514,9 +513,9 @@ void EmbreeAccel::occludedCoherent(const Ray* rays, bool* blocked, size_t n) con
   uint32_t index[kChunk];  // the ray of each stream slot: those a plane blocks are not traced
   for (size_t begin = 0; begin < n; begin += kChunk) {
     const size_t end = std::min(n, begin + kChunk);
+    occludedByPlanes(scene_, rays + begin, blocked + begin, end - begin);
     unsigned m = 0;
     for (size_t i = begin; i < end; ++i) {
-      blocked[i] = occludedByPlanes(scene_, rays[i]);
       if (blocked[i]) continue;
       index[m] = static_cast<uint32_t>(i);
       rh[m++] = toRtcRayHit(rays[i], range_);

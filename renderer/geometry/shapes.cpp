@@ -48,13 +48,6 @@ float intersectQuad(const Quad& q, const Ray& ray, float& u, float& v) {
   return t;
 }
 
-float intersectPlane(const Plane& p, const Ray& ray) {
-  const float denom = dot(p.normal, ray.d);
-  if (denom == 0) return kInfinity;
-  const float t = dot(p.point - ray.o, p.normal) / denom;
-  return (t > ray.tMin && t < ray.tMax) ? t : kInfinity;
-}
-
 float intersectDisk(const Disk& d, const Ray& ray) {
   const float denom = dot(d.normal, ray.d);
   if (denom == 0) return kInfinity;

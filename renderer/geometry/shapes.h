@@ -34,7 +34,13 @@ float intersectSphere(const Sphere& s, const Ray& ray);
 // it misses (CSG needs both ends of the inside interval, wherever the ray starts).
 bool sphereRoots(const Sphere& s, const Ray& ray, float& t0, float& t1);
 float intersectQuad(const Quad& q, const Ray& ray, float& u, float& v);
-float intersectPlane(const Plane& p, const Ray& ray);
+// Inline: the batched plane loops (accel/accelerator.cpp) run it once a ray and plane.
+inline float intersectPlane(const Plane& p, const Ray& ray) {
+  const float denom = dot(p.normal, ray.d);
+  if (denom == 0) return kInfinity;
+  const float t = dot(p.point - ray.o, p.normal) / denom;
+  return (t > ray.tMin && t < ray.tMax) ? t : kInfinity;
+}
 float intersectDisk(const Disk& d, const Ray& ray);
 // Watertight ray–triangle test (Woop, Benthin, Wald 2013), Embree's barycentric convention.
 float intersectTriangle(const Vec3f& p0, const Vec3f& p1, const Vec3f& p2, const Ray& ray, float& u,

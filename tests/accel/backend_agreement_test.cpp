@@ -2,7 +2,9 @@
 // and Embree's coherent streams against its own single-ray queries.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "accel/accelerator.h"
@@ -155,6 +157,77 @@ TEST(BackendAgreement, EmbreeStreamsAnswerAsOneRayAtATime) {
   EXPECT_LT(hitCount, 3600);
   EXPECT_GT(blockedCount, 400);
   EXPECT_LT(blockedCount, 3600);
+}
+
+// Two crossing planes (the second cut by test::writeHalfMatte when `cut`), for the plane loops.
+// The eye at the origin: render space is world space (io/placement.h).
+Scene crossingPlanes(bool cut) {
+  // A scene turns its cut-out path on when any material has an opacity map, used or not.
+  const std::string cutMaterial = cut ? R"(, "cut": {"type": "phong", "opacity": {"image": ")" +
+                                            test::writeHalfMatte() + R"("}})"
+                                      : "";
+  return test::sceneFromText(R"({"camera": {"eye": [0,0,0], "look_at": [0,0,-1]},
+    "materials": {"m": {"type": "phong"})" +
+                             cutMaterial + R"(},
+    "objects": [
+      {"type": "plane", "point": [0,-1,0], "normal": [0,1,0], "material": "m"},
+      {"type": "plane", "point": [0,0,-2], "normal": [0,0.6,0.8], "material": ")" +
+                             (cut ? "cut" : "m") + R"("}
+    ]})");
+}
+
+// The plane loops over a stream answer ray by ray as the one-ray loops do, to the bit: the same
+// t, the same plane where both are met, a closer hit already found kept.
+TEST(BackendAgreement, PlaneStreamsAnswerAsOneRayAtATime) {
+  for (const bool cut : {false, true}) {
+    const Scene s = crossingPlanes(cut);
+    ASSERT_EQ(s.features.cutouts, cut);
+    constexpr int kRays = 3000;
+    std::vector<Ray> rays(kRays);
+    std::vector<Hit> hits(kRays), one(kRays);
+    for (int i = 0; i < kRays; ++i) {
+      auto u = [&](int k) { return toUnitFloat(hashKey(11, i, k)); };
+      rays[i].o = {8 * u(0) - 4, 4 * u(1) - 1, 8 * u(2) - 4};
+      rays[i].d = {2 * u(3) - 1, 2 * u(4) - 1, 2 * u(5) - 1};
+      rays[i].tMax = i % 3 ? kInfinity : 4 * u(6);
+      // A third of the rays arrive with a closer hit of something else, which a plane must not
+      // replace unless it is closer still.
+      if (i % 3 == 1) hits[i] = Hit{3 * u(7), 0.25f, 0.5f, 7, 3, kInvalidId};
+      one[i] = hits[i];
+      intersectPlanes(s, rays[i], one[i]);
+    }
+    intersectPlanes(s, rays.data(), hits.data(), rays.size());
+    std::unique_ptr<bool[]> blocked(new bool[kRays]);
+    occludedByPlanes(s, rays.data(), blocked.get(), rays.size());
+    int onFirst = 0, onSecond = 0, kept = 0, blockedCount = 0;
+    for (int i = 0; i < kRays; ++i) {
+      ASSERT_EQ(std::bit_cast<uint32_t>(hits[i].t), std::bit_cast<uint32_t>(one[i].t)) << i;
+      ASSERT_EQ(hits[i].geomId, one[i].geomId) << i;
+      ASSERT_EQ(hits[i].primId, one[i].primId) << i;
+      ASSERT_EQ(hits[i].u, one[i].u) << i;
+      ASSERT_EQ(blocked[i], occludedByPlanes(s, rays[i])) << i;
+      onFirst += hits[i].geomId == s.planeGeometries[0];
+      onSecond += hits[i].geomId == s.planeGeometries[1];
+      kept += hits[i].geomId == 7;
+      blockedCount += blocked[i];
+    }
+    // Every branch is taken: either plane nearest, the earlier hit kept, rays blocked and clear.
+    EXPECT_GT(onFirst, kRays / 10) << cut;
+    EXPECT_GT(onSecond, kRays / 20) << cut;  // the matte's holes let about half through
+    EXPECT_GT(kept, kRays / 20) << cut;
+    EXPECT_GT(blockedCount, kRays / 10) << cut;
+    EXPECT_LT(blockedCount, kRays - kRays / 10) << cut;
+  }
+  // Straight down from y = 3 at z = 5: the floor y = −1 is 4 away, nearer than the tilted plane
+  // (0.6·y + 0.8·(z + 2) = 0 at y = −28/3).
+  const Scene s = crossingPlanes(false);
+  Ray down;
+  down.o = {0, 3, 5};
+  down.d = {0, -1, 0};
+  Hit h;
+  intersectPlanes(s, &down, &h, 1);
+  EXPECT_EQ(h.t, 4.0f);  // exact: (−1 − 3)·1 / −1
+  EXPECT_EQ(h.geomId, s.planeGeometries[0]);
 }
 
 }  // namespace
