@@ -2,6 +2,7 @@
 
 #include <sys/mman.h>
 
+#include <cstdint>
 #include <new>
 
 namespace glint {
@@ -18,6 +19,7 @@ size_t roundedToHugePages(size_t bytes) {
 
 void* allocateBuffer(size_t bytes) {
   if (bytes < kHugePageBytes) return ::operator new(bytes);
+  if (bytes > SIZE_MAX - kHugePageBytes) throw std::bad_alloc();  // its rounding would wrap
   const size_t size = roundedToHugePages(bytes);
   void* p = ::operator new(size, kHugePageAlignment);
 #ifdef MADV_HUGEPAGE

@@ -1,8 +1,8 @@
 #pragma once
 // Storage for a frame's large buffers (the pixels' estimates, the film, the packed EXR parts),
 // on transparent huge pages where the kernel lends them on request (Linux's "madvise" mode,
-// Debian's default). Each 4 KiB page's first write costs a page fault: a 512 × 512 frame's
-// buffers take over ten thousand, where 2 MiB pages take a few dozen.
+// Debian's default). Each page's first write costs a page fault, and a frame's buffers span
+// thousands of 4 KiB pages where they span a few 2 MiB ones.
 #include <cstddef>
 
 namespace glint {

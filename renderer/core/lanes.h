@@ -95,15 +95,27 @@ template <class T, class Comparison>
     return convertLanes<T>(holds);
 }
 
+// The bits of x as To, of x's size: std::bit_cast for one value; for lanes a GNU vector cast,
+// which needs no call at any optimisation level (unoptimised, std::bit_cast of a vector is a
+// call built for baseline x86-64, which an AVX clone passes its vectors wrongly).
+template <class To, class From>
+[[gnu::always_inline]] inline To laneBits(const From& x) {
+  static_assert(sizeof(To) == sizeof(From));
+  if constexpr (std::is_arithmetic_v<From>)
+    return std::bit_cast<To>(x);
+  else
+    return (To)x;
+}
+
 // Whether any lane is nonzero.
 [[gnu::always_inline]] inline bool anyLane(uint32_t x) { return x != 0; }
 [[gnu::always_inline]] inline bool anyLane(U32x8 x) {
   using U64x4 = uint64_t __attribute__((vector_size(32)));
-  const auto wide = std::bit_cast<U64x4>(x);
+  const auto wide = laneBits<U64x4>(x);
   return ((wide[0] | wide[1]) | (wide[2] | wide[3])) != 0;
 }
 [[gnu::always_inline]] inline bool anyLane(U32x16 x) {
-  const auto wide = std::bit_cast<U64x8>(x);
+  const auto wide = laneBits<U64x8>(x);
   return (((wide[0] | wide[1]) | (wide[2] | wide[3])) |
           ((wide[4] | wide[5]) | (wide[6] | wide[7]))) != 0;
 }

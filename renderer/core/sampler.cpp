@@ -77,8 +77,8 @@ template <class U>
   } else if (size < Lanes<U>::kWidth) {
     for (int l = 0; l < size; ++l) out[l] = {x[l], y[l]};
   } else if constexpr (Lanes<U>::kWidth == 8) {
-    // Two interleaves of eight: one of sixteen went through the stack a float at a time, and
-    // the stores' reloads waited on it (store forwarding).
+    // Two interleaves of eight: GCC builds one of sixteen through the stack a float at a time,
+    // and the stores' reloads wait on it (store forwarding).
     const F32x8 low = __builtin_shufflevector(x, y, 0, 8, 1, 9, 2, 10, 3, 11);
     const F32x8 high = __builtin_shufflevector(x, y, 4, 12, 5, 13, 6, 14, 7, 15);
     std::memcpy(static_cast<void*>(out), &low, sizeof low);
@@ -187,11 +187,10 @@ class StratifiedSet {
         convertLanes<typename L::F64>(convertLanes<I32>(jitter24)) * (1.0 / 16777216.0);
     const auto x = convertLanes<typename L::F32>((low + jitter) * inverseCount);
     const auto scaled = convertLanes<typename L::F64>(x) * count;
-    const auto below = std::bit_cast<typename L::U64>(scaled - low) >> 63;           // 1: below
-    const auto inside = std::bit_cast<typename L::U64>(scaled - (low + 1.0)) >> 63;  // 1: inside
-    const I32 bits =
-        std::bit_cast<I32>(x) + convertLanes<I32>(below) - (1 - convertLanes<I32>(inside));
-    return std::bit_cast<typename L::F32>(bits);
+    const auto below = laneBits<typename L::U64>(scaled - low) >> 63;           // 1: below
+    const auto inside = laneBits<typename L::U64>(scaled - (low + 1.0)) >> 63;  // 1: inside
+    const I32 bits = laneBits<I32>(x) + convertLanes<I32>(below) - (1 - convertLanes<I32>(inside));
+    return laneBits<typename L::F32>(bits);
   }
 
   JitterGrid grid_;

@@ -1,6 +1,8 @@
-// sinCos's lanes (core/sin_cos.h): this file alone is compiled with -mavx2 -mfma, and every
-// fused multiply-add in it is written out, one for each that glibc's FMA build of sincosf
-// performs (sysdeps/ieee754/flt-32/s_sincosf.h, reduce_fast and sincosf_poly).
+// sinCos's lanes (core/sin_cos.h): only these functions are built for AVX2 and FMA (a flag for
+// the whole file would also build its copies of inline library functions so, which the linker
+// may then pick for every caller), and every fused multiply-add in them is written out, one for
+// each that glibc's FMA build of sincosf performs (sysdeps/ieee754/flt-32/s_sincosf.h, reduce_fast
+// and sincosf_poly).
 #include <immintrin.h>
 
 #include <cmath>
@@ -28,7 +30,8 @@ inline __m128i abstop(__m128 x) {
 
 // Four lanes from x into s and c; returns a bit per lane left for the C library (|x| ≥ 120,
 // infinite or NaN), whose s and c hold anything.
-[[gnu::always_inline]] inline int fourLanes(const float* x, float* s, float* c) {
+[[gnu::always_inline, gnu::target("avx2,fma")]] inline int fourLanes(const float* x, float* s,
+                                                                     float* c) {
   const __m128 xf = _mm_loadu_ps(x);
   const __m256d xd = _mm256_cvtps_pd(xf);
   const __m128i top = abstop(xf);
@@ -73,17 +76,17 @@ inline __m128i abstop(__m128 x) {
 
 }  // namespace
 
-void inLanes(const float* x, int n, float* s, float* c) {
+[[gnu::target("avx2,fma")]] void inLanes(const float* x, int n, float* s, float* c) {
   int i = 0;
   for (; i + 4 <= n; i += 4)
     for (int left = fourLanes(x + i, s + i, c + i); left != 0; left &= left - 1) {
       const int k = i + __builtin_ctz(static_cast<unsigned>(left));
-      s[k] = std::sin(x[k]);
-      c[k] = std::cos(x[k]);
+      s[k] = ::sinf(x[k]);
+      c[k] = ::cosf(x[k]);
     }
   for (; i < n; ++i) {
-    s[i] = std::sin(x[i]);
-    c[i] = std::cos(x[i]);
+    s[i] = ::sinf(x[i]);
+    c[i] = ::cosf(x[i]);
   }
 }
 

@@ -44,8 +44,8 @@ struct EnvironmentLight::Map {
   float rotation = 0;           // radians about +Y
   std::vector<float> rowCdf;    // height + 1
   std::vector<float> texelCdf;  // per row, width + 1
-  // Their guides (lights/guided_cdf.h): without them the two binary searches were the largest
-  // part of a sample.
+  // Their guides (lights/guided_cdf.h), which start each of a sample's two binary searches
+  // near its answer.
   int rowBins = 1, texelBins = 1;
   std::vector<uint32_t> rowGuide;    // rowBins + 1
   std::vector<uint32_t> texelGuide;  // per row, texelBins + 1
@@ -356,8 +356,8 @@ void EnvironmentLight::sample(const Vec3f& n, const Vec2f* u, int count,
                 m.rotation,
             phi + i);
     }
-    // The sines and cosines in lanes too, the same floats as std::sin's and std::cos's: one
-    // sample at a time they were a large part of a sky's samples.
+    // The sines and cosines in lanes too, the same floats as std::sin's and std::cos's: each
+    // sample needs two of each.
     sinCos(theta, lanes, sinTheta, cosTheta);
     sinCos(phi, lanes, sinPhi, cosPhi);
     for (int i = 0; i < size; ++i) {

@@ -223,8 +223,8 @@ void Scene::addSurfaceData(const Geometry& g, const Hit& hit, const Vec3f& pObje
   }
 }
 
-// Out of line: inlined, its registers and stack were saved and restored on every hit that
-// worldPointInLanes takes.
+// Out of line, so that the hits worldPointInLanes takes do not save and restore its registers
+// and stack.
 template <bool kInstanced>
 [[gnu::noinline]] void Scene::shadingPoint(const Ray& ray, const Hit& hit,
                                            const Transform* worldFromObject,

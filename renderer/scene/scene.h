@@ -203,12 +203,12 @@ class Scene {
   // shadingPoint for a hit on a world entry that is a static flat mesh, a static sphere or a
   // plane, the most common hits, in SSE lanes; false (and nothing written) for any other.
   bool worldPointInLanes(const Ray& ray, const Hit& hit, ShadingPoint& sp) const;
-  // shadingPoint for a hit inside an instance. Out of line, as the general form: the
-  // transform and the registers they use were set up and saved on every hit.
+  // shadingPoint for a hit inside an instance. Out of line, as the general form, so that the
+  // common hits do not set up the transform or save the registers it uses.
   [[gnu::noinline]] void instancePoint(const Ray& ray, const Hit& hit, ShadingPoint& sp) const;
   // What shadingPoint adds last where the scene uses them: texture coordinates and tangents
-  // (for a hit at object-space point pObject) and the vertex colour. Out of line: inlined, its
-  // registers were saved on every hit.
+  // (for a hit at object-space point pObject) and the vertex colour. Out of line, so that a hit
+  // without them does not save its registers.
   [[gnu::noinline]] void addSurfaceData(const Geometry& g, const Hit& hit, const Vec3f& pObject,
                                         float time, const Transform* worldFromObject,
                                         ShadingPoint& sp) const;

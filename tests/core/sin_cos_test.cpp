@@ -22,7 +22,9 @@ bool sameBits(float a, float b) {
 // reduction up to 120, beyond it, infinities and NaN) and, between them, every 4096th float
 // up to 128 of either sign, in an odd count so that the last ones take the one-at-a-time path.
 TEST(SinCos, MatchesTheCLibraryBitForBit) {
-  if (!sinCosInLanes()) GTEST_SKIP() << "no FMA and AVX2: sinCos calls the C library itself";
+  if (!sinCosInLanes())
+    GTEST_SKIP() << "sinCos calls the C library itself here (no FMA and AVX2, or a C library whose "
+                    "floats its lanes do not give)";
   constexpr float kInf = std::numeric_limits<float>::infinity();
   std::vector<float> x = {0.0f,
                           -0.0f,
