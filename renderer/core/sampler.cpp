@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/cpu_features.h"
 #include "core/fast_divide.h"
 #include "core/hash.h"
 #include "core/lanes.h"
@@ -378,9 +379,7 @@ template <class U>
     const SamplePattern* const* patterns, const uint32_t* flat, int size, Vec2f* out) {
   drawSetRunIn<U32x16>(kind, n, pattern, first, patterns, flat, size, out);
 }
-const bool kAvx512 = (__builtin_cpu_init(), __builtin_cpu_supports("avx512f") &&
-                                                __builtin_cpu_supports("avx512dq") &&
-                                                __builtin_cpu_supports("avx512vl"));
+const bool kAvx512 = kCpuFeatures.avx512f && kCpuFeatures.avx512dq && kCpuFeatures.avx512vl;
 
 // Points of Sobol or stratified sets of n points, at least kLanesFrom, in lanes: [first, first
 // + size) of `pattern` where it is given, else flat[j] of *patterns[j].

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 
+#include "core/cpu_features.h"
 #include "geometry/shape_lanes_isa.h"
 #include "geometry/shape_lanes_kernel.h"
 
@@ -28,10 +29,6 @@ uint32_t sse2(const Quad& q, const RayLanes& rays, int n, LaneHits& hits) {
 
 namespace {
 
-// __builtin_cpu_init first: this may run among static constructors, before libgcc's own.
-const bool kHaveAvx2 = (__builtin_cpu_init(), __builtin_cpu_supports("avx2"));
-const bool kHaveAvx512 = (__builtin_cpu_init(), __builtin_cpu_supports("avx512f"));
-
 float scalarTest(const Sphere& s, const Ray& r, float&, float&) { return intersectSphere(s, r); }
 float scalarTest(const Quad& q, const Ray& r, float& u, float& v) {
   return intersectQuad(q, r, u, v);
@@ -39,7 +36,7 @@ float scalarTest(const Quad& q, const Ray& r, float& u, float& v) {
 
 template <class Shape>
 uint32_t dispatch(const Shape& shape, const RayLanes& rays, int n, LaneHits& hits, int width) {
-  if (width == 0) width = kHaveAvx512 ? 16 : kHaveAvx2 ? 8 : 4;
+  if (width == 0) width = kCpuFeatures.avx512f ? 16 : kCpuFeatures.avx2 ? 8 : 4;
   // Embree's packet on a machine of its width (the common case): one call.
   if (n == width)
     return width == 16  ? shape_lanes::avx512(shape, rays, n, hits)
@@ -85,7 +82,7 @@ uint32_t dispatch(const Shape& shape, const RayLanes& rays, int n, LaneHits& hit
 }  // namespace
 
 bool laneWidthSupported(int width) {
-  return width == 4 || (width == 8 && kHaveAvx2) || (width == 16 && kHaveAvx512);
+  return width == 4 || (width == 8 && kCpuFeatures.avx2) || (width == 16 && kCpuFeatures.avx512f);
 }
 
 uint32_t intersectLanes(const Sphere& s, const RayLanes& rays, int n, LaneHits& hits, int width) {

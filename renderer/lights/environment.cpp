@@ -7,6 +7,7 @@
 #include <cstring>
 #include <type_traits>
 
+#include "core/cpu_features.h"
 #include "core/frame.h"
 #include "core/lanes.h"
 #include "core/sampling.h"
@@ -117,8 +118,6 @@ struct EnvironmentLight::Map {
 
 namespace {
 
-const bool kHaveAvx2 = (__builtin_cpu_init(), __builtin_cpu_supports("avx2"));
-
 // std::upper_bound of u over table[base + lo, base + hi) in each of eight lanes, as the index
 // (from base) of the first entry above u, or hi: the same steps, each lane going on while its
 // range is not empty.
@@ -163,7 +162,7 @@ const bool kHaveAvx2 = (__builtin_cpu_init(), __builtin_cpu_supports("avx2"));
 }  // namespace
 
 bool EnvironmentLight::Map::searchesInLanes() const {
-  return kHaveAvx2 && double(image.height) * (double(image.width) + 1) < 0x1p31 &&
+  return kCpuFeatures.avx2 && double(image.height) * (double(image.width) + 1) < 0x1p31 &&
          double(image.height) * (double(texelBins) + 1) < 0x1p31;
 }
 
