@@ -15,17 +15,29 @@
 
 namespace glint {
 
-// Clang refuses [[gnu::vector_size]] on an alias; the __attribute__ spelling both accept.
-using U32x8 = uint32_t __attribute__((vector_size(32)));
-using I32x8 = int32_t __attribute__((vector_size(32)));
-using F32x8 = float __attribute__((vector_size(32)));
-using U64x8 = uint64_t __attribute__((vector_size(64)));
-using F64x8 = double __attribute__((vector_size(64)));
-using U32x16 = uint32_t __attribute__((vector_size(64)));
-using I32x16 = int32_t __attribute__((vector_size(64)));
-using F32x16 = float __attribute__((vector_size(64)));
-using U64x16 = uint64_t __attribute__((vector_size(128)));
-using F64x16 = double __attribute__((vector_size(128)));
+// N 32-bit lanes (8 or 16) in GNU vector types, and the signed, float, 64-bit and double
+// lanes of as many. Typedefs: GCC 12 drops vector_size from an alias-declaration in a template
+// (and Clang refuses [[gnu::vector_size]] there; the __attribute__ spelling both accept).
+template <int N>
+struct VectorLanes {
+  static constexpr int kWidth = N;
+  typedef uint32_t U32 __attribute__((vector_size(4 * N)));
+  typedef int32_t I32 __attribute__((vector_size(4 * N)));
+  typedef float F32 __attribute__((vector_size(4 * N)));
+  typedef uint64_t U64 __attribute__((vector_size(8 * N)));
+  typedef double F64 __attribute__((vector_size(8 * N)));
+};
+using U32x8 = VectorLanes<8>::U32;
+using I32x8 = VectorLanes<8>::I32;
+using F32x8 = VectorLanes<8>::F32;
+using U64x8 = VectorLanes<8>::U64;
+using F64x8 = VectorLanes<8>::F64;
+using U32x16 = VectorLanes<16>::U32;
+using I32x16 = VectorLanes<16>::I32;
+using F32x16 = VectorLanes<16>::F32;
+using U64x16 = VectorLanes<16>::U64;
+using F64x16 = VectorLanes<16>::F64;
+static_assert(sizeof(U32x8) == 32 && sizeof(F64x16) == 128);
 
 template <class U>
 struct Lanes;
@@ -38,22 +50,9 @@ struct Lanes<uint32_t> {
   using F64 = double;
 };
 template <>
-struct Lanes<U32x8> {
-  static constexpr int kWidth = 8;
-  using I32 = I32x8;
-  using F32 = F32x8;
-  using U64 = U64x8;
-  using F64 = F64x8;
-};
-
+struct Lanes<U32x8> : VectorLanes<8> {};
 template <>
-struct Lanes<U32x16> {
-  static constexpr int kWidth = 16;
-  using I32 = I32x16;
-  using F32 = F32x16;
-  using U64 = U64x16;
-  using F64 = F64x16;
-};
+struct Lanes<U32x16> : VectorLanes<16> {};
 
 // Sixteen 32-bit lanes widened to 64 bits half by half, in builds without optimisation only:
 // there GCC 12 fails on the whole conversion for AVX-512 (an internal compiler error), and
