@@ -96,13 +96,21 @@ MipPyramid::MipPyramid(int width, int height, int channels, std::vector<float> t
 }
 
 double MipPyramid::bytesFor(int width, int height, int channels) {
-  double texels = double(width) * double(height);
+  // Each level's texels and its padding float, as the constructor makes them.
+  const auto levelFloats = [&](int w, int h) { return double(w) * double(h) * channels + 1; };
+  double floats = levelFloats(width, height);
   for (int w = width, h = height; w > 1 || h > 1;) {
     w = halved(w);
     h = halved(h);
-    texels += double(w) * double(h);
+    floats += levelFloats(w, h);
   }
-  return texels * channels * double(sizeof(float));
+  return floats * double(sizeof(float));
+}
+
+size_t MipPyramid::bytes() const {
+  size_t floats = 0;
+  for (const Level& level : levels_) floats += level.texels.size();
+  return floats * sizeof(float);
 }
 
 // The two texels a bilinear lookup reads along an axis of n, from the first one's index i.

@@ -24,9 +24,11 @@ class MipPyramid {
   // vector of `texels` with room for it is not copied.
   MipPyramid(int width, int height, int channels, std::vector<float> texels);
 
-  // The bytes a pyramid of width × height texels of `channels` floats holds: its finest level
-  // and at most a third of that again for the smaller ones.
+  // The bytes a pyramid of width × height texels of `channels` floats holds: its finest level,
+  // at most a third of that again for the smaller ones, and each level's padding float.
   static double bytesFor(int width, int height, int channels);
+  // The bytes this pyramid's levels hold, padding included: bytesFor of its size.
+  size_t bytes() const;
 
   int width() const { return levels_[0].width; }
   int height() const { return levels_[0].height; }

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -39,8 +40,24 @@ TEST(MipPyramid, EachLevelIsTheBoxAverageOfTheOneAbove) {
   EXPECT_NEAR(p.texel(1, 0, 0, 0), 5.8, 1e-5);
   EXPECT_NEAR(p.texel(1, 1, 0, 0), 8.2, 1e-5);
   EXPECT_NEAR(p.texel(2, 0, 0, 0), 7, 1e-5);  // the whole image's mean
-  // Bytes: 10 + 2 + 1 texels of one float.
-  EXPECT_EQ(MipPyramid::bytesFor(5, 2, 1), 13 * 4.0);
+  // Bytes: 10 + 2 + 1 texels of one float, and a padding float per level.
+  EXPECT_EQ(MipPyramid::bytesFor(5, 2, 1), (13 + 3) * 4.0);
+}
+
+TEST(MipPyramid, BytesForIsWhatThePyramidHolds) {
+  // A texture's memory is checked against bytesFor before its file is read: it must be what
+  // the levels then hold, padding floats included, to the byte. Odd and even sides, strips,
+  // one texel, and every channel count.
+  for (const auto& [w, h, c] : {std::array<int, 3>{5, 2, 1},
+                                {1, 1, 4},
+                                {7, 3, 3},
+                                {64, 16, 2},
+                                {1, 9, 1},
+                                {33, 17, 4},
+                                {100, 1, 3}}) {
+    const MipPyramid p = pyramidOf(w, h, c, [](int x, int y, int k) { return x + y + k; });
+    EXPECT_EQ(MipPyramid::bytesFor(w, h, c), double(p.bytes())) << w << "x" << h << "x" << c;
+  }
 }
 
 TEST(MipPyramid, ATexelCentreWithoutFootprintIsThatTexel) {
