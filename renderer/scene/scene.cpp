@@ -328,6 +328,10 @@ template <bool kInstanced>
     addSurfaceData(g, hit, pObject, ray.time, worldFromObject, sp);
 }
 
+// The world's copy, for the test that compares worldPointInLanes with it.
+template void Scene::shadingPoint<false>(const Ray& ray, const Hit& hit,
+                                         const Transform* worldFromObject, ShadingPoint& sp) const;
+
 void Scene::shadingPoint(const Ray& ray, const Hit& hit, ShadingPoint& sp) const {
   GLINT_CHECK(bool(hit));
   // Object space = world space outside instances; inside, go through the instance transform.

@@ -203,6 +203,8 @@ class Scene {
   // shadingPoint for a hit on a world entry that is a static flat mesh, a static sphere or a
   // plane, the most common hits, in SSE lanes; false (and nothing written) for any other.
   bool worldPointInLanes(const Ray& ray, const Hit& hit, ShadingPoint& sp) const;
+  // Holds worldPointInLanes to shadingPoint<false>'s bits (tests/scene/world_point_lanes_test.cpp).
+  friend struct WorldPointPaths;
   // shadingPoint for a hit inside an instance. Out of line, as the general form, so that the
   // common hits do not set up the transform or save the registers it uses.
   [[gnu::noinline]] void instancePoint(const Ray& ray, const Hit& hit, ShadingPoint& sp) const;
