@@ -1,15 +1,25 @@
 #pragma once
 // The lane kernels behind intersectLanes, written once over GNU vector types and compiled three
-// times, each in its own file with its own instruction set (shape_lanes*.cpp): the anonymous
-// namespace gives each file its own copy, so the linker cannot swap an AVX-512 copy into the
-// SSE2 build. Include only from those files.
-#include <bit>
+// times, each in its own file with its own instruction set (shape_lanes*.cpp; the AVX ones
+// include this inside their target region, core/target_region.h, after every other header): the
+// anonymous namespace gives each file its own copy, so the linker cannot swap an AVX-512 copy
+// into the SSE2 build. Include only from those files.
 #include <cstring>
 #include <limits>
 
 #include "geometry/shape_lanes.h"
 
 namespace glint {
+// std::bit_cast, built for the including file's instruction set: unoptimised it is a call, and
+// std::bit_cast's copy is built for baseline x86-64, which takes an AVX kernel's vectors wrongly.
+// Not in the anonymous namespace, where GCC inlined it otherwise and the kernels' code changed;
+// each file instantiates it for vectors of its own width only, so no copy can stand in for
+// another file's.
+template <class To, class From>
+constexpr To bitsAs(const From& x) noexcept {
+  return __builtin_bit_cast(To, x);
+}
+
 namespace {
 
 // Lanes [first, first + W) of a packet, W the lanes of F32 (I32: as many int32_t), with the
@@ -40,7 +50,7 @@ struct Lanes {
   }
   [[gnu::always_inline]] static F32 splat(float x) { return F32{} + x; }
   [[gnu::always_inline]] static F32 select(I32 mask, F32 a, F32 b) {
-    return std::bit_cast<F32>((mask & std::bit_cast<I32>(a)) | (~mask & std::bit_cast<I32>(b)));
+    return bitsAs<F32>((mask & bitsAs<I32>(a)) | (~mask & bitsAs<I32>(b)));
   }
   // Lane l's t, u, v into hits at first + l; its bit (first + l) where `hit`.
   [[gnu::always_inline]] static uint32_t store(I32 hit, F32 t, F32 u, F32 v, int first,
@@ -76,8 +86,7 @@ template <class F32, class I32, class Sqrt>
   // is of 0, not of a negative number (no invalid-operation flag); its result is discarded.
   const I32 signBit = I32{} + std::numeric_limits<int32_t>::min();
   const F32 root = sqrtLanes(L::select(missed, zero, disc));
-  const F32 q = b + std::bit_cast<F32>((std::bit_cast<I32>(root) & ~signBit) |
-                                       (std::bit_cast<I32>(b) & signBit));
+  const F32 q = b + bitsAs<F32>((bitsAs<I32>(root) & ~signBit) | (bitsAs<I32>(b) & signBit));
   F32 t0 = c / q, t1 = q / a;
   const I32 tangent = q == 0;  // both roots 0: from the surface, along the tangent
   t0 = L::select(tangent, zero, t0);
