@@ -380,12 +380,15 @@ template <class U>
   drawSetRunIn<U32x16>(kind, n, pattern, first, patterns, flat, size, out);
 }
 const bool kAvx512 = kCpuFeatures.avx512f && kCpuFeatures.avx512dq && kCpuFeatures.avx512vl;
+// Whether runs are drawn in sixteen lanes: where the CPU has AVX-512, unless a test chose eight
+// (setSamplerLanes).
+bool inSixteenLanes = kAvx512;
 
 // Points of Sobol or stratified sets of n points, at least kLanesFrom, in lanes: [first, first
 // + size) of `pattern` where it is given, else flat[j] of *patterns[j].
 void drawSetRun(SamplerKind kind, uint32_t n, const SamplePattern* pattern, uint32_t first,
                 const SamplePattern* const* patterns, const uint32_t* flat, int size, Vec2f* out) {
-  if (kAvx512) return drawSetRunIn16(kind, n, pattern, first, patterns, flat, size, out);
+  if (inSixteenLanes) return drawSetRunIn16(kind, n, pattern, first, patterns, flat, size, out);
   drawSetRunIn8(kind, n, pattern, first, patterns, flat, size, out);
 }
 
@@ -403,6 +406,14 @@ uint32_t key32(uint64_t h) { return static_cast<uint32_t>(h ^ (h >> 32)); }
 Vec2f unitPair(uint64_t bits) { return {toUnitFloat(bits), toUnitFloat(bits << 32)}; }
 
 }  // namespace
+
+int samplerLanes() { return inSixteenLanes ? 16 : 8; }
+
+bool setSamplerLanes(int width) {
+  if (width != 8 && (width != 16 || !kAvx512)) return false;
+  inSixteenLanes = width == 16;
+  return true;
+}
 
 std::string_view samplerName(SamplerKind k) {
   switch (k) {

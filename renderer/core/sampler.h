@@ -95,6 +95,15 @@ class Sampler {
   uint64_t seed_;
 };
 
+// The lanes Sampler::get2D and get2DAt draw runs of points in: 16 where the CPU has AVX-512 (F,
+// DQ and VL), else 8 (built for AVX2 and for baseline x86-64, chosen at load). Every width gives
+// the same points.
+int samplerLanes();
+// For tests, which draw with every width this CPU runs: runs are drawn in `width` lanes from now
+// on (set it while no other thread draws). False, changing nothing, for a width this CPU does
+// not run.
+bool setSamplerLanes(int width);
+
 // Sub-samples [0, count) of each of n camera samples, sample k at index indices[k] of set
 // *patterns[k], in that order (every sub-sample of the first sample, then of the next), drawn a
 // window ahead with Sampler::get2DAt: one sample's few sub-samples (a light's shadow samples)

@@ -1,5 +1,6 @@
 #include "core/sampler.h"
 
+#include "core/cpu_features.h"
 #include "core/fast_divide.h"
 #include "core/hash.h"
 #include "core/lanes.h"
@@ -10,6 +11,7 @@
 #include <bit>
 #include <cmath>
 #include <set>
+#include <string>
 #include <vector>
 
 namespace glint {
@@ -24,6 +26,20 @@ std::vector<int> strataCounts(const std::vector<float>& xs, int n) {
   std::vector<int> c(static_cast<size_t>(n), 0);
   for (float x : xs) ++c[static_cast<size_t>(stratumOf(x, n))];
   return c;
+}
+
+// Runs `draw` once with each width of lanes this CPU draws runs of points in (setSamplerLanes: 8,
+// and 16 with AVX-512), then goes back to the widest: the points must not depend on the width,
+// and an AVX-512 machine must test the eight lanes too.
+template <class Draw>
+void withEveryLaneWidth(const Draw& draw) {
+  const int widest = samplerLanes();
+  for (const int width : {8, 16}) {
+    if (!setSamplerLanes(width)) continue;
+    SCOPED_TRACE("in " + std::to_string(width) + " lanes");
+    draw();
+  }
+  setSamplerLanes(widest);
 }
 
 TEST(FastDivisor, MatchesIntegerDivisionForEveryDividendTried) {
@@ -189,54 +205,73 @@ INSTANTIATE_TEST_SUITE_P(Counts, StratifiedCounts,
                          ::testing::Values(1, 2, 4, 7, 8, 9, 12, 16, 32, 50, 64, 128, 1000, 4096,
                                            4097, 4099));
 
+TEST(Sampler, DrawsInEveryLaneWidthTheCpuRuns) {
+  // Eight lanes run everywhere (baseline x86-64 or AVX2); sixteen where the CPU has AVX-512 F,
+  // DQ and VL, which their code is built for; no other width is drawn in.
+  const int widest = samplerLanes();
+  const bool avx512 = kCpuFeatures.avx512f && kCpuFeatures.avx512dq && kCpuFeatures.avx512vl;
+  EXPECT_EQ(widest, avx512 ? 16 : 8);
+  EXPECT_TRUE(setSamplerLanes(8));
+  EXPECT_EQ(samplerLanes(), 8);
+  EXPECT_EQ(setSamplerLanes(16), avx512);
+  EXPECT_EQ(samplerLanes(), avx512 ? 16 : 8);
+  EXPECT_FALSE(setSamplerLanes(4));
+  EXPECT_FALSE(setSamplerLanes(32));
+  EXPECT_TRUE(setSamplerLanes(widest));
+}
+
 TEST(Sampler, LanesMatchOnePointAtATime) {
   // Runs of three or more points are drawn eight side by side, or sixteen where the CPU has
-  // AVX-512, a last block of eight or fewer in eight (sampler.cpp: vector lanes, where a
-  // permutation's cycle walking continues only in the lanes still outside its domain); one or
-  // two points are drawn alone. Both must give the same bits, for every kind, for sets of any
-  // size (powers of two up to 2^28, where rounding to float often lands on a stratum's edge
-  // and steps back, and sizes that are not), for runs that start anywhere and end mid-block
-  // (13 and 29: a last block of more than eight; 40: of eight).
-  std::vector<int> sizes;
-  for (int b = 0; b <= 28; ++b) sizes.push_back(1 << b);
-  for (int n : {3, 9, 12, 50, 1000, 4097, 4099, 99991, (1 << 28) - 1}) sizes.push_back(n);
-  for (const SamplerKind kind :
-       {SamplerKind::Regular, SamplerKind::Random, SamplerKind::Stratified, SamplerKind::Sobol})
-    for (const int n : sizes) {
-      const Sampler s(kind, n, 5);
-      for (int pixel = 0; pixel < 3; ++pixel)
-        for (const uint32_t dim : {dimension(Dim::Pixel), dimension(Dim::Light, 1, 2)}) {
-          const SamplePattern pattern = s.pattern(s.pixelKey(pixel, 9), dim);
-          const uint64_t spread = hashKey(static_cast<uint64_t>(n), static_cast<uint64_t>(pixel));
-          for (const int size : {3, 8, 13, 29, 40}) {
-            const int first = n <= size ? 0 : static_cast<int>(spread % uint64_t(n - size));
-            const int count = std::min(size, n - first);
-            Vec2f together[40];
-            s.get2D(pattern, first, 0, count, 1, together);
-            for (int j = 0; j < count; ++j) {
-              const Vec2f alone = s.get2D(pattern, first + j);
-              ASSERT_EQ(alone.x, together[j].x)
-                  << samplerName(kind) << " n " << n << " point " << first + j;
-              ASSERT_EQ(alone.y, together[j].y)
-                  << samplerName(kind) << " n " << n << " point " << first + j;
+  // AVX-512 (each width the CPU runs is tried), a last block of eight or fewer in eight
+  // (sampler.cpp: vector lanes, where a permutation's cycle walking continues only in the lanes
+  // still outside its domain); one or two points are drawn alone. Both must give the same bits, for
+  // every kind, for sets of any size (powers of two up to 2^28, where rounding to float often lands
+  // on a stratum's edge and steps back, and sizes that are not), for runs that start anywhere and
+  // end mid-block (13 and 29: a last block of more than eight; 40: of eight).
+  withEveryLaneWidth([] {
+    std::vector<int> sizes;
+    for (int b = 0; b <= 28; ++b) sizes.push_back(1 << b);
+    for (int n : {3, 9, 12, 50, 1000, 4097, 4099, 99991, (1 << 28) - 1}) sizes.push_back(n);
+    for (const SamplerKind kind :
+         {SamplerKind::Regular, SamplerKind::Random, SamplerKind::Stratified, SamplerKind::Sobol})
+      for (const int n : sizes) {
+        const Sampler s(kind, n, 5);
+        for (int pixel = 0; pixel < 3; ++pixel)
+          for (const uint32_t dim : {dimension(Dim::Pixel), dimension(Dim::Light, 1, 2)}) {
+            const SamplePattern pattern = s.pattern(s.pixelKey(pixel, 9), dim);
+            const uint64_t spread = hashKey(static_cast<uint64_t>(n), static_cast<uint64_t>(pixel));
+            for (const int size : {3, 8, 13, 29, 40}) {
+              const int first = n <= size ? 0 : static_cast<int>(spread % uint64_t(n - size));
+              const int count = std::min(size, n - first);
+              Vec2f together[40];
+              s.get2D(pattern, first, 0, count, 1, together);
+              for (int j = 0; j < count; ++j) {
+                const Vec2f alone = s.get2D(pattern, first + j);
+                ASSERT_EQ(alone.x, together[j].x)
+                    << samplerName(kind) << " n " << n << " point " << first + j;
+                ASSERT_EQ(alone.y, together[j].y)
+                    << samplerName(kind) << " n " << n << " point " << first + j;
+              }
             }
           }
-        }
-    }
+      }
+  });
 }
 
 TEST(Sampler, SubSampleRunsContinueIntoTheNextSample) {
   // A run of sub-samples is drawn by flat index index·count + sub, so a run that passes the
   // last sub-sample of one camera sample goes on with the next sample's first.
-  const Sampler s(SamplerKind::Stratified, 9, 4);
-  const SamplePattern pattern = s.pattern(s.pixelKey(7, 2), dimension(Dim::Light, 1, 2));
-  Vec2f run[7];
-  s.get2D(pattern, 3, 5, 7, 6, run);  // sample 3's sub-samples 5 .. 11 of 6
-  for (int j = 0; j < 7; ++j) {
-    const Vec2f alone = s.get2D(pattern, 3 + (5 + j) / 6, (5 + j) % 6, 6);
-    EXPECT_EQ(alone.x, run[j].x) << j;
-    EXPECT_EQ(alone.y, run[j].y) << j;
-  }
+  withEveryLaneWidth([] {
+    const Sampler s(SamplerKind::Stratified, 9, 4);
+    const SamplePattern pattern = s.pattern(s.pixelKey(7, 2), dimension(Dim::Light, 1, 2));
+    Vec2f run[7];
+    s.get2D(pattern, 3, 5, 7, 6, run);  // sample 3's sub-samples 5 .. 11 of 6
+    for (int j = 0; j < 7; ++j) {
+      const Vec2f alone = s.get2D(pattern, 3 + (5 + j) / 6, (5 + j) % 6, 6);
+      EXPECT_EQ(alone.x, run[j].x) << j;
+      EXPECT_EQ(alone.y, run[j].y) << j;
+    }
+  });
 }
 
 TEST(Sampler, PointsOfSeveralPixelsSetsDrawnTogetherMatchOnePointAtATime) {
@@ -245,60 +280,64 @@ TEST(Sampler, PointsOfSeveralPixelsSetsDrawnTogetherMatchOnePointAtATime) {
   // for every kind, for sets of many sizes (both halves of an odd spp differ in size, which
   // splits the lanes into runs), for points anywhere in their sets, in runs ending mid-block
   // (the lanes' tail repeats the last point) and of every length up to a few blocks.
-  for (const SamplerKind kind :
-       {SamplerKind::Regular, SamplerKind::Random, SamplerKind::Stratified, SamplerKind::Sobol})
-    for (const int spp : {1, 2, 3, 4, 7, 16, 33, 64, 1000, 4097}) {
-      const Sampler s(kind, spp, 11);
-      for (const int count : {1, 3, 4, 8}) {
-        constexpr int kMost = 29;
-        SamplePattern patterns[kMost];
-        const SamplePattern* of[kMost];
-        uint32_t flat[kMost];
-        for (int j = 0; j < kMost; ++j) {
-          // Pixels change every few points, halves (and so set sizes) every third; the camera
-          // dimension too, where a regular sampler's cell centres are drawn one at a time.
-          const uint64_t spread = hashKey(uint64_t(spp), uint64_t(count), uint64_t(j));
-          const int half = spp == 1 ? 0 : (j / 3) % 2;
-          const uint32_t dim = j % 11 == 10 ? dimension(Dim::Pixel) : dimension(Dim::Light, 1, 2);
-          patterns[j] = s.pattern(s.pixelKey(j / 4, 3), dim, half);
-          of[j] = &patterns[j];
-          flat[j] = static_cast<uint32_t>(spread % (uint64_t(patterns[j].samples) * count));
-        }
-        for (int size = 0; size <= kMost; ++size) {
-          Vec2f together[kMost];
-          s.get2DAt(of, count, flat, size, together);
-          for (int j = 0; j < size; ++j) {
-            const Vec2f alone = s.get2D(patterns[j], static_cast<int>(flat[j]) / count,
-                                        static_cast<int>(flat[j]) % count, count);
-            ASSERT_EQ(alone.x, together[j].x)
-                << samplerName(kind) << " spp " << spp << " count " << count << " point " << j;
-            ASSERT_EQ(alone.y, together[j].y)
-                << samplerName(kind) << " spp " << spp << " count " << count << " point " << j;
+  withEveryLaneWidth([] {
+    for (const SamplerKind kind :
+         {SamplerKind::Regular, SamplerKind::Random, SamplerKind::Stratified, SamplerKind::Sobol})
+      for (const int spp : {1, 2, 3, 4, 7, 16, 33, 64, 1000, 4097}) {
+        const Sampler s(kind, spp, 11);
+        for (const int count : {1, 3, 4, 8}) {
+          constexpr int kMost = 29;
+          SamplePattern patterns[kMost];
+          const SamplePattern* of[kMost];
+          uint32_t flat[kMost];
+          for (int j = 0; j < kMost; ++j) {
+            // Pixels change every few points, halves (and so set sizes) every third; the camera
+            // dimension too, where a regular sampler's cell centres are drawn one at a time.
+            const uint64_t spread = hashKey(uint64_t(spp), uint64_t(count), uint64_t(j));
+            const int half = spp == 1 ? 0 : (j / 3) % 2;
+            const uint32_t dim = j % 11 == 10 ? dimension(Dim::Pixel) : dimension(Dim::Light, 1, 2);
+            patterns[j] = s.pattern(s.pixelKey(j / 4, 3), dim, half);
+            of[j] = &patterns[j];
+            flat[j] = static_cast<uint32_t>(spread % (uint64_t(patterns[j].samples) * count));
+          }
+          for (int size = 0; size <= kMost; ++size) {
+            Vec2f together[kMost];
+            s.get2DAt(of, count, flat, size, together);
+            for (int j = 0; j < size; ++j) {
+              const Vec2f alone = s.get2D(patterns[j], static_cast<int>(flat[j]) / count,
+                                          static_cast<int>(flat[j]) % count, count);
+              ASSERT_EQ(alone.x, together[j].x)
+                  << samplerName(kind) << " spp " << spp << " count " << count << " point " << j;
+              ASSERT_EQ(alone.y, together[j].y)
+                  << samplerName(kind) << " spp " << spp << " count " << count << " point " << j;
+            }
           }
         }
       }
-    }
+  });
 }
 
 TEST(Sampler, SubSampleStreamGoesSampleBySampleThroughEverySubSample) {
   // The stream gives each sample's sub-samples in order, then the next sample's, whatever
   // windows it draws them in: 30 samples of 5 sub-samples cross its window of 64 twice.
-  const Sampler s(SamplerKind::Stratified, 8, 2);
-  constexpr int kSamples = 30, kCount = 5;
-  SamplePattern patterns[kSamples];
-  int indices[kSamples];
-  for (int k = 0; k < kSamples; ++k) {
-    patterns[k] = s.pattern(s.pixelKey(k / 7, 1), dimension(Dim::Light, 0, 1), k % 2);
-    indices[k] = (k * 3) % 4;
-  }
-  SubSampleStream stream(s, kCount, patterns, indices, kSamples);
-  for (int k = 0; k < kSamples; ++k)
-    for (int sub = 0; sub < kCount; ++sub) {
-      const Vec2f expected = s.get2D(patterns[k], indices[k], sub, kCount);
-      const Vec2f got = stream.next();
-      ASSERT_EQ(expected.x, got.x) << k << " " << sub;
-      ASSERT_EQ(expected.y, got.y) << k << " " << sub;
+  withEveryLaneWidth([] {
+    const Sampler s(SamplerKind::Stratified, 8, 2);
+    constexpr int kSamples = 30, kCount = 5;
+    SamplePattern patterns[kSamples];
+    int indices[kSamples];
+    for (int k = 0; k < kSamples; ++k) {
+      patterns[k] = s.pattern(s.pixelKey(k / 7, 1), dimension(Dim::Light, 0, 1), k % 2);
+      indices[k] = (k * 3) % 4;
     }
+    SubSampleStream stream(s, kCount, patterns, indices, kSamples);
+    for (int k = 0; k < kSamples; ++k)
+      for (int sub = 0; sub < kCount; ++sub) {
+        const Vec2f expected = s.get2D(patterns[k], indices[k], sub, kCount);
+        const Vec2f got = stream.next();
+        ASSERT_EQ(expected.x, got.x) << k << " " << sub;
+        ASSERT_EQ(expected.y, got.y) << k << " " << sub;
+      }
+  });
 }
 
 TEST(Sampler, RegularIsCellCentresInThePixelDimensionOnly) {
