@@ -473,7 +473,17 @@ void BatchedKernel::traceShadows(ShadowQueue& queue, RayCounters& counters) cons
   const auto n = static_cast<size_t>(queue.size);
   // Shadows are see-through only where there are dielectrics to see through.
   if (transparentShadows()) {
+    // Most shadow rays meet nothing: those are found as one coherent stream, as opaque shadows
+    // are, and only the others walk through their interfaces one ray at a time. A miss from
+    // outside every medium lets all the light through, as transparentShadow's first step says.
+    accel_.occludedCoherent(queue.rays.data(), queue.blocked, n);
     for (size_t i = 0; i < n; ++i) {
+      if (!queue.blocked[i] && queue.media[i]->empty()) {
+        ++counters.shadow;
+        queue.visible[i] = Rgb{1, 1, 1};
+        queue.traced[i] = 1;
+        continue;
+      }
       const uint64_t before = counters.shadow;
       queue.visible[i] = transparentShadow(scene_, accel_, queue.rays[i], queue.atInfinity[i],
                                            *queue.media[i], minThroughput_, counters);

@@ -180,8 +180,8 @@ class BatchedKernel {
     UninitializedArray<const MediumStack*, kCapacity> media;
     UninitializedArray<int, kCapacity> pointOf;  // in a delta light's run, each ray's point
     int size = 0;
-    // Filled by traceShadows: with opaque shadows whether each ray is blocked; with transparent
-    // ones (transparentShadows()) the fraction of the light arriving.
+    // Filled by traceShadows: whether each ray meets anything; with transparent shadows
+    // (transparentShadows()) also the fraction of the light arriving.
     bool blocked[kCapacity];
     UninitializedArray<Rgb, kCapacity> visible;
     // With transparent shadows, the rays each one took (one per stretch between interfaces);

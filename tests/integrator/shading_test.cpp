@@ -244,6 +244,23 @@ std::string floorInside(const std::string& materials, const std::string& media) 
          media + "]";
 }
 
+TEST(Shading, ATransparentShadowThatMeetsNothingIsOneRayWithAllTheLight) {
+  // Glass beside the shadow ray's path, not on it: the ray from the floor to the light meets
+  // nothing and brings the whole light (the floor reads 1, as unshadowed), and it is one ray:
+  // with the camera ray, two (the production kernel finds such rays in a coherent stream).
+  const auto t =
+      load(floorInside(R"("glass": {"type": "dielectric", "ior": 1.5})",
+                       R"({"type": "box", "min": [3,0,3], "max": [4,1,4], "material": "glass"})"));
+  const Ray ray{{0, 5, 0}, {0, -1, 0}};
+  EXPECT_EQ(t.trace(ray).r, 1.0f);
+  const Sampler sampler(SamplerKind::Stratified, 1, 0);
+  RayCounters counters;
+  const Radiance r = BatchedKernel(t.scene, *t.accel, kDefaultMinThroughput, 1)
+                         .trace(ray, SampleKey(&sampler, 0, 0, 0), counters);
+  EXPECT_EQ(counters.shadow, 1u);
+  EXPECT_EQ(r.rays, 2u);
+}
+
 TEST(Shading, FloorUnderWaterIsLitThroughIt) {
   // Two units of water above the floor (a = 0.5 per unit, ior 1, so no Fresnel): the light
   // crosses them on its way down and again on its way up to the eye, 0.5²·0.5² = 0.0625. The
