@@ -13,6 +13,7 @@
 #include "film/display.h"
 #include "film/image_limits.h"
 #include "film/oiio_module.h"
+#include "io/png_texture.h"
 #include "materials/mip_pyramid.h"
 
 namespace glint {
@@ -173,18 +174,26 @@ std::shared_ptr<const ImageTexture> loadedTexture(const std::string& path, void*
 std::shared_ptr<const ImageTexture> openTextureFile(const std::string& path,
                                                     const std::string& colorspace) {
   checkInputFile(path, kMaxTextureFileBytes, "texture");
-  const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(path);
   GlintOiioTextureInfo info{};
   char error[512] = "";
+  bool declined = false;
+  if (void* handle = png_texture::open(path, &info, error, sizeof error, &declined); !declined)
+    return loadedTexture(path, handle, info, error, colorspace, png_texture::functions());
+  const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(path);
   void* handle = functions.open(path.c_str(), &info, error, sizeof error);
   return loadedTexture(path, handle, info, error, colorspace, functions);
 }
 
 std::shared_ptr<const ImageTexture> openTextureBytes(const std::string& name,
                                                      const std::string& bytes) {
-  const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(name);
   GlintOiioTextureInfo info{};
   char error[512] = "";
+  bool declined = false;
+  if (void* handle = png_texture::openMemory(name, bytes.data(), bytes.size(), &info, error,
+                                             sizeof error, &declined);
+      !declined)
+    return loadedTexture(name, handle, info, error, "", png_texture::functions());
+  const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(name);
   void* handle =
       functions.openMemory(name.c_str(), bytes.data(), bytes.size(), &info, error, sizeof error);
   return loadedTexture(name, handle, info, error, "", functions);
