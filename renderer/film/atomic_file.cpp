@@ -12,6 +12,9 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <set>
+#include <utility>
 
 #include "core/error.h"
 #include "core/hash.h"
@@ -72,6 +75,21 @@ void removeStaleTemporaries(const fs::path& dir) {
     std::error_code ignored;
     fs::remove(it->path(), ignored);
   }
+}
+
+// Whether this process has not yet cleaned `dir` (known by device and inode) of stale
+// temporaries, and now will: reading the directory at every write made a sequence of n frames
+// read n entries per frame. A process that dies later leaves its file to the next process that
+// writes there; a forked child cleans again, as a process of its own.
+bool firstWriteIn(const fs::path& dir) {
+  struct stat st {};
+  if (::stat(dir.c_str(), &st) != 0) return true;
+  static std::mutex mutex;
+  static std::set<std::pair<dev_t, ino_t>> cleaned;
+  static pid_t cleanedBy = 0;
+  const std::lock_guard lock(mutex);
+  if (cleanedBy != ::getpid()) cleaned.clear(), cleanedBy = ::getpid();
+  return cleaned.emplace(st.st_dev, st.st_ino).second;
 }
 
 // An output may replace only a regular file that this run did not read: renaming over a
@@ -175,7 +193,7 @@ void writeFileAtomically(const std::string& finalPath,
   checkOutputPath(finalPath);
   const fs::path target(finalPath);
   const fs::path dir = directoryOf(target);
-  removeStaleTemporaries(dir);
+  if (firstWriteIn(dir)) removeStaleTemporaries(dir);
   const std::string tmp = (dir / temporaryNameFor(target)).string();
   const interrupt::TemporaryFile removedIfInterrupted(tmp);
   try {

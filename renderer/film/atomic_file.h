@@ -31,7 +31,8 @@ void checkOutputPaths(const std::vector<NamedOutput>& outputs);
 // file it replaces keeps its permission bits, and its owner and group where the process may
 // give them (a 0600 frame stays 0600); a new file gets the writer's default (0666 less umask).
 // Temporary files are named ".glint-tmp-HOST-PID-N-NAME.EXT" within NAME_MAX; those of this
-// host's processes that died before cleaning up are removed by the next write in the directory.
+// host's processes that died before cleaning up are removed by a process's first write in the
+// directory (once per directory and process: a sequence's frames do not each read it).
 void writeFileAtomically(const std::string& finalPath,
                          const std::function<void(const std::string& tmpPath)>& write);
 

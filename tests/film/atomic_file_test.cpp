@@ -121,6 +121,22 @@ size_t temporariesOf(const fs::path& dir, pid_t pid) {
   return n;
 }
 
+// The exit status of a child process (forked, so with this process's state) that writes `path`.
+int exitOfChildWriting(const fs::path& path) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    try {
+      writeTextFileAtomically(path.string(), "child");
+    } catch (...) {
+      ::_exit(1);
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
 TEST(AtomicFile, TemporariesOfKilledProcessesAreRemovedByTheNextWrite) {
   const fs::path dir = freshDir("stale");
   const pid_t dead = childInsideAWrite(dir, "frame.exr", /*die=*/true);
@@ -141,11 +157,43 @@ TEST(AtomicFile, TemporariesOfKilledProcessesAreRemovedByTheNextWrite) {
   // A live writer's temporary file is left alone …
   writeTextFileAtomically((dir / "next.json").string(), "next");
   EXPECT_EQ(temporariesOf(dir, alive), 1u);
-  // … until it dies.
+  // … until it dies: then the next process to write there removes it.
   ::kill(alive, SIGKILL);
   ::waitpid(alive, nullptr, 0);
-  writeTextFileAtomically((dir / "next.json").string(), "again");
+  EXPECT_EQ(exitOfChildWriting(dir / "next.json"), 0);
   EXPECT_EQ(temporaries(dir), 0u);
+}
+
+TEST(AtomicFile, ADirectoryIsCleanedOnceAProcessAndAgainByTheNext) {
+  // A sequence's frames each read the directory of all the frames before them: a process
+  // cleans a directory at its first write only. A temporary a process dies leaving after that
+  // (here: made by name, for a process id that has exited) is the next process's to remove.
+  const fs::path dir = freshDir("once");
+  writeTextFileAtomically((dir / "frame1.json").string(), "1");
+  const pid_t gone = ::fork();
+  if (gone == 0) ::_exit(0);
+  ::waitpid(gone, nullptr, 0);
+  const std::string tag = [&] {
+    // This host's tag, from the temporary a stopped writer leaves.
+    const pid_t alive = childInsideAWrite(dir, "probe.exr", /*die=*/false);
+    std::string t;
+    for (const auto& e : fs::directory_iterator(dir)) {
+      const std::string name = e.path().filename().string();
+      if (name.rfind(".glint-tmp-", 0) == 0) t = name.substr(11, 8);
+    }
+    ::kill(alive, SIGKILL);
+    ::waitpid(alive, nullptr, 0);
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.path().filename().string().find("probe") != std::string::npos) fs::remove(e.path());
+    return t;
+  }();
+  ASSERT_EQ(tag.size(), 8u);
+  const fs::path stale = dir / (".glint-tmp-" + tag + "-" + std::to_string(gone) + "-0-frame.exr");
+  std::ofstream(stale) << "partial";
+  writeTextFileAtomically((dir / "frame2.json").string(), "2");
+  EXPECT_TRUE(fs::exists(stale));  // this process cleaned the directory already
+  EXPECT_EQ(exitOfChildWriting(dir / "frame3.json"), 0);
+  EXPECT_FALSE(fs::exists(stale));  // a new process's first write removed it
 }
 
 TEST(AtomicFile, DashWritesJsonToStandardOutput) {
