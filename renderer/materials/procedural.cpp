@@ -18,17 +18,16 @@ long long floorToInteger(double x) {
   return static_cast<double>(i) > x ? i - 1 : i;
 }
 
-// The gradient at a lattice point: one of the 12 edge directions of a cube (Perlin 2002), picked
-// by its hash (a hash instead of a permutation table: no period of 256 cells), dotted with
-// (x, y, z). Each direction is ±a ± b for two of the three coordinates: chosen from tables, not
-// by a twelve-way branch that the lattice's random hashes mispredict, and summed as the
-// expressions `x + y`, `-x - z`, ... would (a negation is exact), so the result is the same.
-double gradientDot(uint64_t hash, double x, double y, double z) {
+// The gradient at a lattice point: one of the 12 edge directions of a cube (Perlin 2002), the
+// number g < 12 its hash picks (a hash instead of a permutation table: no period of 256 cells),
+// dotted with (x, y, z). Each direction is ±a ± b for two of the three coordinates: chosen from
+// tables, not by a twelve-way branch that the lattice's random hashes mispredict, and summed as
+// the expressions `x + y`, `-x - z`, ... would (a negation is exact), so the result is the same.
+double gradientDot(unsigned g, double x, double y, double z) {
   static constexpr uint8_t kFirst[12] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1};
   static constexpr uint8_t kSecond[12] = {1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2};
   static constexpr double kFirstSign[12] = {1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1};
   static constexpr double kSecondSign[12] = {1, 1, -1, -1, 1, 1, -1, -1, 1, 1, -1, -1};
-  const unsigned g = unsigned(hash % 12);
   const double p[3] = {x, y, z};
   return kFirstSign[g] * p[kFirst[g]] + kSecondSign[g] * p[kSecond[g]];
 }
@@ -48,31 +47,32 @@ float checkerPattern(const Vec3d& p) {
 
 namespace {
 
-// The hashes of a lattice cell's eight corners, hashKey(ix + dx, iy + dy, iz + dz) at
-// dx + 2·dy + 4·dz.
+// The gradients of a lattice cell's eight corners, hashKey(ix + dx, iy + dy, iz + dz) % 12 at
+// dx + 2·dy + 4·dz: kept as the twelve-way choice, not the hash, so that a cached cell pays no
+// division by 12 per corner.
 struct CellHashes {
   long long ix, iy, iz;
   bool filled;
-  uint64_t corner[8];
+  uint8_t corner[8];
 };
 
-void hashCorners(long long ix, long long iy, long long iz, uint64_t* corner) {
+void hashCorners(long long ix, long long iy, long long iz, uint8_t* corner) {
   // The first two stages shared between the corners that agree on them.
   for (int dx = 0; dx < 2; ++dx) {
     const uint64_t hx = hashKey(uint64_t(ix + dx));
     for (int dy = 0; dy < 2; ++dy) {
       const uint64_t hxy = hashCombine(hx, uint64_t(iy + dy));
       for (int dz = 0; dz < 2; ++dz)
-        corner[dx + 2 * dy + 4 * dz] = hashCombine(hxy, uint64_t(iz + dz));
+        corner[dx + 2 * dy + 4 * dz] = uint8_t(hashCombine(hxy, uint64_t(iz + dz)) % 12);
     }
   }
 }
 
 // Hashing is most of the noise's work, and neighbouring shading points mostly fall in the cells
-// of their neighbours at every octave but the finest: each thread remembers recent cells' hashes
+// of their neighbours at every octave but the finest: each thread remembers recent cells' gradients
 // (a pure function's results, so the noise is the same whatever the cache holds).
-const uint64_t* cornerHashes(long long ix, long long iy, long long iz) {
-  constexpr size_t kCells = 64;
+const uint8_t* cornerGradients(long long ix, long long iy, long long iz) {
+  constexpr size_t kCells = 256;
   thread_local CellHashes cells[kCells];
   const size_t slot = size_t((uint64_t(ix) * 0x9E3779B1u) ^ (uint64_t(iy) * 0x85EBCA77u) ^
                              (uint64_t(iz) * 0xC2B2AE3Du)) %
@@ -94,7 +94,7 @@ float perlinNoise(const Vec3d& p) {
   const long long ix = floorToInteger(p.x), iy = floorToInteger(p.y), iz = floorToInteger(p.z);
   const double x = p.x - double(ix), y = p.y - double(iy), z = p.z - double(iz);
   const double u = fade(x), v = fade(y), w = fade(z);
-  const uint64_t* h = cornerHashes(ix, iy, iz);
+  const uint8_t* h = cornerGradients(ix, iy, iz);
   const auto g = [&](int dx, int dy, int dz) {
     return gradientDot(h[dx + 2 * dy + 4 * dz], x - dx, y - dy, z - dz);
   };
@@ -103,7 +103,8 @@ float perlinNoise(const Vec3d& p) {
            lerp(v, lerp(u, g(0, 0, 1), g(1, 0, 1)), lerp(u, g(0, 1, 1), g(1, 1, 1))));
   // |n| ≤ 1 with these gradients (their dot products with an offset in the unit cell are at
   // most 2, and the fades weight them down to 1 at most); the clamp only guards rounding.
-  return float(std::fmax(-1.0, std::fmin(1.0, n)));
+  // As fmax(-1, fmin(1, n)) (NaN gives 1), without their libm calls.
+  return float(!(n <= 1.0) ? 1.0 : n < -1.0 ? -1.0 : n);
 }
 
 float turbulence(const Vec3d& p, int octaves) {

@@ -39,6 +39,18 @@ TEST(Procedural, PerlinNoiseIsContinuousAcrossCellFaces) {
   }
 }
 
+TEST(Procedural, PerlinNoiseDoesNotDependOnTheCellsRememberedBefore) {
+  // Each thread remembers recent cells' gradients (a pure function's results): a point's noise
+  // is the same bits when its cell is remembered, after thousands of other cells have replaced
+  // it, and with a NaN clamped as fmax(-1, fmin(1, NaN)) clamps it, to 1.
+  const Vec3d p{0.3, 12.7, -5.2};
+  const float first = perlinNoise(p), again = perlinNoise(p);
+  for (int i = 0; i < 5000; ++i) perlinNoise({i * 1.37, i * -0.71, i * 2.03});
+  EXPECT_EQ(perlinNoise(p), first);
+  EXPECT_EQ(again, first);
+  EXPECT_EQ(perlinNoise({std::nan(""), 0.5, 0.5}), 1.0f);
+}
+
 TEST(Procedural, PatternsAreBlendWeightsInTheUnitInterval) {
   for (int i = 0; i < 5000; ++i) {
     const Vec3d p{i * 0.031, i * 0.017 - 20, std::cos(i * 0.1) * 5};
