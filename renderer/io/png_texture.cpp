@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/file_names.h"
+#include "core/memory.h"
 
 namespace glint::png_texture {
 
@@ -130,15 +131,18 @@ std::string declaredColorspace(png_structp png, png_infop info) {
 }
 
 // Whether OpenImageIO would decode Exif from it (an eXIf chunk, or the text chunk ImageMagick
-// and exiftool write), which may set its colour space to sRGB.
-bool carriesExif(png_structp png, png_infop info) {
+// and exiftool write), which may set its colour space to sRGB, or XMP, whose properties it keeps
+// under their own names (oiio:ColorSpace among them).
+bool carriesExifOrXmp(png_structp png, png_infop info) {
   png_uint_32 size = 0;
   png_bytep exif = nullptr;
   if (png_get_eXIf_1(png, info, &size, &exif) != 0) return true;
   png_textp text = nullptr;
   const int count = png_get_text(png, info, &text, nullptr);
   for (int i = 0; i < count; ++i)
-    if (equalsIgnoringCase(text[i].key, "Raw profile type exif")) return true;
+    if (equalsIgnoringCase(text[i].key, "Raw profile type exif") ||
+        equalsIgnoringCase(text[i].key, "XML:com.adobe.xmp"))
+      return true;
   return false;
 }
 
@@ -160,7 +164,7 @@ void* openReader(std::unique_ptr<Reader> r, GlintOiioTextureInfo* info, char* er
     copyMessage(r->message, error, errorSize);
     return nullptr;
   }
-  if (carriesExif(r->png, r->info)) {
+  if (carriesExifOrXmp(r->png, r->info)) {
     *declined = true;
     return nullptr;
   }
@@ -188,8 +192,11 @@ int readTexels(void* handle, int y0, int y1, int channels, float* out, char* err
   const size_t rowBytes = size_t(r.width) * size_t(r.channels) * size_t(r.bytesPerChannel);
   const unsigned char* rows = nullptr;
   if (r.interlaced) {
-    // Its passes interleave every row: read whole, as OpenImageIO does.
+    // Its passes interleave every row: read whole, as OpenImageIO does. The caller's budget
+    // counted a band of rows in the file's type, not the whole image.
     if (!r.readWhole) {
+      checkMemoryFits(double(rowBytes) * double(r.height),
+                      "an interlaced PNG texture's rows, read whole (its passes interleave them)");
       r.rows.resize(rowBytes * size_t(r.height));
       r.rowPointers.resize(size_t(r.height));
       for (size_t y = 0; y < r.rowPointers.size(); ++y) r.rowPointers[y] = &r.rows[y * rowBytes];
@@ -244,7 +251,7 @@ void* open(const std::string& path, GlintOiioTextureInfo* info, char* error, siz
     return nullptr;
   }
   auto r = std::make_unique<Reader>();
-  r->file = std::fopen(path.c_str(), "rb");
+  r->file = std::fopen(path.c_str(), "rbe");  // e: not inherited by a child
   if (!r->file) {
     copyMessage("cannot open the file", error, errorSize);
     return nullptr;

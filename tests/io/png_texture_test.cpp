@@ -356,14 +356,21 @@ TEST(PngTexture, ColourChunksGiveOpenImageIOsColourSpace) {
 }
 
 TEST(PngTexture, ExifAndOtherFormatsAreLeftToOpenImageIO) {
-  // Exif may set OpenImageIO's colour space to sRGB (its Exif decoder's rule): such files, and
-  // names or bytes that are not PNG's, go to OpenImageIO as before.
+  // Exif may set OpenImageIO's colour space to sRGB (its Exif decoder's rule), and XMP may set
+  // oiio:ColorSpace itself: such files, and names or bytes that are not PNG's, go to
+  // OpenImageIO as before.
   Variant v;
   v.exif = true;
   EXPECT_TRUE(readBytesWithLibpng("exif.png", writePng(v)).declined);
   v.exif = false;
   v.texts = {{"Raw profile type exif", "exif 10 4d4d002a000000080000"}};
   EXPECT_TRUE(readBytesWithLibpng("exif_text.png", writePng(v)).declined);
+  v.texts = {{"XML:com.adobe.xmp",
+              "<x:xmpmeta xmlns:x='adobe:ns:meta/'><rdf:RDF "
+              "xmlns:rdf='http://www.w3.org/1999/02/22-rdf-syntax-ns#'><rdf:Description "
+              "xmlns:oiio='http://openimageio.org/' oiio:ColorSpace='linear'/></rdf:RDF>"
+              "</x:xmpmeta>"}};
+  EXPECT_TRUE(readBytesWithLibpng("xmp.png", writePng(v)).declined);
   v.texts = {};
   const Bytes png = writePng(v);
   EXPECT_TRUE(readBytesWithLibpng("texture.jpg", png).declined);
