@@ -7,13 +7,14 @@
 
 #include <atomic>
 #include <cerrno>
+#include <chrono>
 #include <climits>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
-#include <set>
 #include <utility>
 
 #include "core/error.h"
@@ -77,19 +78,29 @@ void removeStaleTemporaries(const fs::path& dir) {
   }
 }
 
-// Whether this process has not yet cleaned `dir` (known by device and inode) of stale
-// temporaries, and now will: reading the directory at every write made a sequence of n frames
-// read n entries per frame. A process that dies later leaves its file to the next process that
-// writes there; a forked child cleans again, as a process of its own.
-bool firstWriteIn(const fs::path& dir) {
+// Whether `dir` (known by device and inode) is due for cleaning of stale temporaries, and is
+// now claimed for it: at this process's first write there, and again a minute later for a
+// long-lived one (the Python module, a farm worker). Reading the directory at every write made
+// a sequence of n frames read n entries per frame. A forked child cleans again, as a process of
+// its own.
+bool claimCleaningOf(const fs::path& dir) {
+  constexpr auto kInterval = std::chrono::minutes(1);
   struct stat st {};
   if (::stat(dir.c_str(), &st) != 0) return true;
   static std::mutex mutex;
-  static std::set<std::pair<dev_t, ino_t>> cleaned;
+  static std::map<std::pair<dev_t, ino_t>, std::chrono::steady_clock::time_point> cleaned;
   static pid_t cleanedBy = 0;
-  const std::lock_guard lock(mutex);
+  // A forked child may inherit the lock held by a thread it does not have: it cleans without
+  // the record rather than wait forever (cleaning twice is harmless).
+  const std::unique_lock lock(mutex, std::try_to_lock);
+  if (!lock.owns_lock()) return true;
   if (cleanedBy != ::getpid()) cleaned.clear(), cleanedBy = ::getpid();
-  return cleaned.emplace(st.st_dev, st.st_ino).second;
+  const auto now = std::chrono::steady_clock::now();
+  const auto [at, first] = cleaned.try_emplace({st.st_dev, st.st_ino}, now);
+  if (first) return true;
+  if (now - at->second < kInterval) return false;
+  at->second = now;
+  return true;
 }
 
 // An output may replace only a regular file that this run did not read: renaming over a
@@ -193,7 +204,7 @@ void writeFileAtomically(const std::string& finalPath,
   checkOutputPath(finalPath);
   const fs::path target(finalPath);
   const fs::path dir = directoryOf(target);
-  if (firstWriteIn(dir)) removeStaleTemporaries(dir);
+  if (claimCleaningOf(dir)) removeStaleTemporaries(dir);
   const std::string tmp = (dir / temporaryNameFor(target)).string();
   const interrupt::TemporaryFile removedIfInterrupted(tmp);
   try {
