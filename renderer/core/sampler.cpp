@@ -4,6 +4,7 @@
 #include "core/sampler.h"
 
 #include <algorithm>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -381,14 +382,16 @@ template <class U>
 }
 const bool kAvx512 = kCpuFeatures.avx512f && kCpuFeatures.avx512dq && kCpuFeatures.avx512vl;
 // Whether runs are drawn in sixteen lanes: where the CPU has AVX-512, unless a test chose eight
-// (setSamplerLanes).
-bool inSixteenLanes = kAvx512;
+// (setSamplerLanes). Atomic, as a test may set it while another thread draws (relaxed: a plain
+// load on x86).
+std::atomic<bool> inSixteenLanes = kAvx512;
 
 // Points of Sobol or stratified sets of n points, at least kLanesFrom, in lanes: [first, first
 // + size) of `pattern` where it is given, else flat[j] of *patterns[j].
 void drawSetRun(SamplerKind kind, uint32_t n, const SamplePattern* pattern, uint32_t first,
                 const SamplePattern* const* patterns, const uint32_t* flat, int size, Vec2f* out) {
-  if (inSixteenLanes) return drawSetRunIn16(kind, n, pattern, first, patterns, flat, size, out);
+  if (inSixteenLanes.load(std::memory_order_relaxed))
+    return drawSetRunIn16(kind, n, pattern, first, patterns, flat, size, out);
   drawSetRunIn8(kind, n, pattern, first, patterns, flat, size, out);
 }
 
@@ -407,11 +410,11 @@ Vec2f unitPair(uint64_t bits) { return {toUnitFloat(bits), toUnitFloat(bits << 3
 
 }  // namespace
 
-int samplerLanes() { return inSixteenLanes ? 16 : 8; }
+int samplerLanes() { return inSixteenLanes.load(std::memory_order_relaxed) ? 16 : 8; }
 
 bool setSamplerLanes(int width) {
   if (width != 8 && (width != 16 || !kAvx512)) return false;
-  inSixteenLanes = width == 16;
+  inSixteenLanes.store(width == 16, std::memory_order_relaxed);
   return true;
 }
 

@@ -17,6 +17,8 @@ namespace glint {
 // another file's.
 template <class To, class From>
 constexpr To bitsAs(const From& x) noexcept {
+  // A scalar instantiation would be one COMDAT shared by files of different instruction sets.
+  static_assert(sizeof(To) == sizeof(From) && sizeof(From) >= 16, "bitsAs casts lanes only");
   return __builtin_bit_cast(To, x);
 }
 

@@ -474,8 +474,9 @@ void BatchedKernel::traceShadows(ShadowQueue& queue, RayCounters& counters) cons
   // Shadows are see-through only where there are dielectrics to see through.
   if (transparentShadows()) {
     // Most shadow rays meet nothing: those are found as one coherent stream, as opaque shadows
-    // are, and only the others walk through their interfaces one ray at a time. A miss from
-    // outside every medium lets all the light through, as transparentShadow's first step says.
+    // are (Embree's packets, as for opaque shadows, where the walk below traces one ray), and
+    // only the others walk through their interfaces one ray at a time. A miss from outside
+    // every medium lets all the light through, as transparentShadow's first step does.
     accel_.occludedCoherent(queue.rays.data(), queue.blocked, n);
     for (size_t i = 0; i < n; ++i) {
       if (!queue.blocked[i] && queue.media[i]->empty()) {

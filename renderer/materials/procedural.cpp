@@ -50,13 +50,13 @@ namespace {
 // The gradients of a lattice cell's eight corners, hashKey(ix + dx, iy + dy, iz + dz) % 12 at
 // dx + 2·dy + 4·dz: kept as the twelve-way choice, not the hash, so that a cached cell pays no
 // division by 12 per corner.
-struct CellHashes {
+struct CellGradients {
   long long ix, iy, iz;
   bool filled;
   uint8_t corner[8];
 };
 
-void hashCorners(long long ix, long long iy, long long iz, uint8_t* corner) {
+void cornerGradients(long long ix, long long iy, long long iz, uint8_t* corner) {
   // The first two stages shared between the corners that agree on them.
   for (int dx = 0; dx < 2; ++dx) {
     const uint64_t hx = hashKey(uint64_t(ix + dx));
@@ -73,13 +73,13 @@ void hashCorners(long long ix, long long iy, long long iz, uint8_t* corner) {
 // (a pure function's results, so the noise is the same whatever the cache holds).
 const uint8_t* cornerGradients(long long ix, long long iy, long long iz) {
   constexpr size_t kCells = 256;
-  thread_local CellHashes cells[kCells];
+  thread_local CellGradients cells[kCells];
   const size_t slot = size_t((uint64_t(ix) * 0x9E3779B1u) ^ (uint64_t(iy) * 0x85EBCA77u) ^
                              (uint64_t(iz) * 0xC2B2AE3Du)) %
                       kCells;
-  CellHashes& c = cells[slot];
+  CellGradients& c = cells[slot];
   if (!c.filled || c.ix != ix || c.iy != iy || c.iz != iz) {
-    hashCorners(ix, iy, iz, c.corner);
+    cornerGradients(ix, iy, iz, c.corner);
     c.ix = ix;
     c.iy = iy;
     c.iz = iz;

@@ -33,13 +33,15 @@ std::vector<int> strataCounts(const std::vector<float>& xs, int n) {
 // and an AVX-512 machine must test the eight lanes too.
 template <class Draw>
 void withEveryLaneWidth(const Draw& draw) {
-  const int widest = samplerLanes();
+  struct Restore {
+    int width = samplerLanes();
+    ~Restore() { setSamplerLanes(width); }
+  } restore;  // also when a draw throws
   for (const int width : {8, 16}) {
     if (!setSamplerLanes(width)) continue;
     SCOPED_TRACE("in " + std::to_string(width) + " lanes");
     draw();
   }
-  setSamplerLanes(widest);
 }
 
 TEST(FastDivisor, MatchesIntegerDivisionForEveryDividendTried) {
