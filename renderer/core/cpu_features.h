@@ -1,7 +1,7 @@
 #pragma once
-// The instruction sets beyond baseline x86-64 that this CPU runs, read once when the program
-// loads: every choice of code built for one (the lanes of intersectLanes, the sampler, sinCos,
-// the environment's searches) reads them here.
+// The instruction sets beyond baseline x86-64 that this CPU runs, read once: every choice of code
+// built for one (the lanes of intersectLanes, the sampler, sinCos, the environment's searches)
+// reads them here.
 
 namespace glint {
 
@@ -22,9 +22,13 @@ inline CpuFeatures readCpuFeatures() {
   return f;
 }
 
-// An inline variable, so that a file's own constants read from it at load (sinCos's check of
-// its lanes) are initialised after it: C++17 orders an inline variable before every variable
-// defined after it in each file that defines both.
-inline const CpuFeatures kCpuFeatures = readCpuFeatures();
+// The features, read at the first call: a constant computed from them at load (sinCos's check
+// of its lanes, the sampler's width), in any file, then sees them set. An inline variable does
+// not promise that: GCC ordered its initialiser before a file's own, but Clang runs it apart
+// (an ASan build drew in eight lanes on an AVX-512 CPU).
+inline const CpuFeatures& cpuFeatures() {
+  static const CpuFeatures features = readCpuFeatures();
+  return features;
+}
 
 }  // namespace glint

@@ -380,7 +380,7 @@ template <class U>
     const SamplePattern* const* patterns, const uint32_t* flat, int size, Vec2f* out) {
   drawSetRunIn<U32x16>(kind, n, pattern, first, patterns, flat, size, out);
 }
-const bool kAvx512 = kCpuFeatures.avx512f && kCpuFeatures.avx512dq && kCpuFeatures.avx512vl;
+const bool kAvx512 = cpuFeatures().avx512f && cpuFeatures().avx512dq && cpuFeatures().avx512vl;
 // Whether runs are drawn in sixteen lanes: where the CPU has AVX-512, unless a test chose eight
 // (setSamplerLanes). Atomic, as a test may set it while another thread draws (relaxed: a plain
 // load on x86).

@@ -17,7 +17,7 @@ namespace {
 // otherwise, would answer differently; probe arguments in every quadrant, near the cut-offs
 // and at a tiny and a negative one are compared before the lanes are trusted.
 bool lanesMatchTheCLibrary() {
-  if (!kCpuFeatures.fma || !kCpuFeatures.avx2) return false;
+  if (!cpuFeatures().fma || !cpuFeatures().avx2) return false;
   constexpr int kProbes = 16;
   const float x[kProbes] = {0.1f,  0.7853f, 1.0f,  2.0f,  3.0f,   4.0f,  5.5f,   -1.3f,
                             -6.0f, 10.0f,   33.3f, 100.f, 119.9f, 1e-5f, -77.7f, 0.5f};

@@ -36,7 +36,7 @@ float scalarTest(const Quad& q, const Ray& r, float& u, float& v) {
 
 template <class Shape>
 uint32_t dispatch(const Shape& shape, const RayLanes& rays, int n, LaneHits& hits, int width) {
-  if (width == 0) width = kCpuFeatures.avx512f ? 16 : kCpuFeatures.avx2 ? 8 : 4;
+  if (width == 0) width = cpuFeatures().avx512f ? 16 : cpuFeatures().avx2 ? 8 : 4;
   // Embree's packet on a machine of its width (the common case): one call.
   if (n == width)
     return width == 16  ? shape_lanes::avx512(shape, rays, n, hits)
@@ -82,7 +82,7 @@ uint32_t dispatch(const Shape& shape, const RayLanes& rays, int n, LaneHits& hit
 }  // namespace
 
 bool laneWidthSupported(int width) {
-  return width == 4 || (width == 8 && kCpuFeatures.avx2) || (width == 16 && kCpuFeatures.avx512f);
+  return width == 4 || (width == 8 && cpuFeatures().avx2) || (width == 16 && cpuFeatures().avx512f);
 }
 
 uint32_t intersectLanes(const Sphere& s, const RayLanes& rays, int n, LaneHits& hits, int width) {

@@ -162,7 +162,7 @@ namespace {
 }  // namespace
 
 bool EnvironmentLight::Map::searchesInLanes() const {
-  return kCpuFeatures.avx2 && double(image.height) * (double(image.width) + 1) < 0x1p31 &&
+  return cpuFeatures().avx2 && double(image.height) * (double(image.width) + 1) < 0x1p31 &&
          double(image.height) * (double(texelBins) + 1) < 0x1p31;
 }
 

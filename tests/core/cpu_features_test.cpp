@@ -41,15 +41,15 @@ TEST(CpuFeatures, AgreeWithCpuidAndTheOperatingSystemsSavedState) {
   // Each flag is exactly the CPUID bit and the saved state: a flag set wrongly runs AVX code
   // where it faults, one cleared wrongly silently takes the narrower lanes.
   const CpuidReading expected = readCpuid();
-  EXPECT_EQ(kCpuFeatures.avx2, expected.avx2);
-  EXPECT_EQ(kCpuFeatures.fma, expected.fma);
-  EXPECT_EQ(kCpuFeatures.avx512f, expected.avx512f);
-  EXPECT_EQ(kCpuFeatures.avx512dq, expected.avx512dq);
-  EXPECT_EQ(kCpuFeatures.avx512vl, expected.avx512vl);
+  EXPECT_EQ(cpuFeatures().avx2, expected.avx2);
+  EXPECT_EQ(cpuFeatures().fma, expected.fma);
+  EXPECT_EQ(cpuFeatures().avx512f, expected.avx512f);
+  EXPECT_EQ(cpuFeatures().avx512dq, expected.avx512dq);
+  EXPECT_EQ(cpuFeatures().avx512vl, expected.avx512vl);
   // What was read at load is what reading again gives.
   const CpuFeatures again = readCpuFeatures();
-  EXPECT_EQ(again.avx2, kCpuFeatures.avx2);
-  EXPECT_EQ(again.avx512f, kCpuFeatures.avx512f);
+  EXPECT_EQ(again.avx2, cpuFeatures().avx2);
+  EXPECT_EQ(again.avx512f, cpuFeatures().avx512f);
 }
 
 TEST(CpuFeatures, AreReadBeforeAConstantComputedFromThemAtLoad) {
@@ -58,7 +58,7 @@ TEST(CpuFeatures, AreReadBeforeAConstantComputedFromThemAtLoad) {
   // floats, which the lanes repeat). Read before they were set, the flags would be all false
   // and the lanes off on every CPU.
 #if defined(__GLIBC__) && __GLIBC_PREREQ(2, 28)
-  if (!kCpuFeatures.fma || !kCpuFeatures.avx2) GTEST_SKIP() << "no FMA and AVX2 on this CPU";
+  if (!cpuFeatures().fma || !cpuFeatures().avx2) GTEST_SKIP() << "no FMA and AVX2 on this CPU";
   EXPECT_TRUE(sinCosInLanes());
 #else
   GTEST_SKIP() << "not glibc 2.28 or later: sinCos may keep to the C library";
