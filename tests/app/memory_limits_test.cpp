@@ -118,8 +118,10 @@ TEST(MemoryLimits, TheImageModuleIsNotLoadedWithoutTheAddressSpaceItNeeds) {
   // Loading OpenImageIO's ~270 libraries under too small a limit aborted in log4cplus (a thread
   // that could not start), crashed in OpenImageIO, or failed with "Resource temporarily
   // unavailable". 300 MB leaves about 220 MB after Glint's own mappings: refused before dlopen,
-  // with what it needs and what is left.
-  const std::string scene = texturedScene("module-limit.json", test::writeHalfMatte());
+  // with what it needs and what is left. A TIFF: PNG textures are read without the module.
+  const std::string tiff = (test::tempDir() / "module-limit.tif").string();
+  writeRgbImage(tiff, 2, 2, 8, std::vector<uint16_t>(12, 128));
+  const std::string scene = texturedScene("module-limit.json", tiff);
   const Outcome o =
       underLimit(300, "render " + scene + " -o " + (test::tempDir() / "module-limit.exr").string() +
                           " --width 8 --height 8 --spp 1 --quiet");
