@@ -15,6 +15,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -39,13 +40,15 @@ struct Reading {
   std::vector<float> texels;
 };
 
-// Reads every row through `functions` in bands of 3 rows (as io/texture_file.cpp reads bands).
-void readRows(Reading& r, void* handle, const oiio_module::TextureFunctions& functions) {
+// Reads every row through `functions` in bands of `bandRows` rows (io/texture_file.cpp reads
+// bands, so libpng's reader is read in bands of 3 here to cross many of them).
+void readRows(Reading& r, void* handle, const oiio_module::TextureFunctions& functions,
+              int bandRows) {
   const std::unique_ptr<void, GlintOiioTextureClose> opened(handle, functions.close);
   const size_t row = size_t(r.info.width) * size_t(r.info.channels);
   r.texels.assign(row * size_t(r.info.height), -1.0f);
-  for (int y0 = 0; y0 < r.info.height; y0 += 3) {
-    const int y1 = std::min(r.info.height, y0 + 3);
+  for (int y0 = 0, y1 = 0; y0 < r.info.height; y0 = y1) {
+    y1 = y0 + std::min(bandRows, r.info.height - y0);
     char error[512] = "";
     if (functions.read(handle, y0, y1, r.info.channels, r.texels.data() + row * size_t(y0), error,
                        sizeof error) != 0) {
@@ -56,12 +59,17 @@ void readRows(Reading& r, void* handle, const oiio_module::TextureFunctions& fun
   r.ok = true;
 }
 
+// OpenImageIO, the reference, reads the image in one call: its read_scanlines sets up a
+// conversion buffer of about 64 MB per call, which under AddressSanitizer costs a poisoned
+// shadow each time.
+constexpr int kWhole = std::numeric_limits<int>::max();
+
 Reading readWithLibpng(const std::string& path) {
   Reading r;
   char error[512] = "";
   void* handle = png_texture::open(path, &r.info, error, sizeof error, &r.declined);
   r.error = error;
-  if (handle) readRows(r, handle, png_texture::functions());
+  if (handle) readRows(r, handle, png_texture::functions(), 3);
   return r;
 }
 
@@ -71,7 +79,7 @@ Reading readWithOpenImageIO(const std::string& path) {
   char error[512] = "";
   void* handle = functions.open(path.c_str(), &r.info, error, sizeof error);
   r.error = error;
-  if (handle) readRows(r, handle, functions);
+  if (handle) readRows(r, handle, functions, kWhole);
   return r;
 }
 
@@ -81,7 +89,7 @@ Reading readBytesWithLibpng(const std::string& name, const Bytes& bytes) {
   void* handle = png_texture::openMemory(name, bytes.data(), bytes.size(), &r.info, error,
                                          sizeof error, &r.declined);
   r.error = error;
-  if (handle) readRows(r, handle, png_texture::functions());
+  if (handle) readRows(r, handle, png_texture::functions(), 3);
   return r;
 }
 
@@ -92,7 +100,7 @@ Reading readBytesWithOpenImageIO(const std::string& name, const Bytes& bytes) {
   void* handle =
       functions.openMemory(name.c_str(), bytes.data(), bytes.size(), &r.info, error, sizeof error);
   r.error = error;
-  if (handle) readRows(r, handle, functions);
+  if (handle) readRows(r, handle, functions, kWhole);
   return r;
 }
 
