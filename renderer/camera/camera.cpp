@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/avx2_clones.h"
 #include "core/lanes.h"
 #include "core/sampling.h"
 
@@ -173,11 +174,12 @@ struct RayFrame {
 };
 
 // Camera::generateRays, eight rays side by side. Built for baseline x86-64 and for AVX2, chosen
-// when the program loads by what the CPU has: AVX2 holds eight lanes in one register, where a
-// thin lens's chain of divisions and roots took two.
-[[gnu::target_clones("avx2", "default")]] void raysInLanes(const RayFrame& c, const Vec2f* film,
-                                                           const Vec2f* lens, int n, Ray* out,
-                                                           const int* slot) {
+// by what the CPU has: AVX2 holds eight lanes in one register, where a thin lens's chain of
+// divisions and roots took two.
+GLINT_AVX2_CLONES(raysInLanes,
+                  (const RayFrame& c, const Vec2f* film, const Vec2f* lens, int n, Ray* out,
+                   const int* slot),
+                  (c, film, lens, n, out, slot)) {
   const bool perspective = c.perspective, thinLens = c.thinLens;
   const Vec3f eye = c.eye, negW = c.negW, u = c.u, v = c.v, view = c.view;
   for (int first = 0; first < n; first += 8) {

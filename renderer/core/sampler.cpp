@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/avx2_clones.h"
 #include "core/cpu_features.h"
 #include "core/fast_divide.h"
 #include "core/hash.h"
@@ -365,12 +366,14 @@ template <class U>
   drawSet<U>(kind, n, ListRun(patterns, flat), size, out);
 }
 
-// drawSetRun in blocks of eight, built for baseline x86-64 and for AVX2, chosen when the program
-// loads by what the CPU has: AVX2 holds a block's 64-bit and double lanes in registers, which
-// SSE2 splits and passes through memory.
-[[gnu::target_clones("avx2", "default")]] void drawSetRunIn8(
-    SamplerKind kind, uint32_t n, const SamplePattern* pattern, uint32_t first,
-    const SamplePattern* const* patterns, const uint32_t* flat, int size, Vec2f* out) {
+// drawSetRun in blocks of eight, built for baseline x86-64 and for AVX2, chosen by what the CPU
+// has: AVX2 holds a block's 64-bit and double lanes in registers, which SSE2 splits and passes
+// through memory.
+GLINT_AVX2_CLONES(drawSetRunIn8,
+                  (SamplerKind kind, uint32_t n, const SamplePattern* pattern, uint32_t first,
+                   const SamplePattern* const* patterns, const uint32_t* flat, int size,
+                   Vec2f* out),
+                  (kind, n, pattern, first, patterns, flat, size, out)) {
   drawSetRunIn<U32x8>(kind, n, pattern, first, patterns, flat, size, out);
 }
 // ... and in blocks of sixteen for AVX-512, which holds them in one register each and multiplies

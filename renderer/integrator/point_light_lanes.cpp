@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 
+#include "core/avx2_clones.h"
 #include "core/check.h"
 #include "core/ray.h"
 
@@ -68,9 +69,11 @@ constexpr int32_t kMagnitude = std::numeric_limits<int32_t>::max();
 
 }  // namespace
 
-[[gnu::target_clones("avx2", "default")]] void samplePointLight(
-    const Vec3f& position, const Rgb& intensity, bool inverseSquare, const ShadingPoint* firstPoint,
-    const Vec3f* firstNormal, size_t stride, int n, PointLightLanes& out) {
+GLINT_AVX2_CLONES(samplePointLight,
+                  (const Vec3f& position, const Rgb& intensity, bool inverseSquare,
+                   const ShadingPoint* firstPoint, const Vec3f* firstNormal, size_t stride, int n,
+                   PointLightLanes& out),
+                  (position, intensity, inverseSquare, firstPoint, firstNormal, stride, n, out)) {
   GLINT_CHECK(n <= PointLightLanes::kMaxPoints);
   const auto* pointBytes = reinterpret_cast<const unsigned char*>(firstPoint);
   const auto* normalBytes = reinterpret_cast<const unsigned char*>(firstNormal);

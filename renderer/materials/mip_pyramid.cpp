@@ -6,6 +6,8 @@
 #include <limits>
 #include <utility>
 
+#include "core/avx2_clones.h"
+
 namespace glint {
 
 namespace {
@@ -241,11 +243,12 @@ template <int kCount>
   for (int k = 0; k < kCount; ++k) out[k] = sum[k];
 }
 
-// Built also for AVX2 and chosen at load: its floors are one instruction there, not a
-// dozen, and the filter's points take most of a textured scene's shading.
-[[gnu::target_clones("avx2", "default")]] void filterPyramid(const MipPyramid& pyramid,
-                                                             const ImageFootprint& at, int first,
-                                                             int count, float* out) {
+// Built also for AVX2 and chosen by what the CPU has: its floors are one instruction there, not
+// a dozen, and the filter's points take most of a textured scene's shading.
+GLINT_AVX2_CLONES(filterPyramid,
+                  (const MipPyramid& pyramid, const ImageFootprint& at, int first, int count,
+                   float* out),
+                  (pyramid, at, first, count, out)) {
   switch (count) {
     case 1:
       return pyramid.filterChannels<1>(at, first, out);

@@ -55,6 +55,9 @@ class MipPyramid {
   };
   friend void filterPyramid(const MipPyramid& pyramid, const ImageFootprint& at, int first,
                             int count, float* out);
+  // Its body where Clang with LTO makes its AVX2 copy itself (core/avx2_clones.h).
+  friend void filterPyramidIn(const MipPyramid& pyramid, const ImageFootprint& at, int first,
+                              int count, float* out);
   template <int kCount>
   inline void filterChannels(const ImageFootprint& at, int first, float* out) const;
   // (rs, rt): the lookup's (s, t) reduced to one period of its wrap modes.
