@@ -8,6 +8,9 @@ namespace glint {
 struct CpuFeatures {
   bool avx2 = false, fma = false;
   bool avx512f = false, avx512dq = false, avx512vl = false;
+  // AVX-512 F, DQ (64-bit multiplies) and VL (their 128- and 256-bit forms): what the sampler's
+  // sixteen lanes are built for.
+  bool avx512FDqVl() const { return avx512f && avx512dq && avx512vl; }
 };
 
 // __builtin_cpu_init first: this may run among static constructors, before libgcc's own.

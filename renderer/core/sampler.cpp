@@ -383,7 +383,7 @@ GLINT_AVX2_CLONES(drawSetRunIn8,
     const SamplePattern* const* patterns, const uint32_t* flat, int size, Vec2f* out) {
   drawSetRunIn<U32x16>(kind, n, pattern, first, patterns, flat, size, out);
 }
-const bool kAvx512 = cpuFeatures().avx512f && cpuFeatures().avx512dq && cpuFeatures().avx512vl;
+const bool kAvx512 = cpuFeatures().avx512FDqVl();
 // Whether runs are drawn in sixteen lanes: where the CPU has AVX-512, unless a test chose eight
 // (setSamplerLanes). Atomic, as a test may set it while another thread draws (relaxed: a plain
 // load on x86).

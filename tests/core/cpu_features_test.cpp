@@ -52,6 +52,20 @@ TEST(CpuFeatures, AgreeWithCpuidAndTheOperatingSystemsSavedState) {
   EXPECT_EQ(again.avx512f, cpuFeatures().avx512f);
 }
 
+TEST(CpuFeatures, TheSamplersAvx512NeedsFDqAndVl) {
+  // drawSetRunIn16 is built for all three: a CPU lacking any one (Knights Landing has F but
+  // neither DQ nor VL) draws in eight lanes.
+  CpuFeatures f;
+  f.avx512f = f.avx512dq = true;
+  EXPECT_FALSE(f.avx512FDqVl());
+  f.avx512vl = true;
+  EXPECT_TRUE(f.avx512FDqVl());
+  f.avx512f = false;
+  EXPECT_FALSE(f.avx512FDqVl());
+  const CpuidReading r = readCpuid();
+  EXPECT_EQ(cpuFeatures().avx512FDqVl(), r.avx512f && r.avx512dq && r.avx512vl);
+}
+
 TEST(CpuFeatures, AreReadBeforeAConstantComputedFromThemAtLoad) {
   // sinCos decides at load, among static constructors, whether its lanes run: from these
   // flags, then by comparing sixteen probes with glibc (2.28 or later gives its FMA build's

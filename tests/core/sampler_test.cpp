@@ -211,7 +211,7 @@ TEST(Sampler, DrawsInEveryLaneWidthTheCpuRuns) {
   // Eight lanes run everywhere (baseline x86-64 or AVX2); sixteen where the CPU has AVX-512 F,
   // DQ and VL, which their code is built for; no other width is drawn in.
   const int widest = samplerLanes();
-  const bool avx512 = cpuFeatures().avx512f && cpuFeatures().avx512dq && cpuFeatures().avx512vl;
+  const bool avx512 = cpuFeatures().avx512FDqVl();
   EXPECT_EQ(widest, avx512 ? 16 : 8);
   EXPECT_TRUE(setSamplerLanes(8));
   EXPECT_EQ(samplerLanes(), 8);
