@@ -12,20 +12,12 @@
 #include "accel/reference_bvh.h"
 #include "app/commands.h"
 #include "app/scene_source.h"
+#include "core/cpu_features.h"
 #include "render/tile_scheduler.h"
 
 namespace glint {
 
 namespace {
-
-std::string cpuIsa() {
-  __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx512f")) return "AVX-512";
-  if (__builtin_cpu_supports("avx2")) return "AVX2";
-  if (__builtin_cpu_supports("avx")) return "AVX";
-  if (__builtin_cpu_supports("sse4.2")) return "SSE4.2";
-  return "SSE2";
-}
 
 std::string embreeWidths() {
   RTCDevice d = embreeDevice();
@@ -73,7 +65,7 @@ CommandRunner addInfoCommand(CLI::App& app) {
     std::printf("glint        %s\n", GLINT_VERSION);
     std::printf("Embree       %s (native packets: %s)\n", embreeVersionString().c_str(),
                 embreeWidths().c_str());
-    std::printf("CPU ISA      %s\n", cpuIsa().c_str());
+    std::printf("CPU ISA      %s\n", cpuFeatureNames(cpuFeatures()).c_str());
     std::printf("OpenEXR      %s\n", OPENEXR_VERSION_STRING);
     std::printf("libpng       %s\n", PNG_LIBPNG_VER_STRING);
     std::printf("OpenImageIO  %s (module, loaded only for .jpg and .tif images)\n",

@@ -2,6 +2,7 @@
 // The instruction sets beyond baseline x86-64 that this CPU runs, read once: every choice of code
 // built for one (the lanes of intersectLanes, the sampler, sinCos, the environment's searches)
 // reads them here.
+#include <string>
 
 namespace glint {
 
@@ -33,5 +34,9 @@ inline const CpuFeatures& cpuFeatures() {
   static const CpuFeatures features = readCpuFeatures();
   return features;
 }
+
+// The features `f` has, by their usual names after the baseline: "x86-64, AVX2, FMA, AVX-512F,
+// AVX-512DQ, AVX-512VL" where it has all of them (`glint info` prints it).
+std::string cpuFeatureNames(const CpuFeatures& f);
 
 }  // namespace glint

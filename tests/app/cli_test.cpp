@@ -8,6 +8,7 @@
 
 #include <fstream>
 
+#include "core/cpu_features.h"
 #include "film/exr_output.h"
 #include "test_util.h"
 
@@ -46,6 +47,16 @@ TEST(Cli, VersionAndHelp) {
   EXPECT_EQ(h.exitCode, 0);
   EXPECT_NE(h.output.find("--spp"), std::string::npos);
   EXPECT_EQ(runGlint("render --no-such-flag").exitCode, 2);
+}
+
+TEST(Cli, InfoNamesTheCpuFeaturesGlintChoosesCodeBy) {
+  // Read where every choice of code reads them (core/cpu_features.h), so that the line says
+  // which copies a render runs.
+  const auto r = runGlint("info");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("CPU ISA      " + cpuFeatureNames(cpuFeatures()) + "\n"),
+            std::string::npos)
+      << r.output;
 }
 
 TEST(Cli, SceneErrorExitsTwoWithLocation) {

@@ -66,6 +66,18 @@ TEST(CpuFeatures, TheSamplersAvx512NeedsFDqAndVl) {
   EXPECT_EQ(cpuFeatures().avx512FDqVl(), r.avx512f && r.avx512dq && r.avx512vl);
 }
 
+TEST(CpuFeatures, AreNamedAfterTheBaseline) {
+  // What `glint info` prints: the baseline, then each feature set in the usual name.
+  CpuFeatures f;
+  EXPECT_EQ(cpuFeatureNames(f), "x86-64");
+  f.avx2 = f.fma = true;
+  EXPECT_EQ(cpuFeatureNames(f), "x86-64, AVX2, FMA");
+  f.avx512f = f.avx512dq = f.avx512vl = true;
+  EXPECT_EQ(cpuFeatureNames(f), "x86-64, AVX2, FMA, AVX-512F, AVX-512DQ, AVX-512VL");
+  f.avx2 = f.avx512dq = false;
+  EXPECT_EQ(cpuFeatureNames(f), "x86-64, FMA, AVX-512F, AVX-512VL");
+}
+
 TEST(CpuFeatures, AreReadBeforeAConstantComputedFromThemAtLoad) {
   // sinCos decides at load, among static constructors, whether its lanes run: from these
   // flags, then by comparing sixteen probes with glibc (2.28 or later gives its FMA build's
