@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -121,6 +122,27 @@ size_t temporariesOf(const fs::path& dir, pid_t pid) {
   return n;
 }
 
+// A process id no process has: the kernel hands out ids below pid_max, which can be raised to
+// 2^22 and no further (PID_MAX_LIMIT). A dead child's own id is not that: the kernel may give it
+// to another process (ids wrap at 32768 by default) before a write looks at its temporaries.
+pid_t pidOfNoProcess() {
+  const pid_t pid = pid_t{1} << 22;
+  EXPECT_EQ(::kill(pid, 0), -1);
+  EXPECT_EQ(errno, ESRCH);
+  return pid;
+}
+
+// Renames the temporary files in `dir` that process `from` wrote as if process `to` had.
+void renameTemporaries(const fs::path& dir, pid_t from, pid_t to) {
+  const std::string was = "-" + std::to_string(from) + "-", now = "-" + std::to_string(to) + "-";
+  for (const auto& e : fs::directory_iterator(dir)) {
+    std::string name = e.path().filename().string();
+    const size_t at = name.find(was);
+    if (name.rfind(".glint-tmp-", 0) != 0 || at == std::string::npos) continue;
+    fs::rename(e.path(), dir / name.replace(at, was.size(), now));
+  }
+}
+
 // The exit status of a child process (forked, so with this process's state) that writes `path`.
 int exitOfChildWriting(const fs::path& path) {
   const pid_t pid = ::fork();
@@ -139,8 +161,12 @@ int exitOfChildWriting(const fs::path& path) {
 
 TEST(AtomicFile, TemporariesOfKilledProcessesAreRemovedByTheNextWrite) {
   const fs::path dir = freshDir("stale");
-  const pid_t dead = childInsideAWrite(dir, "frame.exr", /*die=*/true);
+  const pid_t killed = childInsideAWrite(dir, "frame.exr", /*die=*/true);
   ASSERT_EQ(temporaries(dir), 1u);  // what a killed process leaves
+  ASSERT_EQ(temporariesOf(dir, killed), 1u);
+  // Named for an id no process has, as the killed child's may be reused before the next write.
+  const pid_t dead = pidOfNoProcess();
+  renameTemporaries(dir, killed, dead);
   ASSERT_EQ(temporariesOf(dir, dead), 1u);
   // A second writer, which stops inside its write: its own write already removed the dead one's.
   const pid_t alive = childInsideAWrite(dir, "other.exr", /*die=*/false);
@@ -160,6 +186,7 @@ TEST(AtomicFile, TemporariesOfKilledProcessesAreRemovedByTheNextWrite) {
   // … until it dies: then the next process to write there removes it.
   ::kill(alive, SIGKILL);
   ::waitpid(alive, nullptr, 0);
+  renameTemporaries(dir, alive, dead);  // its id, too, may be reused
   EXPECT_EQ(exitOfChildWriting(dir / "next.json"), 0);
   EXPECT_EQ(temporaries(dir), 0u);
 }
@@ -167,12 +194,10 @@ TEST(AtomicFile, TemporariesOfKilledProcessesAreRemovedByTheNextWrite) {
 TEST(AtomicFile, ADirectoryIsCleanedOnceAProcessAndAgainByTheNext) {
   // A sequence's frames each read the directory of all the frames before them: a process
   // cleans a directory at its first write only. A temporary a process dies leaving after that
-  // (here: made by name, for a process id that has exited) is the next process's to remove.
+  // (here: made by name, for a process id no process has) is the next process's to remove.
   const fs::path dir = freshDir("once");
   writeTextFileAtomically((dir / "frame1.json").string(), "1");
-  const pid_t gone = ::fork();
-  if (gone == 0) ::_exit(0);
-  ::waitpid(gone, nullptr, 0);
+  const pid_t gone = pidOfNoProcess();
   const std::string tag = [&] {
     // This host's tag, from the temporary a stopped writer leaves.
     const pid_t alive = childInsideAWrite(dir, "probe.exr", /*die=*/false);
