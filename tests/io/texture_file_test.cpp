@@ -30,7 +30,8 @@ void writeImage(const std::string& path, int width, int height, int channels, in
 
 // The texel (x, y) read with no footprint at its centre, as data (no colour conversion).
 Rgb texelAt(const ImageTexture& t, int width, int height, int x, int y) {
-  return t.data({{(x + 0.5f) / float(width), (y + 0.5f) / float(height)}, {0, 0}, {0, 0}});
+  return t.data(
+      {{(float(x) + 0.5f) / float(width), (float(y) + 0.5f) / float(height)}, {0, 0}, {0, 0}});
 }
 
 TEST(TextureFile, TiledAndScanlineFilesGiveTheSameTexels) {

@@ -153,10 +153,10 @@ TEST(MipPyramid, TheFilterStaysWithinItsTaylorBoundOfTheImage) {
   for (const float scale : {0.5f, 1.0f, 2.0f, 4.0f, 8.0f})
     for (const float stretch : {1.0f, 2.5f, 8.0f})
       for (int k = 0; k < 8; ++k) {
-        const float angle = 0.7f * k, c = std::cos(angle), s = std::sin(angle);
+        const float angle = 0.7f * float(k), c = std::cos(angle), s = std::sin(angle);
         const Vec2f a{scale * stretch * c / n, scale * stretch * s / n};
         const Vec2f b{-scale * s / n, scale * c / n};
-        const Vec2f st{0.1f + 0.11f * k, 0.9f - 0.1f * k};
+        const Vec2f st{0.1f + 0.11f * float(k), 0.9f - 0.1f * float(k)};
         const double major = scale * stretch;
         const double minor = std::max(double(scale), major / MipPyramid::kMaxAnisotropy);
         const double level = minor > 1 ? std::floor(std::log2(minor)) : 0;

@@ -160,7 +160,7 @@ TEST(Surface, PhongLobeDrawsByTheLobesDistribution) {
   for (const float n : {0.0f, 5.0f, 50.0f}) {
     double mean = 0;
     for (int i = 0; i < 10000; ++i)
-      mean += dot(samplePhongLobe(r, n, {(i + 0.5f) / 10000, 0.25f}), r) / 10000;
+      mean += dot(samplePhongLobe(r, n, {(float(i) + 0.5f) / 10000, 0.25f}), r) / 10000;
     EXPECT_NEAR(mean, (n + 1) / (n + 2), 1e-5) << n;
   }
   // As gloss: spreads() for every exponent, n = 0 included; a lobe about the normal never
