@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 
 #include "core/hash.h"
 
@@ -20,17 +21,13 @@ long long floorToInteger(double x) {
 
 // The gradient at a lattice point: one of the 12 edge directions of a cube (Perlin 2002), the
 // number g < 12 its hash picks (a hash instead of a permutation table: no period of 256 cells),
-// dotted with (x, y, z). Each direction is ±a ± b for two of the three coordinates: chosen from
-// tables, not by a twelve-way branch that the lattice's random hashes mispredict, and summed as
-// the expressions `x + y`, `-x - z`, ... would (a negation is exact), so the result is the same.
-double gradientDot(unsigned g, double x, double y, double z) {
-  static constexpr uint8_t kFirst[12] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1};
-  static constexpr uint8_t kSecond[12] = {1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2};
-  static constexpr double kFirstSign[12] = {1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1};
-  static constexpr double kSecondSign[12] = {1, 1, -1, -1, 1, 1, -1, -1, 1, 1, -1, -1};
-  const double p[3] = {x, y, z};
-  return kFirstSign[g] * p[kFirst[g]] + kSecondSign[g] * p[kSecond[g]];
-}
+// dotted with (x, y, z). Each direction is ±a ± b for two of the three coordinates (a from x or
+// y, b from y or z), summed as the expressions `x + y`, `-x - z`, ... would (a negation is
+// exact), so the result is the same.
+constexpr uint8_t kFirst[12] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1};
+constexpr uint8_t kSecond[12] = {1, 1, 1, 1, 2, 2, 2, 2, 2, 2, 2, 2};
+constexpr double kFirstSign[12] = {1, -1, 1, -1, 1, -1, 1, -1, 1, -1, 1, -1};
+constexpr double kSecondSign[12] = {1, 1, -1, -1, 1, 1, -1, -1, 1, 1, -1, -1};
 
 // Perlin's quintic fade 6t⁵ − 15t⁴ + 10t³: zero first and second derivatives at 0 and 1.
 double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
@@ -47,60 +44,87 @@ float checkerPattern(const Vec3d& p) {
 
 namespace {
 
-// The gradients of a lattice cell's eight corners, hashKey(ix + dx, iy + dy, iz + dz) % 12 at
-// dx + 2·dy + 4·dz: kept as the twelve-way choice, not the hash, so that a cached cell pays no
-// division by 12 per corner.
+// Four doubles, and four lane masks (all ones: true) to choose between two of them.
+using D4 = double __attribute__((vector_size(32)));
+using M4 = long long __attribute__((vector_size(32)));
+
+// The gradients of a lattice cell's eight corners, hashKey(ix + dx, iy + dy, iz + dz) % 12,
+// laid out for perlinNoise's lanes: the corners with dx = 0 in [0], those with dx = 1 in [1],
+// lane dy + 2·dz of each holding the choice of the first and second coordinates (firstIsY:
+// y, else x; secondIsZ: z, else y) and their signs. Kept as the choice, not the hash, so that
+// a cached cell pays no division by 12 per corner and no table look-ups per lane.
 struct CellGradients {
+  D4 firstSign[2], secondSign[2];
+  M4 firstIsY[2], secondIsZ[2];
   long long ix, iy, iz;
   bool filled;
-  uint8_t corner[8];
 };
 
-void cornerGradients(long long ix, long long iy, long long iz, uint8_t* corner) {
+// Fills c with the cell's gradients: out of line, so that a remembered cell (nearly every
+// lookup) pays only the test.
+[[gnu::noinline]] void fillCell(long long ix, long long iy, long long iz, CellGradients& c) {
   // The first two stages shared between the corners that agree on them.
   for (int dx = 0; dx < 2; ++dx) {
     const uint64_t hx = hashKey(uint64_t(ix + dx));
     for (int dy = 0; dy < 2; ++dy) {
       const uint64_t hxy = hashCombine(hx, uint64_t(iy + dy));
-      for (int dz = 0; dz < 2; ++dz)
-        corner[dx + 2 * dy + 4 * dz] = uint8_t(hashCombine(hxy, uint64_t(iz + dz)) % 12);
+      for (int dz = 0; dz < 2; ++dz) {
+        const auto g = size_t(hashCombine(hxy, uint64_t(iz + dz)) % 12);
+        const int lane = dy + 2 * dz;
+        c.firstSign[dx][lane] = kFirstSign[g];
+        c.secondSign[dx][lane] = kSecondSign[g];
+        c.firstIsY[dx][lane] = kFirst[g] == 1 ? -1 : 0;
+        c.secondIsZ[dx][lane] = kSecond[g] == 2 ? -1 : 0;
+      }
     }
   }
+  c.ix = ix;
+  c.iy = iy;
+  c.iz = iz;
+  c.filled = true;
 }
 
 // Hashing is most of the noise's work, and neighbouring shading points mostly fall in the cells
 // of their neighbours at every octave but the finest: each thread remembers recent cells' gradients
-// (a pure function's results, so the noise is the same whatever the cache holds).
-const uint8_t* cornerGradients(long long ix, long long iy, long long iz) {
-  constexpr size_t kCells = 256;
-  thread_local CellGradients cells[kCells];
+// (a pure function's results, so the noise is the same whatever the cache holds). 1024 of them:
+// a tile's points over all octaves evicted each other from 256.
+thread_local CellGradients cells[1024];
+
+[[gnu::always_inline]] inline const CellGradients& cellGradients(long long ix, long long iy,
+                                                                 long long iz) {
+  constexpr size_t kCells = std::size(cells);
   const size_t slot = size_t((uint64_t(ix) * 0x9E3779B1u) ^ (uint64_t(iy) * 0x85EBCA77u) ^
                              (uint64_t(iz) * 0xC2B2AE3Du)) %
                       kCells;
   CellGradients& c = cells[slot];
-  if (!c.filled || c.ix != ix || c.iy != iy || c.iz != iz) {
-    cornerGradients(ix, iy, iz, c.corner);
-    c.ix = ix;
-    c.iy = iy;
-    c.iz = iz;
-    c.filled = true;
-  }
-  return c.corner;
+  if (!c.filled || c.ix != ix || c.iy != iy || c.iz != iz) [[unlikely]]
+    fillCell(ix, iy, iz, c);
+  return c;
 }
 
 }  // namespace
 
-float perlinNoise(const Vec3d& p) {
+// The eight corners' gradient products and the four interpolations along x four lanes at once,
+// each lane by the scalar formula's operations (the same bits); built also for AVX2, where the
+// lanes are one register.
+[[gnu::target_clones("avx2", "default")]] float perlinNoise(const Vec3d& p) {
   const long long ix = floorToInteger(p.x), iy = floorToInteger(p.y), iz = floorToInteger(p.z);
   const double x = p.x - double(ix), y = p.y - double(iy), z = p.z - double(iz);
   const double u = fade(x), v = fade(y), w = fade(z);
-  const uint8_t* h = cornerGradients(ix, iy, iz);
-  const auto g = [&](int dx, int dy, int dz) {
-    return gradientDot(h[dx + 2 * dy + 4 * dz], x - dx, y - dy, z - dz);
-  };
-  const double n =
-      lerp(w, lerp(v, lerp(u, g(0, 0, 0), g(1, 0, 0)), lerp(u, g(0, 1, 0), g(1, 1, 0))),
-           lerp(v, lerp(u, g(0, 0, 1), g(1, 0, 1)), lerp(u, g(0, 1, 1), g(1, 1, 1))));
+  const CellGradients& c = cellGradients(ix, iy, iz);
+  // Corner (dx, dy, dz)'s offset from the point, lane dy + 2·dz.
+  const D4 ys = {y, y - 1, y, y - 1}, zs = {z, z, z - 1, z - 1};
+  D4 dots[2];
+  for (int dx = 0; dx < 2; ++dx) {
+    const double xd = x - dx;
+    const D4 xs = {xd, xd, xd, xd};
+    const D4 first = c.firstIsY[dx] ? ys : xs, second = c.secondIsZ[dx] ? zs : ys;
+    dots[dx] = c.firstSign[dx] * first + c.secondSign[dx] * second;
+  }
+  // lerp(u, corner dx = 0, corner dx = 1) in each lane.
+  const D4 us = {u, u, u, u};
+  const D4 alongX = dots[0] + us * (dots[1] - dots[0]);
+  const double n = lerp(w, lerp(v, alongX[0], alongX[1]), lerp(v, alongX[2], alongX[3]));
   // |n| ≤ 1 with these gradients (their dot products with an offset in the unit cell are at
   // most 2, and the fades weight them down to 1 at most); the clamp only guards rounding.
   // As fmax(-1, fmin(1, n)) (NaN gives 1), without their libm calls.
