@@ -176,7 +176,7 @@ struct RayFrame {
 // Camera::generateRays, eight rays side by side. Built for baseline x86-64 and for AVX2, chosen
 // by what the CPU has: AVX2 holds eight lanes in one register, where a thin lens's chain of
 // divisions and roots took two.
-GLINT_AVX2_CLONES(raysInLanes,
+GLINT_AVX2_CLONES(void, raysInLanes,
                   (const RayFrame& c, const Vec2f* film, const Vec2f* lens, int n, Ray* out,
                    const int* slot),
                   (c, film, lens, n, out, slot)) {

@@ -369,7 +369,7 @@ template <class U>
 // drawSetRun in blocks of eight, built for baseline x86-64 and for AVX2, chosen by what the CPU
 // has: AVX2 holds a block's 64-bit and double lanes in registers, which SSE2 splits and passes
 // through memory.
-GLINT_AVX2_CLONES(drawSetRunIn8,
+GLINT_AVX2_CLONES(void, drawSetRunIn8,
                   (SamplerKind kind, uint32_t n, const SamplePattern* pattern, uint32_t first,
                    const SamplePattern* const* patterns, const uint32_t* flat, int size,
                    Vec2f* out),

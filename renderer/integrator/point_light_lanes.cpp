@@ -69,7 +69,7 @@ constexpr int32_t kMagnitude = std::numeric_limits<int32_t>::max();
 
 }  // namespace
 
-GLINT_AVX2_CLONES(samplePointLight,
+GLINT_AVX2_CLONES(void, samplePointLight,
                   (const Vec3f& position, const Rgb& intensity, bool inverseSquare,
                    const ShadingPoint* firstPoint, const Vec3f* firstNormal, size_t stride, int n,
                    PointLightLanes& out),

@@ -245,7 +245,7 @@ template <int kCount>
 
 // Built also for AVX2 and chosen by what the CPU has: its floors are one instruction there, not
 // a dozen, and the filter's points take most of a textured scene's shading.
-GLINT_AVX2_CLONES(filterPyramid,
+GLINT_AVX2_CLONES(void, filterPyramid,
                   (const MipPyramid& pyramid, const ImageFootprint& at, int first, int count,
                    float* out),
                   (pyramid, at, first, count, out)) {

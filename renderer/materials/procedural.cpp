@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <iterator>
 
+#include "core/avx2_clones.h"
 #include "core/hash.h"
 
 namespace glint {
@@ -107,7 +108,7 @@ thread_local CellGradients cells[1024];
 // The eight corners' gradient products and the four interpolations along x four lanes at once,
 // each lane by the scalar formula's operations (the same bits); built also for AVX2, where the
 // lanes are one register.
-[[gnu::target_clones("avx2", "default")]] float perlinNoise(const Vec3d& p) {
+GLINT_AVX2_CLONES(float, perlinNoise, (const Vec3d& p), (p)) {
   const long long ix = floorToInteger(p.x), iy = floorToInteger(p.y), iz = floorToInteger(p.z);
   const double x = p.x - double(ix), y = p.y - double(iy), z = p.z - double(iz);
   const double u = fade(x), v = fade(y), w = fade(z);

@@ -8,7 +8,7 @@ namespace {
 
 // Eight lanes of x² + 1: the AVX2 copy holds them in one register, the baseline copy in two.
 using F8 = float __attribute__((vector_size(32)));
-GLINT_AVX2_CLONES(squaresPlusOne, (const float* x, float* out), (x, out)) {
+GLINT_AVX2_CLONES(void, squaresPlusOne, (const float* x, float* out), (x, out)) {
   F8 v;
   __builtin_memcpy(&v, x, sizeof v);
   v = v * v + 1.0f;
