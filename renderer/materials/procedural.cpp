@@ -2,7 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
-#include <iterator>
+#include <memory>
 
 #include "core/avx2_clones.h"
 #include "core/hash.h"
@@ -87,16 +87,27 @@ struct CellGradients {
 
 // Hashing is most of the noise's work, and neighbouring shading points mostly fall in the cells
 // of their neighbours at every octave but the finest: each thread remembers recent cells' gradients
-// (a pure function's results, so the noise is the same whatever the cache holds). 1024 of them:
-// a tile's points over all octaves evicted each other from 256.
-thread_local CellGradients cells[1024];
+// (a pure function's results, so the noise is the same whatever the cache holds). 1024 of them
+// (288 KiB): a tile's points over all octaves evicted each other from 256. Allocated at a thread's
+// first noise, so that no thread of a scene without solid textures carries it.
+struct CellCache {
+  static constexpr size_t kCells = 1024;
+  CellGradients cells[kCells];
+};
+thread_local std::unique_ptr<CellCache> cellCache;
+
+[[gnu::noinline]] CellCache& newCellCache() {
+  cellCache = std::make_unique<CellCache>();  // value-initialised: no cell filled
+  return *cellCache;
+}
 
 [[gnu::always_inline]] inline const CellGradients& cellGradients(long long ix, long long iy,
                                                                  long long iz) {
-  constexpr size_t kCells = std::size(cells);
+  CellCache* cache = cellCache.get();
+  CellGradients* cells = cache ? cache->cells : newCellCache().cells;
   const size_t slot = size_t((uint64_t(ix) * 0x9E3779B1u) ^ (uint64_t(iy) * 0x85EBCA77u) ^
                              (uint64_t(iz) * 0xC2B2AE3Du)) %
-                      kCells;
+                      CellCache::kCells;
   CellGradients& c = cells[slot];
   if (!c.filled || c.ix != ix || c.iy != iy || c.iz != iz) [[unlikely]]
     fillCell(ix, iy, iz, c);

@@ -44,13 +44,19 @@ TEST(Procedural, PerlinNoiseIsContinuousAcrossCellFaces) {
 
 TEST(Procedural, PerlinNoiseDoesNotDependOnTheCellsRememberedBefore) {
   // Each thread remembers recent cells' gradients (a pure function's results): a point's noise
-  // is the same bits when its cell is remembered, after thousands of other cells have replaced
-  // it, and with a NaN clamped as fmax(-1, fmin(1, NaN)) clamps it, to 1.
+  // is the same bits when its cell is remembered, after another cell has replaced it, after
+  // thousands of others, and with a NaN clamped as fmax(-1, fmin(1, NaN)) clamps it, to 1.
   const Vec3d p{0.3, 12.7, -5.2};
   const float first = perlinNoise(p), again = perlinNoise(p);
+  EXPECT_EQ(again, first);
+  // Cells 4096 apart in x take the same place in a cache of up to 4096 (a power of two): each
+  // of these replaces p's cell.
+  for (int k = 1; k <= 8; ++k) {
+    perlinNoise({p.x + 4096.0 * k, p.y, p.z});
+    EXPECT_EQ(perlinNoise(p), first) << k;
+  }
   for (int i = 0; i < 5000; ++i) perlinNoise({i * 1.37, i * -0.71, i * 2.03});
   EXPECT_EQ(perlinNoise(p), first);
-  EXPECT_EQ(again, first);
   EXPECT_EQ(perlinNoise({std::nan(""), 0.5, 0.5}), 1.0f);
 }
 
