@@ -1,7 +1,8 @@
 #pragma once
-// The instruction sets beyond baseline x86-64 that this CPU runs, read once: every choice of code
-// built for one (the lanes of intersectLanes, the sampler, sinCos, the environment's searches)
-// reads them here.
+// The instruction sets beyond baseline x86-64 that this CPU runs, read once: the choices of code
+// Glint makes itself (the lanes of intersectLanes, the sampler's width, sinCos, the environment's
+// searches, GLINT_AVX2_CLONES under Clang with LTO) read them here; target_clones' copies are
+// chosen by the loader from the same CPUID bits.
 #include <string>
 
 namespace glint {
