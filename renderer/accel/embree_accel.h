@@ -56,7 +56,7 @@ class EmbreeAccel final : public Accelerator {
   // and time in [0, 1], each false for NaN.
   struct RayRange {
     float origin = kEmbreeMaxRayCoordinate, direction = kEmbreeMaxRayCoordinate;
-    // In two vector compares and one scalar pair: every ray Embree is given passes here, and
+    // In three vector compares and one scalar pair: every ray Embree is given passes here, and
     // ten compares and branches each were a tenth of a shadow ray's cost outside Embree.
     [[gnu::always_inline]] bool takes(const Ray& r) const {
       using F4 = float __attribute__((vector_size(16)));

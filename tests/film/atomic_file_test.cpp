@@ -127,8 +127,9 @@ size_t temporariesOf(const fs::path& dir, pid_t pid) {
 // to another process (ids wrap at 32768 by default) before a write looks at its temporaries.
 pid_t pidOfNoProcess() {
   const pid_t pid = pid_t{1} << 22;
-  EXPECT_EQ(::kill(pid, 0), -1);
-  EXPECT_EQ(errno, ESRCH);
+  const int sent = ::kill(pid, 0), error = errno;
+  EXPECT_EQ(sent, -1);
+  EXPECT_EQ(error, ESRCH);
   return pid;
 }
 
