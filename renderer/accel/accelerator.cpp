@@ -1,6 +1,5 @@
 #include "accel/accelerator.h"
 
-#include <algorithm>
 #include <cstddef>
 #include <cstring>
 
@@ -243,11 +242,6 @@ void intersectPlanes(const Scene& scene, const Ray* rays, Hit* hits, size_t n) {
 }
 
 void occludedByPlanes(const Scene& scene, const Ray* rays, bool* blocked, size_t n) {
-  // Without planes nothing blocks: the lanes' loads and transposes were a shadow ray's cost.
-  if (scene.planes.empty()) {
-    std::fill_n(blocked, n, false);
-    return;
-  }
   if (scene.features.cutouts) [[unlikely]] {
     for (size_t k = 0; k < n; ++k) blocked[k] = anyKeptPlane(scene, rays[k]);
     return;

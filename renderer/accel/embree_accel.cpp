@@ -458,14 +458,12 @@ namespace {
           ray.d.z, ray.time, ray.tMax, ~0u,      0,       0};
 }
 
-// `ray` as Embree is given it, with no hit yet, written in place: a returned record had its
-// hit's other fields zeroed on the way, stores a stream's every ray paid for.
-[[gnu::always_inline]] inline void writeRtcRayHit(const Ray& ray,
-                                                  const EmbreeAccel::RayRange& range,
-                                                  RTCRayHit& rh) {
+RTCRayHit toRtcRayHit(const Ray& ray, const EmbreeAccel::RayRange& range) {
+  RTCRayHit rh;
   rh.ray = toRtcRay(ray, range);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
 }
 
 Hit fromRtcRayHit(const RTCRayHit& rh) {
@@ -479,8 +477,7 @@ Hit fromRtcRayHit(const RTCRayHit& rh) {
 Hit EmbreeAccel::intersect(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRayHit rh;
-  writeRtcRayHit(ray, range_, rh);
+  RTCRayHit rh = toRtcRayHit(ray, range_);
   rtcIntersect1(groupScenes_[0], &context, &rh);
   Hit hit = fromRtcRayHit(rh);
   intersectPlanes(scene_, ray, hit);
@@ -494,10 +491,9 @@ void EmbreeAccel::intersectStream(const Ray* rays, Hit* hits, size_t n, bool coh
       coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
   constexpr size_t kChunk = 256;  // bounded stack, and Embree's streams gain little beyond
   RTCRayHit rh[kChunk];
-  const RayRange range = range_;  // a local: read through `this`, it was reloaded every ray
   for (size_t begin = 0; begin < n; begin += kChunk) {
     const size_t count = std::min(kChunk, n - begin);
-    for (size_t i = 0; i < count; ++i) writeRtcRayHit(rays[begin + i], range, rh[i]);
+    for (size_t i = 0; i < count; ++i) rh[i] = toRtcRayHit(rays[begin + i], range_);
     rtcIntersect1M(groupScenes_[0], &context, rh, static_cast<unsigned>(count), sizeof(RTCRayHit));
     for (size_t i = 0; i < count; ++i) hits[begin + i] = fromRtcRayHit(rh[i]);
     intersectPlanes(scene_, rays + begin, hits + begin, count);
@@ -515,7 +511,6 @@ void EmbreeAccel::occludedCoherent(const Ray* rays, bool* blocked, size_t n) con
   constexpr size_t kChunk = 256;
   RTCRayHit rh[kChunk];
   uint32_t index[kChunk];  // the ray of each stream slot: those a plane blocks are not traced
-  const RayRange range = range_;  // a local: read through `this`, it was reloaded every ray
   for (size_t begin = 0; begin < n; begin += kChunk) {
     const size_t end = std::min(n, begin + kChunk);
     occludedByPlanes(scene_, rays + begin, blocked + begin, end - begin);
@@ -523,7 +518,7 @@ void EmbreeAccel::occludedCoherent(const Ray* rays, bool* blocked, size_t n) con
     for (size_t i = begin; i < end; ++i) {
       if (blocked[i]) continue;
       index[m] = static_cast<uint32_t>(i);
-      writeRtcRayHit(rays[i], range, rh[m++]);
+      rh[m++] = toRtcRayHit(rays[i], range_);
     }
     if (m == 0) continue;
     rtcIntersect1M(groupScenes_[0], &context, rh, m, sizeof(RTCRayHit));

@@ -5,12 +5,7 @@
 // material has an opacity cut-out pass over hits in its holes (filter functions for triangles).
 #include <embree3/rtcore.h>
 
-#include <immintrin.h>
-
 #include <cmath>
-#include <cstddef>
-#include <cstdint>
-#include <cstring>
 #include <vector>
 
 #include "accel/accelerator.h"
@@ -52,28 +47,13 @@ class EmbreeAccel final : public Accelerator {
   // world and, carried by the scene's instances, in every instance's space (core/ray.h says
   // what Embree asserts). A ray outside them is not traced by Embree (it misses what Embree
   // holds); the loaders keep every ray a scene makes inside them.
-  // Taken: |o.x|, |o.y|, |o.z| ≤ origin, |d.x|, |d.y|, |d.z| ≤ direction, tMin ≥ 0, tMax ≤ ∞
-  // and time in [0, 1], each false for NaN.
   struct RayRange {
     float origin = kEmbreeMaxRayCoordinate, direction = kEmbreeMaxRayCoordinate;
-    // In three vector compares and one scalar pair: every ray Embree is given passes here, and
-    // ten compares and branches each were a tenth of a shadow ray's cost outside Embree.
-    [[gnu::always_inline]] bool takes(const Ray& r) const {
-      using F4 = float __attribute__((vector_size(16)));
-      using I4 = int32_t __attribute__((vector_size(16)));
-      static_assert(offsetof(Ray, o) == 0 && offsetof(Ray, d) == 12 && offsetof(Ray, tMin) == 24 &&
-                    offsetof(Ray, tMax) == 28 && sizeof(Vec3f) == 12);
-      F4 a, b;  // (o.x, o.y, o.z, d.x) and (d.y, d.z, tMin, tMax)
-      std::memcpy(&a, &r.o.x, sizeof a);
-      std::memcpy(&b, &r.d.y, sizeof b);
-      const I4 magnitude = {0x7fffffff, 0x7fffffff, 0x7fffffff, 0x7fffffff};
-      const F4 absA = (F4)((I4)a & magnitude), absB = (F4)((I4)b & magnitude);
-      // tMin's lane: |tMin| ≤ ∞ and tMin ≥ 0; tMax's: |tMax| ≤ ∞ (not NaN) and tMax ≥ −∞.
-      const F4 aAtMost = {origin, origin, origin, direction};
-      const F4 bAtMost = {direction, direction, kInfinity, kInfinity};
-      const F4 bAtLeast = {-kInfinity, -kInfinity, 0, -kInfinity};
-      const I4 in = (absA <= aAtMost) & (absB <= bAtMost) & (b >= bAtLeast);
-      return _mm_movemask_ps((__m128)in) == 0xf && r.time >= 0 && r.time <= 1;
+    bool takes(const Ray& r) const {
+      return std::fabs(r.o.x) <= origin && std::fabs(r.o.y) <= origin &&
+             std::fabs(r.o.z) <= origin && std::fabs(r.d.x) <= direction &&
+             std::fabs(r.d.y) <= direction && std::fabs(r.d.z) <= direction && r.tMin >= 0 &&
+             r.tMax <= kInfinity && r.time >= 0 && r.time <= 1;
     }
   };
   const RayRange& rayRange() const { return range_; }

@@ -2,7 +2,6 @@
 // segment, and the range shrinks by what an instance's inverse transform grows a coordinate.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <limits>
 
 #include "accel/cross_check.h"
@@ -66,40 +65,6 @@ TEST(EmbreeRange, InstancesShrinkingTheRangeBelowTheSceneAreRefused) {
               std::string::npos)
         << e.what();
   }
-}
-
-TEST(EmbreeRange, TakesAnswersAsEachBoundSays) {
-  // takes() compares in vector lanes; for every field at, just past and beyond its bound, and
-  // NaN, it must answer as the bounds read one by one (embree_accel.h's RayRange): the same rays
-  // reach Embree, so the same images.
-  EmbreeAccel::RayRange range;
-  range.origin = 100;
-  range.direction = 10;
-  const auto oneByOne = [&](const Ray& r) {
-    return std::fabs(r.o.x) <= range.origin && std::fabs(r.o.y) <= range.origin &&
-           std::fabs(r.o.z) <= range.origin && std::fabs(r.d.x) <= range.direction &&
-           std::fabs(r.d.y) <= range.direction && std::fabs(r.d.z) <= range.direction &&
-           r.tMin >= 0 && r.tMax <= kInfinity && r.time >= 0 && r.time <= 1;
-  };
-  const float nan = std::numeric_limits<float>::quiet_NaN();
-  const float probes[] = {0,   -0.0f, 1,   -1, 10,     -10,       std::nextafter(10.0f, 11.0f),
-                          100, -100,  101, 2,  1e-45f, kInfinity, -kInfinity,
-                          nan, -nan};
-  const Ray inside{{1, -2, 3}, {0.5f, 0, -1}, 0, kInfinity, 0.5f};
-  EXPECT_TRUE(range.takes(inside));
-  int taken = 0, refused = 0;
-  for (int field = 0; field < 9; ++field)
-    for (const float v : probes) {
-      Ray r = inside;
-      float* const fields[] = {&r.o.x, &r.o.y,  &r.o.z,  &r.d.x, &r.d.y,
-                               &r.d.z, &r.tMin, &r.tMax, &r.time};
-      *fields[field] = v;
-      EXPECT_EQ(range.takes(r), oneByOne(r)) << "field " << field << " = " << v;
-      ++(oneByOne(r) ? taken : refused);
-    }
-  // Both answers occur for every field: o.x = 101 is refused, o.x = 100 taken, and so on.
-  EXPECT_GT(taken, 50);
-  EXPECT_GT(refused, 50);
 }
 
 }  // namespace
