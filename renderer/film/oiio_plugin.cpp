@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "film/oiio_module_abi.h"
 
@@ -76,6 +77,35 @@ void* openImage(const char* name, std::unique_ptr<OIIO::Filesystem::IOMemReader>
   return image.release();
 }
 
+// Rows [y0, y1) of a scanline image's first `channels` channels, as floats. Asked for floats,
+// OpenImageIO 2.4's read_scanlines converts through a buffer of 64 MB at every call, whatever
+// the band's size; read in the file's own type, the band comes straight into a buffer of its
+// size (what texture_file.cpp's memory check counts), converted here by the function
+// read_scanlines converts with (the same floats).
+bool readScanlines(OIIO::ImageInput& in, int y0, int y1, int channels, float* out) {
+  const OIIO::ImageSpec& spec = in.spec();
+  if (!spec.channelformats.empty())  // a type per channel: OpenImageIO converts each
+    return in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels,
+                             OIIO::TypeDesc::FLOAT, out);
+  if (spec.format == OIIO::TypeDesc::FLOAT)
+    return in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels,
+                             OIIO::TypeDesc::UNKNOWN, out);
+  const size_t values = size_t(spec.width) * size_t(y1 - y0) * size_t(channels);
+  std::vector<unsigned char> band(values * spec.format.size());
+  if (!in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels,
+                         OIIO::TypeDesc::UNKNOWN, band.data()))
+    return false;
+  // convert_pixel_values counts in int: a band past 2^31 values goes in parts.
+  constexpr size_t kPart = size_t{1} << 30;
+  for (size_t begin = 0; begin < values; begin += kPart) {
+    const size_t n = std::min(kPart, values - begin);
+    if (!OIIO::convert_pixel_values(spec.format, band.data() + begin * spec.format.size(),
+                                    OIIO::TypeDesc::FLOAT, out + begin, int(n)))
+      return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 extern "C" __attribute__((visibility("default"))) void* glint_oiio_texture_open(
@@ -115,8 +145,7 @@ extern "C" __attribute__((visibility("default"))) int glint_oiio_texture_read(
         spec.tile_width > 0
             ? in.read_tiles(0, 0, spec.x, spec.x + spec.width, spec.y + y0, spec.y + y1, spec.z,
                             spec.z + 1, 0, channels, OIIO::TypeDesc::FLOAT, out)
-            : in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels,
-                                OIIO::TypeDesc::FLOAT, out);
+            : readScanlines(in, y0, y1, channels, out);
     if (read && !in.has_error()) return 0;
     std::string why = in.geterror();
     why = why.empty() ? "OpenImageIO could not read all of its pixels"
