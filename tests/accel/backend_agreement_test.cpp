@@ -45,7 +45,7 @@ Scene everyShapeKind() {
 // `fast` against the brute-force oracle on 4000 random rays through everyShapeKind().
 void expectAgreesWithBruteForce(const Scene& s, const Accelerator& fast) {
   const auto brute = makeAccelerator(AccelKind::BruteForce, s);
-  constexpr int kRays = 4000;
+  constexpr int kRays = test::agreementRays(4000);
   int hits = 0, disagreements = 0;
   for (int i = 0; i < kRays; ++i) {
     // Origins uniform in [−3, 3]³, directions towards a point in [−1.5, 1.5]³: most rays hit.

@@ -61,7 +61,7 @@ void expectAgreement(const std::string& text, const char* what, int rays = 10000
   const SphereHierarchy tree(s);
   const BruteForce brute(s);
   const CrossCheck check(embree, {&tree, &brute});
-  castRandomRays(s, check, rays, 17);
+  castRandomRays(s, check, test::agreementRays(rays), 17);
   const CrossCheckStats& st = check.stats();
   EXPECT_GE(st.relDt.size(), st.rays / 100) << what;
   EXPECT_GE(st.hitAgreement(), 1 - 1e-6) << what;

@@ -23,9 +23,9 @@
 
 namespace glint::stress {
 
-// Random rays per agreement check: issue 25's 10⁶; under AddressSanitizer, which makes them 10×
-// slower, a tenth (enough to catch a traversal fault).
-constexpr int kAgreementRays = test::kAddressSanitizer ? 100000 : 1000000;
+// Random rays per agreement check: issue 25's 10⁶ (a tenth under AddressSanitizer:
+// test::agreementRays).
+constexpr int kAgreementRays = 1000000;
 
 // `check`'s agreement over `rays` random rays through `s`: hit/miss and occlusion ≥ 1 − 10⁻⁶
 // (issue 25's bar). Hits at a ray's origin count as ties (CrossCheck::kOriginTolerance), but at
@@ -35,7 +35,7 @@ constexpr int kAgreementRays = test::kAddressSanitizer ? 100000 : 1000000;
 // both backends, so that the agreement says something about hits.
 inline void expectAgreementOnRandomRays(const Scene& s, const CrossCheck& check, int rays,
                                         double minComparedHits = 0) {
-  castRandomRays(s, check, rays, 21);
+  castRandomRays(s, check, test::agreementRays(rays), 21);
   const CrossCheckStats& st = check.stats();
   EXPECT_GE(double(st.relDt.size()), minComparedHits * double(st.rays));
   EXPECT_GE(st.hitAgreement(), 1 - 1e-6);
