@@ -1,5 +1,6 @@
 #include "app/scene_validation.h"
 
+#include <cstdarg>
 #include <cstdio>
 
 #include "accel/cross_check.h"
@@ -31,11 +32,22 @@ std::vector<const Accelerator*> ValidationBackends::others() const {
   return all;
 }
 
+namespace {
+
+// printf when `print`; a C variadic function, so that every call's literal format is checked
+// against its values.
+[[gnu::format(printf, 2, 3)]] void sayIf(bool print, const char* format, ...) {
+  if (!print) return;
+  va_list values;
+  va_start(values, format);
+  std::vprintf(format, values);
+  va_end(values);
+}
+
+}  // namespace
+
 nlohmann::json validateScene(Scene& scene, const ValidationBackends& b, const ValidateSettings& a,
                              bool print) {
-  const auto say = [print](const char* format, auto... values) {
-    if (print) std::printf(format, values...);
-  };
   const EmbreeAccel& embree = b.embree;
   const ReferenceBvh& bvh = b.bvh;
   const UniformGrid& grid = b.grid;
@@ -70,53 +82,60 @@ nlohmann::json validateScene(Scene& scene, const ValidationBackends& b, const Va
 
   const CrossCheckStats& st = check.stats();
   const BvhStats& bs = bvh.stats();
-  say("backends       embree, bvh, grid, octree, kdtree, octree-generate-and-test, rayclass, "
-      "coherence, spheres%s\n",
-      brute ? ", brute" : " (brute force skipped: scene too large)");
-  say("queries        %llu closest-hit, %llu occlusion (scene rays at %d spp + %d random + "
-      "%d samples of rays from origins)\n",
-      (unsigned long long)st.rays, (unsigned long long)st.occlusionRays, a.spp, a.rays, a.rays / 4);
-  say("hit/miss       %.9f agreement\n", st.hitAgreement());
-  say("primitive      %.9f agreement (ties within %.0e count as agreement)\n", st.primAgreement(),
-      double(CrossCheck::kTieTolerance));
-  say("occlusion      %.9f agreement\n", st.occlusionAgreement());
-  say("origin ties    %llu (a hit within %.0e of the ray's origin against a miss)\n",
-      (unsigned long long)st.originTies, double(CrossCheck::kOriginTolerance));
-  say("|dt|/max(1,t)  max %.3g, 99.9th percentile %.3g\n", double(st.maxRelDt()),
-      double(st.quantileRelDt(0.999)));
-  say("embree build   %.3f s, %.1f MiB\n", embree.buildSeconds(),
-      double(embree.bytes()) / (1 << 20));
-  say("bvh build      %.3f s, %zu nodes, %zu leaves, %.2f prims/leaf, depth %zu, "
-      "SAH cost %.2f, %.1f MiB\n",
-      bs.buildSeconds, bs.nodes, bs.leaves, bs.primitivesPerLeaf(), bs.maxDepth, bs.sahCost,
-      double(bs.bytes) / (1 << 20));
+  sayIf(print,
+        "backends       embree, bvh, grid, octree, kdtree, octree-generate-and-test, rayclass, "
+        "coherence, spheres%s\n",
+        brute ? ", brute" : " (brute force skipped: scene too large)");
+  sayIf(print,
+        "queries        %llu closest-hit, %llu occlusion (scene rays at %d spp + %d random + "
+        "%d samples of rays from origins)\n",
+        (unsigned long long)st.rays, (unsigned long long)st.occlusionRays, a.spp, a.rays,
+        a.rays / 4);
+  sayIf(print, "hit/miss       %.9f agreement\n", st.hitAgreement());
+  sayIf(print, "primitive      %.9f agreement (ties within %.0e count as agreement)\n",
+        st.primAgreement(), double(CrossCheck::kTieTolerance));
+  sayIf(print, "occlusion      %.9f agreement\n", st.occlusionAgreement());
+  sayIf(print, "origin ties    %llu (a hit within %.0e of the ray's origin against a miss)\n",
+        (unsigned long long)st.originTies, double(CrossCheck::kOriginTolerance));
+  sayIf(print, "|dt|/max(1,t)  max %.3g, 99.9th percentile %.3g\n", double(st.maxRelDt()),
+        double(st.quantileRelDt(0.999)));
+  sayIf(print, "embree build   %.3f s, %.1f MiB\n", embree.buildSeconds(),
+        double(embree.bytes()) / (1 << 20));
+  sayIf(print,
+        "bvh build      %.3f s, %zu nodes, %zu leaves, %.2f prims/leaf, depth %zu, "
+        "SAH cost %.2f, %.1f MiB\n",
+        bs.buildSeconds, bs.nodes, bs.leaves, bs.primitivesPerLeaf(), bs.maxDepth, bs.sahCost,
+        double(bs.bytes) / (1 << 20));
   const GridStats& gs = grid.stats();
-  say("grid build     %.3f s, %zu cells, %zu references (%.2f per primitive), %.1f MiB\n",
-      gs.buildSeconds, gs.cells, gs.references,
-      gs.primitives ? double(gs.references) / double(gs.primitives) : 0.0,
-      double(gs.bytes) / (1 << 20));
+  sayIf(print, "grid build     %.3f s, %zu cells, %zu references (%.2f per primitive), %.1f MiB\n",
+        gs.buildSeconds, gs.cells, gs.references,
+        gs.primitives ? double(gs.references) / double(gs.primitives) : 0.0,
+        double(gs.bytes) / (1 << 20));
   for (const auto& [label, ts] :
        {std::pair{"octree build ", &octree.stats()}, std::pair{"kdtree build ", &kdtree.stats()},
         std::pair{"spheres build", &spheres.stats()}})
-    say("%s  %.3f s, %zu nodes, %zu leaves, depth %zu, %zu references (%.2f per "
-        "primitive), %.1f MiB\n",
-        label, ts->buildSeconds, ts->nodes, ts->leaves, ts->maxDepth, ts->references,
-        ts->referencesPerPrimitive(), double(ts->bytes) / (1 << 20));
+    sayIf(print,
+          "%s  %.3f s, %zu nodes, %zu leaves, depth %zu, %zu references (%.2f per "
+          "primitive), %.1f MiB\n",
+          label, ts->buildSeconds, ts->nodes, ts->leaves, ts->maxDepth, ts->references,
+          ts->referencesPerPrimitive(), double(ts->bytes) / (1 << 20));
   const RayClassStats rs = rayclass.stats();
-  say("rayclass cells %zu made while tracing (n_min %u, w_min %g), %zu references (%.2f per "
-      "primitive), %.1f MiB of a cap of %.1f MiB, %.1f MiB besides\n",
-      rs.cells, a.accelOptions.rayclass.nMin, a.accelOptions.rayclass.wMin, rs.references,
-      rs.primitives ? double(rs.references) / double(rs.primitives) : 0.0,
-      double(rs.lazyBytes) / (1 << 20), double(rs.capBytes) / (1 << 20),
-      double(rs.fixedBytes) / (1 << 20));
+  sayIf(print,
+        "rayclass cells %zu made while tracing (n_min %u, w_min %g), %zu references (%.2f per "
+        "primitive), %.1f MiB of a cap of %.1f MiB, %.1f MiB besides\n",
+        rs.cells, a.accelOptions.rayclass.nMin, a.accelOptions.rayclass.wMin, rs.references,
+        rs.primitives ? double(rs.references) / double(rs.primitives) : 0.0,
+        double(rs.lazyBytes) / (1 << 20), double(rs.capBytes) / (1 << 20),
+        double(rs.fixedBytes) / (1 << 20));
   const CoherenceStats& cs = coherence.stats();
-  say("coherence build %.3f s, %zu origins (%zu with a row), %zu objects, %zu classes, %zu "
-      "references, %.1f MiB\n",
-      cs.buildSeconds, cs.origins, cs.rows, cs.objects, cs.classes, cs.references,
-      double(cs.bytes) / (1 << 20));
+  sayIf(print,
+        "coherence build %.3f s, %zu origins (%zu with a row), %zu objects, %zu classes, %zu "
+        "references, %.1f MiB\n",
+        cs.buildSeconds, cs.origins, cs.rows, cs.objects, cs.classes, cs.references,
+        double(cs.bytes) / (1 << 20));
   if (!st.firstDisagreements.empty()) {
-    say("first disagreements (reproduce with glint validate SCENE --ray ...):\n");
-    for (const auto& line : st.firstDisagreements) say("  %s\n", line.c_str());
+    sayIf(print, "first disagreements (reproduce with glint validate SCENE --ray ...):\n");
+    for (const auto& line : st.firstDisagreements) sayIf(print, "  %s\n", line.c_str());
   }
   nlohmann::json j;
   j["rays"] = st.rays;

@@ -25,7 +25,7 @@
 
 namespace glint {
 
-struct Scene;
+class Scene;
 
 // Raised whenever a Glint draws or shades a sample of the same settings differently, so that a
 // frame an older one left is refused rather than continued with other samples: 2, progressive
