@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <climits>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -77,33 +78,28 @@ void* openImage(const char* name, std::unique_ptr<OIIO::Filesystem::IOMemReader>
   return image.release();
 }
 
-// Rows [y0, y1) of a scanline image's first `channels` channels, as floats. Asked for floats,
-// OpenImageIO 2.4's read_scanlines converts through a buffer of 64 MB at every call, whatever
-// the band's size; read in the file's own type, the band comes straight into a buffer of its
-// size (what texture_file.cpp's memory check counts), converted here by the function
-// read_scanlines converts with (the same floats).
+// Rows [y0, y1) of a scanline image's first `channels` channels, as floats. Asked for any type
+// but UNKNOWN ("the file's own", which FLOAT from a float file is not), OpenImageIO 2.4's
+// read_scanlines converts through a buffer of 64 MB at every call, whatever the band's size;
+// asked for UNKNOWN it reads into the caller's buffer (through one of the band's size holding
+// every channel, where only the first are kept), which io/texture_file.cpp's memory check
+// counts. convert_pixel_values is what read_scanlines converts with: the same floats.
 bool readScanlines(OIIO::ImageInput& in, int y0, int y1, int channels, float* out) {
   const OIIO::ImageSpec& spec = in.spec();
-  if (!spec.channelformats.empty())  // a type per channel: OpenImageIO converts each
-    return in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels,
-                             OIIO::TypeDesc::FLOAT, out);
-  if (spec.format == OIIO::TypeDesc::FLOAT)
-    return in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels,
-                             OIIO::TypeDesc::UNKNOWN, out);
+  const auto read = [&](OIIO::TypeDesc type, void* to) {
+    return in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels, type, to);
+  };
   const size_t values = size_t(spec.width) * size_t(y1 - y0) * size_t(channels);
+  // A type per channel, which OpenImageIO converts channel by channel, or a band past the int
+  // that convert_pixel_values counts in (a single row of 2^29 pixels): OpenImageIO's own
+  // conversion, through its 64 MB buffer.
+  if (!spec.channelformats.empty() || values > size_t(INT_MAX))
+    return read(OIIO::TypeDesc::FLOAT, out);
+  if (spec.format == OIIO::TypeDesc::FLOAT) return read(OIIO::TypeDesc::UNKNOWN, out);
   std::vector<unsigned char> band(values * spec.format.size());
-  if (!in.read_scanlines(0, 0, spec.y + y0, spec.y + y1, spec.z, 0, channels,
-                         OIIO::TypeDesc::UNKNOWN, band.data()))
-    return false;
-  // convert_pixel_values counts in int: a band past 2^31 values goes in parts.
-  constexpr size_t kPart = size_t{1} << 30;
-  for (size_t begin = 0; begin < values; begin += kPart) {
-    const size_t n = std::min(kPart, values - begin);
-    if (!OIIO::convert_pixel_values(spec.format, band.data() + begin * spec.format.size(),
-                                    OIIO::TypeDesc::FLOAT, out + begin, int(n)))
-      return false;
-  }
-  return true;
+  return read(OIIO::TypeDesc::UNKNOWN, band.data()) &&
+         OIIO::convert_pixel_values(spec.format, band.data(), OIIO::TypeDesc::FLOAT, out,
+                                    int(values));
 }
 
 }  // namespace

@@ -6,9 +6,16 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <memory>
+#include <random>
+#include <string>
+#include <utility>
 #include <vector>
 
+#include "film/oiio_module.h"
 #include "test_util.h"
 
 namespace glint {
@@ -73,6 +80,53 @@ TEST(TextureFile, AGreyAlphaImageGivesItsGreyToColourAndItsAlphaToCoverage) {
   EXPECT_NEAR(c.g, 102, 1e-4);
   EXPECT_NEAR(c.b, 102, 1e-4);
   EXPECT_NEAR(t->coverage(at, false), 102.25, 1e-4);  // its second channel
+}
+
+// OpenImageIO's module reads a texture's band in the file's own type and converts it to float
+// itself (film/oiio_plugin.cpp): in bands of 4 rows, for the first 4 of 5 channels (the file's
+// every channel is read and 4 kept), each type must give the very floats OpenImageIO's own
+// conversion gives for the whole image.
+TEST(TextureFile, BandsReadInTheFilesTypeGiveOpenImageIOsFloats) {
+  const int width = 23, height = 17, fileChannels = 5, kept = 4, bandRows = 4;
+  std::vector<float> values(size_t(width) * height * fileChannels);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> value(-0.25f, 1.25f);  // clamped by the integer types
+  for (float& v : values) v = value(rng);
+  const auto& functions = oiio_module::textureFunctions("bands.tif");
+  for (const auto& [type, extension] :
+       {std::pair{OIIO::TypeDesc::UINT8, "tif"}, std::pair{OIIO::TypeDesc::UINT16, "tif"},
+        std::pair{OIIO::TypeDesc::FLOAT, "tif"}, std::pair{OIIO::TypeDesc::HALF, "exr"}}) {
+    const std::string path =
+        (test::tempDir() / ("bands_" + std::string(OIIO::TypeDesc(type).c_str()) + "." + extension))
+            .string();
+    SCOPED_TRACE(path);
+    const OIIO::ImageSpec spec(width, height, fileChannels, type);
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+    ASSERT_TRUE(out && out->open(path, spec) &&
+                out->write_image(OIIO::TypeDesc::FLOAT, values.data()) && out->close());
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in);
+    ASSERT_EQ(in->spec().format, type);  // the file holds the type under test
+    std::vector<float> expected(size_t(width) * height * kept);
+    ASSERT_TRUE(in->read_image(0, 0, 0, kept, OIIO::TypeDesc::FLOAT, expected.data()));
+
+    GlintOiioTextureInfo info{};
+    char error[512] = "";
+    void* handle = functions.open(path.c_str(), &info, error, sizeof error);
+    ASSERT_NE(handle, nullptr) << error;
+    const std::unique_ptr<void, GlintOiioTextureClose> opened(handle, functions.close);
+    ASSERT_EQ(info.channels, fileChannels);
+    std::vector<float> read(expected.size(), -1.0f);
+    for (int y0 = 0; y0 < height; y0 += bandRows) {
+      const int y1 = std::min(height, y0 + bandRows);
+      ASSERT_EQ(functions.read(handle, y0, y1, kept, read.data() + size_t(y0) * width * kept, error,
+                               sizeof error),
+                0)
+          << error;
+    }
+    for (size_t i = 0; i < read.size(); ++i)
+      ASSERT_EQ(std::bit_cast<uint32_t>(read[i]), std::bit_cast<uint32_t>(expected[i])) << i;
+  }
 }
 
 }  // namespace
