@@ -27,12 +27,13 @@ namespace glint::stress {
 // test::agreementRays).
 constexpr int kAgreementRays = 1000000;
 
-// `check`'s agreement over `rays` random rays through `s`: hit/miss and occlusion ≥ 1 − 10⁻⁶
-// (issue 25's bar). Hits at a ray's origin count as ties (CrossCheck::kOriginTolerance), but at
-// most 10⁻⁴ of the queries may need that: a scene far from the origin, where every hit on a
-// small shape lies within the tolerance, must not pass on ties (a sphere's box rounded inside
-// it would make many rays disagree there). `minComparedHits`: the share of rays that must hit in
-// both backends, so that the agreement says something about hits.
+// `check`'s agreement over `rays` random rays through `s` (a tenth under AddressSanitizer):
+// hit/miss and occlusion ≥ 1 − 10⁻⁶ (issue 25's bar). Hits at a ray's origin count as ties
+// (CrossCheck::kOriginTolerance), but at most 10⁻⁴ of the queries may need that: a scene far
+// from the origin, where every hit on a small shape lies within the tolerance, must not pass on
+// ties (a sphere's box rounded inside it would make many rays disagree there).
+// `minComparedHits`: the share of rays that must hit in both backends, so that the agreement
+// says something about hits.
 inline void expectAgreementOnRandomRays(const Scene& s, const CrossCheck& check, int rays,
                                         double minComparedHits = 0) {
   castRandomRays(s, check, test::agreementRays(rays), 21);
