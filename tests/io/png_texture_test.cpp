@@ -21,6 +21,7 @@
 
 #include "core/error.h"
 #include "core/file_names.h"
+#include "io/texture_bands.h"
 #include "io/texture_file.h"
 #include "test_util.h"
 
@@ -44,18 +45,8 @@ struct Reading {
 void readRows(Reading& r, void* handle, const oiio_module::TextureFunctions& functions,
               int bandRows) {
   const std::unique_ptr<void, GlintOiioTextureClose> opened(handle, functions.close);
-  const size_t row = size_t(r.info.width) * size_t(r.info.channels);
-  r.texels.assign(row * size_t(r.info.height), -1.0f);
-  for (int y0 = 0, y1 = 0; y0 < r.info.height; y0 = y1) {
-    y1 = y0 + std::min(bandRows, r.info.height - y0);
-    char error[512] = "";
-    if (functions.read(handle, y0, y1, r.info.channels, r.texels.data() + row * size_t(y0), error,
-                       sizeof error) != 0) {
-      r.error = error;
-      return;
-    }
-  }
-  r.ok = true;
+  r.ok = test::readInBands(functions, handle, r.info.width, r.info.height, r.info.channels,
+                           bandRows, r.texels, r.error);
 }
 
 // Rows per band of OpenImageIO's module (the reference) and of libpng's reader (under test):

@@ -6,7 +6,6 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <memory>
@@ -16,6 +15,7 @@
 #include <vector>
 
 #include "film/oiio_module.h"
+#include "io/texture_bands.h"
 #include "test_util.h"
 
 namespace glint {
@@ -116,14 +116,11 @@ TEST(TextureFile, BandsReadInTheFilesTypeGiveOpenImageIOsFloats) {
     ASSERT_NE(handle, nullptr) << error;
     const std::unique_ptr<void, GlintOiioTextureClose> opened(handle, functions.close);
     ASSERT_EQ(info.channels, fileChannels);
-    std::vector<float> read(expected.size(), -1.0f);
-    for (int y0 = 0; y0 < height; y0 += bandRows) {
-      const int y1 = std::min(height, y0 + bandRows);
-      ASSERT_EQ(functions.read(handle, y0, y1, kept, read.data() + size_t(y0) * width * kept, error,
-                               sizeof error),
-                0)
-          << error;
-    }
+    std::vector<float> read;
+    std::string readError;
+    ASSERT_TRUE(
+        test::readInBands(functions, handle, width, height, kept, bandRows, read, readError))
+        << readError;
     for (size_t i = 0; i < read.size(); ++i)
       ASSERT_EQ(std::bit_cast<uint32_t>(read[i]), std::bit_cast<uint32_t>(expected[i])) << i;
   }
