@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""The most any per-pixel allocation of samples can save on a scene (docs/performance.md,
-Adaptive sampling, "What is left on depth_of_field").
+"""The most any per-pixel allocation of samples can save on a scene (docs/validation.md,
+"Adaptive sampling against uniform sampling", what is behind on depth_of_field).
 
 At a level of N samples a pixel, each pixel's error variance v (mean over R, G, B) is measured
 from --runs independent uniform renders of N spp, and its cost c (rays a sample) from one

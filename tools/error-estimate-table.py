@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """How well a render's own error estimate matches its true error (docs/validation.md, "Error
-estimate"), and what adaptive sampling buys (docs/performance.md, "Adaptive sampling").
+estimate"), and what adaptive sampling buys (docs/validation.md, "Adaptive sampling against
+uniform sampling").
 
 estimate: for each bundled scene, an independent reference (another seed) at 64x the largest
 sample count, then renders at each sample count; each row gives the render's estimated RMSE

@@ -347,7 +347,7 @@ CommandRunner addBenchCommand(CLI::App& app) {
   cmd->add_flag("--intersection-share", args->intersectionShare,
                 "Only the share of one thread's render time spent in intersection, for each "
                 "--accel: the render's rays replayed through the backend alone, best of "
-                "--render-runs (docs/performance.md)")
+                "--render-runs (docs/acceleration.md)")
       ->excludes("--structures");
   cmd->add_option("--width", args->width, "Image width instead of the scene's")
       ->check(CLI::Range(1, 1 << 15));

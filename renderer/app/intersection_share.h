@@ -6,7 +6,7 @@
 // what it measures): one thread renders the scene with the backend, best of `runs`; the same
 // render's queries, recorded by RayRecorder in an untimed render, are replayed through the
 // backend alone on one thread, in the render's order and batches, best of `runs`; the share is
-// replay seconds / render seconds (docs/performance.md). Both are the thread's CPU time, which
+// replay seconds / render seconds (docs/acceleration.md). Both are the thread's CPU time, which
 // other processes on a shared machine do not inflate.
 #include <nlohmann/json.hpp>
 #include <vector>

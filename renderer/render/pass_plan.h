@@ -26,10 +26,10 @@ struct SamplingRequest {
 // The first pass of an adaptive or time-limited render unless --min-spp says otherwise. Every
 // pixel takes it, so it bounds what adaptive sampling can save (depth_of_field at uniform's
 // 32-spp error: at most 1.38x the rays after 16 samples, 1.64x after 8, tools/adaptive-oracle.py).
-// 8 saves more rays than 16 in 48 of the 51 cells of a 140 x 90 table (docs/performance.md, Why
-// the first pass is 8 samples); its extra pass cost the fastest frames more than it saved
-// (objects 0.94x uniform's time at the 32-spp level) until the choices stopped taking every
-// pixel's ratios anew at each pass (ChoiceCache).
+// 8 saves more rays than 16 in 48 of the 51 cells of a 140 x 90 table (docs/validation.md,
+// "Adaptive sampling against uniform sampling"); its extra pass cost the fastest frames more
+// than it saved (objects 0.94x uniform's time at the 32-spp level) until the choices stopped
+// taking every pixel's ratios anew at each pass (ChoiceCache).
 inline constexpr int kDefaultFirstPassSpp = 8;
 
 // What PassPlan::choosePixels keeps from one choice to the next: each pixel's ratios (by its
@@ -91,7 +91,8 @@ struct PassPlan {
   // its mean instead, whitted's frame missed a target of 0.002 at 0.00201). Where they do (a
   // checker of 2-pixel squares seen face on), the floor keeps it: without it whitted needed
   // 2.7x uniform's samples to reach uniform's 128-spp error, with it 0.51x
-  // (docs/performance.md, Adaptive sampling). Every input lies within one pixel.
+  // (docs/validation.md, "Adaptive sampling against uniform sampling"). Every input lies
+  // within one pixel.
   // `kept` carries each pixel's inputs from one choice to the next (ChoiceCache).
   int64_t choosePixels(std::span<const PixelEstimate> pixels, int width, int end,
                        const FrameSpread& spread, ChoiceCache& kept,

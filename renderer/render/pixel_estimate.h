@@ -98,7 +98,7 @@ struct ErrorTarget {
   // frame's mean of them is at most E² (the mean of σ√c is at most their root mean square s).
   // The ratio is σ / (n·√c) · s / E². Without the cost, the pixels that stop first are the cheap
   // ones and a sample of those left costs more, so samples saved turned into far fewer rays
-  // saved (docs/performance.md, Adaptive sampling).
+  // saved (docs/validation.md, "Adaptive sampling against uniform sampling").
   double ratio(const PixelEstimate& pixel, const FrameSpread& spread) const;
   // The same for an error of a pixel of `samples` samples of `raysPerSample` rays each
   // (infinity for none).
