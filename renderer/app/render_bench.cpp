@@ -42,7 +42,9 @@ RenderResult render(const Scene& scene, const Accelerator& accel, int threads, i
 }
 
 // Camera sampling alone: every camera ray the render makes, through the same CameraSampling,
-// with nothing traced.
+// with nothing traced. The keys are packed as renderTilePass packs them: each pixel's half 0,
+// then its half 1, several pixels to a chunk at low spp (a chunk per pixel cost a 1-spp frame
+// several times what its render pays).
 double samplingSeconds(const Scene& scene, int threads) {
   const RenderSettings& rs = scene.render;
   const Camera camera(scene.cameraDesc, rs.width, rs.height);
@@ -53,17 +55,26 @@ double samplingSeconds(const Scene& scene, int threads) {
   std::vector<float> sink(tiles.size());
   const auto start = Clock::now();
   runTiles(tiles, threads, [&](size_t t) {
-    SampleKey keys[kCameraChunk];  // in runs, as a render draws them
+    SampleKey keys[kCameraChunk];
     Ray rays[kCameraChunk];
     CameraSampling::Points points;
     float acc = 0;
+    int count = 0;
+    const auto flush = [&] {
+      cameraSampling.rays(keys, count, rays, points);
+      for (int i = 0; i < count; ++i) acc += rays[i].d.x + rays[i].time;
+      count = 0;
+    };
     for (int y = tiles[t].y0; y < tiles[t].y1; ++y)
-      for (int x = tiles[t].x0; x < tiles[t].x1; ++x)
-        for (int first = 0; first < rs.spp; first += kCameraChunk) {
-          const int count = std::min(kCameraChunk, rs.spp - first);
-          cameraSampling.pixelRays(sampler, x, y, first, count, keys, rays, points);
-          for (int i = 0; i < count; ++i) acc += rays[i].d.x + rays[i].time;
-        }
+      for (int x = tiles[t].x0; x < tiles[t].x1; ++x) {
+        const uint64_t pixelKey = sampler.pixelKey(x, y);
+        for (int half = 0; half < 2; ++half)
+          for (int j = 0, end = halfSampleCount(rs.spp, half); j < end; ++j) {
+            if (count == kCameraChunk) flush();
+            keys[count++] = SampleKey(&sampler, x, y, j, pixelKey, half);
+          }
+      }
+    if (count > 0) flush();
     sink[t] = acc;
   });
   benchmark::DoNotOptimize(sink.data());

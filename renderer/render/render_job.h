@@ -89,13 +89,6 @@ class CameraSampling {
     for (int first = 0; first < count; first += kCameraChunk)
       chunkRays(keys + first, std::min(kCameraChunk, count - first), out + first, points);
   }
-  // The keys and rays of samples [first, first + count) of pixel (x, y).
-  void pixelRays(const Sampler& sampler, int x, int y, int first, int count, SampleKey* keys,
-                 Ray* out, Points& points) const {
-    const uint64_t pixelKey = sampler.pixelKey(x, y);
-    for (int i = 0; i < count; ++i) keys[i] = SampleKey(&sampler, x, y, first + i, pixelKey);
-    rays(keys, count, out, points);
-  }
 
  private:
   void chunkRays(const SampleKey* keys, int count, Ray* out, Points& points) const;
