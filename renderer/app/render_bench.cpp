@@ -42,9 +42,9 @@ RenderResult render(const Scene& scene, const Accelerator& accel, int threads, i
 }
 
 // Camera sampling alone: every camera ray the render makes, through the same CameraSampling,
-// with nothing traced. The keys are packed as renderTilePass packs them: each pixel's half 0,
-// then its half 1, several pixels to a chunk at low spp (a chunk per pixel cost a 1-spp frame
-// several times what its render pays).
+// with nothing traced. The keys are packed as renderTilePass packs them, each pixel's half 0
+// then its half 1, several pixels to a chunk at low spp, so that the time is what the render
+// pays for the same rays.
 double samplingSeconds(const Scene& scene, int threads) {
   const RenderSettings& rs = scene.render;
   const Camera camera(scene.cameraDesc, rs.width, rs.height);
