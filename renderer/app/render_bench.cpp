@@ -14,6 +14,7 @@
 #include "camera/camera.h"
 #include "core/fp_env.h"
 #include "core/sampler.h"
+#include "render/pass_plan.h"
 #include "render/render_job.h"
 
 namespace glint {
@@ -42,13 +43,14 @@ RenderResult render(const Scene& scene, const Accelerator& accel, int threads, i
 }
 
 // Camera sampling alone: every camera ray the render makes, through the same CameraSampling,
-// with nothing traced. The keys are packed as renderTilePass packs them, each pixel's half 0
-// then its half 1, several pixels to a chunk at low spp, so that the time is what the render
-// pays for the same rays.
+// with nothing traced. The keys are packed as renderTilePass packs them, pass by pass (a
+// uniform render's passes double the spp), each pixel's new half-0 samples then its half-1
+// ones, several pixels to a chunk, so that the time is what the render pays for the same rays.
 double samplingSeconds(const Scene& scene, int threads) {
   const RenderSettings& rs = scene.render;
+  const PassPlan plan = PassPlan::make(rs.spp, rs.sampler, SamplingRequest{});
   const Camera camera(scene.cameraDesc, rs.width, rs.height);
-  const Sampler sampler(rs.sampler, rs.spp, rs.seed);
+  const Sampler sampler(plan.sampler, rs.spp, rs.seed);
   const CameraSampling cameraSampling(scene, camera);
   const PixelWindow window{0, rs.width, 0, rs.height};
   const auto tiles = makeTiles(window, effectiveTileSize(window, 32, threads));
@@ -65,16 +67,19 @@ double samplingSeconds(const Scene& scene, int threads) {
       for (int i = 0; i < count; ++i) acc += rays[i].d.x + rays[i].time;
       count = 0;
     };
-    for (int y = tiles[t].y0; y < tiles[t].y1; ++y)
-      for (int x = tiles[t].x0; x < tiles[t].x1; ++x) {
-        const uint64_t pixelKey = sampler.pixelKey(x, y);
-        for (int half = 0; half < 2; ++half)
-          for (int j = 0, end = halfSampleCount(rs.spp, half); j < end; ++j) {
-            if (count == kCameraChunk) flush();
-            keys[count++] = SampleKey(&sampler, x, y, j, pixelKey, half);
-          }
-      }
-    if (count > 0) flush();
+    for (size_t p = 0; p < plan.ends.size(); ++p) {
+      const int taken = p == 0 ? 0 : plan.ends[p - 1], end = plan.ends[p];
+      for (int y = tiles[t].y0; y < tiles[t].y1; ++y)
+        for (int x = tiles[t].x0; x < tiles[t].x1; ++x) {
+          const uint64_t pixelKey = sampler.pixelKey(x, y);
+          for (int half = 0; half < 2; ++half)
+            for (int j = halfSampleCount(taken, half); j < halfSampleCount(end, half); ++j) {
+              if (count == kCameraChunk) flush();
+              keys[count++] = SampleKey(&sampler, x, y, j, pixelKey, half);
+            }
+        }
+      if (count > 0) flush();  // a tile's pass ends its last chunk
+    }
     sink[t] = acc;
   });
   benchmark::DoNotOptimize(sink.data());
