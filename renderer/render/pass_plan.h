@@ -26,10 +26,9 @@ struct SamplingRequest {
 // The first pass of an adaptive or time-limited render unless --min-spp says otherwise. Every
 // pixel takes it, so it bounds what adaptive sampling can save (depth_of_field at uniform's
 // 32-spp error: at most 1.38x the rays after 16 samples, 1.64x after 8, tools/adaptive-oracle.py).
-// 8 saves more rays than 16 in 48 of the 51 cells of a 140 x 90 table (docs/validation.md,
-// "Adaptive sampling against uniform sampling"); its extra pass cost the fastest frames more
-// than it saved (objects 0.94x uniform's time at the 32-spp level) until the choices stopped
-// taking every pixel's ratios anew at each pass (ChoiceCache).
+// 8 saves more rays than 16 on nearly every scene and level (docs/validation.md, "Adaptive
+// sampling against uniform sampling"); the choices keep each pixel's ratios from pass to pass
+// (ChoiceCache), so the extra pass costs even the fastest frames less than it saves.
 inline constexpr int kDefaultFirstPassSpp = 8;
 
 // What PassPlan::choosePixels keeps from one choice to the next: each pixel's ratios (by its
@@ -89,10 +88,9 @@ struct PassPlan {
   // pixel on an edge often reads zero when both halves saw the same side of it; its neighbours
   // on the same edge rarely all do, so the neighbourhood's worst keeps the edge sampling (with
   // its mean instead, whitted's frame missed a target of 0.002 at 0.00201). Where they do (a
-  // checker of 2-pixel squares seen face on), the floor keeps it: without it whitted needed
-  // 2.7x uniform's samples to reach uniform's 128-spp error, with it 0.51x
-  // (docs/validation.md, "Adaptive sampling against uniform sampling"). Every input lies
-  // within one pixel.
+  // checker of 2-pixel squares seen face on), the floor keeps it: without it whitted and csg
+  // lost to uniform sampling at low errors (docs/validation.md, "Adaptive sampling against
+  // uniform sampling"). Every input lies within one pixel.
   // `kept` carries each pixel's inputs from one choice to the next (ChoiceCache).
   int64_t choosePixels(std::span<const PixelEstimate> pixels, int width, int end,
                        const FrameSpread& spread, ChoiceCache& kept,

@@ -1,4 +1,4 @@
-// "Against peers" (docs/performance.md): POV-Ray 3.7 twin of whitted_area_dof.json.
+// Glint against peers (docs/peers.md): POV-Ray 3.7 twin of whitted_area_dof.json.
 // Render: povray +Iwhitted_area_dof.pov +Oout.exr +FE +W320 +H240 -A +WT2 -D
 //         Declare=NB=16 Declare=NL=4
 // NB = camera samples per pixel (blur_samples; each also jitters the pixel position, so it is
@@ -6,7 +6,7 @@
 // use a power of two: POV-Ray averages the grid by recursive quartering, which weighs every
 // point equally only for 2, 4, 8, ...).
 //
-// How each Glint number maps (see docs/performance.md, "Against peers"):
+// How each Glint number maps (see docs/peers.md):
 // - Right-handed like Glint: "right -x*4/3" keeps Glint's coordinates as they are.
 // - Glint vfov 40 at 4:3 = POV-Ray horizontal angle 2*atan(tan(20 deg)*4/3) = 51.774009.
 // - Glint lens radius a = POV-Ray aperture/4: POV-Ray offsets the eye by
