@@ -32,11 +32,11 @@ inline constexpr bool kAddressSanitizer = false;
 inline constexpr bool kAddressSanitizer = false;
 #endif
 
-// The random rays of an agreement check between structures: a tenth under AddressSanitizer.
-// There the check looks for memory and undefined-behaviour faults, which a tenth of the rays
+// The random rays of an agreement check between structures: a twentieth under AddressSanitizer.
+// There the check looks for memory and undefined-behaviour faults, which a twentieth of the rays
 // reach through the same code; the full count's agreement is the Release suite's to check.
 inline constexpr int agreementRays(int releaseRays) {
-  return kAddressSanitizer ? releaseRays / 10 : releaseRays;
+  return kAddressSanitizer ? releaseRays / 20 : releaseRays;
 }
 
 inline std::filesystem::path tempDir() {

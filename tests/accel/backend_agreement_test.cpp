@@ -42,8 +42,8 @@ Scene everyShapeKind() {
     ]})");
 }
 
-// `fast` against the brute-force oracle on 4000 random rays through everyShapeKind() (a tenth
-// under AddressSanitizer).
+// `fast` against the brute-force oracle on 4000 random rays through everyShapeKind() (a
+// twentieth under AddressSanitizer).
 void expectAgreesWithBruteForce(const Scene& s, const Accelerator& fast) {
   const auto brute = makeAccelerator(AccelKind::BruteForce, s);
   constexpr int kRays = test::agreementRays(4000);

@@ -37,7 +37,7 @@ Agreement crossCheck(const std::string& text, int rays, BvhSplit split = BvhSpli
 }
 
 void expectAgreement(const Agreement& a, const char* what) {
-  // 1e5 random rays (a tenth under AddressSanitizer; two backends each): hit/miss agreement
+  // 1e5 random rays (a twentieth under AddressSanitizer; two backends each): hit/miss agreement
   // must be at least 1 − 1e-6, which over ≤ 2·10⁵ comparisons means no disagreement at all.
   // The rays start inside the scene's bounds, so many meet geometry; fewer than 1 % of the
   // comparisons with both backends hitting would leave the t and primitive checks nearly empty.

@@ -51,7 +51,7 @@ std::string mixedScene() {
       {"type": "sphere", "center": [0.3,0,0], "radius": 0.1, "material": "m"}])");
 }
 
-// `rays` random rays (a tenth under AddressSanitizer) through Embree, the sphere hierarchy and
+// `rays` random rays (a twentieth under AddressSanitizer) through Embree, the sphere hierarchy and
 // brute force: hit/miss, primitive and occlusion agreement ≥ 1 − 10⁻⁶ (over ≤ 2·10⁵
 // comparisons: none may differ), with ≥ 1 % of the comparisons hits in both so that t and the
 // primitive are checked too; and the tree's invariants hold.

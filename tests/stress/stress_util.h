@@ -23,11 +23,11 @@
 
 namespace glint::stress {
 
-// Random rays per agreement check: issue 25's 10⁶ (a tenth under AddressSanitizer:
+// Random rays per agreement check: issue 25's 10⁶ (a twentieth under AddressSanitizer:
 // test::agreementRays).
 constexpr int kAgreementRays = 1000000;
 
-// `check`'s agreement over `rays` random rays through `s` (a tenth under AddressSanitizer):
+// `check`'s agreement over `rays` random rays through `s` (a twentieth under AddressSanitizer):
 // hit/miss and occlusion ≥ 1 − 10⁻⁶ (issue 25's bar). Hits at a ray's origin count as ties
 // (CrossCheck::kOriginTolerance), but at most 10⁻⁴ of the queries may need that: a scene far
 // from the origin, where every hit on a small shape lies within the tolerance, must not pass on
