@@ -3,7 +3,8 @@
 find_package(embree 3 REQUIRED)
 find_package(TBB REQUIRED)
 find_package(OpenEXR 3 REQUIRED)  # EXR frames, read and written directly
-find_package(PNG REQUIRED)        # PNG display images
+find_package(PNG REQUIRED)        # PNG display images and textures
+find_package(JPEG REQUIRED)       # JPEG textures (io/jpeg_texture.h)
 # OpenImageIO: only in the run-time module libglint_oiio.so (film/oiio_module.h) and the tests.
 find_package(OpenImageIO REQUIRED)
 # Debian installs OpenColorIOConfig.cmake directly in /usr/share/cmake, outside the search path.

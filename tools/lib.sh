@@ -10,7 +10,7 @@ GLINT_BUILD="${GLINT_BUILD:-$GLINT_ROOT/build}"
 GLINT_PACKAGES=(
   build-essential cmake clang-format python3 # python3: tools/check-layers.py, run by ctest
   libembree-dev libtbb-dev libopenimageio-dev openimageio-tools libopenexr-dev libimath-dev
-  libpng-dev zlib1g-dev
+  libpng-dev libjpeg-dev zlib1g-dev
   libopencolorio-dev opencolorio-tools nlohmann-json3-dev libcli11-dev libassimp-dev
   libgtest-dev libbenchmark-dev
   assimp-testmodels # Assimp's real and deliberately broken models (tests/app/assimp_models_test.cpp)

@@ -1,10 +1,11 @@
 #pragma once
 // OpenImageIO behind a module loaded at run time. Debian's libOpenImageIO pulls in about 260
 // shared libraries (ffmpeg, GDAL, OpenCV, ...): linked into glint, they cost every run 0.3 s and
-// 130 MB before main(). Only the runs that need what only OpenImageIO does (image formats other
-// than EXR and PNG) load libglint_oiio.so, and with it OpenImageIO. One loader serves film/'s
-// image output and io/'s texture input (io/texture_file.h), so it sits in film/, the lower of the
-// two: both reach it downward, and the process loads the module once.
+// 130 MB before main(). Only the runs that need what only OpenImageIO does (display images other
+// than EXR and PNG, textures other than PNG, JPEG and Radiance HDR) load libglint_oiio.so, and with
+// it OpenImageIO. One loader serves film/'s image output and io/'s texture input
+// (io/texture_file.h), so it sits in film/, the lower of the two: both reach it downward, and the
+// process loads the module once.
 #include <cstdint>
 #include <string>
 #include <vector>

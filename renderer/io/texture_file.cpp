@@ -13,7 +13,7 @@
 #include "film/display.h"
 #include "film/image_limits.h"
 #include "film/oiio_module.h"
-#include "io/png_texture.h"
+#include "io/own_texture_readers.h"
 #include "materials/mip_pyramid.h"
 
 namespace glint {
@@ -176,9 +176,13 @@ std::shared_ptr<const ImageTexture> openTextureFile(const std::string& path,
   checkInputFile(path, kMaxTextureFileBytes, "texture");
   GlintOiioTextureInfo info{};
   char error[512] = "";
-  bool declined = false;
-  if (void* handle = png_texture::open(path, &info, error, sizeof error, &declined); !declined)
-    return loadedTexture(path, handle, info, error, colorspace, png_texture::functions());
+  // Glint's own readers first (each declines what is not its format): a scene whose textures
+  // they all read never loads OpenImageIO's module.
+  for (const OwnTextureReader* reader : kOwnTextureReaders) {
+    bool declined = false;
+    if (void* handle = reader->open(path, &info, error, sizeof error, &declined); !declined)
+      return loadedTexture(path, handle, info, error, colorspace, reader->functions());
+  }
   const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(path);
   void* handle = functions.open(path.c_str(), &info, error, sizeof error);
   return loadedTexture(path, handle, info, error, colorspace, functions);
@@ -188,11 +192,13 @@ std::shared_ptr<const ImageTexture> openTextureBytes(const std::string& name,
                                                      const std::string& bytes) {
   GlintOiioTextureInfo info{};
   char error[512] = "";
-  bool declined = false;
-  if (void* handle = png_texture::openMemory(name, bytes.data(), bytes.size(), &info, error,
-                                             sizeof error, &declined);
-      !declined)
-    return loadedTexture(name, handle, info, error, "", png_texture::functions());
+  for (const OwnTextureReader* reader : kOwnTextureReaders) {
+    bool declined = false;
+    if (void* handle = reader->openMemory(name, bytes.data(), bytes.size(), &info, error,
+                                          sizeof error, &declined);
+        !declined)
+      return loadedTexture(name, handle, info, error, "", reader->functions());
+  }
   const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(name);
   void* handle =
       functions.openMemory(name.c_str(), bytes.data(), bytes.size(), &info, error, sizeof error);

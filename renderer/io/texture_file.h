@@ -1,8 +1,9 @@
 #pragma once
 // Image textures read from files into a MIP pyramid in memory (materials/mip_pyramid.h): PNGs
-// by libpng (io/png_texture.h), the rest by OpenImageIO (through its module,
-// film/oiio_module.h: only scenes with such textures load it),
-// filtered over each lookup's footprint; colours converted to the rendering space by OCIO.
+// by libpng (io/png_texture.h), JPEGs by libjpeg (io/jpeg_texture.h), Radiance HDRs by Glint
+// (io/hdr_texture.h), the rest by OpenImageIO (through its module, film/oiio_module.h: only
+// scenes with such textures load it), filtered over each lookup's footprint; colours converted
+// to the rendering space by OCIO.
 // Texture input is the scene's input, so it lives in io/: it gives materials/ and lights/ what
 // they sample and reaches down to film/ for the image module and the colour conversion that
 // output shares.
@@ -26,11 +27,12 @@ inline constexpr uint64_t kMaxTextureFileBytes = uint64_t{8} << 30;
 // 16-bit TIFF) are the sRGB encoding ("sRGB - Texture"), unless the file declares itself linear.
 std::string defaultTextureColorspace(bool floatTexels, const std::string& declared);
 
-// Opens `path` (a PNG, or an image file OpenImageIO reads) as a texture in `colorspace` (empty: as
-// above). Its texels are read whole now, so a truncated or corrupt file is refused here. Throws
-// GlintError naming the file when it cannot be read or holds more pixels than an image read may
-// take (film/image_limits.h), OutOfMemoryError when its pyramid (4/3 of its texels, in float)
-// does not fit the memory budget, and UsageError for a colour space OCIO does not know.
+// Opens `path` (a PNG, a JPEG, a Radiance HDR, or an image file OpenImageIO reads) as a texture in
+// `colorspace` (empty: as above). Its texels are read whole now, so a truncated or corrupt file is
+// refused here. Throws GlintError naming the file when it cannot be read or holds more pixels than
+// an image read may take (film/image_limits.h), OutOfMemoryError when its pyramid (4/3 of its
+// texels, in float) does not fit the memory budget, and UsageError for a colour space OCIO does not
+// know.
 std::shared_ptr<const ImageTexture> openImageTexture(const std::string& path,
                                                      const std::string& colorspace = "");
 

@@ -44,6 +44,20 @@ TEST(Startup, VersionHelpAndAnExrRenderLoadNoOpenImageIO) {
   }
 }
 
+TEST(Startup, JpegPngAndHdrTexturesLoadNoOpenImageIO) {
+  // real_assets.json: the spider's JPEG maps (OBJ and MTL), the glTF box's PNG; sky.json: a
+  // Radiance HDR environment. Their corners only.
+  for (const char* scene : {"real_assets", "sky"}) {
+    const std::string args = "render " + std::string(GLINT_SOURCE_DIR) + "/scenes/" + scene +
+                             ".json --quiet --crop 0 8 0 8 -o " + tmp("textures.exr");
+    const test::RunResult r = loaderList(args);
+    ASSERT_EQ(r.exitCode, 0) << scene << "\n" << r.output.substr(0, 2000);
+    EXPECT_TRUE(loaded(r, "libc.so")) << scene;  // the list is live
+    EXPECT_FALSE(loaded(r, "libOpenImageIO")) << scene;
+    EXPECT_FALSE(loaded(r, "libglint_oiio")) << scene;
+  }
+}
+
 TEST(Startup, ATiffDisplayImageLoadsOpenImageIOThroughItsModule) {
   const std::string scene = test::writeTemp("startup-tiff.json", kSphere);
   const test::RunResult r = loaderList("render " + scene + " --quiet -o " + tmp("tiff.exr") +

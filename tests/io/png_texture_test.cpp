@@ -12,121 +12,32 @@
 #include <array>
 #include <cctype>
 #include <cstring>
-#include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
-#include "core/file_names.h"
-#include "io/texture_bands.h"
 #include "io/texture_file.h"
+#include "io/texture_reader_comparison.h"
 #include "test_util.h"
 
 namespace glint {
 namespace {
 
-namespace fs = std::filesystem;
+using test::Bytes;
+using test::Reading;
+using test::writeBytes;
 
-using Bytes = std::vector<unsigned char>;
-
-// What one reader made of a file: refused (with its message), or its header and texels.
-struct Reading {
-  bool declined = false, ok = false;
-  std::string error;
-  GlintOiioTextureInfo info{};
-  std::vector<float> texels;
-};
-
-// Reads every row through `functions` in bands of `bandRows` rows (io/texture_file.cpp reads
-// bands; small ones here cross many of them).
-void readRows(Reading& r, void* handle, const oiio_module::TextureFunctions& functions,
-              int bandRows) {
-  const std::unique_ptr<void, GlintOiioTextureClose> opened(handle, functions.close);
-  r.ok = test::readInBands(functions, handle, r.info.width, r.info.height, r.info.channels,
-                           bandRows, r.texels, r.error);
-}
-
-// Rows per band of OpenImageIO's module (the reference) and of libpng's reader (under test):
-// boundaries that differ.
-constexpr int kOpenImageIOBand = 5;
-constexpr int kLibpngBand = 3;
-
-Reading readWithLibpng(const std::string& path) {
-  Reading r;
-  char error[512] = "";
-  void* handle = png_texture::open(path, &r.info, error, sizeof error, &r.declined);
-  r.error = error;
-  if (handle) readRows(r, handle, png_texture::functions(), kLibpngBand);
-  return r;
-}
-
-Reading readWithOpenImageIO(const std::string& path) {
-  Reading r;
-  const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(path);
-  char error[512] = "";
-  void* handle = functions.open(path.c_str(), &r.info, error, sizeof error);
-  r.error = error;
-  if (handle) readRows(r, handle, functions, kOpenImageIOBand);
-  return r;
-}
+Reading readWithLibpng(const std::string& path) { return test::readWith(kPngReader, path); }
 
 Reading readBytesWithLibpng(const std::string& name, const Bytes& bytes) {
-  Reading r;
-  char error[512] = "";
-  void* handle = png_texture::openMemory(name, bytes.data(), bytes.size(), &r.info, error,
-                                         sizeof error, &r.declined);
-  r.error = error;
-  if (handle) readRows(r, handle, png_texture::functions(), kLibpngBand);
-  return r;
+  return test::readBytesWith(kPngReader, name, bytes);
 }
 
-Reading readBytesWithOpenImageIO(const std::string& name, const Bytes& bytes) {
-  Reading r;
-  const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(name);
-  char error[512] = "";
-  void* handle =
-      functions.openMemory(name.c_str(), bytes.data(), bytes.size(), &r.info, error, sizeof error);
-  r.error = error;
-  if (handle) readRows(r, handle, functions, kOpenImageIOBand);
-  return r;
-}
-
-// Both readers accept it with the same header, colour space and floats, bit for bit, or both
-// refuse it.
-void expectSameReading(const Reading& ours, const Reading& theirs, const std::string& what) {
-  ASSERT_FALSE(ours.declined) << what;
-  ASSERT_EQ(ours.ok, theirs.ok) << what << ": libpng: " << ours.error
-                                << "; OpenImageIO: " << theirs.error;
-  if (!ours.ok) {
-    EXPECT_FALSE(ours.error.empty()) << what;
-    return;
-  }
-  EXPECT_EQ(ours.info.width, theirs.info.width) << what;
-  EXPECT_EQ(ours.info.height, theirs.info.height) << what;
-  EXPECT_EQ(ours.info.channels, theirs.info.channels) << what;
-  EXPECT_EQ(ours.info.isFloat, theirs.info.isFloat) << what;
-  EXPECT_EQ(ours.info.bytesPerChannel, theirs.info.bytesPerChannel) << what;
-  EXPECT_EQ(ours.info.tileHeight, theirs.info.tileHeight) << what;
-  EXPECT_STREQ(ours.info.colorspace, theirs.info.colorspace) << what;
-  ASSERT_EQ(ours.texels.size(), theirs.texels.size()) << what;
-  EXPECT_EQ(std::memcmp(ours.texels.data(), theirs.texels.data(), ours.texels.size() * 4), 0)
-      << what;
-}
-
-void writeBytes(const std::string& path, const Bytes& bytes) {
-  std::ofstream(path, std::ios::binary)
-      .write(reinterpret_cast<const char*>(bytes.data()), std::streamsize(bytes.size()));
-}
-
-void compareFile(const std::string& path) {
-  expectSameReading(readWithLibpng(path), readWithOpenImageIO(path), path);
-}
+void compareFile(const std::string& path) { test::compareFile(kPngReader, path); }
 
 void compareBytes(const std::string& name, const Bytes& bytes) {
-  expectSameReading(readBytesWithLibpng(name, bytes), readBytesWithOpenImageIO(name, bytes), name);
+  test::compareBytes(kPngReader, name, bytes);
 }
 
 // A PNG to write: its header, chunks and (random) samples.
@@ -385,35 +296,18 @@ TEST(PngTexture, ExifAndOtherFormatsAreLeftToOpenImageIO) {
   EXPECT_EQ(texture->path(), path);
 }
 
-// Every PNG under `root` (build folders left out).
-std::vector<std::string> pngsUnder(const fs::path& root) {
-  std::vector<std::string> found;
-  std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::end(it);
-       it.increment(ec)) {
-    const std::string name = it->path().filename().string();
-    if (it->is_directory() && (name.rfind("build", 0) == 0 || name == ".git")) {
-      it.disable_recursion_pending();
-      continue;
-    }
-    if (it->is_regular_file() && lowerCase(it->path().extension().string()) == ".png")
-      found.push_back(it->path().string());
-  }
-  std::sort(found.begin(), found.end());
-  return found;
-}
-
 TEST(PngTexture, EveryPngOfTheRepositoryAndAssimpsModelsGivesOpenImageIOsFloats) {
-  std::vector<std::string> files = pngsUnder(GLINT_SOURCE_DIR);
+  std::vector<std::string> files = test::filesUnder(GLINT_SOURCE_DIR, {".png"});
   const size_t ours = files.size();
-  for (const std::string& f : pngsUnder("/usr/share/assimp/models")) files.push_back(f);
+  for (const std::string& f : test::filesUnder("/usr/share/assimp/models", {".png"}))
+    files.push_back(f);
   // scenes/assets alone holds 8 (the glTF, cut-out and normal-map assets).
   EXPECT_GE(ours, 8u);
   int compared = 0;
   for (const std::string& path : files) {
     const Reading r = readWithLibpng(path);
     if (r.declined) continue;  // Exif, or not a PNG inside
-    expectSameReading(r, readWithOpenImageIO(path), path);
+    test::expectSameReading(kPngReader.library, r, test::readWithOpenImageIO(path), path);
     ++compared;
   }
   EXPECT_GE(compared, int(ours));
@@ -469,19 +363,22 @@ Bytes header(uint32_t width, uint32_t height, int depth, int colorType) {
 void append(Bytes& to, const Bytes& from) { to.insert(to.end(), from.begin(), from.end()); }
 
 TEST(PngTexture, TruncatedAndCorruptedFilesAreRefusedAsOpenImageIORefusesThem) {
+  // Under AddressSanitizer compared at every eighth file (test::compareDamaged).
+  size_t call = 0;
   for (bool interlaced : {false, true}) {
     const Bytes good = sampleFile(interlaced);
     const std::string tag = interlaced ? " (Adam7)" : "";
     // Every length short of the whole file.
     for (size_t n = 8; n < good.size(); ++n)
-      compareBytes("cut at " + std::to_string(n) + tag + ".png",
-                   Bytes(good.begin(), good.begin() + long(n)));
+      test::compareDamaged(kPngReader, "cut at " + std::to_string(n) + tag + ".png",
+                           Bytes(good.begin(), good.begin() + long(n)), call++);
     // Every byte after the signature inverted: CRC errors in critical chunks refuse it; in
     // ancillary ones (gAMA) libpng drops the chunk.
     for (size_t i = 8; i < good.size(); ++i) {
       Bytes bad = good;
       bad[i] ^= 0xff;
-      compareBytes("byte " + std::to_string(i) + " inverted" + tag + ".png", bad);
+      test::compareDamaged(kPngReader, "byte " + std::to_string(i) + " inverted" + tag + ".png",
+                           bad, call++);
     }
   }
   // Headers libpng refuses: zero or over 2^31 sides, depths a colour type does not allow,
@@ -564,6 +461,5 @@ TEST(PngTexture, ACompressedTextBombIsDroppedWithinLibpngsChunkLimit) {
   compareBytes("text bomb.png", file);
   EXPECT_TRUE(readBytesWithLibpng("text bomb.png", file).ok);
 }
-
 }  // namespace
 }  // namespace glint

@@ -1,0 +1,331 @@
+#include "io/hdr_texture.h"
+
+#include <sys/types.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string_view>
+#include <vector>
+
+#include "core/file_names.h"
+
+namespace glint::hdr_texture {
+
+namespace {
+
+constexpr size_t kMessageSize = 256;
+// OpenImageIO reads the header in pieces of this many bytes, each up to its first newline.
+constexpr size_t kHeaderPiece = 128;
+// OpenImageIO reads at most this many header lines after the first.
+constexpr int kMaxHeaderLines = 100;
+// Scanlines this wide or wider, or narrower than 8, are never run-length encoded.
+constexpr uint64_t kMinEncodedWidth = 8, kMaxEncodedWidth = 0x7fff;
+
+// The file's bytes, or the caller's.
+struct Source {
+  std::FILE* file = nullptr;
+  const unsigned char* bytes = nullptr;
+  size_t size = 0, offset = 0;
+
+  size_t read(void* out, size_t n) {
+    if (file) return std::fread(out, 1, n, file);
+    n = std::min(n, size - offset);
+    if (n > 0) std::memcpy(out, bytes + offset, n);
+    offset += n;
+    return n;
+  }
+  int64_t tell() const { return file ? int64_t(ftello(file)) : int64_t(offset); }
+  void seek(int64_t position) {
+    if (file)
+      fseeko(file, off_t(position), SEEK_SET);
+    else
+      offset = size_t(position);
+  }
+};
+
+// An opened HDR file, positioned at its next scanline.
+struct Reader {
+  Source source;
+  int width = 0, height = 0;
+  int nextRow = 0;
+  std::vector<unsigned char> encoded;  // a run-length-encoded scanline's four planes
+  std::vector<float> row;              // a scanline's floats, where fewer channels are asked for
+  char message[kMessageSize] = "";
+
+  Reader() = default;
+  Reader(const Reader&) = delete;
+  Reader& operator=(const Reader&) = delete;
+  ~Reader() {
+    if (source.file) std::fclose(source.file);
+  }
+
+  bool fail(const char* what) {
+    std::snprintf(message, kMessageSize, "invalid HDR data: %s", what);
+    return false;
+  }
+};
+
+// OpenImageIO's exponent table: 2^(e − 136) as written to eight significant digits and read
+// back as a float. Most entries are exact powers of two; some are not (2^−96 reads back one ulp
+// below it), and the texels are OpenImageIO's only with the same factors.
+const std::array<float, 256>& exponents() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int e = 0; e < 256; ++e) {
+      char text[32];
+      const auto written = std::to_chars(text, text + sizeof text, std::ldexp(1.0, e - 136),
+                                         std::chars_format::general, 8);
+      std::from_chars(text, written.ptr, t[size_t(e)]);
+    }
+    return t;
+  }();
+  return table;
+}
+
+void toFloats(const unsigned char rgbe[4], float* out) {
+  if (rgbe[3] == 0) {
+    out[0] = out[1] = out[2] = 0;
+    return;
+  }
+  const float f = exponents()[rgbe[3]];
+  out[0] = float(rgbe[0]) * f;
+  out[1] = float(rgbe[1]) * f;
+  out[2] = float(rgbe[2]) * f;
+}
+
+// OpenImageIO's header line: the next piece of up to kHeaderPiece bytes, cut after its first
+// newline unless that is its last byte, the source then placed just after it. Empty at the end.
+std::string_view nextLine(Source& source, char (&piece)[kHeaderPiece]) {
+  const int64_t at = source.tell();
+  const size_t got = source.read(piece, sizeof piece);
+  std::string_view line(piece, got);
+  if (got == 0) return line;
+  const size_t newline = line.find('\n');
+  if (newline != std::string_view::npos && newline < got - 1) line = line.substr(0, newline + 1);
+  source.seek(at + int64_t(line.size()));
+  return line;
+}
+
+bool isSpace(char c) { return c == ' ' || (c >= '\t' && c <= '\r'); }
+
+bool startsAfterSpaces(std::string_view line, std::string_view prefix) {
+  while (!line.empty() && isSpace(line.front())) line.remove_prefix(1);
+  return line.substr(0, prefix.size()) == prefix;
+}
+
+// A run of 1–9 decimal digits at the start of `s`, taken off it.
+bool takeNumber(std::string_view& s, int& value) {
+  size_t digits = 0;
+  while (digits < s.size() && digits < 10 && s[digits] >= '0' && s[digits] <= '9') ++digits;
+  if (digits == 0 || digits > 9) return false;
+  value = 0;
+  for (size_t i = 0; i < digits; ++i) value = value * 10 + (s[i] - '0');
+  s.remove_prefix(digits);
+  return true;
+}
+
+bool take(std::string_view& s, std::string_view prefix) {
+  if (s.substr(0, prefix.size()) != prefix) return false;
+  s.remove_prefix(prefix.size());
+  return true;
+}
+
+enum class Header { Read, Refused, Declined };
+
+// OpenImageIO's RGBE_ReadHeader, where it reads the file as Glint does: r->width and height
+// from the size line, the source left at the first scanline.
+Header readHeader(Reader& r) {
+  char piece[kHeaderPiece];
+  std::string_view line = nextLine(r.source, piece);
+  if (line.empty()) return r.fail("the file ends in its header"), Header::Refused;
+  if (line.substr(0, 2) != "#?") return Header::Declined;  // not a Radiance file: OpenImageIO's
+  line = nextLine(r.source, piece);
+  if (line.empty()) return r.fail("the file ends in its header"), Header::Refused;
+  bool format = false;
+  for (int lines = 0; lines < kMaxHeaderLines; ++lines) {
+    if (line.empty() || line[0] == '\n') break;
+    if (line == "FORMAT=32-bit_rle_rgbe\n")
+      format = true;
+    else if (startsAfterSpaces(line, "GAMMA="))
+      return Header::Declined;  // OpenImageIO names a colour space after it
+    line = nextLine(r.source, piece);
+    if (line.empty()) return r.fail("the file ends in its header"), Header::Refused;
+  }
+  if (!format) return r.fail("no FORMAT specifier found"), Header::Refused;
+  if (line != "\n") return r.fail("missing blank line after FORMAT specifier"), Header::Refused;
+  line = nextLine(r.source, piece);
+  if (line.empty()) return r.fail("the file ends in its header"), Header::Refused;
+  // "-Y height +X width": rows from the top, each from the left.
+  if (!take(line, "-Y ") || !takeNumber(line, r.height) || !take(line, " +X ") ||
+      !takeNumber(line, r.width) || line != "\n")
+    return Header::Declined;
+  return Header::Read;
+}
+
+// OpenImageIO's flat read: `count` pixels of four bytes each.
+bool readFlat(Reader& r, float* out, uint64_t count, int y) {
+  std::vector<unsigned char>& bytes = r.encoded;
+  bytes.resize(size_t(4 * count));
+  if (r.source.read(bytes.data(), bytes.size()) != bytes.size()) {
+    char what[64];
+    std::snprintf(what, sizeof what, "the pixels end in scanline %d", y);
+    return r.fail(what);
+  }
+  for (uint64_t i = 0; i < count; ++i) toFloats(&bytes[size_t(4 * i)], out + 3 * i);
+  return true;
+}
+
+// OpenImageIO's RGBE_ReadPixels_RLE for one scanline: run-length encoded when it starts with
+// the marker (2, 2, and its width), else flat from its first pixel.
+bool readScanline(Reader& r, float* out, int y) {
+  const uint64_t width = uint64_t(r.width);
+  if (width < kMinEncodedWidth || width > kMaxEncodedWidth) return readFlat(r, out, width, y);
+  char what[64];
+  unsigned char rgbe[4];
+  if (r.source.read(rgbe, 4) != 4) {
+    std::snprintf(what, sizeof what, "the pixels end in scanline %d", y);
+    return r.fail(what);
+  }
+  if (rgbe[0] != 2 || rgbe[1] != 2 || (rgbe[2] & 0x80)) {
+    toFloats(rgbe, out);
+    return readFlat(r, out + 3, width - 1, y);
+  }
+  if ((uint64_t(rgbe[2]) << 8 | rgbe[3]) != width) {
+    std::snprintf(what, sizeof what, "wrong scanline width for scanline %d", y);
+    return r.fail(what);
+  }
+  r.encoded.resize(size_t(4 * width));
+  unsigned char* p = r.encoded.data();
+  // The four planes (R, G, B, E), each of runs (a count past 128 and one byte) and literals (a
+  // count and that many bytes).
+  for (int plane = 0; plane < 4; ++plane) {
+    const unsigned char* end = r.encoded.data() + size_t(plane + 1) * width;
+    while (p < end) {
+      unsigned char code[2];
+      if (r.source.read(code, 2) != 2) {
+        std::snprintf(what, sizeof what, "the pixels end in scanline %d", y);
+        return r.fail(what);
+      }
+      const bool run = code[0] > 128;
+      const int count = run ? code[0] - 128 : code[0];
+      if (count == 0 || count > end - p) {
+        std::snprintf(what, sizeof what, "bad scanline %d data", y);
+        return r.fail(what);
+      }
+      if (run) {
+        std::memset(p, code[1], size_t(count));
+        p += count;
+        continue;
+      }
+      *p++ = code[1];
+      if (count > 1 && r.source.read(p, size_t(count - 1)) != size_t(count - 1)) {
+        std::snprintf(what, sizeof what, "the pixels end in scanline %d", y);
+        return r.fail(what);
+      }
+      p += count - 1;
+    }
+  }
+  for (uint64_t i = 0; i < width; ++i) {
+    const unsigned char pixel[4] = {r.encoded[size_t(i)], r.encoded[size_t(i + width)],
+                                    r.encoded[size_t(i + 2 * width)],
+                                    r.encoded[size_t(i + 3 * width)]};
+    toFloats(pixel, out + 3 * i);
+  }
+  return true;
+}
+
+void copyMessage(const char* message, char* error, size_t errorSize) {
+  if (errorSize > 0) std::snprintf(error, errorSize, "%s", message);
+}
+
+void* openReader(std::unique_ptr<Reader> r, GlintOiioTextureInfo* info, char* error,
+                 size_t errorSize, bool* declined) {
+  switch (readHeader(*r)) {
+    case Header::Declined:
+      *declined = true;
+      return nullptr;
+    case Header::Refused:
+      copyMessage(r->message, error, errorSize);
+      return nullptr;
+    case Header::Read:
+      break;
+  }
+  info->width = r->width;
+  info->height = r->height;
+  info->channels = 3;
+  info->isFloat = 1;
+  info->bytesPerChannel = 4;
+  // OpenImageIO's "presume linear", which only a GAMMA line (declined) changes.
+  std::snprintf(info->colorspace, sizeof info->colorspace, "linear");
+  info->tileHeight = 0;
+  return r.release();
+}
+
+bool hasHdrName(const std::string& name) {
+  const std::string extension = lowerExtension(name);
+  return extension == ".hdr" || extension == ".rgbe";
+}
+
+int readTexels(void* handle, int y0, int y1, int channels, float* out, char* error,
+               size_t errorSize) {
+  Reader& r = *static_cast<Reader*>(handle);
+  if (channels < 1 || channels > 3 || y0 < 0 || y1 > r.height || y0 > y1 || y0 != r.nextRow) {
+    copyMessage("rows or channels out of order or range", error, errorSize);
+    return 1;
+  }
+  const size_t width = size_t(r.width);
+  for (int y = y0; y < y1; ++y) {
+    float* to = channels == 3 ? out : (r.row.resize(3 * width), r.row.data());
+    if (!readScanline(r, to, y)) {
+      copyMessage(r.message, error, errorSize);
+      return 1;
+    }
+    if (channels < 3)
+      for (size_t p = 0; p < width; ++p)
+        for (int c = 0; c < channels; ++c)
+          out[p * size_t(channels) + size_t(c)] = to[3 * p + size_t(c)];
+    out += width * size_t(channels);
+  }
+  r.nextRow = y1;
+  return 0;
+}
+
+void closeReader(void* handle) { delete static_cast<Reader*>(handle); }
+
+}  // namespace
+
+void* open(const std::string& path, GlintOiioTextureInfo* info, char* error, size_t errorSize,
+           bool* declined) {
+  *declined = !hasHdrName(path);
+  if (*declined) return nullptr;
+  auto r = std::make_unique<Reader>();
+  r->source.file = std::fopen(path.c_str(), "rbe");  // e: not inherited by a child
+  if (!r->source.file) {
+    copyMessage("cannot open the file", error, errorSize);
+    return nullptr;
+  }
+  return openReader(std::move(r), info, error, errorSize, declined);
+}
+
+void* openMemory(const std::string& name, const void* bytes, size_t size,
+                 GlintOiioTextureInfo* info, char* error, size_t errorSize, bool* declined) {
+  *declined = !hasHdrName(name);
+  if (*declined) return nullptr;
+  auto r = std::make_unique<Reader>();
+  r->source.bytes = static_cast<const unsigned char*>(bytes);
+  r->source.size = size;
+  return openReader(std::move(r), info, error, errorSize, declined);
+}
+
+const oiio_module::TextureFunctions& functions() {
+  static const oiio_module::TextureFunctions f{nullptr, nullptr, readTexels, closeReader};
+  return f;
+}
+
+}  // namespace glint::hdr_texture
