@@ -6,6 +6,7 @@
 #include <cmath>
 #include <csetjmp>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <new>
@@ -20,6 +21,13 @@ namespace glint::png_texture {
 namespace {
 
 constexpr size_t kMessageSize = 256;
+// The most one of libpng's allocations may take. libpng takes an ancillary chunk's declared
+// length on trust when it reads the chunk whole: past its 8 MB limit it only warns (a benign
+// error), then allocates and zeroes up to 2 GB before it finds that the file ends (a 458-byte
+// file with a text chunk of 1.3 GB took 5.9 s and 1.3 GB). Its legitimate allocations, a row of
+// its widest image (1,000,000 texels of 16-bit RGBA: 8 MB) or a decompressed chunk (8 MB), fit
+// many times.
+constexpr size_t kMaxAllocation = size_t{64} << 20;
 constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
 
 // An opened PNG. libpng reports errors by longjmp: the functions that call it (marked) hold no
@@ -35,7 +43,8 @@ struct Reader {
   int nextRow = 0;                  // of a file read row by row
   std::vector<unsigned char> rows;  // a band of rows, or an interlaced image whole
   std::vector<unsigned char*> rowPointers;
-  bool readWhole = false;  // an interlaced image, read at the first request
+  bool readWhole = false;        // an interlaced image, read at the first request
+  size_t refusedAllocation = 0;  // the size of an allocation past kMaxAllocation, refused
   char message[kMessageSize] = "";
 
   ~Reader() {
@@ -44,14 +53,36 @@ struct Reader {
   }
 };
 
+// r->message for an allocation refused by `allocate`.
+bool refuseAllocation(Reader* r) {
+  std::snprintf(r->message, kMessageSize,
+                "invalid PNG data: a chunk that would take %zu bytes (at most %zu MB)",
+                r->refusedAllocation, kMaxAllocation >> 20);
+  return false;
+}
+
 void storeError(png_structp png, png_const_charp message) {
   auto* r = static_cast<Reader*>(png_get_error_ptr(png));
-  // libpng's png_malloc failing: the machine's failure, as io/texture_file.cpp recognises it.
+  // libpng's png_malloc failing: the machine's failure, as io/texture_file.cpp recognises it,
+  // unless it was a refused allocation.
   const bool outOfMemory = std::string_view(message) == "Out of memory";
-  std::snprintf(r->message, kMessageSize, "%s%s", outOfMemory ? "" : "invalid PNG data: ",
-                outOfMemory ? std::bad_alloc().what() : message);
+  if (r->refusedAllocation)
+    refuseAllocation(r);
+  else
+    std::snprintf(r->message, kMessageSize, "%s%s", outOfMemory ? "" : "invalid PNG data: ",
+                  outOfMemory ? std::bad_alloc().what() : message);
   png_longjmp(png, 1);
 }
+
+void* allocate(png_structp png, png_alloc_size_t size) {
+  if (size > kMaxAllocation) {
+    static_cast<Reader*>(png_get_mem_ptr(png))->refusedAllocation = size;
+    return nullptr;
+  }
+  return std::malloc(size);
+}
+
+void release(png_structp, png_voidp memory) { std::free(memory); }
 
 // As OpenImageIO's reader: libpng's warnings (and the benign errors it makes warnings of when
 // reading) are ignored.
@@ -87,7 +118,8 @@ bool readHeader(Reader* r) {
   r->channels = png_get_channels(r->png, r->info);
   r->bytesPerChannel = bitDepth == 16 ? 2 : 1;
   r->interlaced = png_get_interlace_type(r->png, r->info) != PNG_INTERLACE_NONE;
-  return true;
+  // An allocation refused where libpng only warns (and skips the chunk, or not): refused too.
+  return r->refusedAllocation ? refuseAllocation(r) : true;
 }
 
 // libpng calls: the next `count` rows into r->rowPointers (a file read row by row, as
@@ -100,7 +132,7 @@ bool readRows(Reader* r, int count) {
   } else {
     for (int i = 0; i < count; ++i) png_read_row(r->png, r->rowPointers[size_t(i)], nullptr);
   }
-  return true;
+  return r->refusedAllocation ? refuseAllocation(r) : true;
 }
 
 bool equalsIgnoringCase(std::string_view a, std::string_view b) {
@@ -153,7 +185,8 @@ void copyMessage(const char* message, char* error, size_t errorSize) {
 // Opens the PNG `r` reads from (its file or bytes, at their start).
 void* openReader(std::unique_ptr<Reader> r, GlintOiioTextureInfo* info, char* error,
                  size_t errorSize, bool* declined) {
-  r->png = png_create_read_struct(PNG_LIBPNG_VER_STRING, r.get(), storeError, ignoreWarning);
+  r->png = png_create_read_struct_2(PNG_LIBPNG_VER_STRING, r.get(), storeError, ignoreWarning,
+                                    r.get(), allocate, release);
   if (r->png) r->info = png_create_info_struct(r->png);
   if (!r->png || !r->info) {
     copyMessage(std::bad_alloc().what(), error, errorSize);

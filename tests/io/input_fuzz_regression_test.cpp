@@ -1,13 +1,15 @@
-// Mesh and EXR inputs that once hung, crashed or exhausted a reader, or that the fuzzers of
-// tests/fuzz/ found (docs/hardening.md): tests/fuzz/regressions-mesh/ in glint_fuzz_mesh's input
-// form, tests/fuzz/regressions-exr/ as EXR files. Each must meet its fuzzer's oracle: a mesh or
-// image that is whole, or an error naming the file. One ctest entry per file.
+// Mesh, EXR and texture inputs that once hung, crashed or exhausted a reader, or that the fuzzers
+// of tests/fuzz/ found (docs/hardening.md): tests/fuzz/regressions-mesh/ in glint_fuzz_mesh's
+// input form, tests/fuzz/regressions-exr/ as EXR files, tests/fuzz/regressions-texture/ in
+// glint_fuzz_texture's. Each must meet its fuzzer's oracle: a mesh, image or texture that is
+// whole, or an error naming the file. One ctest entry per file.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
 #include "fuzz/exr_fuzz_input.h"
 #include "fuzz/mesh_fuzz_input.h"
+#include "fuzz/texture_fuzz_input.h"
 #include "test_util.h"
 
 namespace glint {
@@ -50,6 +52,18 @@ TEST_P(ExrFuzzRegression, ReadsOrNamesTheFile) {
 
 INSTANTIATE_TEST_SUITE_P(Inputs, ExrFuzzRegression, testing::ValuesIn(filesIn("regressions-exr")),
                          testName);
+
+class TextureFuzzRegression : public testing::TestWithParam<std::string> {};
+
+TEST_P(TextureFuzzRegression, ReadsOrNamesTheFile) {
+  const std::string input = test::readFile(kFuzzDir / "regressions-texture" / GetParam());
+  bool skipped = true;
+  EXPECT_EQ(fuzz::textureReadProblem(input, &skipped), "");
+  EXPECT_FALSE(skipped);  // a regression input reaches Glint's reader
+}
+
+INSTANTIATE_TEST_SUITE_P(Inputs, TextureFuzzRegression,
+                         testing::ValuesIn(filesIn("regressions-texture")), testName);
 
 }  // namespace
 }  // namespace glint
