@@ -1,5 +1,6 @@
 #include "io/hdr_texture.h"
 
+#include <sys/stat.h>
 #include <sys/types.h>
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "core/file_names.h"
+#include "io/texture_reader_support.h"
 
 namespace glint::hdr_texture {
 
@@ -41,6 +43,12 @@ struct Source {
     return n;
   }
   int64_t tell() const { return file ? int64_t(ftello(file)) : int64_t(offset); }
+  // Its whole size in bytes (a file's from fstat; -1 where that fails).
+  int64_t total() const {
+    if (!file) return int64_t(size);
+    struct stat st {};
+    return fstat(fileno(file), &st) == 0 ? int64_t(st.st_size) : -1;
+  }
   void seek(int64_t position) {
     if (file)
       fseeko(file, off_t(position), SEEK_SET);
@@ -240,10 +248,6 @@ bool readScanline(Reader& r, float* out, int y) {
   return true;
 }
 
-void copyMessage(const char* message, char* error, size_t errorSize) {
-  if (errorSize > 0) std::snprintf(error, errorSize, "%s", message);
-}
-
 void* openReader(std::unique_ptr<Reader> r, GlintOiioTextureInfo* info, char* error,
                  size_t errorSize, bool* declined) {
   switch (readHeader(*r)) {
@@ -251,19 +255,29 @@ void* openReader(std::unique_ptr<Reader> r, GlintOiioTextureInfo* info, char* er
       *declined = true;
       return nullptr;
     case Header::Refused:
-      copyMessage(r->message, error, errorSize);
+      texture_reader::copyMessage(r->message, error, errorSize);
       return nullptr;
     case Header::Read:
       break;
   }
-  info->width = r->width;
-  info->height = r->height;
-  info->channels = 3;
-  info->isFloat = 1;
-  info->bytesPerChannel = 4;
+  // The fewest bytes its scanlines can take: a scanline is flat (four bytes a pixel) or, where
+  // encoded, its marker and each plane's runs of up to 127 bytes, two bytes each. A file with
+  // less is refused here, before its texels' memory is allocated for a size it cannot hold.
+  const uint64_t width = uint64_t(r->width);
+  const uint64_t encoded = 4 + 4 * 2 * ((width + 126) / 127);
+  const uint64_t leastPerScanline = width < kMinEncodedWidth || width > kMaxEncodedWidth
+                                        ? 4 * width
+                                        : std::min(4 * width, encoded);
+  const int64_t total = r->source.total(), left = total - r->source.tell();
+  if (total >= 0 && double(left) < double(leastPerScanline) * double(r->height)) {
+    std::snprintf(r->message, kMessageSize,
+                  "invalid HDR data: %d x %d pixels cannot fit in the %lld bytes after the header",
+                  r->width, r->height, static_cast<long long>(left));
+    texture_reader::copyMessage(r->message, error, errorSize);
+    return nullptr;
+  }
   // OpenImageIO's "presume linear", which only a GAMMA line (declined) changes.
-  std::snprintf(info->colorspace, sizeof info->colorspace, "linear");
-  info->tileHeight = 0;
+  texture_reader::fillInfo(info, r->width, r->height, 3, true, 4, "linear");
   return r.release();
 }
 
@@ -276,14 +290,14 @@ int readTexels(void* handle, int y0, int y1, int channels, float* out, char* err
                size_t errorSize) {
   Reader& r = *static_cast<Reader*>(handle);
   if (channels < 1 || channels > 3 || y0 < 0 || y1 > r.height || y0 > y1 || y0 != r.nextRow) {
-    copyMessage("rows or channels out of order or range", error, errorSize);
+    texture_reader::copyMessage("rows or channels out of order or range", error, errorSize);
     return 1;
   }
   const size_t width = size_t(r.width);
   for (int y = y0; y < y1; ++y) {
     float* to = channels == 3 ? out : (r.row.resize(3 * width), r.row.data());
     if (!readScanline(r, to, y)) {
-      copyMessage(r.message, error, errorSize);
+      texture_reader::copyMessage(r.message, error, errorSize);
       return 1;
     }
     if (channels < 3)
@@ -305,11 +319,8 @@ void* open(const std::string& path, GlintOiioTextureInfo* info, char* error, siz
   *declined = !hasHdrName(path);
   if (*declined) return nullptr;
   auto r = std::make_unique<Reader>();
-  r->source.file = std::fopen(path.c_str(), "rbe");  // e: not inherited by a child
-  if (!r->source.file) {
-    copyMessage("cannot open the file", error, errorSize);
-    return nullptr;
-  }
+  r->source.file = texture_reader::openFile(path, error, errorSize);
+  if (!r->source.file) return nullptr;
   return openReader(std::move(r), info, error, errorSize, declined);
 }
 

@@ -15,6 +15,7 @@
 
 #include "core/file_names.h"
 #include "core/memory.h"
+#include "io/texture_reader_support.h"
 
 namespace glint::jpeg_texture {
 
@@ -150,10 +151,6 @@ bool carriesXmp(const jpeg_decompress_struct& jpeg) {
   return false;
 }
 
-void copyMessage(const char* message, char* error, size_t errorSize) {
-  if (errorSize > 0) std::snprintf(error, errorSize, "%s", message);
-}
-
 // Opens the JPEG `r` reads from (its file, or `bytes`).
 void* openReader(std::unique_ptr<Reader> r, const unsigned char* bytes, size_t size,
                  GlintOiioTextureInfo* info, char* error, size_t errorSize, bool* declined) {
@@ -162,7 +159,7 @@ void* openReader(std::unique_ptr<Reader> r, const unsigned char* bytes, size_t s
   r->errors.pub.output_message = keepWarning;
   r->progress.progress_monitor = limitScans;
   if (!readHeader(r.get(), bytes, size)) {
-    copyMessage(r->message, error, errorSize);
+    texture_reader::copyMessage(r->message, error, errorSize);
     return nullptr;
   }
   const J_COLOR_SPACE space = r->jpeg.jpeg_color_space;
@@ -174,14 +171,8 @@ void* openReader(std::unique_ptr<Reader> r, const unsigned char* bytes, size_t s
   r->height = int(r->jpeg.output_height);
   // As OpenImageIO: the file's components (grey 1, colour 3), which libjpeg's output has.
   r->channels = r->jpeg.num_components;
-  info->width = r->width;
-  info->height = r->height;
-  info->channels = r->channels;
-  info->isFloat = 0;
-  info->bytesPerChannel = 1;
   // OpenImageIO's JPEG reader says sRGB, and its Exif decoder can only say sRGB again.
-  std::snprintf(info->colorspace, sizeof info->colorspace, "sRGB");
-  info->tileHeight = 0;
+  texture_reader::fillInfo(info, r->width, r->height, r->channels, false, 1, "sRGB");
   return r.release();
 }
 
@@ -201,7 +192,7 @@ int readTexels(void* handle, int y0, int y1, int channels, float* out, char* err
   Reader& r = *static_cast<Reader*>(handle);
   if (channels < 1 || channels > r.channels || y0 < 0 || y1 > r.height || y0 > y1 ||
       y0 != r.nextRow) {
-    copyMessage("rows or channels out of order or range", error, errorSize);
+    texture_reader::copyMessage("rows or channels out of order or range", error, errorSize);
     return 1;
   }
   if (!r.started) {
@@ -212,7 +203,7 @@ int readTexels(void* handle, int y0, int y1, int channels, float* out, char* err
                       "a multi-scan JPEG texture's coefficients, decoded whole");
     r.row.resize(size_t(r.width) * size_t(r.channels));
     if (!startDecompress(&r)) {
-      copyMessage(r.message, error, errorSize);
+      texture_reader::copyMessage(r.message, error, errorSize);
       return 1;
     }
     r.started = true;
@@ -227,7 +218,7 @@ int readTexels(void* handle, int y0, int y1, int channels, float* out, char* err
       for (int c = 0; c < channels; ++c) *to++ = float(r.row[p * stride + size_t(c)]) * kScale;
   };
   if (!readRows(&r, y1 - y0, convert)) {
-    copyMessage(r.message, error, errorSize);
+    texture_reader::copyMessage(r.message, error, errorSize);
     return 1;
   }
   r.nextRow = y1;
@@ -246,11 +237,8 @@ void* open(const std::string& path, GlintOiioTextureInfo* info, char* error, siz
     return nullptr;
   }
   auto r = std::make_unique<Reader>();
-  r->file = std::fopen(path.c_str(), "rbe");  // e: not inherited by a child
-  if (!r->file) {
-    copyMessage("cannot open the file", error, errorSize);
-    return nullptr;
-  }
+  r->file = texture_reader::openFile(path, error, errorSize);
+  if (!r->file) return nullptr;
   unsigned char head[2] = {};
   if (!startsAsJpeg(head, std::fread(head, 1, sizeof head, r->file))) {
     *declined = true;

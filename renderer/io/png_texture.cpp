@@ -15,6 +15,7 @@
 
 #include "core/file_names.h"
 #include "core/memory.h"
+#include "io/texture_reader_support.h"
 
 namespace glint::png_texture {
 
@@ -178,10 +179,6 @@ bool carriesExifOrXmp(png_structp png, png_infop info) {
   return false;
 }
 
-void copyMessage(const char* message, char* error, size_t errorSize) {
-  if (errorSize > 0) std::snprintf(error, errorSize, "%s", message);
-}
-
 // Opens the PNG `r` reads from (its file or bytes, at their start).
 void* openReader(std::unique_ptr<Reader> r, GlintOiioTextureInfo* info, char* error,
                  size_t errorSize, bool* declined) {
@@ -189,26 +186,20 @@ void* openReader(std::unique_ptr<Reader> r, GlintOiioTextureInfo* info, char* er
                                     r.get(), allocate, release);
   if (r->png) r->info = png_create_info_struct(r->png);
   if (!r->png || !r->info) {
-    copyMessage(std::bad_alloc().what(), error, errorSize);
+    texture_reader::copyMessage(std::bad_alloc().what(), error, errorSize);
     return nullptr;
   }
   png_set_read_fn(r->png, r.get(), readBytes);
   if (!readHeader(r.get())) {
-    copyMessage(r->message, error, errorSize);
+    texture_reader::copyMessage(r->message, error, errorSize);
     return nullptr;
   }
   if (carriesExifOrXmp(r->png, r->info)) {
     *declined = true;
     return nullptr;
   }
-  info->width = r->width;
-  info->height = r->height;
-  info->channels = r->channels;
-  info->isFloat = 0;
-  info->bytesPerChannel = r->bytesPerChannel;
-  std::snprintf(info->colorspace, sizeof info->colorspace, "%s",
-                declaredColorspace(r->png, r->info).c_str());
-  info->tileHeight = 0;
+  texture_reader::fillInfo(info, r->width, r->height, r->channels, false, r->bytesPerChannel,
+                           declaredColorspace(r->png, r->info));
   return r.release();
 }
 
@@ -219,7 +210,7 @@ int readTexels(void* handle, int y0, int y1, int channels, float* out, char* err
   Reader& r = *static_cast<Reader*>(handle);
   if (channels < 1 || channels > r.channels || y0 < 0 || y1 > r.height || y0 > y1 ||
       (!r.interlaced && y0 != r.nextRow)) {
-    copyMessage("rows or channels out of order or range", error, errorSize);
+    texture_reader::copyMessage("rows or channels out of order or range", error, errorSize);
     return 1;
   }
   const size_t rowBytes = size_t(r.width) * size_t(r.channels) * size_t(r.bytesPerChannel);
@@ -234,7 +225,7 @@ int readTexels(void* handle, int y0, int y1, int channels, float* out, char* err
       r.rowPointers.resize(size_t(r.height));
       for (size_t y = 0; y < r.rowPointers.size(); ++y) r.rowPointers[y] = &r.rows[y * rowBytes];
       if (!readRows(&r, r.height)) {
-        copyMessage(r.message, error, errorSize);
+        texture_reader::copyMessage(r.message, error, errorSize);
         return 1;
       }
       r.readWhole = true;
@@ -246,7 +237,7 @@ int readTexels(void* handle, int y0, int y1, int channels, float* out, char* err
     r.rowPointers.resize(size_t(count));
     for (size_t y = 0; y < r.rowPointers.size(); ++y) r.rowPointers[y] = &r.rows[y * rowBytes];
     if (!readRows(&r, count)) {
-      copyMessage(r.message, error, errorSize);
+      texture_reader::copyMessage(r.message, error, errorSize);
       return 1;
     }
     r.nextRow = y1;
@@ -284,11 +275,8 @@ void* open(const std::string& path, GlintOiioTextureInfo* info, char* error, siz
     return nullptr;
   }
   auto r = std::make_unique<Reader>();
-  r->file = std::fopen(path.c_str(), "rbe");  // e: not inherited by a child
-  if (!r->file) {
-    copyMessage("cannot open the file", error, errorSize);
-    return nullptr;
-  }
+  r->file = texture_reader::openFile(path, error, errorSize);
+  if (!r->file) return nullptr;
   unsigned char head[sizeof kSignature] = {};
   const size_t got = std::fread(head, 1, sizeof head, r->file);
   if (got != sizeof head || std::memcmp(head, kSignature, sizeof head) != 0) {

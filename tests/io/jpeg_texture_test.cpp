@@ -329,18 +329,6 @@ TEST(JpegTexture, TruncatedAndCorruptedFilesAreRefusedAsOpenImageIORefusesThem) 
   std::printf("%zu damaged files\n", call);
 }
 
-// The texture reader refuses `path` with a message naming it and holding `reason`.
-void expectRefusedNaming(const std::string& path, const std::string& reason) {
-  try {
-    openImageTexture(path);
-    ADD_FAILURE() << path << " was read";
-  } catch (const GlintError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_NE(what.find(reason), std::string::npos) << what;
-  }
-}
-
 // The offset of the first SOF marker's height (its size follows: height, then width, 16 bits
 // big-endian each).
 size_t frameSizeOffset(const Bytes& jpeg) {
@@ -354,7 +342,7 @@ TEST(JpegTexture, AHostileFileIsRefusedNamingTheFileAndWhatWasWrong) {
   const Bytes good = writeJpeg(Variant{});
   const std::string cut = (test::tempDir() / "cut.jpg").string();
   writeBytes(cut, Bytes(good.begin(), good.begin() + long(good.size() / 2)));
-  expectRefusedNaming(cut, "invalid JPEG data");
+  test::expectRefusedNaming(cut, "invalid JPEG data");
   // A header declaring 65500 x 65500 (JPEG's largest) over a few bytes of data is refused by
   // the memory budget before any row is decoded: 68 GB of float texels with their pyramid.
   for (bool progressive : {false, true}) {
@@ -367,7 +355,7 @@ TEST(JpegTexture, AHostileFileIsRefusedNamingTheFileAndWhatWasWrong) {
     huge[at + 1] = huge[at + 3] = 0xdc;
     const std::string path = (test::tempDir() / "huge.jpg").string();
     writeBytes(path, huge);
-    expectRefusedNaming(path, "65500x65500");
+    test::expectRefusedNaming(path, "65500x65500");
   }
 }
 

@@ -360,8 +360,6 @@ Bytes header(uint32_t width, uint32_t height, int depth, int colorType) {
   return out;
 }
 
-void append(Bytes& to, const Bytes& from) { to.insert(to.end(), from.begin(), from.end()); }
-
 TEST(PngTexture, TruncatedAndCorruptedFilesAreRefusedAsOpenImageIORefusesThem) {
   // Under AddressSanitizer compared at every eighth file (test::compareDamaged).
   size_t call = 0;
@@ -398,32 +396,20 @@ TEST(PngTexture, TruncatedAndCorruptedFilesAreRefusedAsOpenImageIORefusesThem) {
                                             {2000000, 1, 8, 0},
                                             {4, 4, 8, 0}}) {
     Bytes file = header(w, h, int(depth), int(type));
-    append(file, idat);
-    append(file, iend);
+    test::append(file, idat);
+    test::append(file, iend);
     compareBytes("header " + std::to_string(w) + "x" + std::to_string(h) + " depth " +
                      std::to_string(depth) + " type " + std::to_string(type) + ".png",
                  file);
   }
   Bytes noIdat = header(4, 4, 8, 0);
-  append(noIdat, iend);
+  test::append(noIdat, iend);
   compareBytes("no IDAT.png", noIdat);
   // A palette image without its PLTE.
   Bytes noPalette = header(1, 1, 8, 3);
-  append(noPalette, idat);
-  append(noPalette, iend);
+  test::append(noPalette, idat);
+  test::append(noPalette, iend);
   compareBytes("no PLTE.png", noPalette);
-}
-
-// The texture reader refuses `path` with a message naming it and holding `reason`.
-void expectRefusedNaming(const std::string& path, const std::string& reason) {
-  try {
-    openImageTexture(path);
-    ADD_FAILURE() << path << " was read";
-  } catch (const GlintError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find(path), std::string::npos) << what;
-    EXPECT_NE(what.find(reason), std::string::npos) << what;
-  }
 }
 
 TEST(PngTexture, AHostileFileIsRefusedNamingTheFileAndWhatWasWrong) {
@@ -431,15 +417,15 @@ TEST(PngTexture, AHostileFileIsRefusedNamingTheFileAndWhatWasWrong) {
   const Bytes good = sampleFile(false);
   const std::string cut = (test::tempDir() / "cut.png").string();
   writeBytes(cut, Bytes(good.begin(), good.begin() + long(good.size() - 30)));
-  expectRefusedNaming(cut, "invalid PNG data");
+  test::expectRefusedNaming(cut, "invalid PNG data");
   // A header declaring 1,000,000 x 1,000,000 (libpng's largest) is refused by the image limits
   // before any row is read or allocated (film/image_limits.h): 4 TB of float texels.
   Bytes huge = header(1000000, 1000000, 8, 0);
-  append(huge, chunk("IDAT", {0x78, 0x9c, 0x03, 0x00}));
-  append(huge, chunk("IEND", {}));
+  test::append(huge, chunk("IDAT", {0x78, 0x9c, 0x03, 0x00}));
+  test::append(huge, chunk("IEND", {}));
   const std::string hugePath = (test::tempDir() / "huge.png").string();
   writeBytes(hugePath, huge);
-  expectRefusedNaming(hugePath, "1000000x1000000");
+  test::expectRefusedNaming(hugePath, "1000000x1000000");
 }
 
 TEST(PngTexture, ACompressedTextBombIsDroppedWithinLibpngsChunkLimit) {
@@ -455,7 +441,7 @@ TEST(PngTexture, ACompressedTextBombIsDroppedWithinLibpngsChunkLimit) {
             Z_OK);
   packed.resize(size);
   Bytes data = {'b', 'o', 'm', 'b', 0, 0};
-  append(data, packed);
+  test::append(data, packed);
   const Bytes ztxt = chunk("zTXt", data);
   file.insert(file.begin() + 33, ztxt.begin(), ztxt.end());  // after the signature and IHDR
   compareBytes("text bomb.png", file);
@@ -470,7 +456,7 @@ TEST(PngTexture, AChunkDeclaringMoreThanTheFileHoldsIsRefusedBeforeItIsAllocated
   const Bytes good = sampleFile(false);
   // The signature and IHDR, then a tEXt chunk's length (1 296 891 965 bytes), type and key.
   Bytes file(good.begin(), good.begin() + 33);
-  append(file, {0x4d, 0x4d, 0x00, 0x3d, 't', 'E', 'X', 't', 'k', 'e', 'y'});
+  test::append(file, {0x4d, 0x4d, 0x00, 0x3d, 't', 'E', 'X', 't', 'k', 'e', 'y'});
   const Reading r = readBytesWithLibpng("huge chunk.png", file);
   ASSERT_FALSE(r.ok);
   EXPECT_NE(r.error.find("a chunk that would take 1296891966 bytes (at most 64 MB)"),

@@ -13,10 +13,12 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "core/file_names.h"
 #include "film/oiio_module.h"
 #include "io/own_texture_readers.h"
 #include "io/texture_bands.h"
+#include "io/texture_file.h"
 #include "test_util.h"
 
 namespace glint::test {
@@ -131,6 +133,20 @@ inline void compareDamaged(const OwnTextureReader& reader, const std::string& na
     return expectSameReading(reader.library, ours, readBytesWithOpenImageIO(name, bytes), name);
   if (!ours.ok) {
     EXPECT_FALSE(ours.error.empty()) << name;
+  }
+}
+
+inline void append(Bytes& to, const Bytes& from) { to.insert(to.end(), from.begin(), from.end()); }
+
+// The texture reader refuses `path` with a message naming it and holding `reason`.
+inline void expectRefusedNaming(const std::string& path, const std::string& reason) {
+  try {
+    openImageTexture(path);
+    ADD_FAILURE() << path << " was read";
+  } catch (const GlintError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path), std::string::npos) << what;
+    EXPECT_NE(what.find(reason), std::string::npos) << what;
   }
 }
 
