@@ -77,6 +77,11 @@ struct Reader {
     std::snprintf(message, kMessageSize, "invalid HDR data: %s", what);
     return false;
   }
+  // The file ending before scanline y does.
+  bool endsIn(int y) {
+    std::snprintf(message, kMessageSize, "invalid HDR data: the pixels end in scanline %d", y);
+    return false;
+  }
 };
 
 // OpenImageIO's exponent table: 2^(e − 136) as written to eight significant digits and read
@@ -180,11 +185,7 @@ Header readHeader(Reader& r) {
 bool readFlat(Reader& r, float* out, uint64_t count, int y) {
   std::vector<unsigned char>& bytes = r.encoded;
   bytes.resize(size_t(4 * count));
-  if (r.source.read(bytes.data(), bytes.size()) != bytes.size()) {
-    char what[64];
-    std::snprintf(what, sizeof what, "the pixels end in scanline %d", y);
-    return r.fail(what);
-  }
+  if (r.source.read(bytes.data(), bytes.size()) != bytes.size()) return r.endsIn(y);
   for (uint64_t i = 0; i < count; ++i) toFloats(&bytes[size_t(4 * i)], out + 3 * i);
   return true;
 }
@@ -196,10 +197,7 @@ bool readScanline(Reader& r, float* out, int y) {
   if (width < kMinEncodedWidth || width > kMaxEncodedWidth) return readFlat(r, out, width, y);
   char what[64];
   unsigned char rgbe[4];
-  if (r.source.read(rgbe, 4) != 4) {
-    std::snprintf(what, sizeof what, "the pixels end in scanline %d", y);
-    return r.fail(what);
-  }
+  if (r.source.read(rgbe, 4) != 4) return r.endsIn(y);
   if (rgbe[0] != 2 || rgbe[1] != 2 || (rgbe[2] & 0x80)) {
     toFloats(rgbe, out);
     return readFlat(r, out + 3, width - 1, y);
@@ -216,10 +214,7 @@ bool readScanline(Reader& r, float* out, int y) {
     const unsigned char* end = r.encoded.data() + size_t(plane + 1) * width;
     while (p < end) {
       unsigned char code[2];
-      if (r.source.read(code, 2) != 2) {
-        std::snprintf(what, sizeof what, "the pixels end in scanline %d", y);
-        return r.fail(what);
-      }
+      if (r.source.read(code, 2) != 2) return r.endsIn(y);
       const bool run = code[0] > 128;
       const int count = run ? code[0] - 128 : code[0];
       if (count == 0 || count > end - p) {
@@ -232,10 +227,7 @@ bool readScanline(Reader& r, float* out, int y) {
         continue;
       }
       *p++ = code[1];
-      if (count > 1 && r.source.read(p, size_t(count - 1)) != size_t(count - 1)) {
-        std::snprintf(what, sizeof what, "the pixels end in scanline %d", y);
-        return r.fail(what);
-      }
+      if (count > 1 && r.source.read(p, size_t(count - 1)) != size_t(count - 1)) return r.endsIn(y);
       p += count - 1;
     }
   }
@@ -289,10 +281,8 @@ bool hasHdrName(const std::string& name) {
 int readTexels(void* handle, int y0, int y1, int channels, float* out, char* error,
                size_t errorSize) {
   Reader& r = *static_cast<Reader*>(handle);
-  if (channels < 1 || channels > 3 || y0 < 0 || y1 > r.height || y0 > y1 || y0 != r.nextRow) {
-    texture_reader::copyMessage("rows or channels out of order or range", error, errorSize);
+  if (!texture_reader::rowsInContract(y0, y1, channels, r.height, 3, r.nextRow, error, errorSize))
     return 1;
-  }
   const size_t width = size_t(r.width);
   for (int y = y0; y < y1; ++y) {
     float* to = channels == 3 ? out : (r.row.resize(3 * width), r.row.data());

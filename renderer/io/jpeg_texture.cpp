@@ -190,11 +190,9 @@ bool startsAsJpeg(const unsigned char* head, size_t size) {
 int readTexels(void* handle, int y0, int y1, int channels, float* out, char* error,
                size_t errorSize) {
   Reader& r = *static_cast<Reader*>(handle);
-  if (channels < 1 || channels > r.channels || y0 < 0 || y1 > r.height || y0 > y1 ||
-      y0 != r.nextRow) {
-    texture_reader::copyMessage("rows or channels out of order or range", error, errorSize);
+  if (!texture_reader::rowsInContract(y0, y1, channels, r.height, r.channels, r.nextRow, error,
+                                      errorSize))
     return 1;
-  }
   if (!r.started) {
     // A multi-scan (progressive) file is decoded into a buffer of its coefficients, two bytes a
     // sample, which the caller's budget did not count.

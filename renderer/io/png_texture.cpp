@@ -208,11 +208,9 @@ bool hasPngName(const std::string& name) { return lowerExtension(name) == ".png"
 int readTexels(void* handle, int y0, int y1, int channels, float* out, char* error,
                size_t errorSize) {
   Reader& r = *static_cast<Reader*>(handle);
-  if (channels < 1 || channels > r.channels || y0 < 0 || y1 > r.height || y0 > y1 ||
-      (!r.interlaced && y0 != r.nextRow)) {
-    texture_reader::copyMessage("rows or channels out of order or range", error, errorSize);
+  if (!texture_reader::rowsInContract(y0, y1, channels, r.height, r.channels,
+                                      r.interlaced ? -1 : r.nextRow, error, errorSize))
     return 1;
-  }
   const size_t rowBytes = size_t(r.width) * size_t(r.channels) * size_t(r.bytesPerChannel);
   const unsigned char* rows = nullptr;
   if (r.interlaced) {

@@ -22,6 +22,18 @@ inline std::FILE* openFile(const std::string& path, char* error, size_t errorSiz
   return file;
 }
 
+// Whether reading rows [y0, y1) of the first `channels` channels keeps the module's contract
+// (film/oiio_module_abi.h) for an image of `height` rows and `fileChannels` channels, read in
+// order from row `nextRow` (negative: in any order); if not, false with the message in `error`.
+inline bool rowsInContract(int y0, int y1, int channels, int height, int fileChannels, int nextRow,
+                           char* error, size_t errorSize) {
+  if (channels >= 1 && channels <= fileChannels && y0 >= 0 && y1 <= height && y0 <= y1 &&
+      (nextRow < 0 || y0 == nextRow))
+    return true;
+  copyMessage("rows or channels out of order or range", error, errorSize);
+  return false;
+}
+
 // The header a reader gives, as OpenImageIO's reader would: a scanline image (no tiles).
 inline void fillInfo(GlintOiioTextureInfo* info, int width, int height, int channels, bool isFloat,
                      int bytesPerChannel, const std::string& colorspace) {

@@ -10,8 +10,6 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
-#include <fstream>
-#include <iterator>
 #include <random>
 #include <string>
 #include <vector>
@@ -27,11 +25,6 @@ namespace {
 using test::Bytes;
 using test::Reading;
 using test::writeBytes;
-
-Bytes readBytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return Bytes(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
 
 // Random RGB floats spanning many exponents (and some zeros), `seed` fixed.
 std::vector<float> randomPixels(int width, int height, uint32_t seed) {
@@ -55,7 +48,8 @@ Bytes writeWithOpenImageIO(int width, int height, uint32_t seed) {
   EXPECT_TRUE(out->open(path, spec)) << out->geterror();
   EXPECT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, randomPixels(width, height, seed).data()));
   out->close();
-  return readBytes(path);
+  const std::string file = test::readFile(path);
+  return Bytes(file.begin(), file.end());
 }
 
 // A flat (not run-length encoded) file with `header` before its size line, of the given RGBE

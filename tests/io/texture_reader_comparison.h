@@ -1,5 +1,5 @@
 #pragma once
-// Shared by the tests of Glint's own texture readers (io/png_texture.h, io/jpeg_texture.h): a
+// Shared by the tests of Glint's own texture readers (io/own_texture_readers.h): a
 // file or its bytes read by one of them and by OpenImageIO's module, which read them before, and
 // the two readings compared: the same header, oiio:ColorSpace and floats bit for bit, or both
 // refusing.
