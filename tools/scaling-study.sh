@@ -12,6 +12,11 @@
 #    the study stops with status 1: the scheduler promises the same bytes for any thread count.
 #    One more row set renders an adaptive frame (default: soft_shadows, --target-rmse 0.002
 #    --max-spp 256), whose later passes are short: they sample few pixels.
+#    The machine's ceiling: the most threads' count of 1-thread renders of the scene at once,
+#    each process its own (nothing shared but the machine), R rounds; the best round's mean
+#    seconds against the 1-thread render alone is the efficiency the machine itself gives that
+#    many copies of the work (clock speed under load, shared caches and memory, a host's other
+#    guests). Glint's efficiency over it is what the renderer loses.
 # 2. Tiles: at the most threads, --tile-size 8/16/32/64 and --tile-order row against the default
 #    (32, morton). The scheduler halves a tile until each thread has kTilesPerThread (32), so a
 #    large size may run as a smaller one.
@@ -112,8 +117,13 @@ thread_rows() { # LABEL NAME SCENE ARGS...: a row per thread count
 s, one, first, t, rays = map(float, sys.argv[2:])
 print(f"| {sys.argv[1]} | {t:.0f} | {s:.3f} | {one / s:.2f} | {one / s / t * first:.2f} | {rays / s / 1e6:.0f} |")' \
       "$label" "$s" "$one" "$first" "$t" "$rays")"
+    if [ "$t" = "$most" ]; then
+      efficiency[$name]=$(python3 -c 'import sys; s, one, first, t = map(float, sys.argv[1:]); print(one / s / t * first)' \
+        "$s" "$one" "$first" "$t")
+    fi
   done
 }
+declare -A efficiency=() # NAME → its efficiency at the most threads
 for scene in $scenes; do thread_rows "$scene" "$scene" "$scene"; done
 # Adaptive sampling: short later passes and the choices between them, and whether those stay
 # the same for any thread count.
@@ -123,6 +133,41 @@ thread_rows "$adaptive_scene, $adaptive_args" "$adaptive_scene.adaptive" "$adapt
 say ""
 say "Speed-up and efficiency are against the first thread count ($(echo $threads | cut -d" " -f1)), whose"
 say "image every other count's equals (glint compare, max_abs 0)."
+
+say ""
+say "## The machine's ceiling, $most processes"
+say ""
+say "| scene | 1 thread alone | $most at once, each | the machine's efficiency | Glint's at $most threads | Glint's over the machine's |"
+say "|---|---|---|---|---|---|"
+ceiling_row() { # LABEL NAME SCENE ARGS...: $most 1-thread renders at once against one alone
+  local label=$1 name=$2 scene=$3 r k alone="" together=""
+  shift 3
+  for r in $(seq 1 "$runs"); do # alone and together in turn: a host's load drifts over minutes
+    "$glint" render "$kRoot/scenes/$scene.json" -o "$raw/$name.alone.exr" --quiet \
+      --threads 1 --stats-json "$raw/$name.alone.json" "$@"
+    alone=$(least $alone "$(field "$raw/$name.alone.json" seconds)")
+    for k in $(seq 1 "$most"); do
+      "$glint" render "$kRoot/scenes/$scene.json" -o "$raw/$name.together$k.exr" --quiet \
+        --threads 1 --stats-json "$raw/$name.together$k.json" "$@" &
+    done
+    for k in $(seq 1 "$most"); do wait -n; done # set -e: a failed render stops the study
+    together=$(least $together "$(python3 -c 'import glob, json, sys
+s = [json.load(open(p))["seconds"] for p in glob.glob(sys.argv[1] + ".together*.json")]
+print(sum(s) / len(s))' "$raw/$name")")
+  done
+  say "$(python3 -c 'import sys
+alone, together, glint = map(float, sys.argv[2:])
+print(f"| {sys.argv[1]} | {alone:.3f} | {together:.3f} | {alone / together:.2f} | {glint:.2f} | {glint / (alone / together):.2f} |")' \
+    "$label" "$alone" "$together" "${efficiency[$name]}")"
+}
+for scene in $scenes; do ceiling_row "$scene" "$scene" "$scene"; done
+ceiling_row "$adaptive_scene, $adaptive_args" "$adaptive_scene.adaptive" "$adaptive_scene" \
+  "${adaptive_words[@]}"
+say ""
+say "Each round renders the scene alone, then $most times at once; best of $runs rounds: the render alone,"
+say "and the mean render seconds of the $most at once. The machine's efficiency: the render alone over"
+say "that. Glint's over the machine's: what the renderer itself loses at $most threads, with what the"
+say "machine loses to running $most of anything taken out."
 
 say ""
 say "## Tiles, $most threads"
