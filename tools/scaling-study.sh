@@ -8,13 +8,15 @@
 #
 # 1. Threads: each scene rendered R times at each thread count; the best render seconds
 #    (--stats-json "seconds": no start-up), the speed-up and the parallel efficiency against one
-#    thread. Every count's image must equal the 1-thread image (glint compare: max_abs 0), or
-#    the study stops with status 1: the scheduler promises the same bytes for any thread count.
+#    thread, and from that render's "schedule" where the time went: its tiles' CPU seconds against
+#    one thread's, the phases' ends idle and the share outside the tiles. Every count's image
+#    must equal the 1-thread image (glint compare: max_abs 0), or the study stops with status 1:
+#    the scheduler promises the same bytes for any thread count.
 #    One more row set renders an adaptive frame (default: soft_shadows, --target-rmse 0.002
 #    --max-spp 256), whose later passes are short: they sample few pixels.
-#    The machine's ceiling: the most threads' count of 1-thread renders of the scene at once,
-#    each process its own (nothing shared but the machine), R rounds; the best round's mean
-#    seconds against the 1-thread render alone is the efficiency the machine itself gives that
+#    The machine's ceiling: per scene, in each of R rounds, one 1-thread render alone and then
+#    as many as the most threads at once, each process its own (nothing shared but the machine);
+#    the best alone over the best round's mean is the efficiency the machine itself gives that
 #    many copies of the work (clock speed under load, shared caches and memory, a host's other
 #    guests). Glint's efficiency over it is what the renderer loses.
 # 2. Tiles: at the most threads, --tile-size 8/16/32/64 and --tile-order row against the default
@@ -103,24 +105,41 @@ say "glint: $("$glint" --version | head -n 1); best of $runs runs"
 say ""
 say "## Threads"
 say ""
-say "| scene | threads | best seconds | speed-up | efficiency | Mrays/s |"
-say "|---|---|---|---|---|---|"
+say "| scene | threads | best seconds | speed-up | efficiency | Mrays/s | tiles' CPU time | phases' ends idle | outside the tiles |"
+say "|---|---|---|---|---|---|---|---|---|"
+# PREFIX FIRST_PREFIX LABEL: the row of the best of PREFIX.run*.json against the best of
+# FIRST_PREFIX's, then that row's efficiency on a line of its own. Each render's "schedule"
+# (--stats-json) holds its tiles' thread CPU seconds and the phases' wall seconds.
+row_of() {
+  python3 - "$@" <<'PY'
+import glob, json, sys
+prefix, first_prefix, label = sys.argv[1:]
+def best(p):
+    return min((json.load(open(f)) for f in glob.glob(p + ".run*.json")), key=lambda d: d["seconds"])
+def tile_cpu(d):
+    return sum(t[4] for phase in d["schedule"]["phases"] for t in phase["tiles"])
+d, one = best(prefix), best(first_prefix)
+s, t, t1 = d["seconds"], d["schedule"]["threads"], one["schedule"]["threads"]
+phases = d["schedule"]["phases"]
+tiles_wall = sum(p["tiles_seconds"] for p in phases)
+busy = sum(x[2] for p in phases for x in p["tiles"])
+efficiency = one["seconds"] / s / t * t1
+print(f"| {label} | {t} | {s:.3f} | {one['seconds'] / s:.2f} | {efficiency:.2f} | "
+      f"{d['rays_total'] / s / 1e6:.0f} | {tile_cpu(d) / tile_cpu(one):.2f}x | "
+      f"{100 * (1 - busy / (t * tiles_wall)):.1f} % | {100 * (1 - tiles_wall / s):.1f} % |")
+print(efficiency)
+PY
+}
 thread_rows() { # LABEL NAME SCENE ARGS...: a row per thread count
-  local label=$1 name=$2 scene=$3 t s one="" first="" rays
+  local label=$1 name=$2 scene=$3 t first="" out
   shift 3
   for t in $threads; do
-    s=$(render_best "$name.t$t" "$scene" --threads "$t" "$@")
-    [ -n "$first" ] || { first=$t; one=$s; }
+    render_best "$name.t$t" "$scene" --threads "$t" "$@" >/dev/null
+    [ -n "$first" ] || first=$t
     same_image "$raw/$name.t$t.exr" "$raw/$name.t$first.exr"
-    rays=$(field "$raw/$name.t$t.run1.json" rays_total)
-    say "$(python3 -c 'import sys
-s, one, first, t, rays = map(float, sys.argv[2:])
-print(f"| {sys.argv[1]} | {t:.0f} | {s:.3f} | {one / s:.2f} | {one / s / t * first:.2f} | {rays / s / 1e6:.0f} |")' \
-      "$label" "$s" "$one" "$first" "$t" "$rays")"
-    if [ "$t" = "$most" ]; then
-      efficiency[$name]=$(python3 -c 'import sys; s, one, first, t = map(float, sys.argv[1:]); print(one / s / t * first)' \
-        "$s" "$one" "$first" "$t")
-    fi
+    out=$(row_of "$raw/$name.t$t" "$raw/$name.t$first" "$label")
+    say "${out%$'\n'*}"
+    if [ "$t" = "$most" ]; then efficiency[$name]=${out##*$'\n'}; fi
   done
 }
 declare -A efficiency=() # NAME → its efficiency at the most threads
@@ -132,7 +151,10 @@ thread_rows "$adaptive_scene, $adaptive_args" "$adaptive_scene.adaptive" "$adapt
   "${adaptive_words[@]}"
 say ""
 say "Speed-up and efficiency are against the first thread count ($(echo $threads | cut -d" " -f1)), whose"
-say "image every other count's equals (glint compare, max_abs 0)."
+say "image every other count's equals (glint compare, max_abs 0). Tiles' CPU time: the threads' CPU"
+say "seconds in the tiles against the first count's (above 1: each tile costs more, as threads slow"
+say "each other); phases' ends idle: the threads' time in the phases not spent on tiles; outside the"
+say "tiles: the render's seconds outside its phases (set-up, loops over the pixels, the resolved frame)."
 
 say ""
 say "## The machine's ceiling, $most processes"
