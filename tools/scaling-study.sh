@@ -9,16 +9,18 @@
 # 1. Threads: each scene rendered R times at each thread count; the best render seconds
 #    (--stats-json "seconds": no start-up), the speed-up and the parallel efficiency against one
 #    thread, and from that render's "schedule" where the time went: its tiles' CPU seconds against
-#    one thread's, the phases' ends idle and the share outside the tiles. Every count's image
+#    one thread's cut into the same tiles (rendered once more where more threads take smaller
+#    tiles), the threads' idle in the phases and the share outside the tiles. Every count's image
 #    must equal the 1-thread image (glint compare: max_abs 0), or the study stops with status 1:
 #    the scheduler promises the same bytes for any thread count.
 #    One more row set renders an adaptive frame (default: soft_shadows, --target-rmse 0.002
 #    --max-spp 256), whose later passes are short: they sample few pixels.
 #    The machine's ceiling: per scene, in each of R rounds, one 1-thread render alone and then
 #    as many as the most threads at once, each process its own (nothing shared but the machine);
-#    the best alone over the best round's mean is the efficiency the machine itself gives that
-#    many copies of the work (clock speed under load, shared caches and memory, a host's other
-#    guests). Glint's efficiency over it is what the renderer loses.
+#    the median alone over the median of the rounds' means is the efficiency the machine itself
+#    gives that many copies of the work (whatever slows the machine under load: clock speed,
+#    shared caches and memory, a host's other guests). Glint's efficiency over it is what the
+#    renderer itself loses.
 # 2. Tiles: at the most threads, --tile-size 8/16/32/64 and --tile-order row against the default
 #    (32, morton). The scheduler halves a tile until each thread has kTilesPerThread (32), so a
 #    large size may run as a smaller one.
@@ -105,44 +107,57 @@ say "glint: $("$glint" --version | head -n 1); best of $runs runs"
 say ""
 say "## Threads"
 say ""
-say "| scene | threads | best seconds | speed-up | efficiency | Mrays/s | tiles' CPU time | phases' ends idle | outside the tiles |"
-say "|---|---|---|---|---|---|---|---|---|"
-# PREFIX FIRST_PREFIX LABEL: the row of the best of PREFIX.run*.json against the best of
-# FIRST_PREFIX's, then that row's efficiency on a line of its own. Each render's "schedule"
-# (--stats-json) holds its tiles' thread CPU seconds and the phases' wall seconds.
+say "| scene | threads | best seconds | speed-up | efficiency | Mrays/s | tile | tiles' CPU time | idle | outside the tiles |"
+say "|---|---|---|---|---|---|---|---|---|---|"
+# PREFIX FIRST_PREFIX CPU_PREFIX LABEL: the row of the best of PREFIX.run*.json against the best
+# of FIRST_PREFIX's, then that row's efficiency on a line of its own. Each render's "schedule"
+# (--stats-json) holds its tiles' thread CPU seconds and the phases' wall seconds; the tiles' CPU
+# time is compared with CPU_PREFIX's, the first thread count's render cut into the same tiles.
 row_of() {
   python3 - "$@" <<'PY'
 import glob, json, sys
-prefix, first_prefix, label = sys.argv[1:]
+prefix, first_prefix, cpu_prefix, label = sys.argv[1:]
 def best(p):
     return min((json.load(open(f)) for f in glob.glob(p + ".run*.json")), key=lambda d: d["seconds"])
 def tile_cpu(d):
     return sum(t[4] for phase in d["schedule"]["phases"] for t in phase["tiles"])
-d, one = best(prefix), best(first_prefix)
+d, one, same_tiles = best(prefix), best(first_prefix), best(cpu_prefix)
 s, t, t1 = d["seconds"], d["schedule"]["threads"], one["schedule"]["threads"]
 phases = d["schedule"]["phases"]
 tiles_wall = sum(p["tiles_seconds"] for p in phases)
 busy = sum(x[2] for p in phases for x in p["tiles"])
 efficiency = one["seconds"] / s / t * t1
 print(f"| {label} | {t} | {s:.3f} | {one['seconds'] / s:.2f} | {efficiency:.2f} | "
-      f"{d['rays_total'] / s / 1e6:.0f} | {tile_cpu(d) / tile_cpu(one):.2f}x | "
+      f"{d['rays_total'] / s / 1e6:.0f} | {d['schedule']['tile_size']} | "
+      f"{tile_cpu(d) / tile_cpu(same_tiles):.2f}x | "
       f"{100 * (1 - busy / (t * tiles_wall)):.1f} % | {100 * (1 - tiles_wall / s):.1f} % |")
 print(efficiency)
 PY
 }
+tile_size_of() { # STATS.json → the tile size the render took
+  python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["schedule"]["tile_size"])' "$1"
+}
 thread_rows() { # LABEL NAME SCENE ARGS...: a row per thread count
-  local label=$1 name=$2 scene=$3 t first="" out
+  local label=$1 name=$2 scene=$3 t first="" first_size="" size cpu out
   shift 3
   for t in $threads; do
     render_best "$name.t$t" "$scene" --threads "$t" "$@" >/dev/null
-    [ -n "$first" ] || first=$t
+    size=$(tile_size_of "$raw/$name.t$t.run1.json")
+    [ -n "$first" ] || { first=$t; first_size=$size; }
     same_image "$raw/$name.t$t.exr" "$raw/$name.t$first.exr"
-    out=$(row_of "$raw/$name.t$t" "$raw/$name.t$first" "$label")
+    cpu="$raw/$name.t$first" # more threads may take smaller tiles: compare like with like
+    if [ "$size" != "$first_size" ]; then
+      cpu="$raw/$name.t$first.tile$size"
+      [ -e "$cpu.run1.json" ] ||
+        render_best "${cpu#"$raw/"}" "$scene" --threads "$first" --tile-size "$size" "$@" >/dev/null
+    fi
+    out=$(row_of "$raw/$name.t$t" "$raw/$name.t$first" "$cpu" "$label")
     say "${out%$'\n'*}"
     if [ "$t" = "$most" ]; then efficiency[$name]=${out##*$'\n'}; fi
   done
 }
 declare -A efficiency=() # NAME → its efficiency at the most threads
+rm -f "$raw"/*.t*.tile*.run*.json # an earlier study's cut renders are not this one's
 for scene in $scenes; do thread_rows "$scene" "$scene" "$scene"; done
 # Adaptive sampling: short later passes and the choices between them, and whether those stay
 # the same for any thread count.
@@ -151,10 +166,11 @@ thread_rows "$adaptive_scene, $adaptive_args" "$adaptive_scene.adaptive" "$adapt
   "${adaptive_words[@]}"
 say ""
 say "Speed-up and efficiency are against the first thread count ($(echo $threads | cut -d" " -f1)), whose"
-say "image every other count's equals (glint compare, max_abs 0). Tiles' CPU time: the threads' CPU"
-say "seconds in the tiles against the first count's (above 1: each tile costs more, as threads slow"
-say "each other); phases' ends idle: the threads' time in the phases not spent on tiles; outside the"
-say "tiles: the render's seconds outside its phases (set-up, loops over the pixels, the resolved frame)."
+say "image every other count's equals (glint compare, max_abs 0). Tile: the tile size the render took."
+say "Tiles' CPU time: the threads' CPU seconds in the tiles against the first count's render cut into"
+say "the same tiles (above 1: each tile costs more, as threads slow each other). Idle: the threads'"
+say "time in the phases not spent on tiles (the phases' ends, and the gaps between tiles). Outside"
+say "the tiles: the render's seconds outside its phases (set-up, loops over the pixels, the frame)."
 
 say ""
 say "## The machine's ceiling, $most processes"
@@ -162,34 +178,44 @@ say ""
 say "| scene | 1 thread alone | $most at once, each | the machine's efficiency | Glint's at $most threads | Glint's over the machine's |"
 say "|---|---|---|---|---|---|"
 ceiling_row() { # LABEL NAME SCENE ARGS...: $most 1-thread renders at once against one alone
-  local label=$1 name=$2 scene=$3 r k alone="" together=""
+  local label=$1 name=$2 scene=$3 r k pid failed=0 row
+  local -a pids=()
   shift 3
+  rm -f "$raw/$name".alone*.json "$raw/$name".together*.json
   for r in $(seq 1 "$runs"); do # alone and together in turn: a host's load drifts over minutes
     "$glint" render "$kRoot/scenes/$scene.json" -o "$raw/$name.alone.exr" --quiet \
-      --threads 1 --stats-json "$raw/$name.alone.json" "$@"
-    alone=$(least $alone "$(field "$raw/$name.alone.json" seconds)")
+      --threads 1 --stats-json "$raw/$name.alone$r.json" "$@"
+    pids=()
     for k in $(seq 1 "$most"); do
       "$glint" render "$kRoot/scenes/$scene.json" -o "$raw/$name.together$k.exr" --quiet \
-        --threads 1 --stats-json "$raw/$name.together$k.json" "$@" &
+        --threads 1 --stats-json "$raw/$name.together$r.$k.json" "$@" &
+      pids+=($!)
     done
-    for k in $(seq 1 "$most"); do wait -n; done # set -e: a failed render stops the study
-    together=$(least $together "$(python3 -c 'import glob, json, sys
-s = [json.load(open(p))["seconds"] for p in glob.glob(sys.argv[1] + ".together*.json")]
-print(sum(s) / len(s))' "$raw/$name")")
+    for pid in "${pids[@]}"; do wait "$pid" || failed=$?; done # every one waited for
+    [ "$failed" = 0 ] || { echo "scaling-study: a render of $scene at once failed" >&2; exit "$failed"; }
   done
-  say "$(python3 -c 'import sys
-alone, together, glint = map(float, sys.argv[2:])
-print(f"| {sys.argv[1]} | {alone:.3f} | {together:.3f} | {alone / together:.2f} | {glint:.2f} | {glint / (alone / together):.2f} |")' \
-    "$label" "$alone" "$together" "${efficiency[$name]}")"
+  row=$(python3 - "$label" "$raw/$name" "$runs" "${efficiency[$name]}" <<'PY'
+import json, statistics, sys
+label, prefix, runs, glint = sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
+seconds = lambda p: json.load(open(p))["seconds"]
+alone = statistics.median(seconds(f"{prefix}.alone{r}.json") for r in range(1, runs + 1))
+together = statistics.median(
+    statistics.mean(seconds(p) for p in __import__("glob").glob(f"{prefix}.together{r}.*.json"))
+    for r in range(1, runs + 1))
+print(f"| {label} | {alone:.3f} | {together:.3f} | {alone / together:.2f} | {glint:.2f} | "
+      f"{glint / (alone / together):.2f} |")
+PY
+  )
+  say "$row"
 }
 for scene in $scenes; do ceiling_row "$scene" "$scene" "$scene"; done
 ceiling_row "$adaptive_scene, $adaptive_args" "$adaptive_scene.adaptive" "$adaptive_scene" \
   "${adaptive_words[@]}"
 say ""
-say "Each round renders the scene alone, then $most times at once; best of $runs rounds: the render alone,"
-say "and the mean render seconds of the $most at once. The machine's efficiency: the render alone over"
-say "that. Glint's over the machine's: what the renderer itself loses at $most threads, with what the"
-say "machine loses to running $most of anything taken out."
+say "Each of $runs rounds renders the scene alone, then $most times at once; medians over the rounds of"
+say "the render alone and of the mean render seconds of the $most at once. The machine's efficiency:"
+say "the render alone over that. Glint's over the machine's: what the renderer itself loses at $most"
+say "threads, with what the machine loses to running $most of anything taken out."
 
 say ""
 say "## Tiles, $most threads"
