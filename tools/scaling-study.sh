@@ -225,9 +225,11 @@ say "|---|---|---|---|---|---|"
 for scene in $scenes; do
   row="| $scene"
   for size in 8 16 32 64; do
-    row+=" | $(printf %.3f "$(render_best "$scene.tile$size" "$scene" --threads "$most" --tile-size "$size")")"
+    seconds=$(render_best "$scene.tile$size" "$scene" --threads "$most" --tile-size "$size")
+    row+=" | $(printf %.3f "$seconds")"
   done
-  row+=" | $(printf %.3f "$(render_best "$scene.row" "$scene" --threads "$most" --tile-order row)") |"
+  seconds=$(render_best "$scene.row" "$scene" --threads "$most" --tile-order row)
+  row+=" | $(printf %.3f "$seconds") |"
   same_image "$raw/$scene.tile8.exr" "$raw/$scene.row.exr"
   say "$row"
 done
@@ -265,10 +267,11 @@ for tiles in $farm_tiles; do
       best=$(least $best "$(since "$start")")
       same_image "$job/frame.exr" "$raw/farm.local.exr"
     done
-    say "$(python3 -c 'import sys
+    row=$(python3 -c 'import sys
 tiles, p, c, best, local = sys.argv[1:]
 print(f"| {tiles} | {p} x {c} | {float(best):.3f} | {float(best) / float(local):.2f}x |")' \
-      "$tiles" "$p" "$c" "$best" "$local_best")"
+      "$tiles" "$p" "$c" "$best" "$local_best")
+    say "$row"
   done
 done
 say ""
