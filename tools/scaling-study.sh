@@ -195,12 +195,12 @@ ceiling_row() { # LABEL NAME SCENE ARGS...: $most 1-thread renders at once again
     [ "$failed" = 0 ] || { echo "scaling-study: a render of $scene at once failed" >&2; exit "$failed"; }
   done
   row=$(python3 - "$label" "$raw/$name" "$runs" "${efficiency[$name]}" <<'PY'
-import json, statistics, sys
+import glob, json, statistics, sys
 label, prefix, runs, glint = sys.argv[1], sys.argv[2], int(sys.argv[3]), float(sys.argv[4])
 seconds = lambda p: json.load(open(p))["seconds"]
 alone = statistics.median(seconds(f"{prefix}.alone{r}.json") for r in range(1, runs + 1))
 together = statistics.median(
-    statistics.mean(seconds(p) for p in __import__("glob").glob(f"{prefix}.together{r}.*.json"))
+    statistics.mean(seconds(p) for p in glob.glob(f"{prefix}.together{r}.*.json"))
     for r in range(1, runs + 1))
 print(f"| {label} | {alone:.3f} | {together:.3f} | {alone / together:.2f} | {glint:.2f} | "
       f"{glint / (alone / together):.2f} |")
