@@ -39,16 +39,27 @@ inline constexpr int agreementRays(int releaseRays) {
   return kAddressSanitizer ? releaseRays / 20 : releaseRays;
 }
 
+// This test process's directory for temporary files, removed when the process ends with every
+// test passed; after a failure it is kept, with what the failing test wrote.
 inline std::filesystem::path tempDir() {
-  static const std::filesystem::path dir = [] {
-    auto d = std::filesystem::temp_directory_path() / ("glint-test-" + std::to_string(::getpid()));
-    // An earlier test process with the same pid (pids wrap) may have left files here: a FIFO
-    // that mkfifo then refused, a file a test expects to create.
-    std::filesystem::remove_all(d);
-    std::filesystem::create_directories(d);
-    return d;
-  }();
-  return dir;
+  struct Directory {
+    std::filesystem::path path =
+        std::filesystem::temp_directory_path() / ("glint-test-" + std::to_string(::getpid()));
+    Directory() {
+      // An earlier test process with the same pid (pids wrap) may have left files here: a FIFO
+      // that mkfifo then refused, a file a test expects to create.
+      std::filesystem::remove_all(path);
+      std::filesystem::create_directories(path);
+    }
+    ~Directory() {
+      const ::testing::UnitTest* tests = ::testing::UnitTest::GetInstance();
+      if (tests->failed_test_count() > 0 || tests->ad_hoc_test_result().Failed()) return;
+      std::error_code ignored;  // a file another process holds open is no reason to abort
+      std::filesystem::remove_all(path, ignored);
+    }
+  };
+  static const Directory dir;
+  return dir.path;
 }
 
 inline std::string writeTemp(const std::string& name, const std::string& text) {
