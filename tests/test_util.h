@@ -54,7 +54,7 @@ inline std::filesystem::path tempDir() {
     ~Directory() {
       const ::testing::UnitTest* tests = ::testing::UnitTest::GetInstance();
       if (tests->failed_test_count() > 0 || tests->ad_hoc_test_result().Failed()) return;
-      std::error_code ignored;  // a file another process holds open is no reason to abort
+      std::error_code ignored;  // at exit: what cannot be removed stays, without an exception
       std::filesystem::remove_all(path, ignored);
     }
   };
