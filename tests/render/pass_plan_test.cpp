@@ -24,6 +24,25 @@ TEST(PassPlan, PlainRenderDoublesFromTwoToTheSpp) {
   EXPECT_EQ(PassPlan::make(16, SamplerKind::Stratified, {}).sampler, SamplerKind::Stratified);
 }
 
+TEST(PassPlan, APlainRenderStartsAtMinSppWhenGivenAndKeepsItsSampler) {
+  // --min-spp on a plain render is its first pass: equal to the spp, the frame is one pass.
+  SamplingRequest r;
+  r.minSpp = 16;
+  const PassPlan one = PassPlan::make(16, SamplerKind::Stratified, r);
+  EXPECT_EQ(one.ends, (std::vector<int>{16}));
+  r.minSpp = 4;
+  const PassPlan three = PassPlan::make(16, SamplerKind::Stratified, r);
+  EXPECT_EQ(three.ends, (std::vector<int>{4, 8, 16}));
+  // Every pixel still takes the spp: the scene's own sampler, its sets laid out for the spp,
+  // and the textures filtered for it, as with the passes from 2.
+  for (const PassPlan& plan : {one, three}) {
+    EXPECT_EQ(plan.sampler, SamplerKind::Stratified);
+    EXPECT_EQ(plan.maxSpp, 16);
+    EXPECT_EQ(plan.footprintSpp(), 16);
+    EXPECT_FALSE(plan.adaptive());
+  }
+}
+
 TEST(PassPlan, AdaptiveRenderStartsAtMinSppAndUsesAProgressiveSampler) {
   SamplingRequest r;
   r.target.rmse = 0.01;

@@ -122,6 +122,29 @@ TEST(RenderSession, PassByPassGivesTheFrameRenderSceneGives) {
   }
 }
 
+TEST(RenderSession, APlainFrameIsTheSameBitsInOnePassAsInItsDoublingPasses) {
+  // A pixel's samples are added in index order whatever the passes, so a plain frame taken in
+  // one pass (--min-spp equal to the spp) or from 4 is the frame of the passes from 2: the
+  // same pixels, states, rays and final error estimate; only the passes' records differ.
+  const Scene scene = softShadows(16, SamplerKind::Stratified);
+  const auto accel = makeAccelerator(AccelKind::Embree, scene);
+  const RenderResult doubling = renderScene(scene, *accel, quiet());
+  ASSERT_EQ(passEnds(doubling.stats), (std::vector<int>{2, 4, 8, 16}));
+  for (const int first : {16, 4}) {
+    RenderOptions opt = quiet();
+    opt.sampling.minSpp = first;
+    const RenderResult r = renderScene(scene, *accel, opt);
+    const std::vector<int> ends = first == 16 ? std::vector<int>{16} : std::vector<int>{4, 8, 16};
+    EXPECT_EQ(passEnds(r.stats), ends);
+    EXPECT_EQ(pixelsOf(r.film), pixelsOf(doubling.film)) << first;
+    EXPECT_TRUE(sameBits(r.estimates, doubling.estimates)) << first;
+    EXPECT_EQ(r.stats.rays.total(), doubling.stats.rays.total()) << first;
+    EXPECT_EQ(r.stats.estimated.rmse, doubling.stats.estimated.rmse) << first;
+    EXPECT_EQ(r.stats.estimated.relmse, doubling.stats.estimated.relmse) << first;
+    EXPECT_EQ(r.stats.passes.back().estimated.rmse, doubling.stats.passes.back().estimated.rmse);
+  }
+}
+
 TEST(RenderSession, ASnapshotHoldsExactlyThePassesFinished) {
   // Sobol's sets are the same whatever the total, so the frame after the pass to 4 of a 16-spp
   // render is the frame a 4-spp render makes.
