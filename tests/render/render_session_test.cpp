@@ -135,13 +135,14 @@ TEST(RenderSession, APlainFrameIsTheSameBitsInOnePassAsInItsDoublingPasses) {
     opt.sampling.minSpp = first;
     const RenderResult r = renderScene(scene, *accel, opt);
     const std::vector<int> ends = first == 16 ? std::vector<int>{16} : std::vector<int>{4, 8, 16};
-    EXPECT_EQ(passEnds(r.stats), ends);
+    EXPECT_EQ(passEnds(r.stats), ends) << first;
     EXPECT_EQ(pixelsOf(r.film), pixelsOf(doubling.film)) << first;
     EXPECT_TRUE(sameBits(r.estimates, doubling.estimates)) << first;
     EXPECT_EQ(r.stats.rays.total(), doubling.stats.rays.total()) << first;
     EXPECT_EQ(r.stats.estimated.rmse, doubling.stats.estimated.rmse) << first;
     EXPECT_EQ(r.stats.estimated.relmse, doubling.stats.estimated.relmse) << first;
-    EXPECT_EQ(r.stats.passes.back().estimated.rmse, doubling.stats.passes.back().estimated.rmse);
+    EXPECT_EQ(r.stats.passes.back().estimated.rmse, doubling.stats.passes.back().estimated.rmse)
+        << first;
   }
 }
 
