@@ -396,11 +396,10 @@ CommandRunner addRenderCommand(CLI::App& app) {
                   "(the first pass always finishes)")
       ->check(positiveNumber());
   cmd->add_option("--min-spp", args->sampling.minSpp,
-                  "The first pass: samples every pixel takes before adaptive sampling or a time "
-                  "limit may stop it (default min(" +
-                      std::to_string(kDefaultFirstPassSpp) +
-                      ", --max-spp)); without either, the first of the passes that double up to "
-                      "the spp (default 2; the spp itself: one pass, the same image)")
+                  "The first pass (default min(" + std::to_string(kDefaultFirstPassSpp) +
+                      ", --max-spp)): samples every pixel takes before adaptive sampling or a "
+                      "time limit may stop it; without either, the first of the passes that "
+                      "double up to the spp (the spp itself: one pass, the same image)")
       ->check(CLI::Range(1, static_cast<int>(kMaxSampleSet)));
   cmd->add_option("--max-spp", args->sampling.maxSpp,
                   "The most samples a pixel may take (default: the spp)")

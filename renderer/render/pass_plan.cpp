@@ -29,9 +29,7 @@ PassPlan PassPlan::make(int spp, SamplerKind sceneSampler, const SamplingRequest
                      std::to_string(spp) + "): give --spp " + std::to_string(request.maxSpp) +
                      " instead");
   plan.maxSpp = request.maxSpp > 0 ? request.maxSpp : spp;
-  plan.minSpp = request.minSpp > 0 ? request.minSpp
-                : open             ? std::min(kDefaultFirstPassSpp, plan.maxSpp)
-                                   : std::min(2, plan.maxSpp);
+  plan.minSpp = request.minSpp > 0 ? request.minSpp : std::min(kDefaultFirstPassSpp, plan.maxSpp);
   if (plan.minSpp > plan.maxSpp)
     throw UsageError("--min-spp " + std::to_string(plan.minSpp) +
                      " is more than the most a pixel " + "may take, " +

@@ -23,12 +23,14 @@ struct SamplingRequest {
   bool progressive = false;     // to be continued to more samples later (--resumable)
 };
 
-// The first pass of an adaptive or time-limited render unless --min-spp says otherwise. Every
-// pixel takes it, so it bounds what adaptive sampling can save (depth_of_field at uniform's
-// 32-spp error: at most 1.38x the rays after 16 samples, 1.64x after 8, tools/adaptive-oracle.py).
-// 8 saves more rays than 16 on nearly every scene and level (docs/validation.md, "Adaptive
-// sampling against uniform sampling"); the choices keep each pixel's ratios from pass to pass
-// (ChoiceCache), so the extra pass costs even the fastest frames less than it saves.
+// The first pass of every render unless --min-spp says otherwise. Every pixel takes it, so it
+// bounds what adaptive sampling can save (depth_of_field at uniform's 32-spp error: at most
+// 1.38x the rays after 16 samples, 1.64x after 8, tools/adaptive-oracle.py). 8 saves more rays
+// than 16 on nearly every scene and level (docs/validation.md, "Adaptive sampling against
+// uniform sampling"); the choices keep each pixel's ratios from pass to pass (ChoiceCache), so
+// the extra pass costs even the fastest frames less than it saves. In a plain render, passes
+// below 8 revisited every pixel for one or two samples a half, an overhead that outweighs, on a
+// cheap frame, their early points of error against time (docs/performance.md, "What passes cost").
 inline constexpr int kDefaultFirstPassSpp = 8;
 
 // What PassPlan::choosePixels keeps from one choice to the next: each pixel's ratios (by its
@@ -58,8 +60,8 @@ struct PassPlan {
   // statistics).
   SamplerKind sampler = SamplerKind::Stratified;
 
-  // Without a target or time limit: passes 2, 4, 8, ... up to spp; with them, from --min-spp
-  // (default min(kDefaultFirstPassSpp, max)) to --max-spp (default spp). Throws UsageError for
+  // Passes from --min-spp (default min(kDefaultFirstPassSpp, max)), doubling up to --max-spp
+  // (default spp; without a target or a time limit, the spp itself). Throws UsageError for
   // bounds that contradict each other.
   static PassPlan make(int spp, SamplerKind sceneSampler, const SamplingRequest& request);
   bool adaptive() const { return target.any(); }

@@ -24,11 +24,12 @@ std::string soft(const std::string& more) {
 TEST(PassesCli, StatsAndMetadataCarryTheEstimateAndThePasses) {
   const std::string out = tmp("est.exr"), stats = tmp("est.json");
   ASSERT_EQ(
-      test::runGlint("render " + soft("--spp 8 -o " + out + " --stats-json " + stats)).exitCode, 0);
+      test::runGlint("render " + soft("--spp 32 -o " + out + " --stats-json " + stats)).exitCode,
+      0);
   const nlohmann::json j = nlohmann::json::parse(test::readFile(stats));
   ASSERT_TRUE(j["estimated_rmse"].is_number());
-  ASSERT_EQ(j["passes"].size(), 3u);  // to 2, 4, 8 spp
-  EXPECT_EQ(j["passes"][2]["spp"], 8);
+  ASSERT_EQ(j["passes"].size(), 3u);  // to 8, 16, 32 spp
+  EXPECT_EQ(j["passes"][2]["spp"], 32);
   // The last pass's estimate is the frame's.
   EXPECT_EQ(j["passes"][2]["estimated_rmse"], j["estimated_rmse"]);
   auto in = OIIO::ImageInput::open(out);
@@ -54,13 +55,13 @@ TEST(PassesCli, ResumeGivesTheStraightRendersPixelsAndRefusesAnotherFrame) {
       "render " + soft("--spp 32 --resume " + part + " -o " + part + " --stats-json " + stats));
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_EQ(readImage(part).pixels, readImage(straight).pixels);
-  // The passes of both renders, 2 to 32 spp, on one time axis: the continued render's start
-  // where the first's ended, so its last pass ends later than its own render time.
+  // The passes of both renders, 8 (the first's) then 16 and 32, on one time axis: the continued
+  // render's start where the first's ended, so its last pass ends later than its own render time.
   const nlohmann::json j = nlohmann::json::parse(test::readFile(stats));
-  ASSERT_EQ(j["passes"].size(), 5u);
-  for (size_t i = 1; i < 5; ++i)
+  ASSERT_EQ(j["passes"].size(), 3u);
+  for (size_t i = 1; i < 3; ++i)
     EXPECT_GE(j["passes"][i]["seconds"].get<double>(), j["passes"][i - 1]["seconds"].get<double>());
-  EXPECT_GT(j["passes"][4]["seconds"].get<double>(), j["seconds"].get<double>());
+  EXPECT_GT(j["passes"][2]["seconds"].get<double>(), j["seconds"].get<double>());
   // Another seed, another setting, a frame without state: exit 2, the frame and what differs
   // named.
   for (const auto& [other, named] : std::vector<std::pair<std::string, std::string>>{
@@ -294,29 +295,29 @@ TEST(PassesCli, SettingsThatCannotMeanWhatTheySayAreRefusedAndSaidWhy) {
 TEST(PassesCli, PreviewsAreWrittenAndTheFinalFrameIsComplete) {
   const std::string out = tmp("preview.exr");
   const auto r = test::runGlint("render " + std::string(GLINT_SCENES_DIR) +
-                                "/soft_shadows.json --width 48 --height 32 --spp 16 "
+                                "/soft_shadows.json --width 48 --height 32 --spp 32 "
                                 "--preview-every 0.000001 -o " +
                                 out);
   ASSERT_EQ(r.exitCode, 0) << r.output;
-  // Passes end at 2, 4, 8 and 16: a preview after each but the last.
-  for (const char* spp : {"at 2 spp", "at 4 spp", "at 8 spp"})
+  // Passes end at 8, 16 and 32: a preview after each but the last.
+  for (const char* spp : {"at 8 spp", "at 16 spp"})
     EXPECT_NE(r.output.find(std::string("preview: ") + out + " " + spp), std::string::npos)
         << r.output;
   auto in = OIIO::ImageInput::open(out);
   ASSERT_TRUE(in);
   EXPECT_EQ(in->spec().get_int_attribute("glint:partial", -1), 0);
-  EXPECT_EQ(in->spec().get_int_attribute("glint:min_pixel_spp", -1), 16);
+  EXPECT_EQ(in->spec().get_int_attribute("glint:min_pixel_spp", -1), 32);
 }
 
 TEST(PassesCli, ConvergeFromRenderReadsThePassesOfAFrame) {
   const std::string out = tmp("from-render.exr"), json = tmp("from-render.json");
-  ASSERT_EQ(test::runGlint("render " + soft("--spp 16 -o " + out)).exitCode, 0);
+  ASSERT_EQ(test::runGlint("render " + soft("--spp 64 -o " + out)).exitCode, 0);
   const auto r = test::runGlint("converge --from-render " + out + " --json " + json);
   ASSERT_EQ(r.exitCode, 0) << r.output;
   const nlohmann::json j = nlohmann::json::parse(test::readFile(json));
   const nlohmann::json& points = j["series"][0]["points"];
-  ASSERT_EQ(points.size(), 4u);
-  EXPECT_EQ(points[3]["spp"], 16);
+  ASSERT_EQ(points.size(), 4u);  // the passes to 8, 16, 32, 64
+  EXPECT_EQ(points[3]["spp"], 64);
   // The estimated error falls from pass to pass (each halves the variance or better).
   for (size_t i = 1; i < points.size(); ++i)
     EXPECT_LT(points[i]["rmse"].get<double>(), points[i - 1]["rmse"].get<double>());

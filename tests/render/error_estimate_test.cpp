@@ -187,15 +187,15 @@ TEST(Passes, AnInterruptKeepsThePassesEveryPixelFinished) {
   RenderOptions opt;
   opt.cancel = &cancel;
   opt.threads = 1;
-  // Passes end at 2, 4, 8, ...: the cancel comes halfway through the third pass (to 8 spp).
+  // Passes end at 8, 16, 32, 64: the cancel comes halfway through the third pass (to 32 spp).
   opt.sampleHook = [&](int, int, Radiance&) {
-    if (++samples == pixels * 4 + pixels * 2) cancel = true;
+    if (++samples == pixels * 16 + pixels * 8) cancel = true;
   };
   const RenderResult r = render(scene, kSoftShadows.crop, opt);
   EXPECT_TRUE(r.partial);
   EXPECT_EQ(r.stats.passes.size(), 2u);
-  EXPECT_EQ(r.stats.minPixelSpp, 4);  // the second pass finished everywhere
-  EXPECT_EQ(r.stats.maxPixelSpp, 8);  // pixels the third pass finished keep it
+  EXPECT_EQ(r.stats.minPixelSpp, 16);  // the second pass finished everywhere
+  EXPECT_EQ(r.stats.maxPixelSpp, 32);  // pixels the third pass finished keep it
   for (int y = kSoftShadows.crop.y0; y < kSoftShadows.crop.y1; ++y)
     for (int x = kSoftShadows.crop.x0; x < kSoftShadows.crop.x1; ++x)
       ASSERT_EQ(r.film.pixel(x, y)[3], 1.0);  // every pixel rendered (the background is opaque)
@@ -333,7 +333,7 @@ TEST(Resume, AnAdaptiveFrameContinuesWithTheChoicesOfAStraightRender) {
   EXPECT_THROW(continued(at24), UsageError);
 }
 
-// A frame of 24 spp continued to 64 (passes to 2, 4, 8, 16, 32, 64: 24 is not one of them) and
+// A frame of 24 spp continued to 64 (passes to 8, 16, 32, 64: 24 is not one of them) and
 // cut in the pass to 32 keeps the 24 it had finished, not the 16 of the last pass it skipped:
 // its state named pixels of 24 samples past the passes it finished, and its continuation was
 // refused.
@@ -383,10 +383,10 @@ TEST(Passes, APreviewIsTheFrameAtItsPassesSpp) {
     previewed.push_back(soFar.stats.passes.back().spp);
     frames.push_back(rgbOf(soFar.film));
   });
-  // Passes end at 2, 4, 8, 16, 32; the last is the frame itself, not a preview.
-  EXPECT_EQ(previewed, (std::vector<int>{2, 4, 8, 16}));
-  ASSERT_EQ(frames.size(), 4u);
-  EXPECT_EQ(frames[2],
+  // Passes end at 8, 16, 32; the last is the frame itself, not a preview.
+  EXPECT_EQ(previewed, (std::vector<int>{8, 16}));
+  ASSERT_EQ(frames.size(), 2u);
+  EXPECT_EQ(frames[0],
             rgbOf(render(load(kDepthOfField, 8, 2, SamplerKind::Sobol), kDepthOfField.crop).film));
 }
 

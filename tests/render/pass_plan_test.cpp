@@ -14,11 +14,13 @@
 namespace glint {
 namespace {
 
-TEST(PassPlan, PlainRenderDoublesFromTwoToTheSpp) {
-  // 16 spp: passes end at 2, 4, 8, 16; 12 spp: 2, 4, 8, then the last pass to 12.
-  EXPECT_EQ(PassPlan::make(16, SamplerKind::Stratified, {}).ends, (std::vector<int>{2, 4, 8, 16}));
-  EXPECT_EQ(PassPlan::make(12, SamplerKind::Stratified, {}).ends, (std::vector<int>{2, 4, 8, 12}));
-  // One sample: one pass of it.
+TEST(PassPlan, PlainRenderDoublesFromEightToTheSpp) {
+  // 64 spp: passes end at 8, 16, 32, 64; 24 spp: 8, 16, then the last pass to 24.
+  EXPECT_EQ(PassPlan::make(64, SamplerKind::Stratified, {}).ends,
+            (std::vector<int>{8, 16, 32, 64}));
+  EXPECT_EQ(PassPlan::make(24, SamplerKind::Stratified, {}).ends, (std::vector<int>{8, 16, 24}));
+  // Fewer than 8 samples: one pass of them.
+  EXPECT_EQ(PassPlan::make(5, SamplerKind::Stratified, {}).ends, (std::vector<int>{5}));
   EXPECT_EQ(PassPlan::make(1, SamplerKind::Stratified, {}).ends, (std::vector<int>{1}));
   // Without a target or a time limit the sampler is the scene's.
   EXPECT_EQ(PassPlan::make(16, SamplerKind::Stratified, {}).sampler, SamplerKind::Stratified);
@@ -30,12 +32,12 @@ TEST(PassPlan, APlainRenderStartsAtMinSppWhenGivenAndKeepsItsSampler) {
   r.minSpp = 16;
   const PassPlan one = PassPlan::make(16, SamplerKind::Stratified, r);
   EXPECT_EQ(one.ends, (std::vector<int>{16}));
-  r.minSpp = 4;
-  const PassPlan three = PassPlan::make(16, SamplerKind::Stratified, r);
-  EXPECT_EQ(three.ends, (std::vector<int>{4, 8, 16}));
+  r.minSpp = 2;
+  const PassPlan four = PassPlan::make(16, SamplerKind::Stratified, r);
+  EXPECT_EQ(four.ends, (std::vector<int>{2, 4, 8, 16}));
   // Every pixel still takes the spp: the scene's own sampler, its sets laid out for the spp,
-  // and the textures filtered for it, as with the passes from 2.
-  for (const PassPlan& plan : {one, three}) {
+  // and the textures filtered for it, as with the default passes from 8.
+  for (const PassPlan& plan : {one, four}) {
     EXPECT_EQ(plan.sampler, SamplerKind::Stratified);
     EXPECT_EQ(plan.maxSpp, 16);
     EXPECT_EQ(plan.footprintSpp(), 16);
@@ -93,8 +95,7 @@ TEST(PassPlan, ContradictoryBoundsAreRefused) {
   }
   SamplingRequest same;
   same.maxSpp = 16;
-  EXPECT_EQ(PassPlan::make(16, SamplerKind::Stratified, same).ends,
-            (std::vector<int>{2, 4, 8, 16}));
+  EXPECT_EQ(PassPlan::make(16, SamplerKind::Stratified, same).ends, (std::vector<int>{8, 16}));
 }
 
 // A pixel with half 0 = {1, 3} and half 1 = {2, 6} in every channel, each sample `rays` rays.

@@ -13,6 +13,7 @@
 #include <set>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "accel/accelerator.h"
@@ -38,6 +39,14 @@ RenderOptions quiet(int threads = 2) {
   RenderOptions opt;
   opt.progress = false;
   opt.threads = threads;
+  return opt;
+}
+
+// A plain render in passes from 2 (at 16 spp: 2, 4, 8, 16), more passes than its default's from
+// 8, for the tests of what happens between passes.
+RenderOptions passesFromTwo(int threads = 2) {
+  RenderOptions opt = quiet(threads);
+  opt.sampling.minSpp = 2;
   return opt;
 }
 
@@ -96,7 +105,8 @@ TEST(RenderSession, PassByPassGivesTheFrameRenderSceneGives) {
   };
   const Scene scene = softShadows(16, SamplerKind::Stratified);
   const auto accel = makeAccelerator(AccelKind::Embree, scene);
-  for (const Case& c : {Case{"plain", quiet(), false}, Case{"adaptive", adaptive(), true}}) {
+  for (const Case& c :
+       {Case{"plain", passesFromTwo(), false}, Case{"adaptive", adaptive(), true}}) {
     const RenderResult straight = renderScene(scene, *accel, c.opt);
     RenderSession session(scene, *accel, c.opt);
     if (c.spreadFirst) {
@@ -122,26 +132,27 @@ TEST(RenderSession, PassByPassGivesTheFrameRenderSceneGives) {
   }
 }
 
-TEST(RenderSession, APlainFrameIsTheSameBitsInOnePassAsInItsDoublingPasses) {
+TEST(RenderSession, APlainFrameIsTheSameBitsWhateverItsPasses) {
   // A pixel's samples are added in index order whatever the passes, so a plain frame taken in
-  // one pass (--min-spp equal to the spp) or from 4 is the frame of the passes from 2: the
-  // same pixels, states, rays and final error estimate; only the passes' records differ.
+  // one pass (--min-spp equal to the spp) or in passes from 2 or 4 is the frame of the default
+  // passes from 8: the same pixels, states, rays and final error estimate; only the passes'
+  // records differ.
   const Scene scene = softShadows(16, SamplerKind::Stratified);
   const auto accel = makeAccelerator(AccelKind::Embree, scene);
-  const RenderResult doubling = renderScene(scene, *accel, quiet());
-  ASSERT_EQ(passEnds(doubling.stats), (std::vector<int>{2, 4, 8, 16}));
-  for (const int first : {16, 4}) {
+  const RenderResult byDefault = renderScene(scene, *accel, quiet());
+  ASSERT_EQ(passEnds(byDefault.stats), (std::vector<int>{8, 16}));
+  for (const auto& [first, ends] : std::vector<std::pair<int, std::vector<int>>>{
+           {16, {16}}, {2, {2, 4, 8, 16}}, {4, {4, 8, 16}}}) {
     RenderOptions opt = quiet();
     opt.sampling.minSpp = first;
     const RenderResult r = renderScene(scene, *accel, opt);
-    const std::vector<int> ends = first == 16 ? std::vector<int>{16} : std::vector<int>{4, 8, 16};
     EXPECT_EQ(passEnds(r.stats), ends) << first;
-    EXPECT_EQ(pixelsOf(r.film), pixelsOf(doubling.film)) << first;
-    EXPECT_TRUE(sameBits(r.estimates, doubling.estimates)) << first;
-    EXPECT_EQ(r.stats.rays.total(), doubling.stats.rays.total()) << first;
-    EXPECT_EQ(r.stats.estimated.rmse, doubling.stats.estimated.rmse) << first;
-    EXPECT_EQ(r.stats.estimated.relmse, doubling.stats.estimated.relmse) << first;
-    EXPECT_EQ(r.stats.passes.back().estimated.rmse, doubling.stats.passes.back().estimated.rmse)
+    EXPECT_EQ(pixelsOf(r.film), pixelsOf(byDefault.film)) << first;
+    EXPECT_TRUE(sameBits(r.estimates, byDefault.estimates)) << first;
+    EXPECT_EQ(r.stats.rays.total(), byDefault.stats.rays.total()) << first;
+    EXPECT_EQ(r.stats.estimated.rmse, byDefault.stats.estimated.rmse) << first;
+    EXPECT_EQ(r.stats.estimated.relmse, byDefault.stats.estimated.relmse) << first;
+    EXPECT_EQ(r.stats.passes.back().estimated.rmse, byDefault.stats.passes.back().estimated.rmse)
         << first;
   }
 }
@@ -152,7 +163,7 @@ TEST(RenderSession, ASnapshotHoldsExactlyThePassesFinished) {
   const Scene at16 = softShadows(16, SamplerKind::Sobol);
   const Scene at4 = softShadows(4, SamplerKind::Sobol);
   const auto accel = makeAccelerator(AccelKind::Embree, at16);
-  RenderSession session(at16, *accel, quiet());
+  RenderSession session(at16, *accel, passesFromTwo());
   ASSERT_TRUE(session.runPass());  // to 2
   ASSERT_TRUE(session.runPass());  // to 4
   const RenderResult snap = session.snapshot();
@@ -187,7 +198,8 @@ TEST(RenderSession, AFrameContinuedFromASnapshotEndsAsAStraightRender) {
   };
   const Scene scene = softShadows(16, SamplerKind::Stratified);
   const auto accel = makeAccelerator(AccelKind::Embree, scene);
-  for (const Case& c : {Case{"plain", quiet(), 2, 8}, Case{"adaptive", adaptive(), 3, 32}}) {
+  for (const Case& c :
+       {Case{"plain", passesFromTwo(), 2, 8}, Case{"adaptive", adaptive(), 3, 32}}) {
     const RenderResult straight = renderScene(scene, *accel, c.opt);
     RenderSession first(scene, *accel, c.opt);
     for (int k = 0; k < c.passesBefore; ++k) ASSERT_TRUE(first.runPass()) << c.name;
@@ -215,7 +227,7 @@ TEST(RenderSession, ACancelKeepsEachPixelAtTheEndOfAPass) {
   const int64_t pixels = 48 * 32;
   std::atomic<bool> cancel{false};
   int64_t samplesOfPass8 = -1;  // counting from the pass to 8 on
-  RenderOptions opt = quiet(1);
+  RenderOptions opt = passesFromTwo(1);
   opt.cancel = &cancel;
   opt.sampleHook = [&](int, int, Radiance&) {
     if (samplesOfPass8 >= 0 && ++samplesOfPass8 == pixels * 3) cancel = true;
@@ -234,7 +246,7 @@ TEST(RenderSession, ACancelKeepsEachPixelAtTheEndOfAPass) {
   EXPECT_EQ(partial.position.finishedEnd, 4);
   EXPECT_EQ(partial.position.cutEnd, 8);
   // The frame at 8 spp, uncut, for the pixels the cut pass finished.
-  RenderSession uncut(scene, *accel, quiet(1));
+  RenderSession uncut(scene, *accel, passesFromTwo(1));
   for (int k = 0; k < 3; ++k) ASSERT_TRUE(uncut.runPass());
   const RenderResult at8 = uncut.snapshot();
   // Each pixel holds 4 samples (the pass to 8 had not finished it) or 8; then it is exactly
@@ -254,7 +266,7 @@ TEST(RenderSession, ACancelKeepsEachPixelAtTheEndOfAPass) {
 
   // A cancel between two passes leaves the frame at the last pass finished, bit for bit.
   std::atomic<bool> stopNow{false};
-  RenderOptions between = quiet();
+  RenderOptions between = passesFromTwo();
   between.cancel = &stopNow;
   RenderSession two(scene, *accel, between);
   ASSERT_TRUE(two.runPass());
@@ -274,7 +286,7 @@ TEST(RenderSession, FinishingWithPassesLeftGivesAPartialFrame) {
   // short of its plan: partial, at its last pass, and continued it ends as a straight one.
   const Scene scene = softShadows(16, SamplerKind::Stratified);
   const auto accel = makeAccelerator(AccelKind::Embree, scene);
-  RenderSession session(scene, *accel, quiet());
+  RenderSession session(scene, *accel, passesFromTwo());
   ASSERT_TRUE(session.runPass());
   ASSERT_TRUE(session.runPass());
   const RenderResult early = session.finish();
@@ -282,10 +294,10 @@ TEST(RenderSession, FinishingWithPassesLeftGivesAPartialFrame) {
   EXPECT_EQ(early.stats.maxPixelSpp, 4);
   EXPECT_EQ(early.position, (PassPosition{4, 0, {}}));
   const ResumeState left{early.estimates, early.position};
-  RenderOptions opt = quiet();
+  RenderOptions opt = passesFromTwo();
   opt.resumeFrom = &left;
   EXPECT_EQ(pixelsOf(renderScene(scene, *accel, opt).film),
-            pixelsOf(renderScene(scene, *accel, quiet()).film));
+            pixelsOf(renderScene(scene, *accel, passesFromTwo()).film));
 }
 
 TEST(RenderSession, AnAdaptiveFrameIsTheSameBitsForAnyThreadCountAndTileSize) {
