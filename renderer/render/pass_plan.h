@@ -28,9 +28,9 @@ struct SamplingRequest {
 // 1.38x the rays after 16 samples, 1.64x after 8, tools/adaptive-oracle.py). 8 saves more rays
 // than 16 on nearly every scene and level (docs/validation.md, "Adaptive sampling against
 // uniform sampling"); the choices keep each pixel's ratios from pass to pass (ChoiceCache), so
-// the extra pass costs even the fastest frames less than it saves. In a plain render, passes
-// below 8 revisited every pixel for one or two samples a half, an overhead that outweighs, on a
-// cheap frame, their early points of error against time (docs/performance.md, "What passes cost").
+// the extra pass costs even the fastest frames less than it saves. In a plain render, the passes
+// to 2 and 4 revisited every pixel for one sample a half, an overhead that outweighs, on a cheap
+// frame, their early points of error against time (docs/performance.md, "What passes cost").
 inline constexpr int kDefaultFirstPassSpp = 8;
 
 // What PassPlan::choosePixels keeps from one choice to the next: each pixel's ratios (by its

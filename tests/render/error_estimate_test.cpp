@@ -388,6 +388,9 @@ TEST(Passes, APreviewIsTheFrameAtItsPassesSpp) {
   ASSERT_EQ(frames.size(), 2u);
   EXPECT_EQ(frames[0],
             rgbOf(render(load(kDepthOfField, 8, 2, SamplerKind::Sobol), kDepthOfField.crop).film));
+  // The second preview follows a pass that continued the first's pixels.
+  EXPECT_EQ(frames[1],
+            rgbOf(render(load(kDepthOfField, 16, 2, SamplerKind::Sobol), kDepthOfField.crop).film));
 }
 
 }  // namespace
