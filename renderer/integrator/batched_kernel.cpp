@@ -159,7 +159,7 @@ void BatchedKernel::shadeHits(const Ray* rays, const Hit* hits, const Branch* br
     LitPoint& pt = p.pt;
     scene_.shadingPoint(ray, hit, pt.sp);
     pt.material = &m;
-    pt.at = lookUp(m.surface, pt.sp, wo, cone_.widthAt(distance), scene_.worldOrigin);
+    lookUp(m.surface, pt.sp, wo, cone_.widthAt(distance), scene_.worldOrigin, pt.at);
     pt.time = ray.time;
     pt.branch = &branch;
     p.ray = i;

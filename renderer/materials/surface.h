@@ -73,10 +73,11 @@ float ambientOcclusion(const SurfaceMaps& maps, const ShadingPoint& sp, const Su
 // Always inlined (like forEachCoherentRay): out of line, their results came back through memory
 // (a store-forwarding stall at every shaded hit).
 // `footprint`: the width of the pixel's footprint at the point (integrator/footprint.h).
-[[gnu::always_inline]] inline SurfacePoint lookUp(const Surface& s, const ShadingPoint& sp,
-                                                  const Vec3f& wo, float footprint,
-                                                  const Vec3d& worldOrigin) {
-  SurfacePoint at;
+// Writes `at` field by field: a point built on the stack and then copied into a queue was read
+// back in 16-byte pieces that straddled its fields' stores (a store-forwarding stall per copy).
+[[gnu::always_inline]] inline void lookUp(const Surface& s, const ShadingPoint& sp, const Vec3f& wo,
+                                          float footprint, const Vec3d& worldOrigin,
+                                          SurfacePoint& at) {
   at.n = sp.shadingNormalFacing(wo);
   if (s.normalMaps) [[unlikely]] {
     const Vec3f mapped = mappedNormal(*s.normalMaps, sp, wo, footprint);
@@ -90,9 +91,15 @@ float ambientOcclusion(const SurfaceMaps& maps, const ShadingPoint& sp, const Su
   at.gloss = s.gloss;
   if (s.maps && s.maps->metallicRoughness) [[unlikely]] {
     splitMetal(*s.maps, sp, at);
-    return at;
+    return;
   }
   at.km = s.km.eval(sp, wo, footprint, worldOrigin);
+}
+[[gnu::always_inline]] inline SurfacePoint lookUp(const Surface& s, const ShadingPoint& sp,
+                                                  const Vec3f& wo, float footprint,
+                                                  const Vec3d& worldOrigin) {
+  SurfacePoint at;
+  lookUp(s, sp, wo, footprint, worldOrigin, at);
   return at;
 }
 
