@@ -52,7 +52,7 @@ void BatchedKernel::traceCameraHits(const Ray* rays, const Hit* hits, const Samp
     scratch.rootCount = n;
     std::fill_n(scratch.raysOf, n, uint64_t{0});
     shadeChunk(rays + begin, hits + begin, scratch.roots, n, scratch.cameraRadiance,
-               aovs ? aovs + begin : nullptr, true, counters, scratch);
+               aovs ? aovs + begin : nullptr, counters, scratch);
     for (int i = 0; i < n; ++i) {
       Radiance& r = out[begin + i];
       r.L = scratch.cameraRadiance[i];
@@ -71,13 +71,13 @@ BatchedKernel::Generation& BatchedKernel::generation(Scratch& scratch, int depth
 }
 
 void BatchedKernel::shadeChunk(const Ray* rays, const Hit* hits, const Branch* branches, int n,
-                               Rgb* radiance, AovSample* const* aovs, bool camera,
-                               RayCounters& counters, Scratch& scratch) const {
+                               Rgb* radiance, AovSample* const* aovs, RayCounters& counters,
+                               Scratch& scratch) const {
   const int depth = branches[0].depth;  // every ray of a chunk has the same
   Generation& gen = generation(scratch, depth);
   shadeHits(rays, hits, branches, n, gen, aovs, counters, scratch);
   lightPendingPoints(scratch, gen.sums, aovs, counters);
-  traceGeneration(gen, depth, camera, counters, scratch);
+  traceGeneration(gen, depth, counters, scratch);
   sumRadiance(gen, n, radiance);
 }
 
@@ -174,23 +174,18 @@ void BatchedKernel::shadeHits(const Ray* rays, const Hit* hits, const Branch* br
   }
 }
 
-void BatchedKernel::traceGeneration(Generation& gen, int depth, bool camera, RayCounters& counters,
+void BatchedKernel::traceGeneration(Generation& gen, int depth, RayCounters& counters,
                                     Scratch& scratch) const {
   // Past the limit the rays are not traced: shadeChunk returns the background for them.
-  if (gen.children > 0 && depth + 1 <= scene_.render.maxDepth) {
-    if (camera) {
-      // The camera hits' reflections and refractions leave neighbouring pixels close together
-      // and point alike: a coherent stream. Deeper generations have scattered, and in a box of
-      // mirrors a stream was slower than one ray at a time.
-      accel_.intersectCoherent(gen.rays.data(), gen.hits.data(), static_cast<size_t>(gen.children));
-    } else {
-      for (int c = 0; c < gen.children; ++c) gen.hits[c] = accel_.intersect(gen.rays[c]);
-    }
-  }
+  // Every generation leaves as one coherent stream (Embree's packets): a chunk's reflections and
+  // refractions start from neighbouring pixels' hits and point alike, and even deep in a closed
+  // box of mirrors the stream was faster than one ray at a time.
+  if (gen.children > 0 && depth + 1 <= scene_.render.maxDepth)
+    accel_.intersectCoherent(gen.rays.data(), gen.hits.data(), static_cast<size_t>(gen.children));
   for (int c = 0; c < gen.children; c += kChunk)
     shadeChunk(gen.rays.data() + c, gen.hits.data() + c, gen.branches.data() + c,
-               std::min(kChunk, gen.children - c), gen.radiance.data() + c, nullptr, false,
-               counters, scratch);
+               std::min(kChunk, gen.children - c), gen.radiance.data() + c, nullptr, counters,
+               scratch);
 }
 
 void BatchedKernel::sumRadiance(const Generation& gen, int n, Rgb* radiance) {

@@ -9,7 +9,7 @@
 //  (shadeChunk): shadeHits (emission, ambient, the rays each hit spawns into the next
 //  Generation, lit points into the pending list), lightPendingPoints (queueShadowRays light by
 //  light, traceShadows as coherent streams, addDirectLight), traceGeneration (the spawned rays
-//  traced and shaded, the camera hits' as one coherent stream) and sumRadiance (each ray's local
+//  traced as one coherent stream and shaded) and sumRadiance (each ray's local
 //  light plus its children's).
 #include <cstddef>
 #include <cstdint>
@@ -108,19 +108,17 @@ class BatchedKernel {
   };
 
   // Radiance along `n` (at most kChunk) rays of one depth, given their closest hits, into
-  // radiance[i]. aovs: at the camera only. `camera`: the rays are camera rays.
+  // radiance[i]. aovs: at the camera only.
   void shadeChunk(const Ray* rays, const Hit* hits, const Branch* branches, int n, Rgb* radiance,
-                  AovSample* const* aovs, bool camera, RayCounters& counters,
-                  Scratch& scratch) const;
+                  AovSample* const* aovs, RayCounters& counters, Scratch& scratch) const;
   // shadeChunk's first stage: each ray's local light (background past the depth limit or on a
   // miss; else emission and ambient), its children spawned into `gen`, and its hit, where the
   // surface reflects the lights, added to the pending list (lit first when the queue is full).
   void shadeHits(const Ray* rays, const Hit* hits, const Branch* branches, int n, Generation& gen,
                  AovSample* const* aovs, RayCounters& counters, Scratch& scratch) const;
-  // The rays `gen` holds, spawned by a chunk of depth `depth`: traced (as one coherent stream
-  // when `camera`) and shaded a chunk at a time, into gen.radiance.
-  void traceGeneration(Generation& gen, int depth, bool camera, RayCounters& counters,
-                       Scratch& scratch) const;
+  // The rays `gen` holds, spawned by a chunk of depth `depth`: traced as one coherent stream
+  // and shaded a chunk at a time, into gen.radiance.
+  void traceGeneration(Generation& gen, int depth, RayCounters& counters, Scratch& scratch) const;
   // Each of the n rays' radiance: (local + Σ weight · child radiance) · absorbed, children in
   // the order spawned, the order the depth-first recursion sums in.
   static void sumRadiance(const Generation& gen, int n, Rgb* radiance);
