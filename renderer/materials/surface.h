@@ -70,11 +70,11 @@ void splitMetal(const SurfaceMaps& maps, const ShadingPoint& sp, SurfacePoint& a
 // What the ambient term is multiplied by at the point: 1 without an occlusion map.
 float ambientOcclusion(const SurfaceMaps& maps, const ShadingPoint& sp, const SurfacePoint& at);
 
-// Always inlined (like forEachCoherentRay): out of line, their results came back through memory
-// (a store-forwarding stall at every shaded hit).
+// Always inlined (like forEachCoherentRay), and written field by field into the caller's `at`:
+// returned from out of line, or built on the stack and copied into the pending list, the point
+// was read back in pieces that straddled its fields' stores (a store-forwarding stall at every
+// shaded hit).
 // `footprint`: the width of the pixel's footprint at the point (integrator/footprint.h).
-// Writes `at` field by field: a point built on the stack and then copied into a queue was read
-// back in 16-byte pieces that straddled its fields' stores (a store-forwarding stall per copy).
 [[gnu::always_inline]] inline void lookUp(const Surface& s, const ShadingPoint& sp, const Vec3f& wo,
                                           float footprint, const Vec3d& worldOrigin,
                                           SurfacePoint& at) {
