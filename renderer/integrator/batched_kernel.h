@@ -9,8 +9,8 @@
 //  (shadeChunk): shadeHits (emission, ambient, the rays each hit spawns into the next
 //  Generation, lit points into the pending list), lightPendingPoints (queueShadowRays light by
 //  light, traceShadows as coherent streams, addDirectLight), traceGeneration (the spawned rays
-//  traced as one coherent stream and shaded) and sumRadiance (each ray's local
-//  light plus its children's).
+//  traced as one coherent stream and shaded) and sumRadiance (each ray's local light plus its
+//  children's).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
