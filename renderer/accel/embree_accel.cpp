@@ -484,11 +484,10 @@ Hit EmbreeAccel::intersect(const Ray& ray) const {
   return hit;
 }
 
-void EmbreeAccel::intersectStream(const Ray* rays, Hit* hits, size_t n, bool coherent) const {
+void EmbreeAccel::intersectCoherent(const Ray* rays, Hit* hits, size_t n) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  context.flags =
-      coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
   constexpr size_t kChunk = 256;  // bounded stack, and Embree's streams gain little beyond
   RTCRayHit rh[kChunk];
   for (size_t begin = 0; begin < n; begin += kChunk) {
@@ -503,7 +502,7 @@ void EmbreeAccel::intersectStream(const Ray* rays, Hit* hits, size_t n, bool coh
 void EmbreeAccel::occludedCoherent(const Ray* rays, bool* blocked, size_t n) const {
   // A closest-hit stream: a ray is blocked when it hits anything before its tMax, as with
   // rtcOccluded1. Not rtcOccluded1M: as fast, but it hung inside Embree 3.13.5's AVX-512 packet
-  // traversal of an instanced scene under ASan (docs/performance.md). Not intersectStream: planes
+  // traversal of an instanced scene under ASan (docs/performance.md). Not intersectCoherent: planes
   // are tested first and no Hit is built, work a shadow ray does not need.
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);

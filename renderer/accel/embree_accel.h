@@ -30,12 +30,10 @@ class EmbreeAccel final : public Accelerator {
 
   Hit intersect(const Ray& ray) const override;
   bool occluded(const Ray& ray) const override;
-  // n closest hits through Embree's stream API (rtcIntersect1M); `coherent` tells Embree the
-  // rays start close together and point alike (camera rays), so it traces them as packets.
-  void intersectStream(const Ray* rays, Hit* hits, size_t n, bool coherent) const;
-  void intersectCoherent(const Ray* rays, Hit* hits, size_t n) const override {
-    intersectStream(rays, hits, n, true);
-  }
+  // n closest hits through Embree's stream API (rtcIntersect1M), flagged coherent: the rays start
+  // close together and point alike (a chunk's camera rays, or the rays its hits spawn), so Embree
+  // traces them as packets.
+  void intersectCoherent(const Ray* rays, Hit* hits, size_t n) const override;
   void occludedCoherent(const Ray* rays, bool* blocked, size_t n) const override;
   std::string_view name() const override { return "embree"; }
   double buildSeconds() const { return buildSeconds_; }
