@@ -34,7 +34,7 @@ constexpr int kReferenceSppFactor = 16;
 struct ConvergeArgs {
   std::string scenePath;
   std::string spp = "1,2,4,8,16,32,64";
-  std::string samplers;  // default: the scene's
+  std::optional<std::string> samplers;  // default: the scene's
   std::string accels = "embree";
   std::string reference;
   int referenceSpp = 0;  // default: kReferenceSppFactor × the largest spp
@@ -44,11 +44,14 @@ struct ConvergeArgs {
   std::string fromRender;  // an EXR written by glint render, or its --stats-json
 };
 
-std::vector<std::string> split(const std::string& s) {
+// The names of a comma-separated list, blank ones skipped; a list naming nothing is refused
+// (`--spp ,` would otherwise leave no series to render).
+std::vector<std::string> split(const std::string& s, const char* option, const char* what) {
   std::vector<std::string> out;
   std::stringstream in(s);
   for (std::string t; std::getline(in, t, ',');)
     if (!t.empty()) out.push_back(t);
+  if (out.empty()) throw UsageError(std::string(option) + ": name at least one " + what);
   return out;
 }
 
@@ -166,24 +169,28 @@ int runConverge(const ConvergeArgs& a) {
   if (a.width) scene.render.width = *a.width;
   if (a.height) scene.render.height = *a.height;
   std::vector<int> spps;
-  for (const auto& s : split(a.spp)) {
+  for (const auto& s : split(a.spp, "--spp", "sample count")) {
     // The whole text must be the number: std::stoi read "1e999" and "1.5" as 1.
     int v = 0;
     const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), v);
     if (error != std::errc() || end != s.data() + s.size() || s.empty())
       throw UsageError("--spp: " + inQuotes(s) + " is not a sample count");
     if (v < 1) throw UsageError("--spp: sample counts must be ≥ 1");
+    if (v > kMaxSampleSet)
+      throw UsageError("--spp: " + s + " is more than the sampler's limit of " +
+                       std::to_string(kMaxSampleSet));
     spps.push_back(v);
   }
   std::vector<SamplerKind> samplers;
-  for (const auto& s : split(a.samplers)) {
+  for (const auto& s :
+       a.samplers ? split(*a.samplers, "--sampler", "sampler") : std::vector<std::string>{}) {
     SamplerKind k;
     if (!parseSamplerKind(s, k)) throw UsageError("--sampler: unknown sampler " + inQuotes(s));
     samplers.push_back(k);
   }
   if (samplers.empty()) samplers.push_back(scene.render.sampler);
   std::vector<AccelKind> accels;
-  for (const auto& s : split(a.accels)) {
+  for (const auto& s : split(a.accels, "--accel", "backend")) {
     AccelKind k;
     if (!parseAccelKind(s, k)) throw UsageError("--accel: unknown backend " + inQuotes(s));
     accels.push_back(k);
@@ -201,9 +208,17 @@ int runConverge(const ConvergeArgs& a) {
   } else {
     Scene refScene = scene;
     refScene.render.seed = mix64(scene.render.seed ^ 0x5eedf00dULL);
-    refScene.render.spp = a.referenceSpp > 0
-                              ? a.referenceSpp
-                              : kReferenceSppFactor * *std::max_element(spps.begin(), spps.end());
+    // In 64 bits: 16 × a large --spp passes int's range.
+    const int64_t spp =
+        a.referenceSpp > 0
+            ? a.referenceSpp
+            : kReferenceSppFactor * int64_t{*std::max_element(spps.begin(), spps.end())};
+    if (spp > kMaxSampleSet)
+      throw UsageError("the reference would take " + std::to_string(kReferenceSppFactor) +
+                       " × the largest --spp = " + std::to_string(spp) +
+                       " spp, more than the sampler's limit of " + std::to_string(kMaxSampleSet) +
+                       ": give --reference-spp or --reference");
+    refScene.render.spp = static_cast<int>(spp);
     refScene.render.sampler = SamplerKind::Stratified;
     log::info("rendering the reference at " + std::to_string(refScene.render.spp) + " spp");
     const auto accel = makeAccelerator(AccelKind::Embree, refScene);

@@ -73,6 +73,8 @@ void CameraSampling::chunkRays(const SampleKey* keys, int count, Ray* out, Point
 
 void checkSampleSets(const Scene& scene, int64_t spp) {
   const std::string limit = "the sampler's limit of " + std::to_string(kMaxSampleSet);
+  if (spp < 1)
+    throw UsageError("spp " + std::to_string(spp) + " is not a sample count (at least 1)");
   if (spp > kMaxSampleSet)
     throw UsageError("spp " + std::to_string(spp) + " is more than " + limit);
   for (size_t i = 0; i < scene.lights.size(); ++i) {

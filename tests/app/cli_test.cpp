@@ -351,6 +351,31 @@ TEST(Cli, DefaultSceneRendersWithStats) {
   EXPECT_LT(peak, 1e9);
 }
 
+TEST(Cli, ConvergeRefusesListsOfNothingAndAReferencePastTheSampler) {
+  // `--spp ,` left no sample count and crashed (the largest of none); `--accel ,` and
+  // `--sampler ,` silently fell back to a default or to no series. The default reference, 16 ×
+  // the largest spp, overflowed int at 2^27 (a reference of -2^31, then 0, spp); every case is
+  // refused before any ray is traced.
+  const std::string scene = test::writeTemp("converge-lists.json", R"({
+    "render": {"width": 4, "height": 4},
+    "camera": {"eye": [0, 0, 4], "look_at": [0, 0, 0]},
+    "materials": {"m": {"type": "phong"}},
+    "objects": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})");
+  for (const auto& [args, error] : std::vector<std::pair<std::string, std::string>>{
+           {"--spp ,", "--spp: name at least one sample count"},
+           {"--spp 1 --accel ,", "--accel: name at least one backend"},
+           {"--spp 1 --sampler ,,", "--sampler: name at least one sampler"},
+           {"--spp 268435457", "--spp: 268435457 is more than the sampler's limit of 268435456"},
+           {"--spp 1,134217728",
+            "the reference would take 16 × the largest --spp = 2147483648 spp, more than the "
+            "sampler's limit of 268435456: give --reference-spp or --reference"}}) {
+    const auto r = runGlint("converge " + scene + " " + args);
+    EXPECT_EQ(r.exitCode, 2) << args << "\n" << r.output;
+    EXPECT_NE(r.output.find("glint: error: " + error), std::string::npos) << args << "\n"
+                                                                          << r.output;
+  }
+}
+
 TEST(Cli, ConvergeReportsErrorAgainstSppWithItsReference) {
   // Pixel jitter alone over a sphere, a plane and a soft shadow; `random` draws independent
   // samples, so RMSE ∝ spp^−½. Against a reference of 16 × 16 = 256 stratified spp whose own
