@@ -285,6 +285,11 @@ TrsKey parseTrsKey(const JsonNode& n, const Vec3d& origin) {
     k.rotation = Quat::fromAxisAngle(axis, (*r)[3].number());
   }
   k.translation = toFloat((n.has("translate") ? n.at("translate").vec3d() : Vec3d{}) - origin);
+  try {
+    (void)k.toTransform();  // singular once rounded to float (a scale of 1e-45)
+  } catch (const std::invalid_argument& e) {
+    (n.has("scale") ? n.at("scale") : n).fail(e.what());
+  }
   return k;
 }
 

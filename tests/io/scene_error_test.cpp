@@ -372,6 +372,12 @@ TEST(SceneError, MotionKeysAreValidated) {
   EXPECT_EQ(test::sceneErrorOf(sphereWith("\"motion\": {\"transform\": [{\"matrix\": [1]}, {}]}")),
             "scene.json:5: objects[0].motion.transform[0].matrix: motion keys take "
             "translate/rotate/scale (rotation is interpolated by slerp), not a matrix");
+  // A key whose scale is non-zero but rounds its inverse past float: named at the key, as a
+  // static transform's is (it once surfaced as exit 1 with no location).
+  EXPECT_EQ(test::sceneErrorOf(sphereWith("\"motion\": {\"transform\": [{}, {\"scale\": "
+                                          "[1e-45, 1e-45, 1e-45]}]}")),
+            "scene.json:5: objects[0].motion.transform[1].scale: the matrix is numerically "
+            "singular");
   EXPECT_EQ(test::sceneErrorOf(sphereWith("\"motion\": {\"positions\": [[[0,0,0]], [[1,0,0]]]}")),
             "scene.json:5: objects[0].motion.positions: only meshes have position keys; use "
             "\"transform\" keys");
