@@ -354,6 +354,16 @@ const aiScene* importOrThrow(Assimp::Importer& importer, const BoundedFiles& fil
   return s;
 }
 
+// Assimp's `steps` applied to the scene `importer` holds, or a GlintError; as when reading, a
+// failed allocation Assimp caught is the machine's failure, not the file's.
+const aiScene* processOrThrow(Assimp::Importer& importer, unsigned steps, const std::string& path) {
+  const aiScene* s = importer.ApplyPostProcessing(steps);
+  if (!s && std::string_view(importer.GetErrorString()) == std::bad_alloc().what())
+    throw std::bad_alloc();
+  if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
+  return s;
+}
+
 MeshFile readMeshFile(const std::string& path, bool readTextures) {
   checkInputFile(path, kMaxMeshFileBytes, "mesh");
   checkMeshFileBeforeImport(path);
@@ -421,15 +431,13 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
                            ", " + std::to_string(p.z) + ")");
       }
     }
-  s = importer.ApplyPostProcessing(aiProcess_Triangulate | aiProcess_RemoveComponent |
-                                   aiProcess_SortByPType);
-  if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
+  s = processOrThrow(
+      importer, aiProcess_Triangulate | aiProcess_RemoveComponent | aiProcess_SortByPType, path);
   checkFlattenedTriangles(path, *s);
   checkNodePlacements(path, *s);
   const FaceNames faceNames(*s);
-  s = importer.ApplyPostProcessing(aiProcess_JoinIdenticalVertices |
-                                   aiProcess_PreTransformVertices);
-  if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
+  s = processOrThrow(importer, aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices,
+                     path);
   // Shaded smooth when every mesh of the file gives vertex normals (one mesh without them would
   // leave its vertices none to interpolate), else flat.
   bool smooth = true;
