@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "core/log.h"
 
@@ -13,19 +15,59 @@ namespace glint {
 
 namespace {
 
-// A colour property, or `otherwise` when the file has none (or a non-finite one).
-Rgb colour(const aiMaterial& m, const char* key, unsigned type, unsigned index, Rgb otherwise) {
-  aiColor4D c;
-  if (m.Get(key, type, index, c) != AI_SUCCESS) return otherwise;
-  if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b)) return otherwise;
-  return {std::max(c.r, 0.0f), std::max(c.g, 0.0f), std::max(c.b, 0.0f)};
+std::string text(float v) {
+  char out[32];
+  std::snprintf(out, sizeof out, "%g", double(v));
+  return out;
+}
+std::string text(const Rgb& c) {
+  return "(" + text(c.r) + ", " + text(c.g) + ", " + text(c.b) + ")";
 }
 
-float number(const aiMaterial& m, const char* key, unsigned type, unsigned index, float otherwise) {
-  float v = 0;
-  if (m.Get(key, type, index, v) != AI_SUCCESS || !std::isfinite(v)) return otherwise;
-  return v;
-}
+// A mesh file material's values, each as the file writes it where Glint can use it; where it
+// cannot (not finite, a negative channel, outside its range) a warning names the material, the
+// value and what is used instead: a file's value is never replaced silently.
+struct MaterialValues {
+  const aiMaterial& src;
+  const std::string& material;  // "FILE:NAME"
+
+  void warn(const char* label, const std::string& problem, const std::string& used) const {
+    log::warning("material " + material + ": " + label + " " + problem + ": " + used + " is used");
+  }
+  // A colour, or `otherwise` where the file has none.
+  Rgb colour(const char* label, const char* key, unsigned type, unsigned index,
+             Rgb otherwise) const {
+    aiColor4D c;
+    if (src.Get(key, type, index, c) != AI_SUCCESS) return otherwise;
+    const Rgb read{c.r, c.g, c.b};
+    if (!read.isFinite()) {
+      warn(label, text(read) + " is not finite", text(otherwise));
+      return otherwise;
+    }
+    const Rgb used{std::max(c.r, 0.0f), std::max(c.g, 0.0f), std::max(c.b, 0.0f)};
+    if (!(used == read)) warn(label, text(read) + " has a negative channel", text(used));
+    return used;
+  }
+  // What a number outside its range becomes: the nearest end, or the value of a file without it.
+  enum class Outside { Clamped, Default };
+  // A number, or `otherwise` where the file has none. One in [quietFrom, lo) is raised to lo
+  // without a warning (a convention of the format, not a fault of the file).
+  float number(const char* label, const char* key, unsigned type, unsigned index, float otherwise,
+               float lo = -INFINITY, float hi = INFINITY, Outside outside = Outside::Clamped,
+               float quietFrom = INFINITY) const {
+    float v = 0;
+    if (src.Get(key, type, index, v) != AI_SUCCESS) return otherwise;
+    if (!std::isfinite(v)) {
+      warn(label, text(v) + " is not finite", text(otherwise));
+      return otherwise;
+    }
+    const float used =
+        outside == Outside::Default && !(v >= lo && v <= hi) ? otherwise : std::clamp(v, lo, hi);
+    if (used != v && !(v >= quietFrom && v < lo))
+      warn(label, text(v) + " is outside [" + text(lo) + ", " + text(hi) + "]", text(used));
+    return used;
+  }
+};
 
 // The material's first texture of `type`, where it has one that opens.
 std::shared_ptr<const ImageTexture> firstTexture(const aiMaterial& m, aiTextureType type,
@@ -53,12 +95,12 @@ ColorTexture textured(const aiMaterial& m, aiTextureType type, const Rgb& factor
 // what is behind it, which Glint does not render (materials/cutout.h): the surface stays
 // opaque, with a warning (not for glass, whose dissolve exporters write for the transparency
 // Glint renders by refraction).
-Cutout mtlCutout(const aiMaterial& src, const TextureOpener& open, const Material& m, bool obj) {
+Cutout mtlCutout(const MaterialValues& v, const TextureOpener& open, const Material& m, bool obj) {
   Cutout c;
-  const float d = number(src, AI_MATKEY_OPACITY, 1.0f);
-  c.image = firstTexture(src, aiTextureType_OPACITY, open);
+  const float d = v.number(obj ? "dissolve (d)" : "opacity", AI_MATKEY_OPACITY, 1.0f, 0.0f, 1.0f);
+  c.image = firstTexture(v.src, aiTextureType_OPACITY, open);
   if (c.image) {
-    c.coverage = std::clamp(d, 0.0f, 1.0f);
+    c.coverage = d;
     c.channel = Cutout::Channel::AlphaElseGrey;
   } else if (d < 1 && !m.refracts()) {
     log::warning("material " + m.name + ": " + (obj ? "dissolve d " : "opacity ") +
@@ -71,8 +113,10 @@ Cutout mtlCutout(const aiMaterial& src, const TextureOpener& open, const Materia
 // glTF's alphaMode: "MASK" cuts where the base colour's alpha (factor times texture, read
 // through `baseColorUv`) is below alphaCutoff; "BLEND" would blend, which Glint does not render:
 // opaque, with a warning.
-Cutout gltfCutout(const aiMaterial& src, const TextureOpener& open, const std::string& name,
+Cutout gltfCutout(const MaterialValues& v, const TextureOpener& open,
                   const UvTransform& baseColorUv) {
+  const aiMaterial& src = v.src;
+  const std::string& name = v.material;
   Cutout c;
   aiString mode;
   if (src.Get(AI_MATKEY_GLTF_ALPHAMODE, mode) != AI_SUCCESS) return c;
@@ -83,7 +127,7 @@ Cutout gltfCutout(const aiMaterial& src, const TextureOpener& open, const std::s
   aiColor4D base(1, 1, 1, 1);
   src.Get(AI_MATKEY_BASE_COLOR, base);
   c.coverage = std::isfinite(base.a) ? std::clamp(base.a, 0.0f, 1.0f) : 1.0f;
-  c.cutoff = std::clamp(number(src, AI_MATKEY_GLTF_ALPHACUTOFF, 0.5f), 0.0f, 1.0f);
+  c.cutoff = v.number("alphaCutoff", AI_MATKEY_GLTF_ALPHACUTOFF, 0.5f, 0.0f, 1.0f);
   c.image = firstTexture(src, aiTextureType_DIFFUSE, open);
   if (c.image) c.uvTransform = baseColorUv;
   c.channel = Cutout::Channel::Alpha;
@@ -94,18 +138,19 @@ Cutout gltfCutout(const aiMaterial& src, const TextureOpener& open, const std::s
 // with its scale and transform; MTL's norm (NORMALS) and bump / map_Bump (HEIGHT), each with its
 // -bm multiplier as the scale (a height map's in the mesh's units), and the other formats'
 // NORMALS and HEIGHT textures alike (scale 1). Null where it has neither (or they do not open).
-std::shared_ptr<const ShadingMaps> shadingMaps(const aiMaterial& src, MeshFileFormat format,
+std::shared_ptr<const ShadingMaps> shadingMaps(const MaterialValues& v, MeshFileFormat format,
                                                const TextureOpener& open,
                                                const GltfMaterialInfo& gltf) {
+  const aiMaterial& src = v.src;
   auto maps = std::make_shared<ShadingMaps>();
   maps->normal.image = firstTexture(src, aiTextureType_NORMALS, open);
   if (format == MeshFileFormat::Gltf) {
     maps->normal.scale = gltf.normalScale;
     maps->normal.uvTransform = gltf.normalUv;
   } else {
-    maps->normal.scale = number(src, AI_MATKEY_OBJ_BUMPMULT_NORMALS(0), 1.0f);
+    maps->normal.scale = v.number("normal map's -bm", AI_MATKEY_OBJ_BUMPMULT_NORMALS(0), 1.0f);
     maps->bump.image = firstTexture(src, aiTextureType_HEIGHT, open);
-    maps->bump.scale = number(src, AI_MATKEY_OBJ_BUMPMULT_HEIGHT(0), 1.0f);
+    maps->bump.scale = v.number("bump map's -bm", AI_MATKEY_OBJ_BUMPMULT_HEIGHT(0), 1.0f);
   }
   if (!maps->normal.image && !maps->bump.image) return nullptr;
   return maps;
@@ -120,34 +165,39 @@ bool illumRefracts(int illum) { return illum == 4 || illum == 6 || illum == 7 ||
 // (the OBJ specification); in Collada a <diffuse> holds a colour or a texture, and an FBX or 3DS
 // texture takes the colour's place while the file keeps the colour its tool last showed (a
 // grey): there the texture replaces the colour.
-Material fromMtl(const aiMaterial& src, const TextureOpener& open, MeshFileFormat format) {
+Material fromMtl(const MaterialValues& v, const TextureOpener& open, MeshFileFormat format) {
+  const aiMaterial& src = v.src;
   int illum = 2;
   if (format == MeshFileFormat::Obj) src.Get(AI_MATKEY_OBJ_ILLUM, illum);
   Material m =
       defaultMaterial(illumRefracts(illum) ? MaterialKind::Dielectric : MaterialKind::Phong);
   Surface& s = m.surface;
-  const Rgb ks = colour(src, AI_MATKEY_COLOR_SPECULAR, {0, 0, 0});
+  const Rgb ks = v.colour("specular colour (Ks)", AI_MATKEY_COLOR_SPECULAR, {0, 0, 0});
   // Glass takes its colour from the light it refracts, not from a diffuse Kd.
   const bool mapReplacesColour =
       format != MeshFileFormat::Obj && src.GetTextureCount(aiTextureType_DIFFUSE) > 0;
   if (!m.refracts())
-    s.kd = textured(
-        src, aiTextureType_DIFFUSE,
-        mapReplacesColour ? Rgb{1, 1, 1} : colour(src, AI_MATKEY_COLOR_DIFFUSE, {0.5f, 0.5f, 0.5f}),
-        open);
-  s.ka = ColorTexture::uniform(colour(src, AI_MATKEY_COLOR_AMBIENT, {0, 0, 0}));
+    s.kd = textured(src, aiTextureType_DIFFUSE,
+                    mapReplacesColour ? Rgb{1, 1, 1}
+                                      : v.colour("diffuse colour (Kd)", AI_MATKEY_COLOR_DIFFUSE,
+                                                 {0.5f, 0.5f, 0.5f}),
+                    open);
+  s.ka = ColorTexture::uniform(v.colour("ambient colour (Ka)", AI_MATKEY_COLOR_AMBIENT, {0, 0, 0}));
   s.ambientFollowsDiffuse = false;
   s.ks = textured(src, aiTextureType_SPECULAR, ks, open);
-  // Ns is the Phong exponent (0 … 1000 in the specification); Glint's must be positive.
-  s.exponent = std::clamp(number(src, AI_MATKEY_SHININESS, 32), 1.0f, 1e4f);
+  // Ns is the Phong exponent (0 … 1000 in the specification); Glint's must be at least 1, which
+  // Ns in [0, 1) (Ns 0 is common in exported files) takes without a word.
+  s.exponent = v.number("shininess (Ns)", AI_MATKEY_SHININESS, 32, 1.0f, 1e4f,
+                        MaterialValues::Outside::Clamped, 0.0f);
   // map_Ke scales Ke; exporters write Ke 0 beside an emission map, which then means 1.
-  const Rgb ke = colour(src, AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0});
+  const Rgb ke = v.colour("emissive colour (Ke)", AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0});
   const bool keMap = src.GetTextureCount(aiTextureType_EMISSIVE) > 0;
   s.ke = textured(src, aiTextureType_EMISSIVE, keMap && ke.isBlack() ? Rgb{1, 1, 1} : ke, open);
   if (illumReflects(illum)) s.km = ColorTexture::uniform(ks);
   if (m.refracts()) {
-    const float ni = number(src, AI_MATKEY_REFRACTI, 1.5f);
-    m.dielectric.ior = ni >= 1.0f && ni <= 10.0f ? ni : 1.5f;  // Ni 1 or absent: plain glass
+    // Plain glass where Ni is absent or outside what Glint refracts with.
+    m.dielectric.ior = v.number("index of refraction (Ni)", AI_MATKEY_REFRACTI, 1.5f, 1.0f, 10.0f,
+                                MaterialValues::Outside::Default);
   }
   return m;
 }
@@ -159,14 +209,15 @@ Material fromMtl(const aiMaterial& src, const TextureOpener& open, MeshFileForma
 // metallic-roughness texture makes that split per texel (the surface's maps); an occlusion
 // texture darkens the ambient term, which is the diffuse colour's. The textures are read through
 // their KHR_texture_transform, texCoord and sampler, which Glint reads itself (`own`).
-Material fromGltf(const aiMaterial& src, const TextureOpener& open, const GltfMaterialInfo& own) {
+Material fromGltf(const MaterialValues& v, const TextureOpener& open, const GltfMaterialInfo& own) {
+  const aiMaterial& src = v.src;
   const float transmission =
-      std::clamp(number(src, AI_MATKEY_TRANSMISSION_FACTOR, 0.0f), 0.0f, 1.0f);
+      v.number("transmissionFactor", AI_MATKEY_TRANSMISSION_FACTOR, 0.0f, 0.0f, 1.0f);
   Material m = defaultMaterial(transmission > 0 ? MaterialKind::Dielectric : MaterialKind::Phong);
   Surface& s = m.surface;
-  const Rgb base = colour(src, AI_MATKEY_BASE_COLOR, {1, 1, 1});
-  const float metallic = std::clamp(number(src, AI_MATKEY_METALLIC_FACTOR, 1.0f), 0.0f, 1.0f);
-  const float roughness = std::clamp(number(src, AI_MATKEY_ROUGHNESS_FACTOR, 1.0f), 0.0f, 1.0f);
+  const Rgb base = v.colour("baseColorFactor", AI_MATKEY_BASE_COLOR, {1, 1, 1});
+  const float metallic = v.number("metallicFactor", AI_MATKEY_METALLIC_FACTOR, 1.0f, 0.0f, 1.0f);
+  const float roughness = v.number("roughnessFactor", AI_MATKEY_ROUGHNESS_FACTOR, 1.0f, 0.0f, 1.0f);
   // Assimp's glTF 2 reader gives metallicRoughnessTexture as aiTextureType_UNKNOWN and
   // occlusionTexture as aiTextureType_LIGHTMAP.
   auto metallicRoughness = m.refracts() ? nullptr : firstTexture(src, aiTextureType_UNKNOWN, open);
@@ -197,16 +248,19 @@ Material fromGltf(const aiMaterial& src, const TextureOpener& open, const GltfMa
     maps->occlusionStrength = own.occlusionStrength;
     s.maps = std::move(maps);
   }
-  s.ke = textured(src, aiTextureType_EMISSIVE,
-                  colour(src, AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0}) * own.emissiveStrength, open,
-                  own.emissiveUv);
+  s.ke = textured(
+      src, aiTextureType_EMISSIVE,
+      v.colour("emissiveFactor", AI_MATKEY_COLOR_EMISSIVE, {0, 0, 0}) * own.emissiveStrength, open,
+      own.emissiveUv);
   if (m.refracts()) {
-    const float ior = number(src, AI_MATKEY_REFRACTI, 1.5f);
-    m.dielectric.ior = ior >= 1.0f && ior <= 10.0f ? ior : 1.5f;
+    m.dielectric.ior = v.number("ior (KHR_materials_ior)", AI_MATKEY_REFRACTI, 1.5f, 1.0f, 10.0f,
+                                MaterialValues::Outside::Default);
     // KHR_materials_volume: light keeps attenuationColor after attenuationDistance, so a
     // fraction c^(1/D) per unit distance: Beer's law (seed 000 §13.1).
-    const float distance = number(src, AI_MATKEY_VOLUME_ATTENUATION_DISTANCE, INFINITY);
-    const Rgb c = colour(src, AI_MATKEY_VOLUME_ATTENUATION_COLOR, {1, 1, 1});
+    const float distance = v.number("attenuationDistance (KHR_materials_volume)",
+                                    AI_MATKEY_VOLUME_ATTENUATION_DISTANCE, INFINITY);
+    const Rgb c = v.colour("attenuationColor (KHR_materials_volume)",
+                           AI_MATKEY_VOLUME_ATTENUATION_COLOR, {1, 1, 1});
     if (distance > 0 && std::isfinite(distance)) {
       const auto perUnit = [&](float channel) {
         return std::pow(std::clamp(channel, 0.0f, 1.0f), 1 / distance);
@@ -242,17 +296,18 @@ Material materialFromMeshFile(const aiMaterial& source, MeshFileFormat format,
   }
   // A file without materials of its own (a PLY, an OBJ without MTL) gets Assimp's default,
   // which Glint replaces by its own default surface.
+  const std::string named = fileName + ":" + own;
+  const MaterialValues values{source, named};
   Material m = own == AI_DEFAULT_MATERIAL_NAME || format == MeshFileFormat::Ply
                    ? defaultMaterial(MaterialKind::Phong)
-               : format == MeshFileFormat::Gltf ? fromGltf(source, openTexture, gltf)
-                                                : fromMtl(source, openTexture, format);
-  m.name = fileName + ":" + own;
+               : format == MeshFileFormat::Gltf ? fromGltf(values, openTexture, gltf)
+                                                : fromMtl(values, openTexture, format);
+  m.name = named;
   if (format != MeshFileFormat::Ply)
-    m.surface.normalMaps = shadingMaps(source, format, openTexture, gltf);
-  if (format == MeshFileFormat::Gltf)
-    m.cutout = gltfCutout(source, openTexture, m.name, gltf.baseColorUv);
+    m.surface.normalMaps = shadingMaps(values, format, openTexture, gltf);
+  if (format == MeshFileFormat::Gltf) m.cutout = gltfCutout(values, openTexture, gltf.baseColorUv);
   if (format == MeshFileFormat::Obj || format == MeshFileFormat::Other)
-    m.cutout = mtlCutout(source, openTexture, m, format == MeshFileFormat::Obj);
+    m.cutout = mtlCutout(values, openTexture, m, format == MeshFileFormat::Obj);
   return m;
 }
 

@@ -167,6 +167,54 @@ TEST(MeshMaterials, GltfMetallicRoughnessAndTransmissionWithVolumeMapOntoTheSurf
   EXPECT_NEAR(perUnit.b, 1.0f, 1e-6f);
 }
 
+TEST(MeshMaterials, AValueGlintCannotUseAsWrittenIsNamedWithWhatIsUsedInstead) {
+  // Once Kd inf, Kd -1 and metallicFactor 5 became grey, black and 1 without a word. Each
+  // replacement is a warning naming the material, the value and what is used; a value the
+  // format's own convention raises (Ns 0 to Glint's least exponent, 1) is not.
+  test::writeTemp("odd.mtl", R"(newmtl hot
+Kd inf 1 1
+Ns 0
+newmtl dark
+Kd 0.5 -1 0.25
+Ns -3
+newmtl glass
+Ni 0.5
+illum 7
+)");
+  std::string obj = "mtllib odd.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  for (const char* m : {"hot", "dark", "glass"}) obj += std::string("usemtl ") + m + "\nf 1 2 3\n";
+  testing::internal::CaptureStderr();
+  const MeshFile f = loadMeshFile(test::writeTemp("odd.obj", obj));
+  std::string warnings = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(uniform(named(f, "odd.obj:hot").surface.kd), (Rgb{0.5f, 0.5f, 0.5f}));
+  EXPECT_EQ(named(f, "odd.obj:hot").surface.exponent, 1.0f);
+  EXPECT_EQ(uniform(named(f, "odd.obj:dark").surface.kd), (Rgb{0.5f, 0, 0.25f}));
+  EXPECT_EQ(named(f, "odd.obj:dark").surface.exponent, 1.0f);
+  EXPECT_EQ(named(f, "odd.obj:glass").dielectric.ior, 1.5f);
+  for (const char* expected :
+       {"material odd.obj:hot: diffuse colour (Kd) (inf, 1, 1) is not finite: (0.5, 0.5, 0.5) "
+        "is used",
+        "material odd.obj:dark: diffuse colour (Kd) (0.5, -1, 0.25) has a negative channel: "
+        "(0.5, 0, 0.25) is used",
+        "material odd.obj:dark: shininess (Ns) -3 is outside [1, 10000]: 1 is used",
+        "material odd.obj:glass: index of refraction (Ni) 0.5 is outside [1, 10]: 1.5 is used"})
+    EXPECT_NE(warnings.find(expected), std::string::npos) << expected << "\n" << warnings;
+  EXPECT_EQ(warnings.find("odd.obj:hot: shininess"), std::string::npos) << warnings;
+
+  testing::internal::CaptureStderr();
+  const MeshFile g = loadMeshFile(test::writeTemp("odd.gltf", gltfWithMaterials(R"(
+    {"name": "odd", "pbrMetallicRoughness": {"metallicFactor": 5, "roughnessFactor": -3}})",
+                                                                                1)));
+  warnings = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(named(g, "odd.gltf:odd").surface.gloss, 0.0f);  // metallic 1, roughness 0
+  EXPECT_NE(warnings.find("material odd.gltf:odd: metallicFactor 5 is outside [0, 1]: 1 is used"),
+            std::string::npos)
+      << warnings;
+  EXPECT_NE(warnings.find("material odd.gltf:odd: roughnessFactor -3 is outside [0, 1]: 0 is used"),
+            std::string::npos)
+      << warnings;
+}
+
 TEST(MeshMaterials, ASceneMaterialOverridesTheFilesAndWithoutOneTheFileKeepsItsOwn) {
   test::writeTemp("groups.mtl", kMtl);
   test::writeTemp("groups.obj", objWithGroups());
