@@ -337,6 +337,13 @@ class FaceNames {
   std::vector<std::string> names_;
 };
 
+// Assimp catches every exception of its readers and processing steps and keeps only its text:
+// a failed allocation is the machine's failure (exit 1, named by loadMeshFile), not the file's.
+void rethrowOutOfMemory(const Assimp::Importer& importer) {
+  if (std::string_view(importer.GetErrorString()) == std::bad_alloc().what())
+    throw std::bad_alloc();
+}
+
 // Assimp's reading of `path` with no processing but its own validation, or a GlintError.
 const aiScene* importOrThrow(Assimp::Importer& importer, const BoundedFiles& files,
                              const std::string& path) {
@@ -344,22 +351,17 @@ const aiScene* importOrThrow(Assimp::Importer& importer, const BoundedFiles& fil
   // at its nodes, which Glint would render as if they were the file's.
   importer.SetPropertyBool(AI_CONFIG_IMPORT_NO_SKELETON_MESHES, true);
   const aiScene* s = importer.ReadFile(path, aiProcess_ValidateDataStructure);
-  // Assimp catches every exception of its readers and keeps only its text: a failed allocation
-  // is the machine's failure (exit 1, named by loadMeshFile), not the file's.
-  if (!s && std::string_view(importer.GetErrorString()) == std::bad_alloc().what())
-    throw std::bad_alloc();
+  if (!s) rethrowOutOfMemory(importer);
   if (!s || !s->mRootNode)
     throw GlintError("cannot read mesh " + path + ": " + excerpt(importer.GetErrorString()) +
                      (files.refusal().empty() ? "" : " (" + files.refusal() + ")"));
   return s;
 }
 
-// Assimp's `steps` applied to the scene `importer` holds, or a GlintError; as when reading, a
-// failed allocation Assimp caught is the machine's failure, not the file's.
+// Assimp's `steps` applied to the scene `importer` holds, or a GlintError.
 const aiScene* processOrThrow(Assimp::Importer& importer, unsigned steps, const std::string& path) {
   const aiScene* s = importer.ApplyPostProcessing(steps);
-  if (!s && std::string_view(importer.GetErrorString()) == std::bad_alloc().what())
-    throw std::bad_alloc();
+  if (!s) rethrowOutOfMemory(importer);
   if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
   return s;
 }
