@@ -361,8 +361,10 @@ const aiScene* importOrThrow(Assimp::Importer& importer, const BoundedFiles& fil
 // Assimp's `steps` applied to the scene `importer` holds, or a GlintError.
 const aiScene* processOrThrow(Assimp::Importer& importer, unsigned steps, const std::string& path) {
   const aiScene* s = importer.ApplyPostProcessing(steps);
-  if (!s) rethrowOutOfMemory(importer);
-  if (!s) throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
+  if (!s) {
+    rethrowOutOfMemory(importer);
+    throw GlintError("cannot process mesh " + path + ": " + importer.GetErrorString());
+  }
   return s;
 }
 

@@ -6,22 +6,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "core/log.h"
+#include "io/json_source.h"
 
 namespace glint {
 
 namespace {
 
-std::string text(float v) {
-  char out[32];
-  std::snprintf(out, sizeof out, "%g", double(v));
-  return out;
-}
-std::string text(const Rgb& c) {
-  return "(" + text(c.r) + ", " + text(c.g) + ", " + text(c.b) + ")";
+std::string colourText(const Rgb& c) {
+  return "(" + formatNumber(c.r) + ", " + formatNumber(c.g) + ", " + formatNumber(c.b) + ")";
 }
 
 // A mesh file material's values, each as the file writes it where Glint can use it; where it
@@ -41,11 +36,12 @@ struct MaterialValues {
     if (src.Get(key, type, index, c) != AI_SUCCESS) return otherwise;
     const Rgb read{c.r, c.g, c.b};
     if (!read.isFinite()) {
-      warn(label, text(read) + " is not finite", text(otherwise));
+      warn(label, colourText(read) + " is not finite", colourText(otherwise));
       return otherwise;
     }
     const Rgb used{std::max(c.r, 0.0f), std::max(c.g, 0.0f), std::max(c.b, 0.0f)};
-    if (!(used == read)) warn(label, text(read) + " has a negative channel", text(used));
+    if (!(used == read))
+      warn(label, colourText(read) + " has a negative channel", colourText(used));
     return used;
   }
   // What a number outside its range becomes: the nearest end, or the value of a file without it.
@@ -58,13 +54,15 @@ struct MaterialValues {
     float v = 0;
     if (src.Get(key, type, index, v) != AI_SUCCESS) return otherwise;
     if (!std::isfinite(v)) {
-      warn(label, text(v) + " is not finite", text(otherwise));
+      warn(label, formatNumber(v) + " is not finite", formatNumber(otherwise));
       return otherwise;
     }
     const float used =
         outside == Outside::Default && !(v >= lo && v <= hi) ? otherwise : std::clamp(v, lo, hi);
     if (used != v && !(v >= quietFrom && v < lo))
-      warn(label, text(v) + " is outside [" + text(lo) + ", " + text(hi) + "]", text(used));
+      warn(label,
+           formatNumber(v) + " is outside [" + formatNumber(lo) + ", " + formatNumber(hi) + "]",
+           formatNumber(used));
     return used;
   }
 };
