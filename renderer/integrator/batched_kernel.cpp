@@ -204,17 +204,18 @@ void BatchedKernel::spawnCoherent(const Hit& hit, const Material& m, const Shadi
                                   Generation& gen, RayCounters& counters,
                                   uint64_t& sampleRays) const {
   const bool traced = branch.depth + 1 <= scene_.render.maxDepth;
-  // Spawns each ray that its throughput keeps; `across`: the interior list beyond the surface.
+  // Spawns each ray that its share keeps; `across`: the interior list beyond the surface.
+  const float gain = coherentGain(m, at);
   const auto spawnInto = [&](const MediumStack& across) {
     return [&](const Vec3f& direction, const Rgb& weight, bool crosses) {
-      const Rgb throughput = branch.throughput * weight;
-      if (throughput.maxChannel() < minThroughput_) return;
+      const Rgb share = branchShare(branch.share, weight, gain);
+      if (share.maxChannel() < minThroughput_) return;
       if (traced) {
         ++(crosses ? counters.refraction : counters.reflection);
         ++sampleRays;
       }
-      spawnRayInto(gen.add(branch, weight, throughput, crosses ? across : branch.media, distance),
-                   sp, false, direction, ray.time);
+      spawnRayInto(gen.add(branch, weight, share, crosses ? across : branch.media, distance), sp,
+                   false, direction, ray.time);
     };
   };
   if (m.refracts()) {

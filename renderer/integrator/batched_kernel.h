@@ -61,7 +61,7 @@ class BatchedKernel {
 
   struct Branch {  // what travels with a ray down the tree of reflections and refractions
     int depth = 0;
-    Rgb throughput{1, 1, 1};
+    Rgb share{1, 1, 1};  // of the sample (branchShare), which the cutoff reads
     const SampleKey* key = nullptr;
     float distance = 0;  // travelled from the eye to the ray's origin (the pixel's cone)
     // Last: a ray outside every dielectric writes and reads only the stack's size, in the
@@ -91,15 +91,15 @@ class BatchedKernel {
     UninitializedArray<Rgb, kCapacity> radiance;
     int children = 0;
 
-    // A child of `parent` with weight w (its throughput parent.throughput · w) in `media`;
-    // returns its ray's slot for the caller to write. Written in place: a Branch built in a
-    // temporary and copied in was reloaded before its stores had landed (store forwarding).
-    Ray& add(const Branch& parent, const Rgb& w, const Rgb& throughput, const MediumStack& media,
+    // A child of `parent` with weight w and `share` of the sample in `media`; returns its
+    // ray's slot for the caller to write. Written in place: a Branch built in a temporary and
+    // copied in was reloaded before its stores had landed (store forwarding).
+    Ray& add(const Branch& parent, const Rgb& w, const Rgb& share, const MediumStack& media,
              float distance) {
       Branch& b = branches[children];
       b.depth = parent.depth + 1;
       b.distance = distance;
-      b.throughput = throughput;
+      b.share = share;
       b.media.assign(media);
       b.key = parent.key;
       weight[children] = w;
@@ -125,7 +125,7 @@ class BatchedKernel {
   // The generation that the chunks of depth `depth` spawn into (made on first use).
   Generation& generation(Scratch& scratch, int depth) const;
   // Spawns into `gen` the rays the material at a hit sends on (materials' forEachCoherentRay),
-  // each that its throughput keeps, for `ray` arriving along unit d: the interior list goes
+  // each that its share keeps, for `ray` arriving along unit d: the interior list goes
   // with a refracted ray across the surface; `u` spreads a glossy or blurred lobe. Counts the
   // traced ones in `sampleRays`. Called only for a material that refracts or reflects
   // coherently.

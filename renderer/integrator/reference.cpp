@@ -38,13 +38,14 @@ Rgb ReferenceIntegrator::trace(const Ray& r, const Hit& q, const Branch& branch,
     const Crossing crossing =
         m.refracts() ? crossingAt(branch.media, q, sp.materialId, d, sp.ng, scene_.materials)
                      : Crossing{};
+    const float gain = coherentGain(m, at);
     forEachCoherentRay(m, sp, at, d, crossing.etaI, crossing.etaT,
                        lobeSamples(m, *branch.key, branch.depth),
                        [&](const Vec3f& direction, const Rgb& weight, bool crosses) {
                          Branch child;
                          child.depth = branch.depth + 1;
-                         child.throughput = branch.throughput * weight;
-                         if (child.throughput.maxChannel() < minThroughput_) return;  // too faint
+                         child.share = branchShare(branch.share, weight, gain);
+                         if (child.share.maxChannel() < minThroughput_) return;  // too faint
                          child.media = crosses ? crossing.across : branch.media;
                          child.key = branch.key;
                          child.distance = distance;

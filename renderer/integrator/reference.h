@@ -33,9 +33,9 @@ class ReferenceIntegrator {
  private:
   // What goes down one branch of Trace's tree with its ray.
   struct Branch {
-    int depth = 0;            // d: 0 for the camera ray
-    Rgb throughput{1, 1, 1};  // the product of the weights above it
-    MediumStack media;        // the dielectric objects the ray is inside
+    int depth = 0;       // d: 0 for the camera ray
+    Rgb share{1, 1, 1};  // of the sample (branchShare), which the cutoff reads
+    MediumStack media;   // the dielectric objects the ray is inside
     const SampleKey* key = nullptr;
     float distance = 0;  // travelled from the eye to the ray's origin (the pixel's cone)
   };

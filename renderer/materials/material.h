@@ -102,6 +102,16 @@ template <class Send>
   send(t, g.constantCoefficients() ? g.kt : Rgb{T, T, T}, true);
 }
 
+// The most that the weights of the rays forEachCoherentRay sends at (sp, at) add up to in one
+// channel: k_m, plus a dielectric's interface, which splits what arrives (R + (1 − R) = 1) or,
+// with seed 002's constant coefficients, passes k_t. Above 1 the hit sends on more light than
+// reaches it, which the integrators' cutoff must allow for (integrator/radiance.h, BranchShare).
+inline float coherentGain(const Material& m, const SurfacePoint& at) {
+  Rgb sum = at.km;
+  if (m.refracts()) sum += m.dielectric.constantCoefficients() ? m.dielectric.kt : Rgb{1, 1, 1};
+  return sum.maxChannel();
+}
+
 // What the albedo AOV shows: k_d where the surface is diffuse, else k_m; 1 for a dielectric.
 Rgb albedo(const Material& m, const SurfacePoint& at);
 

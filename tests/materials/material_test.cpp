@@ -107,6 +107,45 @@ TEST(Material, TotalInternalReflectionSendsOneRay) {
   EXPECT_NEAR(out[0].direction.x, 1, 1e-6);  // reflected off the 45° face: sideways
 }
 
+TEST(Material, CoherentGainIsTheMostTheRaysWeightsAddUpTo) {
+  // coherentGain bounds, in every channel, the summed weights of the rays a hit sends: the
+  // integrators divide a branch's share by it where it is above 1 (integrator/radiance.h).
+  // Each case: the material, and its gain from k_m (+ 1 for a Fresnel interface, + k_t with
+  // constant coefficients).
+  Material mirror = defaultMaterial(MaterialKind::Mirror);
+  mirror.surface.km = ColorTexture::uniform({0.9f, 0.8f, 0.7f});
+  Material coated = defaultMaterial(MaterialKind::Dielectric);
+  coated.surface.km = ColorTexture::uniform({0.2f, 0.5f, 0.1f});
+  // distributed_shading.json's slab: k_m + k_t stays at or below 1, so it gains nothing.
+  Material slab = defaultMaterial(MaterialKind::Dielectric);
+  slab.dielectric.fresnel = FresnelModel::None;
+  slab.dielectric.kt = {0.55f, 0.75f, 0.9f};
+  slab.surface.km = ColorTexture::uniform({0.08f, 0.08f, 0.08f});
+  Material bright = slab;
+  bright.dielectric.kt = {1, 1, 1};
+  bright.surface.km = ColorTexture::uniform({0.6f, 0.6f, 0.6f});
+  const struct {
+    const char* name;
+    Material m;
+    float gain;
+  } cases[] = {{"phong", defaultMaterial(MaterialKind::Phong), 0},
+               {"mirror", mirror, 0.9f},
+               {"glass", defaultMaterial(MaterialKind::Dielectric), 1},
+               {"coated glass", coated, 1.5f},
+               {"slab", slab, 0.98f},
+               {"bright slab", bright, 1.6f}};
+  const Arrival hit;
+  for (const auto& c : cases) {
+    const SurfacePoint at = lookUp(c.m.surface, hit.sp, {0, 1, 0}, 0, {});
+    const float gain = coherentGain(c.m, at);
+    EXPECT_NEAR(gain, c.gain, 1e-6) << c.name;
+    Rgb sum;
+    for (const CoherentRay& ray : hit.rays(c.m)) sum += ray.weight;
+    // Fresnel's R and 1 − R add to 1 within a rounding.
+    EXPECT_LE(sum.maxChannel(), gain + 1e-6f) << c.name;
+  }
+}
+
 TEST(Material, BlurredRefractionThatTurnsBackIsDropped) {
   // A frosted glass with a square far wider than the refracted ray's angle to the surface: some
   // perturbed rays end up on the incoming side and return black; the others still cross.

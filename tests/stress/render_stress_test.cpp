@@ -183,6 +183,36 @@ TEST(FacingMirrors, GeometricSeriesAtEveryDepthLimit) {
   }
 }
 
+// 17b. Glass that gains light: two nested glass spheres with a surface mirror k_m = 1, so each
+// hit sends on twice what reaches it (k_m + R + (1 − R) = 2) and no path's product of weights
+// falls: the ray tree grew about 1.8 times with each depth, and max_depth 1000 never finished.
+// Guards: exponential work from a small scene. Criterion: a branch's share halves at each hit
+// (branchShare), so none past depth 10 reaches the cutoff 2⁻¹⁰: the render at max_depth 1000
+// is the one at max_depth 10, bit for bit, and a sample traces at most its camera ray and,
+// at each depth k ≤ 10, min(3^k, 1024) rays (three a hit; a depth's shares add to at most 1).
+TEST(GainingGlass, RaysStopAtTheCutoffWhateverTheDepthLimit) {
+  const auto scene = [](int depth) {
+    return R"({"render": {"width": 8, "height": 8, "spp": 1, "max_depth": )" +
+           std::to_string(depth) + R"(, "background": [0.5,0.5,0.5]},
+      "camera": {"eye": [0,0,5], "look_at": [0,0,0], "vfov": 30},
+      "materials": {"glass": {"type": "dielectric", "ior": 1.5, "km": [1,1,1]}},
+      "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "glass"},
+                  {"type": "sphere", "center": [0,0,0], "radius": 0.5, "material": "glass"}]})";
+  };
+  const RenderResult deep = stress::renderText(scene(1000));
+  const RenderResult ten = stress::renderText(scene(10));
+  EXPECT_EQ(deep.stats.rays.total(), ten.stats.rays.total());
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x)
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(deep.film.pixel(x, y)[c], ten.film.pixel(x, y)[c]);
+  uint64_t perSample = 1;
+  for (uint64_t k = 1, width = 3; k <= 10; ++k, width *= 3)
+    perSample += std::min<uint64_t>(width, 1024);
+  EXPECT_LE(deep.stats.rays.total(), 64 * perSample);
+  // The glass splits: far more than one ray a sample crosses it.
+  EXPECT_GT(deep.stats.rays.refraction, 64u * 4);
+}
+
 // 18. A NaN produced at runtime (forced through the render's sample hook) is counted, logged,
 // and never written: the pixel keeps the mean of its finite samples.
 TEST(RuntimeNaN, CountedLoggedAndNeverWritten) {
