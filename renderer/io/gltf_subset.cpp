@@ -73,6 +73,65 @@ size_t countOf(const json& doc, const char* key) {
   return it != doc.end() && it->is_array() ? it->size() : 0;
 }
 
+// The bytes of one element of an accessor (componentType × type), 0 for what glTF 2.0 does not
+// define (Assimp refuses those itself). Byte and short matrices' column padding is left out:
+// the stride check below may pass more, never refuse a file that meets the rule.
+uint64_t elementBytes(const json& accessor) {
+  const auto type = accessor.find("componentType");
+  const auto shape = accessor.find("type");
+  if (type == accessor.end() || !type->is_number_unsigned() || shape == accessor.end() ||
+      !shape->is_string())
+    return 0;
+  const uint64_t component = [&]() -> uint64_t {
+    switch (type->get<uint64_t>()) {
+      case 5120:
+      case 5121:
+        return 1;  // (unsigned) byte
+      case 5122:
+      case 5123:
+        return 2;  // (unsigned) short
+      case 5125:
+      case 5126:
+        return 4;  // unsigned int, float
+      default:
+        return 0;
+    }
+  }();
+  const std::string& s = shape->get_ref<const std::string&>();
+  const uint64_t components = s == "SCALAR"                ? 1
+                              : s == "VEC2"                ? 2
+                              : s == "VEC3"                ? 3
+                              : s == "VEC4" || s == "MAT2" ? 4
+                              : s == "MAT3"                ? 9
+                              : s == "MAT4"                ? 16
+                                                           : 0;
+  return component * components;
+}
+
+// glTF 2.0 requires a buffer view's byteStride to hold a whole element of each accessor reading
+// it (the validator's ACCESSOR_SMALL_BYTESTRIDE). Assimp 5.2.5 reads overlapping elements
+// instead, and the mesh rendered as other geometry, without a word.
+void checkStrides(const std::string& path, const json& doc) {
+  const size_t views = countOf(doc, "bufferViews");
+  for (size_t i = 0; i < countOf(doc, "accessors"); ++i) {
+    const json& accessor = doc["accessors"][i];
+    if (!accessor.is_object() || !indexBelow(accessor, "bufferView", views)) continue;
+    const auto viewIndex = accessor.find("bufferView");
+    if (viewIndex == accessor.end()) continue;
+    const json& view = doc["bufferViews"][viewIndex->get<size_t>()];
+    const auto stride = view.is_object() ? view.find("byteStride") : view.end();
+    if (stride == view.end() || !stride->is_number_unsigned()) continue;
+    const uint64_t element = elementBytes(accessor);
+    if (stride->get<uint64_t>() < element)
+      throw UsageError("mesh " + path + ": accessors[" + std::to_string(i) +
+                       "] reads bufferViews[" + std::to_string(viewIndex->get<size_t>()) +
+                       "], whose byteStride " + std::to_string(stride->get<uint64_t>()) +
+                       " is less than its " + std::to_string(element) +
+                       "-byte elements, which would overlap (glTF 2.0 requires the stride to "
+                       "hold an element)");
+  }
+}
+
 // The reduced file's textures, images and samplers, and the materials' references to them:
 // every reference an index in range, every image a URI or an embedded PNG or JPEG.
 bool texturesAreWellFormed(const json& doc) {
@@ -243,6 +302,7 @@ std::string gltfSubset(const std::string& path, const std::string& text,
                             "mesh " + path + ": " + key + "[" + std::to_string(i) + "].uri");
   // Before Assimp or Glint's own reader places a node once per path to it.
   checkGltfExpansion(path, doc);
+  checkStrides(path, doc);
   keepOnly(doc,
            {"asset", "scene", "scenes", "nodes", "meshes", "materials", "accessors", "bufferViews",
             "buffers", "textures", "images", "samplers", "extensionsUsed", "extensionsRequired"});

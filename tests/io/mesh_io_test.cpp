@@ -416,6 +416,32 @@ TEST(MeshFile, AGltfIndexPastItsVerticesIsRefusedNotDropped) {
   }
 }
 
+TEST(MeshFile, AGltfStrideShorterThanItsElementsIsRefused) {
+  // glTF 2.0 requires a buffer view's byteStride to hold an element of each accessor reading it;
+  // Assimp read the overlapping elements of a shorter one as other geometry, without a word.
+  // The triangle's positions are VEC3 floats, 12 bytes: a stride of 8 is refused, 12 loads.
+  const std::string triangle =
+      triangleWithIndices("AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA=");
+  const std::string view = R"({"buffer": 0, "byteLength": 36})";
+  ASSERT_NE(triangle.find(view), std::string::npos);
+  const auto withStride = [&](int stride) {
+    std::string text = triangle;
+    text.replace(
+        text.find(view), view.size(),
+        R"({"buffer": 0, "byteLength": 36, "byteStride": )" + std::to_string(stride) + "}");
+    return text;
+  };
+  const std::string message = test::meshLoadError("short-stride.gltf", withStride(8));
+  EXPECT_NE(message.find("short-stride.gltf: accessors[0] reads bufferViews[0], whose byteStride 8 "
+                         "is less than its 12-byte elements"),
+            std::string::npos)
+      << message;
+  const MeshFile ok = loadMeshFile(test::writeTemp("whole-stride.gltf", withStride(12)));
+  size_t triangles = 0;
+  for (const TriangleMesh& part : ok.parts) triangles += part.indices.size() / 3;
+  EXPECT_EQ(triangles, 1u);
+}
+
 TEST(MeshFile, AGltfUriWithAControlCharacterIsRefused) {
   // "buffer.bin\u0000.png" would open buffer.bin: the name is refused whatever follows it.
   const std::string message = test::meshLoadError("uri-nul.gltf", R"({"asset": {"version": "2.0"},
