@@ -315,6 +315,8 @@ int JsonNode::integer(int lo, int hi) const {
 }
 
 uint64_t JsonNode::unsignedInteger() const {
+  // JSON's -0 is zero; nlohmann reads it as a signed integer.
+  if (value_->is_number_integer() && value_->get<int64_t>() == 0) return 0;
   if (!value_->is_number_unsigned())
     fail("must be a non-negative integer, got " + excerpt(raw().dump()));
   return value_->get<uint64_t>();

@@ -265,6 +265,13 @@ TEST(Animation, MergeRefusesTilesOfAnotherSceneFile) {
                               ", expected 0123456789abcdef)"),
             std::string::npos)
       << other.output;
+  // An empty hash checked nothing: every crop merged.
+  const auto empty = runGlint("merge " + tmp("h4.exr") + " " + tmp("h.exr") + " --scene-hash ''");
+  EXPECT_EQ(empty.exitCode, 2);
+  EXPECT_NE(empty.output.find("--scene-hash: must name the hash the crops must carry"),
+            std::string::npos)
+      << empty.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp("h4.exr")));
 }
 
 }  // namespace

@@ -18,6 +18,17 @@ Scene withObjects(const std::string& objects, const std::string& extra = "") {
   return sceneFromText("{" + std::string(kHeader) + extra + "\"objects\": [" + objects + "]}");
 }
 
+TEST(SceneParse, ASeedOfMinusZeroIsZeroAndANegativeOneIsRefused) {
+  // JSON writes zero as -0 too: it was refused with "must be a non-negative integer, got 0".
+  const auto withSeed = [](const std::string& seed) {
+    return R"({"render": {"seed": )" + seed +
+           R"(}, "camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]}, "objects": []})";
+  };
+  EXPECT_EQ(sceneFromText(withSeed("-0")).render.seed, 0u);
+  EXPECT_EQ(test::sceneErrorOf(withSeed("-1")),
+            "scene.json:1: render.seed: must be a non-negative integer, got -1");
+}
+
 TEST(SceneParse, RenderBlockAndDefaults) {
   // Comments are allowed anywhere (SCENE_FORMAT.md).
   const Scene s = sceneFromText(R"({
