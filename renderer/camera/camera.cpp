@@ -13,6 +13,7 @@
 #include "core/avx2_clones.h"
 #include "core/lanes.h"
 #include "core/sampling.h"
+#include "core/unit_vector.h"
 
 namespace glint {
 
@@ -42,8 +43,10 @@ Camera::Camera(const CameraDesc& desc, int width, int height) : desc_(desc) {
           "contain it");
     w_ = cosine < 0 ? n : -n;
   }
-  const Vec3f right = cross(desc.up, w_);
-  if (!(length(right) > 1e-6f * length(desc.up)))
+  // Only up's direction counts: one at any scale is taken as its unit vector.
+  const Vec3f up = hasSafeLength(desc.up) ? desc.up : unitVector(desc.up);
+  const Vec3f right = cross(up, w_);
+  if (!(length(right) > 1e-6f * length(up)))
     throw std::invalid_argument(desc.imagePlaneNormal ? "up is parallel to image_plane_normal"
                                                       : "up is parallel to the viewing direction");
   u_ = normalize(right);

@@ -5,6 +5,7 @@
 #include <iterator>
 
 #include "core/hash.h"
+#include "core/unit_vector.h"
 
 namespace glint {
 
@@ -352,9 +353,9 @@ Vec3d JsonNode::vec3d() const {
 Vec3f JsonNode::vec3() const { return toFloat(vec3d()); }
 
 Vec3f JsonNode::direction() const {
-  const Vec3f v = vec3();
-  if (!(length(v) > 0)) fail("must be a non-zero vector");
-  return normalize(v);
+  const Vec3d v = vec3d();
+  if (v.x == 0 && v.y == 0 && v.z == 0) fail("must be a non-zero vector");
+  return unitVector(v);
 }
 
 Rgb JsonNode::color() const {

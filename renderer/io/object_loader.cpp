@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/input_files.h"
+#include "core/unit_vector.h"
 #include "geometry/tangents.h"
 #include "geometry/triangulate.h"
 #include "io/expansion_limits.h"
@@ -497,7 +498,7 @@ void addShape(SceneBuilder& b, const JsonNode& obj, const std::string& type, uin
     obj.checkKeys({"type", "name", "point", "normal", "material", "transform"});
     if (groupId != 0) obj.fail("planes are unbounded and cannot be placed in groups");
     const Vec3f n = obj.at("normal").direction();
-    const Plane plane{place.point(obj.at("point")), normalize(xf.normal(n))};
+    const Plane plane{place.point(obj.at("point")), unitVector(xf.normal(n))};
     if (!isFinite(plane.point) || !isFinite(plane.normal))
       obj.fail("the placed plane is not finite (beyond the float range)");
     s.planes.push_back(plane);

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "camera/camera.h"
 #include "test_util.h"
 
 namespace glint {
@@ -27,6 +28,38 @@ TEST(SceneParse, ASeedOfMinusZeroIsZeroAndANegativeOneIsRefused) {
   EXPECT_EQ(sceneFromText(withSeed("-0")).render.seed, 0u);
   EXPECT_EQ(test::sceneErrorOf(withSeed("-1")),
             "scene.json:1: render.seed: must be a non-negative integer, got -1");
+}
+
+TEST(SceneParse, DirectionsAreReadAtAnyScale) {
+  // Only a direction's direction counts. Past about 1e19 a component's square overflowed float,
+  // and normalising gave zero: a directional light at [0, -1e20, -1e20] went dark, a plane
+  // placed by a scale of 1e-20 along its normal vanished, and an up of [0, 1e20, 0] was refused
+  // as parallel to the view; [0, -1e-30, -1e-30] underflowed and was refused as zero. Each now
+  // reads as its unit vector, to float rounding (1e-7).
+  const auto load = [](const std::string& light, const std::string& up,
+                       const std::string& planeScale) {
+    return sceneFromText(R"({"camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0], "up": )" + up +
+                         R"(}, "lights": [{"type": "directional", "direction": )" + light +
+                         R"(}], "materials": {"m": {"type": "phong"}}, "objects": [{"type": "plane",
+                         "point": [0, 0, 0], "normal": [0, 1, 0], "material": "m", "transform": {"scale": )" +
+                         planeScale + "}}]}");
+  };
+  const Scene unit = load("[0, -1, -1]", "[0, 1, 0]", "[1, 1, 1]");
+  for (const Scene& s : {load("[0, -1e20, -1e20]", "[0, 1e20, 0]", "[1, 1e-20, 1]"),
+                         load("[0, -1e-30, -1e-30]", "[0, 1e-30, 0]", "[1, 1e20, 1]")}) {
+    const Vec3f d = std::get<DirectionalLight>(s.lights[0]).direction;
+    const Vec3f expected = std::get<DirectionalLight>(unit.lights[0]).direction;
+    EXPECT_NEAR(d.x, expected.x, 1e-7);
+    EXPECT_NEAR(d.y, expected.y, 1e-7);
+    EXPECT_NEAR(d.z, expected.z, 1e-7);
+    ASSERT_EQ(s.planes.size(), 1u);
+    EXPECT_NEAR(s.planes[0].normal.y, 1, 1e-7);
+    const Camera camera(s.cameraDesc, 8, 8), unitCamera(unit.cameraDesc, 8, 8);
+    const Ray r = camera.generateRay(1.5f, 2.5f), expectedRay = unitCamera.generateRay(1.5f, 2.5f);
+    EXPECT_NEAR(r.d.x, expectedRay.d.x, 1e-7);
+    EXPECT_NEAR(r.d.y, expectedRay.d.y, 1e-7);
+    EXPECT_NEAR(r.d.z, expectedRay.d.z, 1e-7);
+  }
 }
 
 TEST(SceneParse, RenderBlockAndDefaults) {
