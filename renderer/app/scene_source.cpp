@@ -8,11 +8,13 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "camera/camera.h"
 #include "core/error.h"
 #include "core/input_files.h"
 #include "core/log.h"
 #include "core/out_of_memory.h"
 #include "io/gltf_scene.h"
+#include "io/json_source.h"
 #include "io/mesh_io.h"
 #include "io/object_names.h"
 #include "io/scene_formats.h"
@@ -132,9 +134,22 @@ Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
     } else {
       c.vfovDegrees = float(chosen->yfovDegrees);
     }
-    // The camera's own aspect ratio, at the default height.
-    if (chosen->aspectRatio > 0)
-      s.render.width = std::max(1, int(std::lround(s.render.height * chosen->aspectRatio)));
+    const std::string camera = path + ": camera " + inQuotes(excerpt(chosen->name));
+    // The camera's own aspect ratio, at the default height, within render.width's range.
+    if (chosen->aspectRatio > 0) {
+      const double width = std::round(s.render.height * chosen->aspectRatio);
+      if (!(width >= 1 && width <= 1 << 15))
+        throw UsageError(camera + ": its aspect ratio " + formatNumber(chosen->aspectRatio) +
+                         " makes an image " + formatNumber(width) + " pixels wide at height " +
+                         std::to_string(s.render.height) + "; an image is 1 to 32768 wide");
+      s.render.width = int(width);
+    }
+    // What the scene format's camera is checked for as it loads (io/camera_loader.h).
+    try {
+      Camera check(c, s.render.width, s.render.height);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(camera + ": " + e.what());
+    }
     return s;
   }
   const Bounds3f b = s.worldBounds();

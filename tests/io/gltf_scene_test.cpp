@@ -216,5 +216,41 @@ TEST(GltfScene, AnOrthographicCameraNeedsBothMagnifications) {
   }
 }
 
+TEST(GltfScene, ACameraThatCannotMakeAnImageIsRefusedByName) {
+  // An aspect ratio of 1e9 made the width int(480e9), undefined, and the frame came out 1 × 480;
+  // 100 made it 48000, past the 32768 a width may be. An orthographic view past ±1e18 failed at
+  // render, exit 1, naming no file or camera. Each is now exit 2, naming the file and camera.
+  const std::string front = R"({"name": "front", "type": "perspective",
+                 "perspective": {"yfov": 0.5, "aspectRatio": 1.5, "znear": 0.1}})";
+  const auto refusal = [&](const std::string& name, const std::string& camera) {
+    std::string text = quadScene(kNodes);
+    text.replace(text.find(front), front.size(), camera);
+    const std::string file = test::writeTemp(name, text);
+    try {
+      loadSceneOrDefault(file, std::nullopt, "front");
+    } catch (const UsageError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(loaded)");
+  };
+  const std::string wide = refusal("wide.gltf", R"({"name": "front", "type": "perspective",
+      "perspective": {"yfov": 0.5, "aspectRatio": 1e9, "znear": 0.1}})");
+  EXPECT_NE(wide.find("wide.gltf: camera \"front\": its aspect ratio 1e+09 makes an image "
+                      "4.8e+11 pixels wide at height 480"),
+            std::string::npos)
+      << wide;
+  EXPECT_NE(refusal("hundred.gltf", R"({"name": "front", "type": "perspective",
+      "perspective": {"yfov": 0.5, "aspectRatio": 100, "znear": 0.1}})")
+                .find("makes an image 48000 pixels wide"),
+            std::string::npos);
+  const std::string far = refusal("far.gltf", R"({"name": "front", "type": "orthographic",
+      "orthographic": {"xmag": 1e19, "ymag": 1e19, "znear": 0.1, "zfar": 100}})");
+  EXPECT_NE(far.find("far.gltf: camera \"front\": the image window"), std::string::npos) << far;
+  // At the limits' edge it loads: 68.2666… rounds to a width of 32768.
+  EXPECT_EQ(refusal("edge.gltf", R"({"name": "front", "type": "perspective",
+      "perspective": {"yfov": 0.5, "aspectRatio": 68.2666, "znear": 0.1}})"),
+            "(loaded)");
+}
+
 }  // namespace
 }  // namespace glint
