@@ -205,6 +205,9 @@ void warnOnce(const std::string& message) {
 
 }  // namespace
 
+// The largest scene-linear value a view is given (half float's largest).
+constexpr float kDisplayCeiling = 65504.0f;
+
 void writeDisplayImage(const std::string& path, std::vector<float> rgba, int width, int height,
                        const DisplaySettings& settings, bool transparent) {
   const ImageFormat format = imageOutputFormat("display image", path, ImageOutput::Display);
@@ -219,6 +222,19 @@ void writeDisplayImage(const std::string& path, std::vector<float> rgba, int wid
       const float a = rgba[p + 3];
       for (int c = 0; c < 3; ++c) rgba[p + size_t(c)] = a > 0 ? rgba[p + size_t(c)] / a : 0.0f;
     }
+  // The view is given at most half float's largest value, 65504: far past white in every view
+  // of the bundled config, where ACES's took 1e22 to NaN, a black pixel. A frame of Glint's
+  // holds no NaN or infinity; an EXR from elsewhere may, and is told so.
+  size_t nonFinite = 0;
+  for (size_t p = 0; p < rgba.size(); p += 4)
+    for (size_t c = 0; c < 3; ++c) {
+      float& v = rgba[p + c];
+      if (!std::isfinite(v)) ++nonFinite;
+      v = std::isnan(v) ? 0.0f : std::clamp(v, -kDisplayCeiling, kDisplayCeiling);
+    }
+  if (nonFinite > 0)
+    log::warning(path + ": " + std::to_string(nonFinite) +
+                 " colour values are not finite; NaN is shown as 0, infinity as ±65504");
   const DisplayTransform transform(settings);
   transform.apply(rgba.data(), width, height, 4);
   if (format == ImageFormat::Png && !transform.tagKnown())

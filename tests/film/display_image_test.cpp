@@ -6,6 +6,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <limits>
 
 #include "film/display.h"
 #include "film/display_tag.h"
@@ -64,6 +65,27 @@ TEST(DisplayImage, AnOpaqueFrameGivesRgbOverBlack) {
   ASSERT_EQ(png.samples.size(), 9u);
   EXPECT_NEAR(png.samples[0], 255 * srgbEncode(0.09), 1.5);
   EXPECT_EQ(png.samples[3], 0);
+}
+
+TEST(DisplayImage, ValuesPastWhiteStayWhiteAndNonFiniteOnesAreNamed) {
+  // The default view (ACES 1.0 SDR) took 1e22 to NaN, a black pixel, as it did for 3e38 and
+  // infinity; NaN came out black too, all without a word. Values are now given to the view at
+  // most at half float's largest, 65504, far past its white: 1e22, 3e38 and infinity are white
+  // (255), as 100 is, and NaN is 0. The six non-finite values are counted in one warning.
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::vector<float> pixels;
+  for (const float v : {100.0f, 1e22f, 3e38f, inf, nan}) pixels.insert(pixels.end(), {v, v, v, 1});
+  const std::string path = tmp("bright.png");
+  testing::internal::CaptureStderr();
+  writeDisplayImage(path, pixels, 5, 1, DisplaySettings{}, false);
+  const std::string log = testing::internal::GetCapturedStderr();
+  EXPECT_NE(log.find("bright.png: 6 colour values are not finite"), std::string::npos) << log;
+  const test::PngFile png = test::readPng(path);
+  ASSERT_TRUE(png.ok);
+  ASSERT_EQ(png.samples.size(), 15u);
+  for (size_t i = 0; i < 12; ++i) EXPECT_EQ(png.samples[i], 255) << "sample " << i;
+  for (size_t i = 12; i < 15; ++i) EXPECT_EQ(png.samples[i], 0) << "sample " << i;
 }
 
 TEST(DisplayImage, TiffKeepsUnassociatedAlphaAndJpegHasNone) {
