@@ -434,6 +434,15 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
                            " is not finite (" + std::to_string(p.x) + ", " + std::to_string(p.y) +
                            ", " + std::to_string(p.z) + ")");
       }
+      // Texture coordinates too, as the PLY reader refuses them: read as (0, 0), a texture
+      // showed its corner texel there without a word.
+      for (int set = 0; set < 2; ++set)
+        if (const aiVector3D* uv = m->mTextureCoords[set];
+            uv && (!std::isfinite(uv[v].x) || !std::isfinite(uv[v].y)))
+          throw GlintError("mesh " + path + ": the texture coordinates of vertex " +
+                           std::to_string(v) + " of mesh " + std::to_string(mi) +
+                           " are not finite (" + std::to_string(uv[v].x) + ", " +
+                           std::to_string(uv[v].y) + ")");
     }
   s = processOrThrow(
       importer, aiProcess_Triangulate | aiProcess_RemoveComponent | aiProcess_SortByPType, path);
@@ -495,10 +504,7 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
       if (const aiVector3D* uv = m->mTextureCoords[set]) {
         std::vector<Vec2f>& uvs = set == 0 ? mesh.uvs : mesh.uvs1;
         uvs.resize(base, Vec2f{0, 0});
-        for (unsigned v = 0; v < m->mNumVertices; ++v) {
-          const bool finite = std::isfinite(uv[v].x) && std::isfinite(uv[v].y);
-          uvs.push_back(finite ? Vec2f{uv[v].x, uv[v].y} : Vec2f{0, 0});
-        }
+        for (unsigned v = 0; v < m->mNumVertices; ++v) uvs.push_back({uv[v].x, uv[v].y});
       }
     const std::vector<uint32_t> names =
         file.objectNames.empty() ? std::vector<uint32_t>() : faceNames.of(*m);

@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -30,17 +34,41 @@ std::string headOf(const std::string& path, size_t bytes) {
   return head;
 }
 
+// Throws when a `v`, `vt` or `vn` line (`keyword`, the line from `at` on) of OBJ file `mesh`
+// holds a number that is not a finite float: nan, inf, or past float's range. Assimp 5.2.5
+// reads each of them as 0 without a word (a vertex moved to the origin, a texture coordinate
+// to the image's corner), where Glint refuses the same values in a PLY file.
+void checkObjNumbers(const std::string& mesh, int lineNumber, const std::string& line) {
+  std::istringstream words(line);
+  std::string keyword, word;
+  words >> keyword;
+  if (keyword != "v" && keyword != "vt" && keyword != "vn") return;
+  while (words >> word && word[0] != '#') {
+    char* end = nullptr;
+    const double v = std::strtod(word.c_str(), &end);
+    if (*end != '\0') continue;  // not a number at all: Assimp's to judge
+    if (!(std::fabs(v) <= std::numeric_limits<float>::max()))
+      throw GlintError("mesh " + mesh + ":" + std::to_string(lineNumber) + ": " + keyword +
+                       " holds " + excerpt(word) +
+                       ", which is not a finite float (Assimp would read it as 0)");
+  }
+}
+
 // Adds the names that follow `keyword` at the start of a line of `file` to `names`, and the
-// material libraries its `mtllib` lines name to `libraries` (when given); throws past
+// material libraries its `mtllib` lines name to `libraries` (when given: `file` is the OBJ
+// file itself, whose vertex lines are checked as well, checkObjNumbers); throws past
 // kMaxObjMaterials, naming `file`.
 void collectObjNames(const std::string& mesh, const std::filesystem::path& file,
                      const char* keyword, std::set<std::string>& names,
                      std::vector<std::string>* libraries) {
   std::ifstream in(file, std::ios::binary);
   const std::string key = std::string(keyword) + " ";
+  int lineNumber = 0;
   for (std::string line; std::getline(in, line);) {
+    ++lineNumber;
     size_t at = line.find_first_not_of(" \t");
     if (at == std::string::npos) continue;
+    if (libraries && line[at] == 'v') checkObjNumbers(mesh, lineNumber, line);
     const auto rest = [&](size_t length) {
       std::string value = line.substr(std::min(line.size(), at + length));
       while (!value.empty() && std::isspace(static_cast<unsigned char>(value.back())))
@@ -94,7 +122,7 @@ void checkStlEnds(const std::string& path, uint64_t size) {
                      "short?); Assimp would read the facets before the cut without a word");
 }
 
-void checkObjMaterialCount(const std::string& path) {
+void checkObjFile(const std::string& path) {
   std::set<std::string> used, defined;
   std::vector<std::string> libraries;
   collectObjNames(path, path, "usemtl", used, &libraries);
@@ -132,7 +160,7 @@ void checkMeshFileBeforeImport(const std::string& path) {
     throw GlintError("mesh " + path + " is " + std::to_string(size) +
                      " bytes; mesh files may have at most " + std::to_string(kMaxMeshFileBytes) +
                      " (1 GiB)");
-  if (lower(p.extension().string()) == ".obj") checkObjMaterialCount(path);
+  if (lower(p.extension().string()) == ".obj") checkObjFile(path);
   if (lower(p.extension().string()) == ".ply")
     checkPlyCounts(path, headOf(path, kMaxPlyHeaderBytes), size);
   if (lower(p.extension().string()) == ".dae") checkColladaCounts(path, headOf(path, size));

@@ -36,8 +36,9 @@ void checkMeshFileBeforeImport(const std::string& path);
 
 // The OBJ check alone: throws GlintError naming `path` (or the material library) when the file
 // and the libraries its `mtllib` lines name use or define more than kMaxObjMaterials distinct
-// material names.
-void checkObjMaterialCount(const std::string& path);
+// material names, and naming the line where a vertex, texture coordinate or normal holds a
+// number that is not a finite float (Assimp reads nan, inf and 1e39 as 0).
+void checkObjFile(const std::string& path);
 
 // Throws GlintError naming `path` (`size` bytes) when it is an ASCII STL file (it starts with
 // "solid" and its size is not that of the binary file its header describes) whose last line is

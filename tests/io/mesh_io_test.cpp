@@ -7,9 +7,11 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <array>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -281,15 +283,63 @@ TEST(MeshFile, VertexNormalsOfObjPlyAndRealFilesAreKept) {
   }
 }
 
-TEST(MeshFile, NonFiniteNormalsAreRefusedNamingTheVertex) {
-  const std::string obj = test::writeTemp(
-      "nan-normal.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn nan 0 1\nf 1//1 2//2 3//1\n");
-  try {
-    loadMeshFile(obj);
-    FAIL() << "loaded";
-  } catch (const GlintError& e) {
-    EXPECT_NE(std::string(e.what()).find("the normal of vertex"), std::string::npos) << e.what();
+TEST(MeshFile, NonFiniteVertexValuesOfAnObjAreRefusedAtTheirLine) {
+  // Assimp reads nan, inf and 1e39 (past float's range) in an OBJ file as 0 without a word: a
+  // vertex moved to the origin, a texture coordinate to the image's corner. PLY files refuse the
+  // same values; an OBJ file's are refused at their line before Assimp reads it.
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n";
+  for (const auto& [line, named] :
+       {std::pair<std::string, std::string>{"vt nan nan", ":7: vt holds nan"},
+        {"vt 1e39 0", ":7: vt holds 1e39"},
+        {"v inf 0 0", ":7: v holds inf"},
+        {"vn nan 0 1", ":7: vn holds nan"},
+        {"vn 0 -1e40 1", ":7: vn holds -1e40"}}) {
+    const std::string message =
+        test::meshLoadError("bad-value.obj", triangle + line + "\nf 1/1 2/2 3/3\n");
+    EXPECT_NE(message.find("bad-value.obj" + named + ", which is not a finite float"),
+              std::string::npos)
+        << line << ": " << message;
   }
+  // Small and large numbers, a comment after them, and vertex colours load.
+  EXPECT_EQ(
+      test::meshLoadError("edge.obj", triangle + "v 1e3 -2.5e-3 1e-45 # far\nv 0 0 1 0.5 0.5 0.5\n"
+                                                 "f 1/1 2/2 3/3\n"),
+      "(loaded)");
+}
+
+TEST(MeshFile, NonFiniteNormalsAndTextureCoordinatesOfAGltfAreRefusedNamingTheVertex) {
+  // A glTF's floats reach Glint as stored. A NaN normal would be merged or dropped by Assimp's
+  // vertex welding; a NaN texture coordinate was read as (0, 0) without a word.
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const auto triangle = [](const std::array<float, 9>& normals, const std::array<float, 6>& uvs) {
+    const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    std::string buffer(reinterpret_cast<const char*>(positions), sizeof positions);
+    buffer.append(reinterpret_cast<const char*>(normals.data()), sizeof(float) * 9);
+    buffer.append(reinterpret_cast<const char*>(uvs.data()), sizeof(float) * 6);
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+      "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}}]}],
+      "buffers": [{"uri": "data:application/octet-stream;base64,)" +
+           test::base64(buffer) + R"(", "byteLength": 96}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36},
+                      {"buffer": 0, "byteOffset": 36, "byteLength": 36},
+                      {"buffer": 0, "byteOffset": 72, "byteLength": 24}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"},
+                    {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC2"}]})";
+  };
+  const std::array<float, 9> up = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+  const std::array<float, 6> uvs = {0, 0, 1, 0, 0, 1};
+  const std::string normal =
+      test::meshLoadError("nan-normal.gltf", triangle({0, 0, 1, nan, 0, 1, 0, 0, 1}, uvs));
+  EXPECT_NE(normal.find("the normal of vertex 1 of mesh 0 is not finite"), std::string::npos)
+      << normal;
+  const std::string uv = test::meshLoadError("nan-uv.gltf", triangle(up, {0, 0, 1, 0, nan, 1}));
+  EXPECT_NE(uv.find("the texture coordinates of vertex 2 of mesh 0 are not finite"),
+            std::string::npos)
+      << uv;
+  EXPECT_EQ(test::meshLoadError("finite.gltf", triangle(up, uvs)), "(loaded)");
 }
 
 TEST(MeshFile, GltfThatIsNotStrictJsonOrNotVersion2IsRefused) {
