@@ -334,10 +334,16 @@ std::string gltfSubset(const std::string& path, const std::string& text,
       if (const auto ext = material.find("extensions"); ext != material.end() && ext->is_object())
         if (const auto e = ext->find("KHR_materials_emissive_strength");
             e != ext->end() && e->is_object())
-          if (const auto strength = e->find("emissiveStrength");
-              strength != e->end() && strength->is_number() &&
-              std::isfinite(strength->get<double>()) && strength->get<double>() <= 3.4e38)
-            (*materials)[i].emissiveStrength = std::max(strength->get<float>(), 0.0f);
+          if (const auto strength = e->find("emissiveStrength"); strength != e->end()) {
+            const double v = strength->is_number() ? strength->get<double>() : -1;
+            if (v >= 0 && v <= 3.4e38)
+              (*materials)[i].emissiveStrength = float(v);
+            else  // the extension's default, said aloud
+              log::warning("mesh " + path + ": materials[" + std::to_string(i) +
+                           "]: KHR_materials_emissive_strength's emissiveStrength " +
+                           excerpt(strength->dump()) +
+                           " is not a number from 0 to 3.4e38: 1 is used");
+          }
     }
   }
   // Materials as their factors and textures (io/mesh_materials.h).

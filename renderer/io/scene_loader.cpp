@@ -75,7 +75,11 @@ UvTransform parseUvTransform(const JsonNode& n) {
     return Vec2f{v[0].number(), v[1].number()};
   };
   const Vec2f scale = n.has("uv_scale") ? pair(n.at("uv_scale")) : Vec2f{1, 1};
-  const float angle = n.has("uv_rotate") ? n.at("uv_rotate").number() * kPi / 180 : 0;
+  // Whole turns taken off first (fmod is exact): 3e38 degrees times π overflowed float, and
+  // the texture went black.
+  float degrees = n.has("uv_rotate") ? n.at("uv_rotate").number() : 0;
+  if (std::fabs(degrees) > 360) degrees = std::fmod(degrees, 360.0f);
+  const float angle = degrees * kPi / 180;
   return UvTransform::offsetRotateScale(n.has("uv_offset") ? pair(n.at("uv_offset")) : Vec2f{},
                                         angle, scale);
 }

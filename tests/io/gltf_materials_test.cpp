@@ -336,5 +336,34 @@ TEST(GltfMaterials, EveryDroppedFeatureOfAFileIsNamedOnceAndRenderedOnesAreNot) 
     EXPECT_EQ(occurrences(warnings, rendered), 0u) << rendered << ": " << warnings;
 }
 
+TEST(GltfMaterials, AnEmissiveStrengthGlintCannotUseIsNamedAndReadAsOne) {
+  // glTF's emissiveStrength is a number of at least 0. Past float's range (1e39), negative or
+  // not a number, it was read as 1 (or clamped to 0) without a word; it is now 1, the
+  // extension's default, with a warning naming the material and the value.
+  const auto strength = [](const std::string& value) {
+    return R"({"extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": )" + value +
+           "}}}";
+  };
+  const std::string text =
+      R"({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_materials_emissive_strength"],
+      "materials": [)" +
+      strength("0") + ", " + strength("3") + ", " + strength("1e39") + ", " + strength("-2") +
+      ", " + strength(R"("x")") + "]}";
+  testing::internal::CaptureStderr();
+  std::vector<GltfMaterialInfo> materials;
+  gltfSubset("strength.gltf", text, &materials);
+  const std::string warnings = testing::internal::GetCapturedStderr();
+  ASSERT_EQ(materials.size(), 5u);
+  const float expected[5] = {0, 3, 1, 1, 1};
+  for (size_t i = 0; i < 5; ++i) EXPECT_EQ(materials[i].emissiveStrength, expected[i]) << i;
+  for (const char* named :
+       {"materials[2]: KHR_materials_emissive_strength's emissiveStrength "
+        "1e+39 is not a number from 0 to 3.4e38: 1 is used",
+        "materials[3]: KHR_materials_emissive_strength's emissiveStrength -2",
+        R"(materials[4]: KHR_materials_emissive_strength's emissiveStrength "x")"})
+    EXPECT_EQ(occurrences(warnings, named), 1u) << named << ": " << warnings;
+  EXPECT_EQ(occurrences(warnings, "emissiveStrength"), 3u) << warnings;
+}
+
 }  // namespace
 }  // namespace glint

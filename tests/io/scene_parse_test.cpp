@@ -30,6 +30,30 @@ TEST(SceneParse, ASeedOfMinusZeroIsZeroAndANegativeOneIsRefused) {
             "scene.json:1: render.seed: must be a non-negative integer, got -1");
 }
 
+TEST(SceneParse, UvRotateTakesWholeTurnsOffFirst) {
+  // 368730° is 1024 turns and 90°: the transform of 90°, bit for bit (fmod is exact). At 3e38°
+  // the angle in radians overflowed float, and the sine and cosine of infinity (NaN) blackened
+  // the texture; it is now a rotation like any other.
+  const auto transformOf = [](const std::string& degrees) {
+    const Scene s = sceneFromText(R"({"camera": {"eye": [0, 0, 5], "look_at": [0, 0, 0]},
+      "materials": {"m": {"type": "phong", "kd": {"image": ")" +
+                                  test::writeHalfMatte() + R"(", "uv_rotate": )" + degrees +
+                                  R"(}}}, "objects": []})");
+    for (const Material& m : s.materials)
+      if (m.name == "m") return m.surface.kd.uvTransform;
+    ADD_FAILURE() << "no material m";
+    return UvTransform{};
+  };
+  const UvTransform quarter = transformOf("90"), turned = transformOf("368730");
+  EXPECT_EQ(turned.m00, quarter.m00);
+  EXPECT_EQ(turned.m01, quarter.m01);
+  EXPECT_EQ(turned.m10, quarter.m10);
+  EXPECT_EQ(turned.m11, quarter.m11);
+  const UvTransform huge = transformOf("3e38");
+  EXPECT_NEAR(huge.m00 * huge.m00 + huge.m10 * huge.m10, 1, 1e-6);  // a unit column: a rotation
+  EXPECT_NEAR(huge.m00, huge.m11, 1e-6);
+}
+
 TEST(SceneParse, DirectionsAreReadAtAnyScale) {
   // Only a direction's direction counts. Past about 1e19 a component's square overflowed float,
   // and normalising gave zero: a directional light at [0, -1e20, -1e20] went dark, a plane
