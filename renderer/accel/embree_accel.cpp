@@ -243,30 +243,58 @@ void csgOccluded(const RTCOccludedFunctionNArguments* args) {
 
 }  // namespace
 
+namespace {
+
+// How much an instance's inverse grows coordinates: |inverse · x|∞ ≤ growth · |x|∞ + shift.
+struct Growth {
+  float growth = 1, shift = 0;
+};
+
+Growth growthOf(const Instance& inst) {
+  Growth out;
+  if (inst.motion.empty()) {
+    const Mat4& inv = inst.worldFromObject.inverseMatrix();
+    for (int r = 0; r < 3; ++r) {
+      out.growth =
+          std::max(out.growth, std::fabs(inv(r, 0)) + std::fabs(inv(r, 1)) + std::fabs(inv(r, 2)));
+      out.shift = std::max(out.shift, std::fabs(inv(r, 3)));
+    }
+    return out;
+  }
+  // S⁻¹ R⁻¹ (x − t) at each key: a rotation grows a coordinate by at most √3; scale is
+  // interpolated between keys, so its smallest magnitude at a key bounds it.
+  for (const TrsKey& k : inst.motion) {
+    const float s = std::min({std::fabs(k.scale.x), std::fabs(k.scale.y), std::fabs(k.scale.z)});
+    const float g = std::sqrt(3.0f) / s;
+    const float t = std::max(
+        {std::fabs(k.translation.x), std::fabs(k.translation.y), std::fabs(k.translation.z)});
+    out.growth = std::max(out.growth, g);
+    out.shift = std::max(out.shift, g * t);
+  }
+  return out;
+}
+
+// The object whose instance grows coordinates most, for the refusal to name: a world entry's
+// name, or "an instance inside a group" when the worst one is nested.
+std::string mostShrinkingObject(const Scene& scene) {
+  float worst = -1;
+  for (const Instance& inst : scene.instances) worst = std::max(worst, growthOf(inst).growth);
+  for (const Geometry& g : scene.groups[0].geometries)
+    if (g.kind == GeomKind::Instance && growthOf(scene.instances[g.index]).growth == worst)
+      return scene.objectName(g.objectId);
+  return "an instance inside a group";
+}
+
+}  // namespace
+
 EmbreeAccel::RayRange embreeRayRange(const Scene& scene) {
   // Rounding in Embree's own transform of the ray: a few ulps, far inside 1 %.
   const float limit = 0.99f * kEmbreeMaxRayCoordinate;
-  float growth = 1, shift = 0;  // |inverse · x|∞ ≤ growth · |x|∞ + shift
+  float growth = 1, shift = 0;
   for (const Instance& inst : scene.instances) {
-    if (inst.motion.empty()) {
-      const Mat4& inv = inst.worldFromObject.inverseMatrix();
-      for (int r = 0; r < 3; ++r) {
-        growth =
-            std::max(growth, std::fabs(inv(r, 0)) + std::fabs(inv(r, 1)) + std::fabs(inv(r, 2)));
-        shift = std::max(shift, std::fabs(inv(r, 3)));
-      }
-      continue;
-    }
-    // S⁻¹ R⁻¹ (x − t) at each key: a rotation grows a coordinate by at most √3; scale is
-    // interpolated between keys, so its smallest magnitude at a key bounds it.
-    for (const TrsKey& k : inst.motion) {
-      const float s = std::min({std::fabs(k.scale.x), std::fabs(k.scale.y), std::fabs(k.scale.z)});
-      const float g = std::sqrt(3.0f) / s;
-      const float t = std::max(
-          {std::fabs(k.translation.x), std::fabs(k.translation.y), std::fabs(k.translation.z)});
-      growth = std::max(growth, g);
-      shift = std::max(shift, g * t);
-    }
+    const Growth g = growthOf(inst);
+    growth = std::max(growth, g.growth);
+    shift = std::max(shift, g.shift);
   }
   EmbreeAccel::RayRange range;
   range.direction = std::isfinite(growth) ? limit / growth : 0;
@@ -301,13 +329,12 @@ EmbreeAccel::EmbreeAccel(const Scene& scene) : scene_(scene), range_(embreeRayRa
                     : std::max({std::fabs(box.lo.x), std::fabs(box.lo.y), std::fabs(box.lo.z),
                                 std::fabs(box.hi.x), std::fabs(box.hi.y), std::fabs(box.hi.z)});
     if (!(extent <= range_.origin)) {
-      char text[300];
+      char text[700];  // the name has at most 256 characters
       std::snprintf(text, sizeof text,
-                    "the scene reaches %g from the camera, but its instances' transforms shrink "
-                    "so much that Embree takes rays only from within %g (in an instance's space "
-                    "they would pass Embree's 1.844e18): scale instances less or bring the scene "
-                    "closer",
-                    double(extent), double(range_.origin));
+                    "the scene reaches %g from the camera, but the transform of %s shrinks so "
+                    "much that Embree takes rays only from within %g (in its space they would "
+                    "pass Embree's 1.844e18): scale it less or bring the scene closer",
+                    double(extent), mostShrinkingObject(scene).c_str(), double(range_.origin));
       throw UsageError(text);
     }
   }

@@ -126,6 +126,13 @@ void parseCamera(const JsonNode& n, const std::optional<Animation>& animation, C
   try {
     Camera check(c, 1, 1);
   } catch (const std::invalid_argument& e) {
+    // Each key was checked on its own: an animated camera fails where its keys blend.
+    if (n.has("keys") && animation) {
+      const JsonNode keys = n.at("keys");
+      const size_t k = keyPosition(*animation, keys.size(), animation->frame).segment;
+      keys.fail("at frame " + std::to_string(animation->frame) + ", between keys[" +
+                std::to_string(k) + "] and keys[" + std::to_string(k + 1) + "]: " + e.what());
+    }
     n.fail(e.what());
   }
 }

@@ -190,6 +190,18 @@ TEST(Animation, MistakesNameTheKeyOrTheRange) {
                           ""))
                 .find("camera.keys[0]: eye and look_at are the same point"),
             std::string::npos);
+  // Keys that are each sound can blend into a pose that is not: the eye passes through the
+  // point it looks at halfway, at frame 1. The error names that frame and the keys around it.
+  const std::string passing = scene(R"("animation": {"frames": [0, 2]},)",
+                                    R"({"keys": [{"eye": [0,1,6], "look_at": [0,1,0]},
+                                                 {"eye": [0,1,-6], "look_at": [0,1,0]}]})",
+                                    "");
+  EXPECT_NO_THROW(load(passing, 0));
+  EXPECT_NE(errorOf(passing, 1)
+                .find("camera.keys: at frame 1, between keys[0] and keys[1]: eye and look_at are "
+                      "the same point"),
+            std::string::npos)
+      << errorOf(passing, 1);
 }
 
 std::string tmp(const std::string& name) { return (test::tempDir() / name).string(); }
