@@ -4,6 +4,7 @@
 
 #include "app/commands.h"
 #include "core/error.h"
+#include "core/input_files.h"
 #include "film/atomic_file.h"
 #include "film/compare.h"
 #include "film/image_format.h"
@@ -41,6 +42,9 @@ CommandRunner addCompareCommand(CLI::App& app) {
   cmd->add_option("--json", a->json, "Write the figures as JSON");
   return [a] {
     if (!a->diff.empty()) imageOutputFormat("--diff", a->diff, ImageOutput::Display);
+    // The inputs are noted first, so that an output naming one is refused before the work.
+    noteInputFile(a->test);
+    noteInputFile(a->reference);
     checkOutputPaths({{"--diff", a->diff}, {"--json", a->json}});
     // R, G and B, which readImage puts first: an image of other channels (depth, a luminance
     // "Y") is refused by name rather than measured as if it were colour.

@@ -163,6 +163,10 @@ int convergeFromRender(const ConvergeArgs& a) {
 
 int runConverge(const ConvergeArgs& a) {
   if (!a.plot.empty()) imageOutputFormat("--plot", a.plot, ImageOutput::Plot);
+  // The inputs are noted first, so that an output naming one is refused before the series is
+  // rendered, not after.
+  for (const std::string* input : {&a.scenePath, &a.reference, &a.fromRender})
+    if (!input->empty()) noteInputFile(*input);
   checkOutputPaths({{"--csv", a.csv}, {"--plot", a.plot}, {"--json", a.json}});
   if (!a.fromRender.empty()) return convergeFromRender(a);
   Scene scene = loadSceneOrDefault(a.scenePath);

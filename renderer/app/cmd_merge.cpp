@@ -17,17 +17,9 @@ CommandRunner addMergeCommand(CLI::App& app) {
   cmd->add_option("crops", *crops, "Crop EXRs from glint render --crop")
       ->required()
       ->check(CLI::ExistingFile);
-  // An empty hash would read as no hash given, and every crop would pass.
   cmd->add_option("--scene-hash", *sceneHash,
                   "Refuse crops whose glint:scene_hash differs (a farm passes the planned hash)")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            return text.empty() ? std::string(
-                                      "must name the hash the crops must carry; leave "
-                                      "the option out to check none")
-                                : std::string();
-          },
-          "HASH"));
+      ->check(nonEmpty());
   return [out, crops, sceneHash] {
     imageOutputFormat("merge's output", *out, ImageOutput::Exr);
     std::vector<CropRecord> records;

@@ -80,7 +80,8 @@ CommandRunner addPlanCommand(CLI::App& app) {
   cmd->add_option("--tiles", args->tiles, "Tiles per frame (a grid of near-square crops)")
       ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--frames", args->frames,
-                  "Frames A-B (or A) of an animated scene (default: all it declares)");
+                  "Frames A-B (or A) of an animated scene (default: all it declares)")
+      ->check(nonEmpty());
   cmd->add_option("-o,--output", args->output,
                   "Output EXR; with frames, name.####.exr: prints each frame's file name");
   cmd->add_option("--width", args->width, "Image width")->check(CLI::Range(1, 1 << 15));

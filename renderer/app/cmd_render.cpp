@@ -427,6 +427,7 @@ CommandRunner addRenderCommand(CLI::App& app) {
                   "light, in place of its default light");
   cmd->add_option("--frames", args->frames,
                   "Frames A-B of an animated scene, one after another in this process")
+      ->check(nonEmpty())
       ->excludes(frame);
   cmd->add_option("--threads", args->threads, "Render threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
@@ -463,7 +464,16 @@ CommandRunner addRenderCommand(CLI::App& app) {
                 "Camera rays that miss leave RGB 0, alpha 0 (default: the background is opaque)");
   cmd->add_option("--aov", args->aovs,
                   "AOVs, comma separated: depth,normal,albedo,position,objectid,direct,indirect,"
-                  "lights,variance,cryptomatte");
+                  "lights,variance,cryptomatte")
+      ->check(CLI::Validator(
+          [](std::string& list) {
+            // "" and "," rendered no AOV without a word; unknown names are refused by name
+            // where the list is read (AovSet::parse).
+            return list.find_first_not_of(',') == std::string::npos
+                       ? std::string("must name at least one AOV")
+                       : std::string();
+          },
+          "LIST"));
   cmd->add_flag("--multipart", args->multipart, "One EXR part per AOV (default: layers in one)");
   CLI::Option* compression =
       cmd->add_option("--compression", args->compression,

@@ -51,6 +51,17 @@ inline CLI::Validator notNaN() {
       "NUMBER");
 }
 
+// Refuses an empty value, which the command would read as the option left out (merge
+// --scene-hash '' checked no hash, render --frames '' rendered the first frame).
+inline CLI::Validator nonEmpty() {
+  return CLI::Validator(
+      [](std::string& text) {
+        return text.empty() ? std::string("must not be empty; leave the option out instead")
+                            : std::string();
+      },
+      "TEXT");
+}
+
 // Accepts a finite number above 0, as a whole text ("0.01abc" is refused, not read as 0.01).
 // CLI11's PositiveNumber told "--target-rmse 0" it was "not in range 0 to 1.8e308" and read
 // "abc" as out of range.

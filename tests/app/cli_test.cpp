@@ -141,6 +141,20 @@ TEST(Cli, OutputsNeverReplaceTheSceneALinkOrADevice) {
       runGlint("render " + scene + " --quiet -o " + (dir / "a.exr").string() + " --stats-json -");
   EXPECT_EQ(dash.exitCode, 0);
   EXPECT_NE(dash.output.find("\"rays_total\""), std::string::npos) << dash.output;
+  // compare and converge refuse an output naming an input before their work: they printed
+  // their figures, or rendered their whole series, and only then refused to write.
+  const std::string frame = (dir / "a.exr").string();
+  const auto compared = runGlint("compare " + frame + " " + frame + " --json " + frame);
+  EXPECT_EQ(compared.exitCode, 2);
+  EXPECT_NE(compared.output.find("one of this run's inputs"), std::string::npos) << compared.output;
+  EXPECT_EQ(compared.output.find("rmse"), std::string::npos) << compared.output;
+  const auto converged =
+      runGlint("converge " + scene + " --width 8 --height 8 --spp 1 --json " + scene);
+  EXPECT_EQ(converged.exitCode, 2);
+  EXPECT_NE(converged.output.find("one of this run's inputs"), std::string::npos)
+      << converged.output;
+  EXPECT_EQ(converged.output.find("rmse"), std::string::npos) << converged.output;
+  EXPECT_EQ(slurp(scene), kSmallScene);
 }
 
 TEST(Cli, OutOfRangeNumbersAreRefusedNotWrapped) {

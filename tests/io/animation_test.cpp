@@ -226,6 +226,14 @@ TEST(Animation, TheCommandLineNamesFramesAndKeepsThemApart) {
   EXPECT_EQ(outside.exitCode, 2);
   EXPECT_NE(outside.output.find("--frame 9 is outside the scene's frames 1-3"), std::string::npos)
       << outside.output;
+  // An empty --frames read as none given: the first frame rendered, to an unnumbered file.
+  for (const char* command : {"render", "plan"}) {
+    const auto empty =
+        runGlint(std::string(command) + " " + file + " --frames '' -o " + tmp("e.exr"));
+    EXPECT_EQ(empty.exitCode, 2) << command;
+    EXPECT_NE(empty.output.find("--frames: must not be empty"), std::string::npos) << empty.output;
+  }
+  EXPECT_FALSE(fs::exists(tmp("e.exr")));
   // Crops of two frames carry different settings hashes, so merge refuses to mix them.
   ASSERT_EQ(runGlint("render " + file + " --quiet --frame 1 --crop 0 16 0 24 -o " + tmp("l1.exr"))
                 .exitCode,
@@ -280,8 +288,7 @@ TEST(Animation, MergeRefusesTilesOfAnotherSceneFile) {
   // An empty hash checked nothing: every crop merged.
   const auto empty = runGlint("merge " + tmp("h4.exr") + " " + tmp("h.exr") + " --scene-hash ''");
   EXPECT_EQ(empty.exitCode, 2);
-  EXPECT_NE(empty.output.find("--scene-hash: must name the hash the crops must carry"),
-            std::string::npos)
+  EXPECT_NE(empty.output.find("--scene-hash: must not be empty"), std::string::npos)
       << empty.output;
   EXPECT_FALSE(std::filesystem::exists(tmp("h4.exr")));
 }

@@ -222,6 +222,13 @@ TEST(Aov, MultipartWritesOnePartPerAovWithItsOwnType) {
   const auto bad = test::runGlint("render " + scene + " --quiet -o " + out + " --aov depth,motion");
   EXPECT_EQ(bad.exitCode, 2);
   EXPECT_NE(bad.output.find("unknown AOV \"motion\""), std::string::npos) << bad.output;
+  // So is a list that names none: "" and "," rendered the beauty alone, exit 0.
+  for (const char* none : {"''", ",", ",,"}) {
+    const auto empty = test::runGlint("render " + scene + " --quiet -o " + out + " --aov " + none);
+    EXPECT_EQ(empty.exitCode, 2) << none;
+    EXPECT_NE(empty.output.find("--aov: must name at least one AOV"), std::string::npos)
+        << empty.output;
+  }
 }
 
 TEST(Aov, AskingForAovsChangesNoBeautyPixel) {
