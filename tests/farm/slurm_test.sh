@@ -10,6 +10,9 @@
 #   slurm_test.sh missing_task GLINT          one task is cancelled while it renders; the merge
 #                                             names exactly that tile, and re-running that task
 #                                             alone completes the frame
+#   slurm_test.sh unsafe_paths GLINT          paths and options the job's scripts cannot carry
+#                                             are refused before anything is written (no
+#                                             cluster needed)
 #
 # Exit 77 (ctest: skipped) with the reason where a cluster cannot run: not root, or slurm-wlm or
 # munge missing (tools/run-tests.sh installs them).
@@ -21,6 +24,54 @@ GLINT=$(cd "$(dirname "${2:?usage: slurm_test.sh CASE GLINT}")" && pwd)/$(basena
 readonly GLINT
 readonly kFarm="$kRoot/tools/glint-farm"
 readonly kLocal="$kRoot/tools/slurm-local.sh"
+
+failures=0
+check() { # DESCRIPTION COMMAND...
+  local what=$1
+  shift
+  if "$@"; then
+    echo "ok: $what"
+  else
+    echo "FAILED: $what"
+    failures=$((failures + 1))
+  fi
+}
+
+# A newline in a path wrote a line of its own into render.sbatch, which sbatch ran as a
+# command; a space in the job directory cut its #SBATCH --output short, and sbatch refused the
+# script after the local check render. Both are refused with exit 2, nothing written.
+unsafe_paths() {
+  local work rc out
+  work=$(mktemp -d /tmp/glint-farm-paths.XXXXXX)
+  local injected=$'x\ntouch '"$work"$'/INJECTED\ny'
+  mkdir -p "$work/$injected" "$work/sp ace"
+  local -a plan=(plan "$kRoot/scenes/default.json" --tiles 2 --width 16 --height 16 --no-check
+    --glint "$GLINT")
+  rc=0
+  out=$("$kFarm" "${plan[@]}" -o "$work/$injected/o.exr" 2>&1) || rc=$?
+  check "a newline in the output's path is refused (exit 2)" [ "$rc" = 2 ]
+  check "the refusal names the control character" grep -q "holds a control character" <<<"$out"
+  rc=0
+  out=$("$kFarm" "${plan[@]}" -o "$work/o.exr" --sbatch $'--mem=1G\ntouch x' 2>&1) || rc=$?
+  check "a newline in an --sbatch option is refused (exit 2)" [ "$rc" = 2 ]
+  rc=0
+  out=$("$kFarm" "${plan[@]}" -o "$work/sp ace/o.exr" 2>&1) || rc=$?
+  check "a job directory with a space is refused (exit 2)" [ "$rc" = 2 ]
+  check "the refusal offers --dir" grep -q "choose one with --dir" <<<"$out"
+  check "no job directory was written" [ -z "$(find "$work" -name '*.farm')" ]
+  "$kFarm" "${plan[@]}" -o "$work/sp ace/o.exr" --dir "$work/job" >/dev/null 2>&1
+  check "an output with a space plans with a job directory without one" \
+    grep -q "^#SBATCH --output=$work/job/logs/" "$work/job/render.sbatch"
+  check "nothing was injected" [ ! -e "$work/INJECTED" ]
+  rm -rf "$work"
+}
+
+if [ "$kCase" = unsafe_paths ]; then
+  unsafe_paths
+  echo "$failures failed"
+  [ "$failures" -eq 0 ]
+  exit
+fi
 
 rc=0
 "$kLocal" check || rc=$?
@@ -44,18 +95,6 @@ cleanup() {
 }
 trap cleanup EXIT
 trap 'exit 130' INT TERM
-
-failures=0
-check() { # DESCRIPTION COMMAND...
-  local what=$1
-  shift
-  if "$@"; then
-    echo "ok: $what"
-  else
-    echo "FAILED: $what"
-    failures=$((failures + 1))
-  fi
-}
 
 # SHA-1 of the pixel data only (iinfo --hash): metadata such as the command line and the render
 # time differ between a farm frame and a single-machine frame; the pixels must not.
