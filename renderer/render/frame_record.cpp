@@ -518,7 +518,12 @@ ResumedFrame readResumable(const std::string& path, const Scene& scene,
                           : " differs from this render (" + differences + ")") +
                      ": --resume continues a frame with the scene and every setting but --spp / "
                      "--max-spp / --time-limit / --aov variance / --half the same (render with "
-                     "--resumable to continue a frame to any spp)");
+                     "--resumable to continue a frame to any spp)" +
+                     (frame.sampler == SamplerKind::Stratified && plan.progressive()
+                          ? "; a time limit, an error target or --resumable draws from the Sobol "
+                            "sequence, which cannot continue the frame's stratified sets: resume "
+                            "it without them"
+                          : ""));
   }
   ResumedFrame out;
   if (frame.passes) out.passes = *frame.passes;

@@ -369,6 +369,24 @@ TEST(FrameRecord, ResumeRefusesAFrameItCannotContinueNamingWhy) {
   EXPECT_TRUE(contains(errorOf([&] { older.resume(revision, older.settings); }),
                        revision + " was left by a Glint that draws or shades samples otherwise "
                                   "(sample revision 1, this Glint's 2)"));
+  // A plain render's partial frame drew from stratified sets, which a time-limited (adaptive,
+  // --resumable) continuation cannot extend: the refusal says so, where it had claimed that
+  // every setting but --time-limit may differ and named only the samplers.
+  Fixture stratified;
+  stratified.scene.render.sampler = SamplerKind::Stratified;
+  stratified.settings.sampling = {};
+  stratified.plan = PassPlan::make(8, SamplerKind::Stratified, stratified.settings.sampling);
+  stratified.record.sampler = SamplerKind::Stratified;
+  stratified.record.resumeHash = resumeHash(stratified.scene, stratified.settings, stratified.plan);
+  const std::string plainPartial = stratified.write("resume-stratified.exr");
+  const std::string timeLimited =
+      errorOf([&] { readResumable(plainPartial, stratified.scene, f.settings, f.plan, f.window); });
+  EXPECT_TRUE(contains(timeLimited, "sampler: the frame's stratified, this render's sobol"))
+      << timeLimited;
+  EXPECT_TRUE(contains(timeLimited,
+                       "which cannot continue the frame's stratified sets: resume "
+                       "it without them"))
+      << timeLimited;
 }
 
 TEST(FrameRecord, StateChannelsOfAnotherShapeAreRefused) {
