@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <optional>
 #include <utility>
 
@@ -96,6 +97,37 @@ Imf::Header headerWithout(const Imf::Header& h, const std::vector<std::string>& 
     if (std::find(leftOut.begin(), leftOut.end(), a.name()) == leftOut.end())
       copy.insert(a.name(), a.attribute());
   return copy;
+}
+
+// The frame's estimated RMSE and relMSE from its crops': each is a mean over pixels (the RMSE's
+// square), so the frame's is the crops' weighted by their pixels; and its fewest and most
+// samples of a pixel. An estimate some crop lacks is left out.
+void addMergedEstimates(const std::vector<Crop>& crops, Imf::Header& header) {
+  double pixels = 0, mse = 0, relmse = 0;
+  bool rmseKnown = true, relmseKnown = true, sppKnown = true;
+  int minSpp = std::numeric_limits<int>::max(), maxSpp = 0;
+  for (const Crop& c : crops) {
+    const CropRecord& r = c.record;
+    const double n = double(c.window.width) * double(c.window.height);
+    pixels += n;
+    rmseKnown = rmseKnown && r.estimatedRmse;
+    relmseKnown = relmseKnown && r.estimatedRelmse;
+    sppKnown = sppKnown && r.minPixelSpp && r.maxPixelSpp;
+    if (rmseKnown) mse += n * double(*r.estimatedRmse) * double(*r.estimatedRmse);
+    if (relmseKnown) relmse += n * double(*r.estimatedRelmse);
+    if (sppKnown) {
+      minSpp = std::min(minSpp, *r.minPixelSpp);
+      maxSpp = std::max(maxSpp, *r.maxPixelSpp);
+    }
+  }
+  if (rmseKnown)
+    header.insert("glint:estimated_rmse", Imf::FloatAttribute(float(std::sqrt(mse / pixels))));
+  if (relmseKnown)
+    header.insert("glint:estimated_relmse", Imf::FloatAttribute(float(relmse / pixels)));
+  if (sppKnown) {
+    header.insert("glint:min_pixel_spp", Imf::IntAttribute(minSpp));
+    header.insert("glint:max_pixel_spp", Imf::IntAttribute(maxSpp));
+  }
 }
 
 std::string window(const PixelWindow& w) {
@@ -238,12 +270,16 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<CropRecord>
   }
 
   // The merged frame keeps the first crop's metadata (scene, settings, hashes) over the full
-  // data window; time, rays and clamped values become the sums over the crops.
+  // data window; time, rays and clamped values become the sums over the crops, the estimated
+  // errors and pixel spp the frame's (mergedEstimates). Each crop's passes counted its own
+  // pixels and seconds, which make no frame's: they are left out.
   // A scanline frame: a tiled crop's layout and a part's chunk count do not carry over.
-  Imf::Header header =
-      headerWithout(first.header, {"tiles", "chunkCount", "type", "name", "glint:clamped_values",
-                                   "glint:render_seconds", "glint:rays", "glint:crop",
-                                   "glint:merged_crops", "glint:commandline"});
+  Imf::Header header = headerWithout(
+      first.header, {"tiles", "chunkCount", "type", "name", "glint:clamped_values",
+                     "glint:render_seconds", "glint:rays", "glint:crop", "glint:merged_crops",
+                     "glint:commandline", "glint:estimated_rmse", "glint:estimated_relmse",
+                     "glint:min_pixel_spp", "glint:max_pixel_spp", "glint:passes"});
+  addMergedEstimates(crops, header);
   header.dataWindow() = Imath::Box2i({0, 0}, {W - 1, H - 1});
   header.lineOrder() = Imf::INCREASING_Y;
   float seconds = 0, rays = 0;

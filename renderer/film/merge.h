@@ -3,6 +3,7 @@
 // same scene and settings (glint:settings_hash), have the same channels (beauty and layered
 // AOVs) in the same types, be complete (not interrupted), and tile the frame without overlaps
 // or holes; the result's pixels are the crops' bytes.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,10 @@ struct CropRecord {
   float renderSeconds = 0;   // glint:render_seconds
   float rays = 0;            // glint:rays
   int clampedValues = 0;     // glint:clamped_values
+  // glint:estimated_rmse and glint:estimated_relmse, glint:min_pixel_spp and
+  // glint:max_pixel_spp: what the merged frame's own are made of.
+  std::optional<float> estimatedRmse, estimatedRelmse;
+  std::optional<int> minPixelSpp, maxPixelSpp;
 };
 
 // Throws UsageError naming the offending files, the overlapping pixel, or the missing regions

@@ -543,6 +543,10 @@ CropRecord cropRecord(const std::string& path) {
   c.renderSeconds = r.renderSeconds.value_or(0.0f);
   c.rays = r.rays.value_or(0.0f);
   c.clampedValues = r.clampedValues.value_or(0);
+  c.estimatedRmse = r.estimatedRmse;
+  c.estimatedRelmse = r.estimatedRelmse;
+  c.minPixelSpp = r.minPixelSpp;
+  c.maxPixelSpp = r.maxPixelSpp;
   return c;
 }
 

@@ -258,6 +258,26 @@ TEST(Output, CropsMergeIntoTheFullFrameByteForByte) {
                 .exitCode,
             0);
   EXPECT_EQ(readImage(tmp("m.exr")).pixels, readImage(tmp("full.exr")).pixels);
+  // The merged frame's estimated errors are the crops' weighted by their pixels (20 × 32,
+  // 28 × 13 and 28 × 19 of 48 × 32), not the first crop's alone; its passes, each crop's own,
+  // are left out.
+  const OIIO::ImageSpec merged = specOf(tmp("m.exr"));
+  double mse = 0, relmse = 0;
+  const std::pair<const char*, double> crops[3] = {
+      {"c1.exr", 20 * 32}, {"c2.exr", 28 * 13}, {"c3.exr", 28 * 19}};
+  for (const auto& [name, pixels] : crops) {
+    const OIIO::ImageSpec c = specOf(tmp(name));
+    mse += pixels * std::pow(c.get_float_attribute("glint:estimated_rmse"), 2);
+    relmse += pixels * c.get_float_attribute("glint:estimated_relmse");
+    EXPECT_EQ(c.get_int_attribute("glint:min_pixel_spp"), 4) << name;
+  }
+  EXPECT_NEAR(merged.get_float_attribute("glint:estimated_rmse"), std::sqrt(mse / (48 * 32)),
+              1e-6 * std::sqrt(mse / (48 * 32)));
+  EXPECT_NEAR(merged.get_float_attribute("glint:estimated_relmse"), relmse / (48 * 32),
+              1e-6 * relmse / (48 * 32));
+  EXPECT_EQ(merged.get_int_attribute("glint:min_pixel_spp"), 4);
+  EXPECT_EQ(merged.get_int_attribute("glint:max_pixel_spp"), 4);
+  EXPECT_EQ(merged.find_attribute("glint:passes"), nullptr);
 
   // A hole is named as the crop that fills it.
   const auto hole = merge(tmp("h.exr") + " " + tmp("c1.exr") + " " + tmp("c3.exr"));
