@@ -18,7 +18,7 @@ inline constexpr float kDefaultMinThroughput = 1.0f / 1024.0f;
 // holds 3/minThroughput branches above the cutoff, and a sample's rays grow with its max_depth
 // rather than exponentially. The product of the weights alone never falls where a material
 // gains (a dielectric with a surface mirror k_m, or constant k_m + k_t above 1): nested glass of
-// k_m 1 doubled its rays at every depth. Where no hit gains, the share is that product, the
+// k_m 1 multiplied its rays at every depth. Where no hit gains, the share is that product, the
 // branch's weight in its pixel.
 inline Rgb branchShare(const Rgb& parentShare, const Rgb& weight, float gain) {
   return gain > 1 ? parentShare * weight * (1 / gain) : parentShare * weight;

@@ -34,10 +34,10 @@ std::string headOf(const std::string& path, size_t bytes) {
   return head;
 }
 
-// Throws when a `v`, `vt` or `vn` line (`keyword`, the line from `at` on) of OBJ file `mesh`
-// holds a number that is not a finite float: nan, inf, or past float's range. Assimp 5.2.5
-// reads each of them as 0 without a word (a vertex moved to the origin, a texture coordinate
-// to the image's corner), where Glint refuses the same values in a PLY file.
+// Throws when a `v`, `vt` or `vn` line (`line`, number `lineNumber`) of OBJ file `mesh` holds a
+// number that is not a finite float: nan, inf, or past float's range. Assimp 5.2.5 read a
+// texture coordinate's nan or 1e39 as 0 without a word (the image's corner), where Glint refuses
+// the same values in a PLY file.
 void checkObjNumbers(const std::string& mesh, int lineNumber, const std::string& line) {
   std::istringstream words(line);
   std::string keyword, word;
@@ -49,8 +49,7 @@ void checkObjNumbers(const std::string& mesh, int lineNumber, const std::string&
     if (*end != '\0') continue;  // not a number at all: Assimp's to judge
     if (!(std::fabs(v) <= std::numeric_limits<float>::max()))
       throw GlintError("mesh " + mesh + ":" + std::to_string(lineNumber) + ": " + keyword +
-                       " holds " + excerpt(word) +
-                       ", which is not a finite float (Assimp would read it as 0)");
+                       " holds " + excerpt(word) + ", which is not a finite float");
   }
 }
 

@@ -37,7 +37,7 @@ void checkMeshFileBeforeImport(const std::string& path);
 // The OBJ check alone: throws GlintError naming `path` (or the material library) when the file
 // and the libraries its `mtllib` lines name use or define more than kMaxObjMaterials distinct
 // material names, and naming the line where a vertex, texture coordinate or normal holds a
-// number that is not a finite float (Assimp reads nan, inf and 1e39 as 0).
+// number that is not a finite float (Assimp read a texture coordinate's nan and 1e39 as 0).
 void checkObjFile(const std::string& path);
 
 // Throws GlintError naming `path` (`size` bytes) when it is an ASCII STL file (it starts with

@@ -105,7 +105,7 @@ template <class Send>
 // The most that the weights of the rays forEachCoherentRay sends at (sp, at) add up to in one
 // channel: k_m, plus a dielectric's interface, which splits what arrives (R + (1 − R) = 1) or,
 // with seed 002's constant coefficients, passes k_t. Above 1 the hit sends on more light than
-// reaches it, which the integrators' cutoff must allow for (integrator/radiance.h, BranchShare).
+// reaches it, which the integrators' cutoff must allow for (integrator/radiance.h, branchShare).
 inline float coherentGain(const Material& m, const SurfacePoint& at) {
   Rgb sum = at.km;
   if (m.refracts()) sum += m.dielectric.constantCoefficients() ? m.dielectric.kt : Rgb{1, 1, 1};
