@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/file_names.h"
+#include "core/memory.h"
 #include "io/texture_reader_support.h"
 
 namespace glint::hdr_texture {
@@ -60,7 +61,14 @@ struct Source {
 // An opened HDR file, positioned at its next scanline.
 struct Reader {
   Source source;
-  int width = 0, height = 0;
+  int width = 0, height = 0;  // the image's, upright
+  // Its size line: `scanlines` of `scanlineLength` pixels, along the axes it names. "-Y H +X W"
+  // (rows from the top, each from the left) is read a band at a time; the other seven
+  // orientations whole, and turned upright.
+  int scanlines = 0, scanlineLength = 0;
+  bool yFirst = true, yDown = true, xRight = true;
+  bool upright() const { return yFirst && yDown && xRight; }
+  std::vector<float> whole;  // a file of another orientation, upright, once read
   int nextRow = 0;
   std::vector<unsigned char> encoded;  // a run-length-encoded scanline's four planes
   std::vector<float> row;              // a scanline's floats, where fewer channels are asked for
@@ -174,10 +182,28 @@ Header readHeader(Reader& r) {
   if (line != "\n") return r.fail("missing blank line after FORMAT specifier"), Header::Refused;
   line = nextLine(r.source, piece);
   if (line.empty()) return r.fail("the file ends in its header"), Header::Refused;
-  // "-Y height +X width": rows from the top, each from the left.
-  if (!take(line, "-Y ") || !takeNumber(line, r.height) || !take(line, " +X ") ||
-      !takeNumber(line, r.width) || line != "\n")
+  // Radiance's resolution string: "±A n ±B m", the scanlines along axis A (n of them, '-Y' from
+  // the top, '+X' from the left), each of m pixels along B. Anything else is OpenImageIO's.
+  char firstAxis = 0, secondAxis = 0;
+  bool firstUp = false, secondUp = false;
+  const auto takeAxis = [&](char& axis, bool& up) {
+    if (line.size() < 3 || (line[0] != '-' && line[0] != '+') ||
+        (line[1] != 'X' && line[1] != 'Y') || line[2] != ' ')
+      return false;
+    up = line[0] == '+';
+    axis = line[1];
+    line.remove_prefix(3);
+    return true;
+  };
+  if (!takeAxis(firstAxis, firstUp) || !takeNumber(line, r.scanlines) || !take(line, " ") ||
+      !takeAxis(secondAxis, secondUp) || !takeNumber(line, r.scanlineLength) || line != "\n" ||
+      firstAxis == secondAxis)
     return Header::Declined;
+  r.yFirst = firstAxis == 'Y';
+  r.yDown = !(r.yFirst ? firstUp : secondUp);
+  r.xRight = r.yFirst ? secondUp : firstUp;
+  r.height = r.yFirst ? r.scanlines : r.scanlineLength;
+  r.width = r.yFirst ? r.scanlineLength : r.scanlines;
   return Header::Read;
 }
 
@@ -193,7 +219,7 @@ bool readFlat(Reader& r, float* out, uint64_t count, int y) {
 // OpenImageIO's RGBE_ReadPixels_RLE for one scanline: run-length encoded when it starts with
 // the marker (2, 2, and its width), else flat from its first pixel.
 bool readScanline(Reader& r, float* out, int y) {
-  const uint64_t width = uint64_t(r.width);
+  const uint64_t width = uint64_t(r.scanlineLength);
   if (width < kMinEncodedWidth || width > kMaxEncodedWidth) return readFlat(r, out, width, y);
   char what[64];
   unsigned char rgbe[4];
@@ -255,13 +281,13 @@ void* openReader(std::unique_ptr<Reader> r, GlintOiioTextureInfo* info, char* er
   // The fewest bytes its scanlines can take: a scanline is flat (four bytes a pixel) or, where
   // encoded, its marker and each plane's runs of up to 127 bytes, two bytes each. A file with
   // less is refused here, before its texels' memory is allocated for a size it cannot hold.
-  const uint64_t width = uint64_t(r->width);
+  const uint64_t width = uint64_t(r->scanlineLength);
   const uint64_t encoded = 4 + 4 * 2 * ((width + 126) / 127);
   const uint64_t leastPerScanline = width < kMinEncodedWidth || width > kMaxEncodedWidth
                                         ? 4 * width
                                         : std::min(4 * width, encoded);
   const int64_t total = r->source.total(), left = total - r->source.tell();
-  if (total >= 0 && double(left) < double(leastPerScanline) * double(r->height)) {
+  if (total >= 0 && double(left) < double(leastPerScanline) * double(r->scanlines)) {
     std::snprintf(r->message, kMessageSize,
                   "invalid HDR data: %d x %d pixels cannot fit in the %lld bytes after the header",
                   r->width, r->height, static_cast<long long>(left));
@@ -278,12 +304,43 @@ bool hasHdrName(const std::string& name) {
   return extension == ".hdr" || extension == ".rgbe";
 }
 
+// A file of another orientation than "-Y +X", read whole into r.whole, upright.
+bool readTurned(Reader& r) {
+  const size_t width = size_t(r.width), height = size_t(r.height);
+  checkMemoryFits(double(width) * double(height) * 3 * sizeof(float),
+                  "an HDR texture's pixels, read whole to be turned upright (its scanlines are "
+                  "not rows from the top)");
+  r.whole.resize(width * height * 3);
+  std::vector<float> scanline(3 * size_t(r.scanlineLength));
+  for (int s = 0; s < r.scanlines; ++s) {
+    if (!readScanline(r, scanline.data(), s)) return false;
+    for (int i = 0; i < r.scanlineLength; ++i) {
+      const size_t alongY = size_t(r.yFirst ? s : i), alongX = size_t(r.yFirst ? i : s);
+      const size_t row = r.yDown ? alongY : height - 1 - alongY;
+      const size_t column = r.xRight ? alongX : width - 1 - alongX;
+      std::memcpy(&r.whole[3 * (row * width + column)], &scanline[3 * size_t(i)],
+                  3 * sizeof(float));
+    }
+  }
+  return true;
+}
+
 int readTexels(void* handle, int y0, int y1, int channels, float* out, char* error,
                size_t errorSize) {
   Reader& r = *static_cast<Reader*>(handle);
-  if (!texture_reader::rowsInContract(y0, y1, channels, r.height, 3, r.nextRow, error, errorSize))
+  if (!texture_reader::rowsInContract(y0, y1, channels, r.height, 3, r.upright() ? r.nextRow : -1,
+                                      error, errorSize))
     return 1;
   const size_t width = size_t(r.width);
+  if (!r.upright()) {
+    if (r.whole.empty() && !readTurned(r)) {
+      texture_reader::copyMessage(r.message, error, errorSize);
+      return 1;
+    }
+    for (size_t p = size_t(y0) * width; p < size_t(y1) * width; ++p)
+      for (int c = 0; c < channels; ++c) *out++ = r.whole[3 * p + size_t(c)];
+    return 0;
+  }
   for (int y = y0; y < y1; ++y) {
     float* to = channels == 3 ? out : (r.row.resize(3 * width), r.row.data());
     if (!readScanline(r, to, y)) {

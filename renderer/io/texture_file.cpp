@@ -1,6 +1,7 @@
 #include "io/texture_file.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <new>
 #include <stdexcept>
@@ -156,9 +157,11 @@ std::shared_ptr<const ImageTexture> loadedTexture(const std::string& path, void*
   const size_t row = size_t(info.width) * size_t(channels);
   std::vector<float> texels;
   texels.reserve(row * size_t(info.height) + 1);  // with the pyramid's padding float
-  texels.resize(row * size_t(info.height));
   for (int y0 = 0; y0 < info.height; y0 += bandRows) {
     const int y1 = std::min(info.height, y0 + bandRows);
+    // Grown (and so written) a band at a time: a 74-byte PNG declaring 20000 x 20000 texels
+    // took 4.7 GB, zeroed whole, before its first row failed.
+    texels.resize(row * size_t(y1));
     char readError[512] = "";
     if (functions.read(handle, y0, y1, channels, texels.data() + row * size_t(y0), readError,
                        sizeof readError) != 0) {
@@ -166,6 +169,17 @@ std::shared_ptr<const ImageTexture> loadedTexture(const std::string& path, void*
       throw GlintError("cannot read texture " + path + ": " + excerpt(readError));
     }
   }
+  // A float file may hold NaN or infinity, which the MIP filter would spread to every texel
+  // that blends it and every pixel that sees them (an environment refuses them the same way).
+  if (info.isFloat)
+    for (size_t i = 0; i < texels.size(); ++i)
+      if (!std::isfinite(texels[i]))
+        throw GlintError("cannot read texture " + path + ": texel (" +
+                         std::to_string(i / size_t(channels) % size_t(info.width)) + ", " +
+                         std::to_string(i / row) + ") holds " +
+                         (std::isnan(texels[i]) ? "NaN" : "an infinity") + " in channel " +
+                         std::to_string(i % size_t(channels)) +
+                         "; a texture's values must be finite");
   return std::make_shared<TextureFile>(
       path, info.channels, MipPyramid(info.width, info.height, channels, std::move(texels)),
       std::move(toRendering));

@@ -113,6 +113,55 @@ TEST(MemoryLimits, AHugeTextureIsRefusedFromItsHeaderBeforeAnyTexelIsRead) {
       << o.output;
 }
 
+// The peak resident memory of `glint ARGS` in kB, through Python's view of its children.
+long peakKbOf(const std::string& args, std::string& output) {
+  const std::string log = (test::tempDir() / "peak-rss.log").string();
+  const std::string cmd =
+      "python3 -c 'import resource, subprocess, sys; subprocess.run(sys.argv[1:]); "
+      "print(\"peak\", resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)' " +
+      std::string(GLINT_BINARY) + " " + args + " > " + log + " 2>&1";
+  EXPECT_EQ(std::system(cmd.c_str()), 0);
+  output = test::readFile(log);
+  const size_t at = output.rfind("peak ");
+  return at == std::string::npos ? -1 : std::stol(output.substr(at + 5));
+}
+
+TEST(MemoryLimits, ATextureWhoseDataEndsEarlyFailsBeforeItsDeclaredSizeIsTouched) {
+  // 8000 x 8000 8-bit RGB declared in 87 bytes: one deflated kilobyte of zeros, then the end.
+  // Its texels were zeroed whole (768 MB of floats; 4.7 GB for 20000 x 20000, 15 s) before the
+  // first row failed; they now grow a band at a time, so the run stays near an untextured one's
+  // (about 50 MB): under 200 MB.
+  std::string ihdr;
+  for (int k = 0; k < 2; ++k)
+    for (int shift = 24; shift >= 0; shift -= 8) ihdr += char((8000u >> shift) & 0xff);
+  ihdr += std::string("\x08\x02\x00\x00\x00", 5);  // 8 bits, RGB, no interlace
+  const std::vector<unsigned char> zeros(1000, 0);
+  std::string idat(compressBound(uLong(zeros.size())), '\0');
+  uLongf idatSize = uLongf(idat.size());
+  ASSERT_EQ(
+      compress(reinterpret_cast<Bytef*>(idat.data()), &idatSize, zeros.data(), uLong(zeros.size())),
+      Z_OK);
+  idat.resize(idatSize);
+  std::string png = "\x89PNG\r\n\x1a\n";
+  appendChunk(png, "IHDR", ihdr);
+  appendChunk(png, "IDAT", idat);
+  appendChunk(png, "IEND", "");
+  const std::string path = (test::tempDir() / "ends-early.png").string();
+  std::ofstream(path, std::ios::binary) << png;
+  const std::string scene = texturedScene("ends-early.json", path);
+  std::string output;
+  const long peak =
+      peakKbOf("render " + scene + " -o " + (test::tempDir() / "ends-early.exr").string() +
+                   " --width 8 --height 8 --spp 1 --quiet",
+               output);
+  EXPECT_NE(
+      output.find("cannot read texture " + path + ": invalid PNG data: Not enough image data"),
+      std::string::npos)
+      << output;
+  EXPECT_GT(peak, 0) << output;
+  EXPECT_LT(peak, 200 * 1000) << output;
+}
+
 TEST(MemoryLimits, TheImageModuleIsNotLoadedWithoutTheAddressSpaceItNeeds) {
   SKIP_UNDER_ASAN();
   // Loading OpenImageIO's ~270 libraries under too small a limit aborted in log4cplus (a thread

@@ -172,9 +172,10 @@ TEST(Environment, SceneMistakesNameTheirPlace) {
   const std::string nan = writeExr("env_nan.exr", 4, 2, [](int x, int y) {
     return x == 3 && y == 1 ? Rgb{1, std::numeric_limits<float>::quiet_NaN(), 1} : Rgb{1, 1, 1};
   });
+  // A NaN is refused where any texture is read (io/texture_file.cpp), a negative texel here.
   EXPECT_EQ(error(R"({"type": "environment", "image": ")" + nan + "\"}"),
-            "scene.json:3: lights[0].image: texel (3, 1) is (1, nan, 1): an environment's radiance "
-            "must be finite and >= 0");
+            "scene.json:3: lights[0].image: cannot read texture " + nan +
+                ": texel (3, 1) holds NaN in channel 1; a texture's values must be finite");
   const std::string negative = writeExr("env_negative.exr", 4, 2, [](int x, int) {
     return Rgb{x == 2 ? -0.5f : 1, 1, 1};
   });

@@ -139,16 +139,63 @@ TEST(HdrTexture, HeaderLinesAreReadAsOpenImageIOReadsThem) {
   }
 }
 
-TEST(HdrTexture, GammaOtherOrientationsAndOtherFormatsAreLeftToOpenImageIO) {
-  // GAMMA names a colour space in OpenImageIO; "+X"/"+Y" orientations it reads without turning
-  // them; a first line without "#?" may be another format; names that are not .hdr or .rgbe.
+TEST(HdrTexture, EveryOrientationIsTurnedUpright) {
+  // Radiance's eight resolution strings: scanlines along Y (rows) or X (columns), each axis
+  // either way. OpenImageIO reads the pixels in the file's order and leaves the turn to its
+  // caller (as metadata Glint did not read): a "+Y" sky lit the scene upside down. Each file
+  // here holds the same 9 x 2 image (distinct pixels) and must read as the "-Y 2 +X 9" one.
+  const int width = 9, height = 2;
+  std::vector<unsigned char> upright;
+  for (int p = 0; p < width * height; ++p)
+    test::append(upright, {static_cast<unsigned char>(10 + p), static_cast<unsigned char>(100 + p),
+                           static_cast<unsigned char>(200 - p), 128});
+  const test::Reading reference =
+      test::readBytesWith(kHdrReader, "upright.hdr", flatFile(width, height, upright));
+  ASSERT_TRUE(reference.ok) << reference.error;
+  for (const bool yFirst : {true, false})
+    for (const char ySign : {'-', '+'})
+      for (const char xSign : {'+', '-'}) {
+        const int scanlines = yFirst ? height : width, length = yFirst ? width : height;
+        const std::string y = std::string(1, ySign) + "Y " + std::to_string(height);
+        const std::string x = std::string(1, xSign) + "X " + std::to_string(width);
+        const std::string size = (yFirst ? y + " " + x : x + " " + y) + "\n";
+        const std::string head = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n" + size;
+        Bytes file(head.begin(), head.end());
+        for (int s = 0; s < scanlines; ++s)
+          for (int i = 0; i < length; ++i) {
+            const int alongY = yFirst ? s : i, alongX = yFirst ? i : s;
+            const int row = ySign == '-' ? alongY : height - 1 - alongY;
+            const int column = xSign == '+' ? alongX : width - 1 - alongX;
+            const auto* pixel = &upright[size_t(4 * (row * width + column))];
+            file.insert(file.end(), pixel, pixel + 4);
+          }
+        const test::Reading turned = test::readBytesWith(kHdrReader, "turned.hdr", file);
+        ASSERT_TRUE(turned.ok) << size << turned.error;
+        EXPECT_EQ(turned.info.width, width) << size;
+        EXPECT_EQ(turned.info.height, height) << size;
+        EXPECT_EQ(turned.texels, reference.texels) << size;
+      }
+  // A file of another orientation too short for its pixels is refused from its header.
+  const std::string cut = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n+Y 8000 +X 8000\n";
+  const test::Reading tooShort =
+      test::readBytesWith(kHdrReader, "cut.hdr", Bytes(cut.begin(), cut.end()));
+  EXPECT_FALSE(tooShort.declined || tooShort.ok);
+  EXPECT_NE(tooShort.error.find("8000 x 8000 pixels cannot fit in the 0 bytes after the header"),
+            std::string::npos)
+      << tooShort.error;
+}
+
+TEST(HdrTexture, GammaOtherSizeLinesAndOtherFormatsAreLeftToOpenImageIO) {
+  // GAMMA names a colour space in OpenImageIO; size lines that are not Radiance's strict form
+  // (doubled spaces, one axis twice); a first line without "#?" may be another format; names
+  // that are not .hdr or .rgbe.
   const std::vector<unsigned char> grey(4 * 9 * 2, 0x80);
   EXPECT_TRUE(
       test::readBytesWith(kHdrReader, "g.hdr",
                           flatFile(9, 2, grey, "#?RADIANCE\nGAMMA=2.2\nFORMAT=32-bit_rle_rgbe\n\n"))
           .declined);
   const std::string body = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n";
-  for (const std::string size : {"+Y 2 +X 9\n", "-Y 2 -X 9\n", "+X 9 -Y 2\n", "-Y  2 +X 9\n"}) {
+  for (const std::string size : {"-Y  2 +X 9\n", "+Y 2 -Y 9\n", "-Y 2 +X 9 \n", "Y 2 X 9\n"}) {
     Bytes file(body.begin(), body.end());
     file.insert(file.end(), size.begin(), size.end());
     file.insert(file.end(), grey.begin(), grey.end());
