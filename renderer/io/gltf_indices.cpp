@@ -8,9 +8,12 @@
 #include <fstream>
 #include <map>
 #include <optional>
+#include <set>
+#include <variant>
 
 #include "core/error.h"
 #include "core/input_files.h"
+#include "io/gltf_subset.h"
 #include "io/mesh_limits.h"
 
 namespace glint {
@@ -32,16 +35,23 @@ std::optional<uint64_t> unsignedOf(const json& object, const char* key, uint64_t
   return it->get<uint64_t>();
 }
 
-std::optional<std::string> base64Decode(const std::string& text) {
+// The bytes of base64 `text`, or the offset of its first character that is not base64 (padding
+// included: only '=' may follow '=').
+std::variant<std::string, size_t> base64Decode(const std::string& text) {
   static const std::string alphabet =
       "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
   std::string out;
   uint32_t bits = 0;
   int count = 0;
-  for (const char c : text) {
-    if (c == '=') break;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '=') {
+      const size_t other = text.find_first_not_of('=', i);
+      if (other != std::string::npos) return other;
+      break;
+    }
     const size_t v = alphabet.find(c);
-    if (v == std::string::npos) return std::nullopt;
+    if (v == std::string::npos) return i;
     bits = (bits << 6) | uint32_t(v);
     if ((count += 6) >= 8) {
       count -= 8;
@@ -56,7 +66,10 @@ std::optional<std::string> base64Decode(const std::string& text) {
 class Buffers {
  public:
   Buffers(const std::string& path, const json& doc, const std::string& glbBinary)
-      : dir_(std::filesystem::path(path).parent_path()), doc_(doc), glbBinary_(glbBinary) {}
+      : path_(path),
+        dir_(std::filesystem::path(path).parent_path()),
+        doc_(doc),
+        glbBinary_(glbBinary) {}
 
   const std::string* get(uint64_t index) {
     if (const auto it = read_.find(index); it != read_.end())
@@ -77,10 +90,19 @@ class Buffers {
       const size_t comma = name.find(',');
       if (comma == std::string::npos || name.rfind(";base64", comma) == std::string::npos)
         return nullptr;
-      slot = base64Decode(name.substr(comma + 1));
-      return slot ? &*slot : nullptr;
+      // Assimp decoded what it could of bad base64 and read zeros after it, without a word.
+      auto bytes = base64Decode(name.substr(comma + 1));
+      if (const size_t* bad = std::get_if<size_t>(&bytes))
+        throw GlintError("mesh " + path_ + ": buffers[" + std::to_string(index) +
+                         "].uri is a data URI whose base64 has " +
+                         inQuotes(std::string(1, name[comma + 1 + *bad])) + " at character " +
+                         std::to_string(comma + 1 + *bad) +
+                         "; base64 is A-Z, a-z, 0-9, + and /, "
+                         "then = padding");
+      slot = std::move(std::get<std::string>(bytes));
+      return &*slot;
     }
-    std::filesystem::path file(name);
+    std::filesystem::path file(gltfUriPath(name, dir_.string()));
     if (file.is_relative()) file = dir_ / file;
     std::error_code ec;
     if (!std::filesystem::exists(file, ec)) return nullptr;
@@ -91,6 +113,7 @@ class Buffers {
   }
 
  private:
+  std::string path_;
   std::filesystem::path dir_;
   const json& doc_;
   const std::string& glbBinary_;
@@ -104,6 +127,33 @@ const json* element(const json& doc, const char* key, const json& index) {
     return nullptr;
   const json& e = (*list)[index.get<size_t>()];
   return e.is_object() ? &e : nullptr;
+}
+
+// The bytes of `count` values of `size` bytes at `offset` in buffer view `viewIndex`; null where
+// they are not all there (Assimp reports that itself).
+const char* viewBytes(const json& doc, Buffers& buffers, const json& viewIndex, uint64_t offset,
+                      uint64_t count, uint64_t size) {
+  const json* view = element(doc, "bufferViews", viewIndex);
+  if (!view || size == 0) return nullptr;
+  const auto viewOffset = unsignedOf(*view, "byteOffset", 0);
+  const auto viewLength = unsignedOf(*view, "byteLength", 0);
+  if (!viewOffset || !viewLength || !view->contains("buffer")) return nullptr;
+  if (count > *viewLength / size || offset > *viewLength - count * size) return nullptr;
+  const auto buffer = unsignedOf(*view, "buffer", 0);
+  const std::string* bytes = buffer ? buffers.get(*buffer) : nullptr;
+  if (!bytes || *viewOffset > bytes->size() || *viewLength > bytes->size() - *viewOffset)
+    return nullptr;  // Assimp reports a view past its buffer
+  return bytes->data() + *viewOffset + offset;
+}
+
+uint64_t indexBytes(uint64_t componentType) {
+  return componentType == 5121 ? 1 : componentType == 5123 ? 2 : componentType == 5125 ? 4 : 0;
+}
+
+uint32_t indexAt(const char* first, uint64_t i, uint64_t size) {
+  uint32_t index = 0;
+  std::memcpy(&index, first + i * size, size_t(size));  // little-endian, as glTF stores it
+  return index;
 }
 
 }  // namespace
@@ -122,6 +172,13 @@ void checkGltfIndices(const std::string& path, const std::string& gltfJson,
   const json doc = json::parse(gltfJson, nullptr, false);
   if (!doc.is_object()) return;  // gltfSubset has refused it, or will
   Buffers buffers(path, doc, glbBinary);
+  // Every embedded buffer is decoded, so that bad base64 is refused whatever reads it.
+  if (const auto list = doc.find("buffers"); list != doc.end() && list->is_array())
+    for (size_t b = 0; b < list->size(); ++b)
+      if (const json& buffer = (*list)[b]; buffer.is_object() &&
+                                           buffer.value("uri", json()).is_string() &&
+                                           buffer["uri"].get<std::string>().rfind("data:", 0) == 0)
+        buffers.get(b);
   const auto meshes = doc.find("meshes");
   if (meshes == doc.end() || !meshes->is_array()) return;
   for (size_t m = 0; m < meshes->size(); ++m) {
@@ -138,33 +195,56 @@ void checkGltfIndices(const std::string& path, const std::string& gltfJson,
         continue;
       const json* positions = element(doc, "accessors", primitive["attributes"]["POSITION"]);
       const json* indices = element(doc, "accessors", primitive["indices"]);
-      if (!positions || !indices || indices->contains("sparse") || !indices->contains("bufferView"))
-        continue;
+      if (!positions || !indices) continue;
       const auto vertices = unsignedOf(*positions, "count", 0);
       const auto count = unsignedOf(*indices, "count", 0);
       const auto type = unsignedOf(*indices, "componentType", 0);
       const auto offset = unsignedOf(*indices, "byteOffset", 0);
-      const json* view = element(doc, "bufferViews", (*indices)["bufferView"]);
-      if (!vertices || !count || !type || !offset || !view) continue;
-      const uint64_t size = *type == 5121 ? 1 : *type == 5123 ? 2 : *type == 5125 ? 4 : 0;
-      const auto viewOffset = unsignedOf(*view, "byteOffset", 0);
-      const auto viewLength = unsignedOf(*view, "byteLength", 0);
-      if (size == 0 || !viewOffset || !viewLength || !view->contains("buffer")) continue;
-      if (*count > *viewLength / size || *offset > *viewLength - *count * size) continue;
-      const auto buffer = unsignedOf(*view, "buffer", 0);
-      const std::string* bytes = buffer ? buffers.get(*buffer) : nullptr;
-      if (!bytes || *viewOffset > bytes->size() || *viewLength > bytes->size() - *viewOffset)
-        continue;  // Assimp reports a view past its buffer
-      const char* first = bytes->data() + *viewOffset + *offset;
-      for (uint64_t i = 0; i < *count; ++i) {
-        uint32_t index = 0;
-        std::memcpy(&index, first + i * size, size_t(size));  // little-endian, as glTF stores it
-        if (index >= *vertices)
-          throw GlintError("mesh " + path + ": meshes[" + std::to_string(m) + "].primitives[" +
-                           std::to_string(p) + "]: indices[" + std::to_string(i) +
-                           "] = " + std::to_string(index) + ", but its POSITION has " +
-                           std::to_string(*vertices) + " vertices");
+      if (!vertices || !count || !type || !offset) continue;
+      const uint64_t size = indexBytes(*type);
+      const auto refuse = [&](const std::string& which, uint64_t index) {
+        throw GlintError("mesh " + path + ": meshes[" + std::to_string(m) + "].primitives[" +
+                         std::to_string(p) + "]: " + which + " = " + std::to_string(index) +
+                         ", but its POSITION has " + std::to_string(*vertices) + " vertices");
+      };
+      // Sparse values replace indices by position (Assimp applied them and dropped the
+      // triangles they put out of range, without a word): each value is checked as an index,
+      // and the positions they replace are not.
+      std::set<uint64_t> replaced;
+      const auto sparse = indices->find("sparse");
+      if (sparse != indices->end() && sparse->is_object()) {
+        const json positionsOf = sparse->value("indices", json());
+        const json values = sparse->value("values", json());
+        const auto sparseCount = unsignedOf(*sparse, "count", 0);
+        const auto positionsOffset =
+            positionsOf.is_object() ? unsignedOf(positionsOf, "byteOffset", 0) : std::nullopt;
+        const auto positionsType =
+            positionsOf.is_object() ? unsignedOf(positionsOf, "componentType", 0) : std::nullopt;
+        const auto valuesOffset =
+            values.is_object() ? unsignedOf(values, "byteOffset", 0) : std::nullopt;
+        if (!sparseCount || !positionsOffset || !positionsType || !valuesOffset ||
+            !positionsOf.contains("bufferView") || !values.contains("bufferView"))
+          continue;  // malformed: Assimp's to refuse
+        const uint64_t positionSize = indexBytes(*positionsType);
+        const char* at = viewBytes(doc, buffers, positionsOf["bufferView"], *positionsOffset,
+                                   *sparseCount, positionSize);
+        const char* value =
+            viewBytes(doc, buffers, values["bufferView"], *valuesOffset, *sparseCount, size);
+        if (!at || !value) continue;
+        for (uint64_t i = 0; i < *sparseCount; ++i) {
+          replaced.insert(indexAt(at, i, positionSize));
+          if (const uint32_t index = indexAt(value, i, size); index >= *vertices)
+            refuse("indices.sparse.values[" + std::to_string(i) + "]", index);
+        }
       }
+      // An accessor without a view holds zeros until its sparse values replace some.
+      if (!indices->contains("bufferView")) continue;
+      if (const char* first =
+              viewBytes(doc, buffers, (*indices)["bufferView"], *offset, *count, size))
+        for (uint64_t i = 0; i < *count; ++i)
+          if (const uint32_t index = indexAt(first, i, size);
+              index >= *vertices && !replaced.count(i))
+            refuse("indices[" + std::to_string(i) + "]", index);
     }
   }
 }

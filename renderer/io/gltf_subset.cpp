@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <string_view>
 
 #include "core/error.h"
@@ -129,6 +130,38 @@ void checkStrides(const std::string& path, const json& doc) {
                        " is less than its " + std::to_string(element) +
                        "-byte elements, which would overlap (glTF 2.0 requires the stride to "
                        "hold an element)");
+  }
+}
+
+// glTF 2.0 allows texture coordinates as normalized unsigned bytes or shorts too (quantized
+// files); Assimp 5.2.5 reads only floats and took the others' bytes for floats: one colour of
+// the texture over the whole mesh, or a refusal naming NaN coordinates that the file lacks.
+void checkTextureCoordinateTypes(const std::string& path, const json& doc) {
+  const size_t accessors = countOf(doc, "accessors");
+  for (size_t m = 0; m < countOf(doc, "meshes"); ++m) {
+    const json& mesh = doc["meshes"][m];
+    const auto primitives = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+    if (primitives == mesh.end() || !primitives->is_array()) continue;
+    for (size_t p = 0; p < primitives->size(); ++p) {
+      const json& primitive = (*primitives)[p];
+      const auto attributes =
+          primitive.is_object() ? primitive.find("attributes") : primitive.end();
+      if (attributes == primitive.end() || !attributes->is_object()) continue;
+      for (const char* set : {"TEXCOORD_0", "TEXCOORD_1"}) {
+        if (!attributes->contains(set) || !indexBelow(*attributes, set, accessors)) continue;
+        const json& accessor = doc["accessors"][(*attributes)[set].get<size_t>()];
+        const auto type = accessor.is_object() ? accessor.find("componentType") : accessor.end();
+        if (type == accessor.end() || !type->is_number_unsigned() || type->get<uint64_t>() == 5126)
+          continue;
+        throw UsageError("mesh " + path + ": meshes[" + std::to_string(m) + "].primitives[" +
+                         std::to_string(p) + "] keeps " + set + " as " +
+                         (type->get<uint64_t>() == 5121   ? "unsigned bytes"
+                          : type->get<uint64_t>() == 5123 ? "unsigned shorts"
+                                                          : "integers") +
+                         "; Glint reads texture coordinates stored as floats only (write the "
+                         "file without quantization)");
+      }
+    }
   }
 }
 
@@ -254,6 +287,28 @@ std::optional<size_t> gltfMaterialIndex(const std::string& name) {
   return index;
 }
 
+std::string gltfUriPath(const std::string& uri, const std::string& dir) {
+  if (uri.rfind("data:", 0) == 0 || uri.find('%') == std::string::npos) return uri;
+  std::string decoded;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] != '%') {
+      decoded += uri[i];
+      continue;
+    }
+    unsigned byte = 0;
+    const char* digits = uri.data() + i + 1;
+    if (i + 2 >= uri.size() || std::from_chars(digits, digits + 2, byte, 16).ptr != digits + 2)
+      return uri;  // not an escape: a name with a '%' in it
+    decoded += char(byte);
+    i += 2;
+  }
+  std::error_code ec;
+  const std::filesystem::path base(dir);
+  return std::filesystem::exists(base / decoded, ec) || !std::filesystem::exists(base / uri, ec)
+             ? decoded
+             : uri;
+}
+
 std::string gltfSubset(const std::string& path, const std::string& text,
                        std::vector<GltfMaterialInfo>* materials) {
   if (nestingDepth(text) > kMaxDepth)
@@ -292,17 +347,21 @@ std::string gltfSubset(const std::string& path, const std::string& text,
       throw UsageError("mesh " + path + ": its \"" + key +
                        "\" is an object keyed by name, as in glTF 1.0, which is not supported; "
                        "Glint reads glTF 2.0");
-  // Assimp opens a URI as a C string: "b.bin\u0000x" would open b.bin behind a name that says
-  // otherwise (core/input_files.h).
+  // URIs decoded for Assimp, which opens them as C strings: "b.bin\u0000x" (or "b.bin%00x")
+  // would open b.bin behind a name that says otherwise (core/input_files.h).
+  const std::string dir = std::filesystem::path(path).parent_path().string();
   for (const char* key : {"buffers", "images"})
     for (size_t i = 0; i < countOf(doc, key); ++i)
-      if (const json& item = doc[key][i];
-          item.is_object() && item.contains("uri") && item["uri"].is_string())
+      if (json& item = doc[key][i];
+          item.is_object() && item.contains("uri") && item["uri"].is_string()) {
+        item["uri"] = gltfUriPath(item["uri"].get<std::string>(), dir);
         checkPathCharacters(item["uri"].get<std::string>(),
                             "mesh " + path + ": " + key + "[" + std::to_string(i) + "].uri");
+      }
   // Before Assimp or Glint's own reader places a node once per path to it.
   checkGltfExpansion(path, doc);
   checkStrides(path, doc);
+  checkTextureCoordinateTypes(path, doc);
   keepOnly(doc,
            {"asset", "scene", "scenes", "nodes", "meshes", "materials", "accessors", "bufferViews",
             "buffers", "textures", "images", "samplers", "extensionsUsed", "extensionsRequired"});

@@ -57,6 +57,12 @@ std::string gltfSubset(const std::string& path, const std::string& text,
 std::string glbSubset(const std::string& path, const std::string& bytes,
                       std::vector<GltfMaterialInfo>* materials = nullptr);
 
+// A glTF buffer's or image's `uri` as the file it names in `dir`: glTF URIs are RFC 3986
+// references, so "Cesium%20Logo.png" names "Cesium Logo.png" (Assimp 5.2.5 looked for the
+// literal name). Decoded where the decoded name is a file or the literal one is not (some
+// writers put a name in as it is); a data URI, or one without a valid %XX, as it is.
+std::string gltfUriPath(const std::string& uri, const std::string& dir);
+
 // A GLB file's JSON chunk; throws GlintError naming `path` when the bytes are not a GLB 2
 // container.
 std::string glbJsonChunk(const std::string& path, const std::string& bytes);

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/log.h"
 #include "io/collada_limits.h"
 #include "io/ply_header.h"
 #include "io/scene_formats.h"
@@ -68,13 +69,76 @@ void checkObjNumbers(const std::string& mesh, int lineNumber, std::string_view l
   }
 }
 
+// The texture coordinates (vt) and normals (vn) an OBJ file's faces refer to, against those it
+// has. Assimp 5.2.5 refuses a face's vertex index past the v lines, but reads a vt or vn index
+// past its lines (or 0) as another vertex's or none, without a word: a wrong texture mapping.
+struct ObjFaceReferences {
+  static constexpr const char* kKinds[2] = {"vt", "vn"};
+  int64_t lines[2] = {0, 0};     // vt and vn lines so far
+  int64_t furthest[2] = {0, 0};  // the largest index a face gives, and its line
+  int furthestLine[2] = {0, 0};
+
+  void countVertexLine(std::string_view line) {
+    const size_t at = line.find_first_not_of(" \t");
+    const std::string_view word = line.substr(at, line.find_first_of(" \t\r", at) - at);
+    if (word == "vt") ++lines[0];
+    if (word == "vn") ++lines[1];
+  }
+
+  // A face line's vt and vn indices: 1 to the lines in the file, or -1 back to minus the lines
+  // before this one (negative indices count back from the line). Words that are not numbers
+  // are Assimp's to judge.
+  void checkFace(const std::string& mesh, int lineNumber, std::string_view line) {
+    constexpr const char* kSpace = " \t\r\v\f";
+    line.remove_prefix(std::min(line.find_first_not_of(kSpace), line.size()) + 1);  // "f"
+    while (true) {
+      const size_t begin = line.find_first_not_of(kSpace);
+      if (begin == std::string_view::npos || line[begin] == '#') return;
+      const size_t end = std::min(line.find_first_of(kSpace, begin), line.size());
+      std::string_view word = line.substr(begin, end - begin);
+      line.remove_prefix(end);
+      for (int k = -1; k < 2 && !word.empty(); ++k) {  // the vertex (k = -1), vt, vn
+        const size_t slash = std::min(word.find('/'), word.size());
+        const std::string_view index = word.substr(0, slash);
+        word.remove_prefix(std::min(slash + 1, word.size()));
+        int64_t i = 0;
+        const auto [stop, error] = std::from_chars(index.data(), index.data() + index.size(), i);
+        if (k < 0 || index.empty() || error != std::errc() || stop != index.data() + index.size())
+          continue;
+        const auto fail = [&](const std::string& why) {
+          throw GlintError("mesh " + mesh + ":" + std::to_string(lineNumber) + ": a face gives " +
+                           kKinds[k] + " index " + std::to_string(i) + ", " + why);
+        };
+        if (i == 0) fail("but OBJ indices start at 1");
+        if (i < 0 && -i > lines[k])
+          fail("but only " + std::to_string(lines[k]) + " " + kKinds[k] + " lines come before it");
+        if (i > furthest[k]) {
+          furthest[k] = i;
+          furthestLine[k] = lineNumber;
+        }
+      }
+    }
+  }
+
+  // After the whole file: a positive index may name a line after its face, as Assimp reads it.
+  void checkFurthest(const std::string& mesh) const {
+    for (int k = 0; k < 2; ++k)
+      if (furthest[k] > lines[k])
+        throw GlintError("mesh " + mesh + ":" + std::to_string(furthestLine[k]) +
+                         ": a face gives " + kKinds[k] + " index " + std::to_string(furthest[k]) +
+                         ", but the file has " + std::to_string(lines[k]) + " " + kKinds[k] +
+                         " lines");
+  }
+};
+
 // Adds the names that follow `keyword` at the start of a line of `file` to `names`, and the
 // material libraries its `mtllib` lines name to `libraries` (when given: `file` is the OBJ
-// file itself, whose vertex lines are checked as well, checkObjNumbers); throws past
-// kMaxObjMaterials, naming `file`.
+// file itself, whose vertex lines are checked as well, checkObjNumbers, and its faces'
+// references, ObjFaceReferences); throws past kMaxObjMaterials, naming `file`.
 void collectObjNames(const std::string& mesh, const std::filesystem::path& file,
                      const char* keyword, std::set<std::string>& names,
                      std::vector<std::string>* libraries) {
+  ObjFaceReferences references;
   std::ifstream in(file, std::ios::binary);
   const std::string key = std::string(keyword) + " ";
   int lineNumber = 0;
@@ -82,7 +146,13 @@ void collectObjNames(const std::string& mesh, const std::filesystem::path& file,
     ++lineNumber;
     size_t at = line.find_first_not_of(" \t");
     if (at == std::string::npos) continue;
-    if (libraries && line[at] == 'v') checkObjNumbers(mesh, lineNumber, line);
+    if (libraries && line[at] == 'v') {
+      checkObjNumbers(mesh, lineNumber, line);
+      references.countVertexLine(line);
+    }
+    if (libraries && line[at] == 'f' && at + 1 < line.size() &&
+        (line[at + 1] == ' ' || line[at + 1] == '\t'))
+      references.checkFace(mesh, lineNumber, std::string_view(line).substr(at));
     const auto rest = [&](size_t length) {
       std::string value = line.substr(std::min(line.size(), at + length));
       while (!value.empty() && std::isspace(static_cast<unsigned char>(value.back())))
@@ -101,6 +171,7 @@ void collectObjNames(const std::string& mesh, const std::filesystem::path& file,
       libraries->push_back(rest(7));
     }
   }
+  if (libraries) references.checkFurthest(mesh);
 }
 
 // The last `bytes` bytes of `path`.
@@ -147,7 +218,16 @@ void checkObjFile(const std::string& path) {
     // Assimp opens only regular files a mesh names (io/mesh_io.cpp); so does this count.
     if (std::filesystem::is_regular_file(file, ec))
       collectObjNames(path, file, "newmtl", defined, nullptr);
+    else
+      log::warning("mesh " + path + ": its material library " + inQuotes(library) +
+                   " is not a file beside it; its materials are left out");
   }
+  // Assimp gives a face of an undefined material its default grey without a word.
+  for (const std::string& name : used)
+    if (!defined.count(name))
+      log::warning("mesh " + path + ": material " + inQuotes(name) +
+                   " is used but no material library defines it; its faces get the default "
+                   "material");
 }
 
 bool isMeshExtension(const std::string& extension) {

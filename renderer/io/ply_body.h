@@ -83,6 +83,20 @@ class Body {
     return true;
   }
 
+  // Skips blanks to the end of the cursor's line, and past it; false where a token comes first.
+  bool endLine() {
+    for (;;) {
+      while (at_ < end_ && isSpace(*at_) && *at_ != '\n') ++at_;
+      if (at_ < end_) break;
+      refill(1);
+      if (at_ == end_) return true;  // the file ends with the line
+    }
+    if (*at_ != '\n') return false;
+    ++at_;
+    ++line_;
+    return true;
+  }
+
   // The next whitespace-separated token; empty at the end of the file. A token is cut at
   // kMaxTokenChars + 1 characters (the caller refuses it).
   std::string_view token() {
@@ -184,6 +198,10 @@ class BinaryValues {
  public:
   BinaryValues(Body& body, bool swap) : body_(body), swap_(swap) {}
 
+  // Binary elements follow one another without separators.
+  void beginElement() {}
+  void endElement() {}
+
   double scalar(PlyType t) {
     const unsigned char* p = body_.bytes(size_t(plyTypeSize(t)));
     if (!p) throw Bad{"the file ends inside it"};
@@ -234,6 +252,15 @@ class AsciiValues {
  public:
   explicit AsciiValues(Body& body) : body_(body) {}
 
+  // Each element on a line of its own, as the format writes them: read as one stream of
+  // tokens, a line one value short took the next line's first, and one value long shifted
+  // every value after it, both without a word. Blank lines between elements are passed over.
+  void beginElement() { started_ = false; }
+  void endElement() {
+    if (!started_) return;  // an element of no values
+    if (!body_.endLine()) throw Bad{"its line holds more values than its properties"};
+  }
+
   double scalar(PlyType t) {
     if (isWhole(t)) return double(whole(t));
     const std::string_view s = next();
@@ -275,6 +302,12 @@ class AsciiValues {
   std::string_view next() {
     const std::string_view s = body_.token();
     if (s.empty()) throw Bad{"the file ends before it"};
+    if (!started_) {
+      started_ = true;
+      line_ = body_.line();
+    } else if (body_.line() != line_) {
+      throw Bad{"its line ends before its values do"};
+    }
     if (s.size() > kMaxTokenChars)
       throw Bad{"a value is longer than " + std::to_string(kMaxTokenChars) + " characters"};
     return s;
@@ -282,6 +315,8 @@ class AsciiValues {
   static std::string quoted(std::string_view s) { return "\"" + excerpt(std::string(s)) + "\""; }
 
   Body& body_;
+  bool started_ = false;  // a value of the element read, on line_
+  uint64_t line_ = 0;
 };
 
 }  // namespace glint::ply

@@ -192,6 +192,7 @@ class PlyReader {
       try {
         float slot[kSlots] = {};
         for (; i < e.count; ++i) {
+          values.beginElement();
           for (pi = 0; pi < uses.size(); ++pi) {
             const PlyProperty& p = e.properties[pi];
             const Use use = uses[pi];
@@ -214,13 +215,17 @@ class PlyReader {
             else
               values.skipList(n, p.type);
           }
+          pi = uses.size();  // past its properties
+          values.endElement();
           if (vertex) addVertex(slot, i);
           if ((i & 0xffff) == 0) progress.update(body.offset());
         }
       } catch (const Bad& bad) {
         throw GlintError("mesh " + path_ + ": PLY " + excerpt(e.name) + " " + std::to_string(i) +
-                         " of " + std::to_string(e.count) + values.place() + ", property " +
-                         excerpt(e.properties[pi].name) + ": " + bad.what);
+                         " of " + std::to_string(e.count) + values.place() +
+                         (pi < e.properties.size() ? ", property " + excerpt(e.properties[pi].name)
+                                                   : std::string()) +
+                         ": " + bad.what);
       }
     }
   }

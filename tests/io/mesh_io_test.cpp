@@ -307,6 +307,50 @@ TEST(MeshFile, NonFiniteVertexValuesOfAnObjAreRefusedAtTheirLine) {
       "(loaded)");
 }
 
+TEST(MeshFile, FaceTextureAndNormalIndicesPastTheirLinesAreRefusedAtTheirLine) {
+  // Assimp refuses a face's vertex index past the v lines, but read a vt or vn index past its
+  // lines as another vertex's or none, without a word (the texture mapped wrong, exit 0).
+  const std::string quad =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvn 0 0 1\n";
+  for (const auto& [face, named] :
+       {std::pair<std::string, std::string>{
+            "f 1/1 2/2 3/3 4/5", ":10: a face gives vt index 5, but the file has 4 vt lines"},
+        {"f 1/1 2/2 3/3 4/100000000",
+         ":10: a face gives vt index 100000000, but the file has 4 vt lines"},
+        {"f 1/1 2/2 3/3 4/-9", ":10: a face gives vt index -9, but only 4 vt lines come before it"},
+        {"f 1//1 2//1 3//50000000",
+         ":10: a face gives vn index 50000000, but the file has 1 vn lines"},
+        {"f 1/0 2/2 3/3", ":10: a face gives vt index 0, but OBJ indices start at 1"}}) {
+    const std::string message = test::meshLoadError("bad-index.obj", quad + face + "\n");
+    EXPECT_NE(message.find("bad-index.obj" + named), std::string::npos) << face << ": " << message;
+  }
+  // Every index in range, relative ones too: loaded.
+  EXPECT_EQ(test::meshLoadError("good-index.obj", quad + "f 1/1/1 2/2/1 3/3/1 4/-1/-1\n"),
+            "(loaded)");
+  EXPECT_EQ(test::meshLoadError("relative.obj", quad + "f -4/-4/-1 -3/-3/-1 -2/-2/-1 -1/-1/-1\n"),
+            "(loaded)");
+}
+
+TEST(MeshFile, AMissingMaterialLibraryOrMaterialIsNamedInAWarning) {
+  // Assimp gives the faces its default grey without a word; the render goes on, saying why.
+  const std::string dir = (test::tempDir() / "missing-mtl").string();
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir + "/m.obj") << "mtllib nowhere.mtl\nmtllib here.mtl\nusemtl red\n"
+                                   "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nusemtl blue\nf 1 3 2\n";
+  std::ofstream(dir + "/here.mtl") << "newmtl red\nKd 1 0 0\n";
+  const auto r =
+      test::runGlint("render " + dir + "/m.obj --width 8 --height 8 --spp 1 -o " + dir + "/m.exr");
+  EXPECT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.output.find("m.obj: its material library \"nowhere.mtl\" is not a file beside it; "
+                          "its materials are left out"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("m.obj: material \"blue\" is used but no material library defines it"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("material \"red\""), std::string::npos) << r.output;
+}
+
 TEST(MeshFile, NonFiniteNormalsAndTextureCoordinatesOfAGltfAreRefusedNamingTheVertex) {
   // A glTF's floats reach Glint as stored. A NaN normal would be merged or dropped by Assimp's
   // vertex welding; a NaN texture coordinate was read as (0, 0) without a word.
@@ -464,6 +508,116 @@ TEST(MeshFile, AGltfIndexPastItsVerticesIsRefusedNotDropped) {
               std::string::npos)
         << e.what();
   }
+}
+
+TEST(MeshFile, AGltfSparseIndexIsCheckedAsTheIndexItReplaces) {
+  // A sparse accessor's values replace indices by position; Assimp applied an out-of-range one
+  // and dropped its triangle without a word. A triangle (3 vertices) with indices `base` and
+  // one sparse value `replacement` at position 2.
+  const auto triangle = [](uint16_t lastBase, uint16_t replacement) {
+    const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    std::string buffer(reinterpret_cast<const char*>(positions), sizeof positions);
+    for (const uint16_t v : {uint16_t(0), uint16_t(1), lastBase, uint16_t(0), uint16_t(2),
+                             uint16_t(0), replacement, uint16_t(0)})
+      buffer.append(reinterpret_cast<const char*>(&v), 2);  // indices, pad, position, pad, value
+    return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+      "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+      "buffers": [{"uri": "data:application/octet-stream;base64,)" +
+           test::base64(buffer) + R"(", "byteLength": 52}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36},
+                      {"buffer": 0, "byteOffset": 36, "byteLength": 6},
+                      {"buffer": 0, "byteOffset": 44, "byteLength": 2},
+                      {"buffer": 0, "byteOffset": 48, "byteLength": 2}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR",
+                     "sparse": {"count": 1, "indices": {"bufferView": 2, "componentType": 5123},
+                                "values": {"bufferView": 3}}}]})";
+  };
+  const std::string past = test::meshLoadError("sparse-past.gltf", triangle(2, 7));
+  EXPECT_NE(past.find("sparse-past.gltf: meshes[0].primitives[0]: indices.sparse.values[0] = 7, "
+                      "but its POSITION has 3 vertices"),
+            std::string::npos)
+      << past;
+  // An index out of range that a sparse value replaces is no fault: loaded.
+  EXPECT_EQ(test::meshLoadError("sparse-mends.gltf", triangle(9, 2)), "(loaded)");
+}
+
+TEST(MeshFile, AGltfBufferOfBadBase64IsRefused) {
+  // Assimp decoded what it could and read the rest as zeros: a mesh of degenerate triangles,
+  // nothing drawn, exit 0. The indexed triangle's buffer with a character that base64 lacks,
+  // and with one after its padding.
+  const std::string good = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA=";
+  const std::string at = test::meshLoadError(
+      "bad-base64.gltf", triangleWithIndices(("AAAA@" + good.substr(5)).c_str()));
+  EXPECT_NE(at.find("bad-base64.gltf: buffers[0].uri is a data URI whose base64 has \"@\" at "
+                    "character 41"),
+            std::string::npos)
+      << at;
+  const std::string after =
+      test::meshLoadError("after-padding.gltf", triangleWithIndices((good + "AA").c_str()));
+  EXPECT_NE(after.find("whose base64 has \"A\" at character"), std::string::npos) << after;
+  EXPECT_EQ(test::meshLoadError("good-base64.gltf", triangleWithIndices(good.c_str())), "(loaded)");
+}
+
+TEST(MeshFile, AGltfUriIsReadAsTheReferenceItIs) {
+  // "tri%20angle.bin" names "tri angle.bin" (RFC 3986); Assimp looked for the literal name and
+  // refused the mesh. A literal name that is a file is still read as written.
+  const std::filesystem::path dir = test::tempDir() / "gltf-uri";
+  std::filesystem::create_directories(dir);
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::ofstream(dir / "tri angle.bin", std::ios::binary)
+      .write(reinterpret_cast<const char*>(positions), sizeof positions);
+  std::ofstream(dir / "100%.bin", std::ios::binary)
+      .write(reinterpret_cast<const char*>(positions), sizeof positions);
+  const auto gltf = [&](const std::string& name, const std::string& uri) {
+    const std::string path = (dir / name).string();
+    std::ofstream(path) << R"({"asset": {"version": "2.0"}, "scene": 0,
+      "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+      "buffers": [{"uri": ")" + uri +
+                               R"(", "byteLength": 36}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 0]}]})";
+    return path;
+  };
+  for (const auto& [name, uri] :
+       {std::pair<std::string, std::string>{"escaped.gltf", "tri%20angle.bin"},
+        {"literal.gltf", "100%.bin"}}) {
+    size_t triangles = 0;
+    for (const TriangleMesh& part : loadMeshFile(gltf(name, uri)).parts)
+      triangles += part.indices.size() / 3;
+    EXPECT_EQ(triangles, 1u) << uri;
+  }
+  // An escaped NUL is refused as a literal one is.
+  EXPECT_NE(test::meshLoadError("nul.gltf", test::readFile(gltf("nul-src.gltf", "a.bin%00x")))
+                .find("buffers[0].uri"),
+            std::string::npos);
+}
+
+TEST(MeshFile, QuantizedGltfTextureCoordinatesAreRefusedNotMisread) {
+  // glTF 2.0 allows TEXCOORD_0 as normalized unsigned bytes; Assimp 5.2.5 read their bytes as
+  // floats: the texture's one colour over the mesh, exit 0.
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  std::string buffer(reinterpret_cast<const char*>(positions), sizeof positions);
+  buffer += std::string("\0\0\0\0\xff\0\0\0\0\xff\0\0", 12);  // (0, 0), (1, 0), (0, 1), stride 4
+  const std::string gltf = R"({"asset": {"version": "2.0"}, "scene": 0,
+    "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}}]}],
+    "buffers": [{"uri": "data:application/octet-stream;base64,)" +
+                           test::base64(buffer) + R"(", "byteLength": 48}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36},
+                    {"buffer": 0, "byteOffset": 36, "byteLength": 12, "byteStride": 4}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                   "min": [0, 0, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5121, "normalized": true, "count": 3,
+                   "type": "VEC2"}]})";
+  EXPECT_NE(test::meshLoadError("quantized-uv.gltf", gltf)
+                .find("quantized-uv.gltf: meshes[0].primitives[0] keeps TEXCOORD_0 as unsigned "
+                      "bytes; Glint reads texture coordinates stored as floats only"),
+            std::string::npos);
 }
 
 TEST(MeshFile, AGltfStrideShorterThanItsElementsIsRefused) {

@@ -275,6 +275,38 @@ TEST(PlyReader, ValuesMustBeFiniteNumbers) {
             "(loaded)");
 }
 
+TEST(PlyReader, AnAsciiElementHoldsItsLineExactly) {
+  // Read as one stream of tokens, a vertex line with one value too many shifted every value
+  // after it, and one a value short took the next line's first: a wrong mesh, exit 0. Lines 16
+  // to 20 hold the vertices, 21 and 22 the faces.
+  const std::string ascii = asciiQuadAndTriangle();
+  const size_t vertex2 = ascii.find("1 1 0 0 0 1");
+  std::string longLine = ascii;
+  longLine.insert(ascii.find('\n', vertex2), " 7");
+  EXPECT_NE(test::meshLoadError("long-line.ply", longLine)
+                .find("PLY vertex 2 of 5 (line 18): its line holds more values than its "
+                      "properties"),
+            std::string::npos)
+      << test::meshLoadError("long-line.ply", longLine);
+  std::string shortLine = ascii;
+  shortLine.erase(ascii.rfind(' ', ascii.find('\n', vertex2)), 4);  // " 0.5": v of vertex 2
+  EXPECT_NE(
+      test::meshLoadError("short-line.ply", shortLine)
+          .find("PLY vertex 2 of 5 (line 19), property v: its line ends before its values do"),
+      std::string::npos)
+      << test::meshLoadError("short-line.ply", shortLine);
+  std::string longFace = ascii;
+  longFace.replace(ascii.find("3 3 2 4"), 7, "3 3 2 4 1");
+  EXPECT_NE(test::meshLoadError("long-face.ply", longFace)
+                .find("PLY face 1 of 2 (line 22): its line holds more values than its properties"),
+            std::string::npos);
+  // Blank lines between elements, blanks at a line's end and CR LF line ends are read.
+  std::string spaced = ascii;
+  spaced.insert(ascii.find("4 0 1 2 3"), "\n  \n");
+  spaced.insert(spaced.find('\n', spaced.find("3 3 2 4")), " \t\r");
+  EXPECT_EQ(test::meshLoadError("spaced.ply", spaced), "(loaded)");
+}
+
 TEST(PlyReader, WhatTheFileLacksIsNamed) {
   EXPECT_NE(test::meshLoadError("empty.ply", "").find("is not a PLY file"), std::string::npos);
   std::string noFaces = asciiQuadAndTriangle();
