@@ -77,7 +77,7 @@ Frame::Frame(const std::string& path) {
   {
     // Only the file's reading goes without the GIL: the members hold Python objects.
     py::gil_scoped_release unlocked;
-    img = readImage(path);
+    img = readImage(path, ExrParts::All);  // a --multipart frame's AOVs too
     record_ = readFrameRecord(path);
   }
   width_ = img.width;

@@ -207,6 +207,7 @@ int runConverge(const ConvergeArgs& a) {
   std::string referenceLabel;
   if (!a.reference.empty()) {
     reference = readImage(a.reference);
+    requireFiniteReference(reference, a.reference);
     referenceInfo = {{"file", a.reference}};
     referenceLabel = "reference " + a.reference;
   } else {
@@ -297,9 +298,9 @@ CommandRunner addConvergeCommand(CLI::App& app) {
                   "No renders: the passes of one render (its EXR, or its --stats-json) with the "
                   "error it estimated after each")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--csv", a->csv, "Write every point as CSV");
-  cmd->add_option("--plot", a->plot, "Write the log-log plot (SVG)");
-  cmd->add_option("--json", a->json, "Write the series as JSON");
+  cmd->add_option("--csv", a->csv, "Write every point as CSV")->check(nonEmpty());
+  cmd->add_option("--plot", a->plot, "Write the log-log plot (SVG)")->check(nonEmpty());
+  cmd->add_option("--json", a->json, "Write the series as JSON")->check(nonEmpty());
   return [a] { return runConverge(*a); };
 }
 

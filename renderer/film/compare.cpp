@@ -18,6 +18,17 @@ void checkSameShape(const Image& a, const Image& b) {
                      std::to_string(a.height) + " against " + std::to_string(b.width) + "x" +
                      std::to_string(b.height));
   if (a.channels < 3 || b.channels < 3) throw UsageError("images need at least RGB channels");
+  // Two crops of one size are other pixels where they lie apart, or in frames of other sizes
+  // (an image without a frame, an array's, sits beside any).
+  const auto known = [](const Image& i) { return i.fullWidth > 0 && i.fullHeight > 0; };
+  const auto place = [](const Image& i) {
+    return "(" + std::to_string(i.x) + ", " + std::to_string(i.y) + ") of a " +
+           std::to_string(i.fullWidth) + "x" + std::to_string(i.fullHeight) + " frame";
+  };
+  if (known(a) && known(b) &&
+      (a.x != b.x || a.y != b.y || a.fullWidth != b.fullWidth || a.fullHeight != b.fullHeight))
+    throw UsageError("images cover other pixels: " + std::to_string(a.width) + "x" +
+                     std::to_string(a.height) + " at " + place(a) + " against " + place(b));
 }
 
 double channel(const Image& img, size_t pixel, int c) {
@@ -34,6 +45,19 @@ double pixelError(const Image& a, const Image& b, size_t p) {
 }
 
 }  // namespace
+
+void requireFiniteReference(const Image& reference, const std::string& path) {
+  if (reference.channels < 3) return;  // not RGB: compareImages refuses it
+  const size_t pixels = size_t(reference.width) * size_t(reference.height);
+  for (size_t p = 0; p < pixels; ++p)
+    for (int c = 0; c < 3; ++c)
+      if (const double v = channel(reference, p, c); !std::isfinite(v))
+        throw UsageError(path + ": channel " + "RGB"[c] + " is " +
+                         (std::isnan(v) ? "NaN" : "infinite") + " at pixel (" +
+                         std::to_string(reference.x + int(p % size_t(reference.width))) + ", " +
+                         std::to_string(reference.y + int(p / size_t(reference.width))) +
+                         "): errors against it would not be finite");
+}
 
 ImageErrors compareImages(const Image& a, const Image& b, double threshold) {
   checkSameShape(a, b);

@@ -19,8 +19,13 @@ struct ImageErrors {
 
 inline constexpr double kRelMseEpsilon = 1e-2;
 
-// Throws UsageError when the sizes differ. Non-finite values count as an error of +∞.
+// Throws UsageError when the sizes differ, or when both images lie in frames (an array's does
+// not) and those or their places differ. Non-finite values count as an error of +∞.
 ImageErrors compareImages(const Image& test, const Image& reference, double threshold = 1e-2);
+
+// Throws UsageError, naming `path`, the pixel and the channel, where a reference's R, G or B is
+// not finite: every error measured against it would be +∞ or NaN (converge's log-log axes).
+void requireFiniteReference(const Image& reference, const std::string& path);
 
 // A false-colour image of the per-pixel error (largest channel |a − b|), on a logarithmic ramp
 // from 1e-4 (black) through blue, green, yellow to 1 and above (white); PNG.

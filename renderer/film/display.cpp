@@ -217,9 +217,16 @@ void writeDisplayImage(const std::string& path, std::vector<float> rgba, int wid
   // colours linearly. Developing the premultiplied colour would darken edges through the
   // view's curve, and dividing after it could not undo that. Alpha 0 has no colour to
   // develop: it stays 0 (RGB is 0 there in Glint's frames), never 0/0.
+  // A non-finite alpha (an EXR from elsewhere) made its finite colour black: NaN and +∞ are
+  // taken as opaque, −∞ as empty, and counted in the warning below.
+  size_t nonFiniteAlpha = 0;
   if (alpha)
     for (size_t p = 0; p < rgba.size(); p += 4) {
-      const float a = rgba[p + 3];
+      float& a = rgba[p + 3];
+      if (!std::isfinite(a)) {
+        ++nonFiniteAlpha;
+        a = a < 0 ? 0.0f : 1.0f;
+      }
       for (int c = 0; c < 3; ++c) rgba[p + size_t(c)] = a > 0 ? rgba[p + size_t(c)] / a : 0.0f;
     }
   // The view is given at most half float's largest value, 65504: far past white in every view
@@ -235,6 +242,10 @@ void writeDisplayImage(const std::string& path, std::vector<float> rgba, int wid
   if (nonFinite > 0)
     log::warning(path + ": " + std::to_string(nonFinite) +
                  " colour values are not finite; NaN is shown as 0, infinity as ±65504");
+  if (nonFiniteAlpha > 0)
+    log::warning(path + ": " + std::to_string(nonFiniteAlpha) +
+                 " alpha values are not finite; NaN and +infinity are shown as opaque, "
+                 "-infinity as empty");
   const DisplayTransform transform(settings);
   transform.apply(rgba.data(), width, height, 4);
   if (format == ImageFormat::Png && !transform.tagKnown())

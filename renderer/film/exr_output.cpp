@@ -24,6 +24,7 @@
 #include <ctime>
 #include <fstream>
 #include <limits>
+#include <utility>
 
 #include "core/error.h"
 #include "core/input_files.h"
@@ -266,7 +267,7 @@ void writeExrStream(const std::string& path, const std::string& tmpPath,
   if (!out) throw GlintError("cannot write " + path + ": the disk refused the data");
 }
 
-Image readImage(const std::string& path) {
+Image readImage(const std::string& path, ExrParts parts) {
   noteInputFile(path);
   // Every failure here is the file's: unreadable, truncated, not an image, or too large. It is
   // reported as a usage error (exit 2) naming the file, like a scene's mistakes.
@@ -274,8 +275,32 @@ Image readImage(const std::string& path) {
   const Imf::Header& header = file->header(0);
   const ExrWindow window = exrWindow(path, header);
   Image img;
+  // Each part read and the index of its first channel in the image's pixels.
+  std::vector<std::pair<int, size_t>> partsRead{{0, 0}};
   img.channelNames = channelsInReadingOrder(header.channels());
   if (img.channelNames.empty()) throw UsageError(path + ": the image has no channels");
+  for (int part = 1; parts == ExrParts::All && part < file->parts(); ++part) {
+    const Imf::Header& h = file->header(part);
+    const std::string partName = h.hasName() ? h.name() : std::to_string(part);
+    if (h.dataWindow() != header.dataWindow() || h.displayWindow() != header.displayWindow())
+      throw UsageError(path + ": part " + std::to_string(part) + " (" + inQuotes(partName) +
+                       ") covers other pixels than part 0; its parts are read together only "
+                       "where they share their data and display windows");
+    partsRead.emplace_back(part, img.channelNames.size());
+    // A name an earlier part already has is qualified by its part's ("diffuse.R").
+    for (const std::string& name : channelsInReadingOrder(h.channels())) {
+      const auto taken = [&](const std::string& n) {
+        return std::find(img.channelNames.begin(), img.channelNames.end(), n) !=
+               img.channelNames.end();
+      };
+      const std::string unique = taken(name) ? partName + "." + name : name;
+      if (taken(unique))
+        throw UsageError(path + ": part " + std::to_string(part) + " (" + inQuotes(partName) +
+                         ") has channel " + inQuotes(name) + ", which an earlier part has as " +
+                         inQuotes(unique) + " too");
+      img.channelNames.push_back(unique);
+    }
+  }
   img.channels = int(img.channelNames.size());
   checkImageFits(path, "data window", window.width, window.height, 4.0 * img.channels);
   img.width = window.width;
@@ -291,10 +316,27 @@ Image readImage(const std::string& path) {
     img.chromaticities = {c.red.x,  c.red.y,  c.green.x, c.green.y,
                           c.blue.x, c.blue.y, c.white.x, c.white.y};
   }
-  std::vector<ExrSlice> slices;
-  for (size_t c = 0; c < img.channelNames.size(); ++c)
-    slices.push_back({img.channelNames[c], Imf::FLOAT, c * sizeof(float)});
-  readPixelsInBands(path, *file, 0, slices, sizeof(float) * size_t(img.channels), img.pixels);
+  const size_t pixelBytes = sizeof(float) * size_t(img.channels);
+  for (size_t k = 0; k < partsRead.size(); ++k) {
+    const auto [part, first] = partsRead[k];
+    const size_t end = k + 1 < partsRead.size() ? partsRead[k + 1].second : img.channelNames.size();
+    // The file's own names (the image's may be qualified), at the image's offsets.
+    const std::vector<std::string> names = channelsInReadingOrder(file->header(part).channels());
+    std::vector<ExrSlice> slices;
+    for (size_t c = first; c < end; ++c)
+      slices.push_back({names[c - first], Imf::FLOAT, c * sizeof(float)});
+    if (part == 0) {
+      readPixelsInBands(path, *file, 0, slices, pixelBytes, img.pixels);
+      continue;
+    }
+    // Into the pixels part 0 laid out, band by band.
+    size_t at = 0;
+    readPixelsInBands(path, *file, part, slices, pixelBytes, [&](size_t bytes) {
+      char* band = reinterpret_cast<char*>(img.pixels.data()) + at;
+      at += bytes;
+      return band;
+    });
+  }
   return img;
 }
 

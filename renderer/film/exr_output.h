@@ -55,8 +55,10 @@ void writeExrStream(const std::string& path, const std::string& tmpPath,
                     const std::function<void(Imf::OStream&)>& write);
 
 // Reads an EXR's channels (full data window) as float, RGBA first; used by tests, `glint
-// compare`, `convert` and `converge`. Throws UsageError naming the file when it cannot be read
-// or its data window would not fit in memory (film/image_limits.h).
+// compare`, `convert` and `converge`, and with every part by the Python module's read_frame
+// (a --multipart frame's AOVs are parts of their own). Throws UsageError naming the file when
+// it cannot be read, its data window would not fit in memory (film/image_limits.h), or (every
+// part) a part covers other pixels than the first or repeats a channel name.
 struct Image {
   int width = 0, height = 0, channels = 0;
   std::vector<std::string> channelNames;  // as in the file; empty for images made in memory
@@ -66,7 +68,8 @@ struct Image {
   // OpenEXR's standard chromaticities, when the file has them: red, green, blue, white (x, y).
   std::optional<std::array<float, 8>> chromaticities;
 };
-Image readImage(const std::string& path);
+enum class ExrParts { First, All };
+Image readImage(const std::string& path, ExrParts parts = ExrParts::First);
 // The film's window as an RGBA image (float), as it would read back from its EXR.
 Image imageFromFilm(const Film& film);
 

@@ -88,6 +88,21 @@ Crop readCrop(const CropRecord& record) {
   return c;
 }
 
+// Names and types, in the file's order: crops are copied byte for byte into the first's layout,
+// and OpenEXR's ChannelList equality compares the types alone (alpha renamed "Y" would have
+// been copied into B).
+bool sameChannels(const Crop& a, const Crop& b) {
+  return std::equal(
+      a.slices.begin(), a.slices.end(), b.slices.begin(), b.slices.end(),
+      [](const ExrSlice& x, const ExrSlice& y) { return x.name == y.name && x.type == y.type; });
+}
+
+std::string channelNames(const Crop& c) {
+  std::string names;
+  for (const ExrSlice& s : c.slices) names += (names.empty() ? "" : ", ") + inQuotes(s.name);
+  return names;
+}
+
 // A copy of `h` without the attributes named in `leftOut`. (Header::erase of OpenEXR 3.1 leaks
 // the attribute it removes, and a crop may give an attribute Glint sets another type, which
 // insert refuses to change: so the merged header is built without them instead.)
@@ -207,8 +222,9 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<CropRecord>
     if (c.window.fullWidth != W || c.window.fullHeight != H)
       throw UsageError(c.path() + ": frame " + std::to_string(c.window.fullWidth) + "x" +
                        std::to_string(c.window.fullHeight) + " differs from " + first.path());
-    if (!(c.header.channels() == first.header.channels()))
-      throw UsageError(c.path() + " has other channels or pixel types than " + first.path());
+    if (!sameChannels(c, first))
+      throw UsageError(c.path() + " has other channels or pixel types than " + first.path() + " (" +
+                       channelNames(c) + " against " + channelNames(first) + ")");
     const std::string& sceneHash = c.record.sceneHash;
     if (!expectedSceneHash.empty() && sceneHash != expectedSceneHash)
       throw UsageError(c.path() + " was rendered from another scene file (glint:scene_hash " +

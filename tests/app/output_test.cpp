@@ -298,6 +298,61 @@ TEST(Output, CropsMergeIntoTheFullFrameByteForByte) {
   EXPECT_NE(other.output.find("different scene or settings"), std::string::npos) << other.output;
 }
 
+TEST(Output, CompareRefusesCropsThatLieApart) {
+  // Two 16 x 14 crops of one frame at other places were compared pixel by pixel (rmse 0.3,
+  // exit 0): different pixels of the scene, not two renders of the same ones.
+  const std::string scene = test::writeTemp("compare-crops.json", kScene);
+  const std::string a = tmp("crop-a.exr"), b = tmp("crop-b.exr");
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --crop 4 20 3 17 -o " + a).exitCode, 0);
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --crop 0 16 0 14 -o " + b).exitCode, 0);
+  const auto apart = runGlint("compare " + a + " " + b);
+  EXPECT_EQ(apart.exitCode, 2) << apart.output;
+  EXPECT_NE(apart.output.find("images cover other pixels: 16x14 at (4, 3) of a 48x32 frame "
+                              "against (0, 0) of a 48x32 frame"),
+            std::string::npos)
+      << apart.output;
+  const auto same = runGlint("compare " + a + " " + a);
+  EXPECT_EQ(same.exitCode, 0) << same.output;
+}
+
+TEST(Output, MergeRefusesACropWhoseChannelsWereRenamed) {
+  // The second crop rewritten with its alpha named "Y", all else (its settings hash too) kept:
+  // the same pixel types in OpenEXR's sorted order (B, G, R, Y against A, B, G, R), which merge
+  // once took for the same channels and copied byte for byte, B into A. Refused, naming both
+  // channel lists, and no frame written.
+  const std::string scene = test::writeTemp("merge-renamed.json", kScene);
+  const std::string left = tmp("renamed-left.exr"), right = tmp("renamed-right.exr");
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --crop 0 20 0 32 -o " + left).exitCode, 0);
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --crop 20 48 0 32 -o " + right).exitCode, 0);
+  const std::string renamed = tmp("renamed-alpha.exr");
+  {
+    auto in = OIIO::ImageInput::open(right);
+    ASSERT_TRUE(in);
+    OIIO::ImageSpec spec = in->spec();
+    std::vector<float> pixels(spec.image_pixels() * size_t(spec.nchannels));
+    ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
+    ASSERT_EQ(spec.channelnames, (std::vector<std::string>{"R", "G", "B", "A"}));
+    spec.channelnames[3] = "Y";
+    spec.alpha_channel = -1;
+    auto out = OIIO::ImageOutput::create(renamed);
+    ASSERT_TRUE(out && out->open(renamed, spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    ASSERT_TRUE(out->close());
+  }
+  EXPECT_EQ(specOf(renamed).get_string_attribute("glint:settings_hash"),
+            specOf(left).get_string_attribute("glint:settings_hash"));
+  const std::string merged = tmp("renamed-merged.exr");
+  const auto r = runGlint("merge " + merged + " " + left + " " + renamed);
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find(renamed + " has other channels or pixel types than " + left),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("\"Y\""), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(merged));
+  // The crops as rendered still merge.
+  EXPECT_EQ(runGlint("merge " + merged + " " + left + " " + right).exitCode, 0);
+}
+
 TEST(Output, SeveralCropsOfOneRunEqualTheirSeparateRenders) {
   // One process, one scene load, three --crop with an -o each (what a farm task of several
   // tiles runs): each crop holds the same bytes as its own run, so they merge into the frame.

@@ -88,6 +88,28 @@ TEST(DisplayImage, ValuesPastWhiteStayWhiteAndNonFiniteOnesAreNamed) {
   for (size_t i = 12; i < 15; ++i) EXPECT_EQ(png.samples[i], 0) << "sample " << i;
 }
 
+TEST(DisplayImage, ANonFiniteAlphaKeepsItsColourAndIsNamed) {
+  // A foreign EXR's NaN alpha made its finite colour black (NaN is not above 0), without a
+  // word. NaN and +infinity now read as opaque, -infinity as empty, counted in one warning:
+  // grey 0.5 under NaN and +inf alpha shows as grey 0.5 does under alpha 1.
+  const float inf = std::numeric_limits<float>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const std::vector<float> pixels = {0.5f, 0.5f, 0.5f, 1,   0.5f, 0.5f, 0.5f, nan,
+                                     0.5f, 0.5f, 0.5f, inf, 0.5f, 0.5f, 0.5f, -inf};
+  const std::string path = tmp("nan-alpha.png");
+  testing::internal::CaptureStderr();
+  writeDisplayImage(path, pixels, 4, 1, standardView(), true);
+  const std::string log = testing::internal::GetCapturedStderr();
+  EXPECT_NE(log.find("nan-alpha.png: 3 alpha values are not finite"), std::string::npos) << log;
+  const test::PngFile png = test::readPng(path);
+  ASSERT_TRUE(png.ok);
+  ASSERT_EQ(png.samples.size(), 16u);
+  EXPECT_GT(png.samples[0], 100);  // sRGB(0.5) = 188
+  for (size_t p = 1; p < 3; ++p)
+    for (size_t c = 0; c < 4; ++c) EXPECT_EQ(png.samples[4 * p + c], png.samples[c]) << p << c;
+  for (size_t c = 0; c < 4; ++c) EXPECT_EQ(png.samples[12 + c], 0) << c;
+}
+
 TEST(DisplayImage, TiffKeepsUnassociatedAlphaAndJpegHasNone) {
   // 16-bit TIFF: alpha 0.5 → 32767.5 → 32768, the colour straight, the file marked
   // unassociated (ExtraSamples 2). Told to keep unassociated alpha, OpenImageIO reads the

@@ -8,9 +8,14 @@
 #include <malloc.h>
 #include <sys/resource.h>
 
+#include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfCompression.h>
 #include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputPart.h>
+#include <OpenEXR/ImfMultiPartOutputFile.h>
+#include <OpenEXR/ImfOutputPart.h>
+#include <OpenEXR/ImfPartType.h>
 
 #include <OpenImageIO/imageio.h>
 
@@ -38,9 +43,9 @@ const fs::path kHostile = fs::path(GLINT_SOURCE_DIR) / "tests/fuzz/regressions-e
 std::string tmp(const std::string& name) { return (test::tempDir() / name).string(); }
 
 // The message of the UsageError readImage throws for `path`, or "(read)".
-std::string readError(const std::string& path) {
+std::string readError(const std::string& path, ExrParts parts = ExrParts::First) {
   try {
-    readImage(path);
+    readImage(path, parts);
     return "(read)";
   } catch (const UsageError& e) {
     return e.what();
@@ -331,6 +336,20 @@ TEST(ExrInput, MergeRefusesACropHoldingNaNNamingItAndThePixel) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+TEST(ExrInput, ConvergeRefusesAReferenceHoldingNaN) {
+  // Every error against it was +inf or NaN: a table of "-nan" and a plot axis at 10^(int)NaN,
+  // exit 0. Refused, naming the file, the channel and the pixel.
+  const std::string reference = (kHostile / "nan-pixel-copied-into-the-merged-frame.exr").string();
+  const std::string scene = test::writeTemp("converge-nan.json", R"({"render": {"width": 2,
+    "height": 1}, "camera": {"eye": [0,0,4], "look_at": [0,0,0]},
+    "materials": {"m": {"type": "phong"}},
+    "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})");
+  const auto r = runGlint("converge " + scene + " --spp 1,2 --reference " + reference);
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find(reference + ": channel R is NaN at pixel (1, 0)"), std::string::npos)
+      << r.output;
+}
+
 TEST(ExrInput, MissingRegionsOfRectanglesMatchThoseOfPixels) {
   // The rectangle search must give exactly the pixel search's regions: 200 random sets of
   // non-overlapping crops of a 13 × 11 frame, each compared with the mask version.
@@ -360,6 +379,74 @@ TEST(ExrInput, MissingRegionsOfRectanglesMatchThoseOfPixels) {
       EXPECT_EQ(byRects[i].y1, byPixels[i].y1);
     }
   }
+}
+
+// A multipart EXR of 3 x 2 pixels: each part (name, data window's top-left corner, channels)
+// with every value of channel c of part p set to 10·p + c.
+struct TestPart {
+  std::string name;
+  int x0;
+  std::vector<std::string> channels;
+};
+void writeParts(const std::string& path, const std::vector<TestPart>& parts) {
+  std::vector<Imf::Header> headers;
+  for (const TestPart& p : parts) {
+    Imf::Header h(Imath::Box2i({0, 0}, {5, 1}), Imath::Box2i({p.x0, 0}, {p.x0 + 2, 1}));
+    h.setName(p.name);
+    h.setType(Imf::SCANLINEIMAGE);
+    for (const std::string& c : p.channels) h.channels().insert(c, Imf::Channel(Imf::FLOAT));
+    headers.push_back(h);
+  }
+  Imf::MultiPartOutputFile file(path.c_str(), headers.data(), int(headers.size()));
+  for (size_t p = 0; p < parts.size(); ++p) {
+    const size_t n = parts[p].channels.size();
+    std::vector<float> values(6 * n);
+    for (size_t i = 0; i < values.size(); ++i) values[i] = float(10 * p + i % n);
+    Imf::FrameBuffer fb;
+    const int x0 = parts[p].x0;
+    for (size_t c = 0; c < n; ++c)
+      fb.insert(parts[p].channels[c],
+                Imf::Slice::Make(Imf::FLOAT, values.data() + c, Imath::V2i(x0, 0), 3, 2,
+                                 n * sizeof(float), 3 * n * sizeof(float)));
+    Imf::OutputPart out(file, int(p));
+    out.setFrameBuffer(fb);
+    out.writePixels(2);
+  }
+}
+
+TEST(ExrInput, EveryPartIsReadWhereTheCallerAsksAndTheirNamesStayApart) {
+  // The Python module reads a --multipart frame's AOV parts with its beauty. A name an earlier
+  // part has is qualified by its part's ("diffuse.R"); each channel keeps its own part's values.
+  const std::string path = tmp("parts.exr");
+  writeParts(
+      path,
+      {{"rgba", 0, {"R", "G", "B", "A"}}, {"depth", 0, {"Z"}}, {"diffuse", 0, {"R", "G", "B"}}});
+  const Image first = readImage(path);
+  EXPECT_EQ(first.channelNames, (std::vector<std::string>{"R", "G", "B", "A"}));
+  const Image all = readImage(path, ExrParts::All);
+  ASSERT_EQ(all.channelNames, (std::vector<std::string>{"R", "G", "B", "A", "Z", "diffuse.R",
+                                                        "diffuse.G", "diffuse.B"}));
+  ASSERT_EQ(all.pixels.size(), 6u * 8u);
+  // Part p's channel c (in the order written) holds 10p + c.
+  const std::vector<float> pixel = {0, 1, 2, 3, 10, 20, 21, 22};
+  for (size_t i = 0; i < 6; ++i)
+    EXPECT_EQ(
+        std::vector<float>(all.pixels.begin() + long(8 * i), all.pixels.begin() + long(8 * i + 8)),
+        pixel)
+        << "pixel " << i;
+  // Parts over other pixels are not laid side by side: refused, naming the part.
+  const std::string shifted = tmp("shifted-parts.exr");
+  writeParts(shifted, {{"rgba", 0, {"R", "G", "B", "A"}}, {"depth", 3, {"Z"}}});
+  EXPECT_NE(readError(shifted, ExrParts::All)
+                .find(shifted + ": part 1 (\"depth\") covers other pixels than part 0"),
+            std::string::npos);
+  // A name still taken once qualified: refused rather than one channel hiding the other.
+  const std::string twice = tmp("twice-parts.exr");
+  writeParts(twice, {{"x", 0, {"R", "y.R"}}, {"y", 0, {"R"}}});
+  EXPECT_NE(readError(twice, ExrParts::All)
+                .find(twice + ": part 1 (\"y\") has channel \"R\", which an earlier part has as "
+                              "\"y.R\" too"),
+            std::string::npos);
 }
 
 TEST(ExrInput, CompareNamesAFileWithoutRgbChannels) {

@@ -108,6 +108,19 @@ def test_write_is_the_exr_the_command_writes(rendered):
     assert written.record["glint:seed"] == 3 and written.record["glint:spp"] == 4
 
 
+def test_multipart_frame_reads_as_the_single_part_one(rendered, binary):
+    # --multipart puts each AOV in a part of its own: read_frame once returned part 0 alone, the
+    # AOVs silently missing. Every part is read, under the single-part frame's channel names.
+    _, command, tmp_path = rendered
+    command_render(binary, tmp_path / "scene.json", tmp_path / "multipart.exr", "--aov",
+                   ",".join(AOVS), "--multipart")
+    multipart = glint.read_frame(tmp_path / "multipart.exr")
+    assert sorted(multipart.channels) == sorted(command.channels)
+    assert set(multipart.aovs) == set(command.aovs) == {"Z", "N", "Albedo"}
+    for name in command.channels:
+        assert np.array_equal(multipart.channel(name), command.channel(name)), name
+
+
 def test_crop_and_sampler_as_the_command(tmp_path, scene_dict, binary):
     scene_path = tmp_path / "scene.json"
     scene_path.write_text(json.dumps(scene_dict))
