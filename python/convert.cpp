@@ -105,7 +105,10 @@ py::object toPython(const nlohmann::json& v) {
 }
 
 std::string pathOf(const py::handle& path) {
-  return py::str(py::module_::import("os").attr("fspath")(path));
+  // The file system's bytes, as open(2) takes them: str(b"x.exr") named "b'x.exr'", and a str
+  // with the surrogates of a name that is not UTF-8 could not be encoded at all.
+  const py::bytes bytes = py::module_::import("os").attr("fsencode")(path);
+  return std::string(bytes);
 }
 
 py::dict recordDict(const FrameRecord& r) {

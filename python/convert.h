@@ -20,7 +20,7 @@ inline constexpr int kMaxDepth = 256;
 
 py::object toPython(const nlohmann::json& value);
 
-// A path given as str or os.PathLike (pathlib.Path).
+// A path given as str, bytes or os.PathLike (pathlib.Path), as os.fsencode gives its bytes.
 std::string pathOf(const py::handle& path);
 
 // A frame record's attributes as a dict, by their EXR names (glint:spp, ...), only those it has.

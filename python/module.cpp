@@ -4,6 +4,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <tuple>
+
 #include <glint_version.h>
 
 #include "app/scene_validation.h"
@@ -38,7 +40,7 @@ py::object errorsDict(const ImageErrors& e) {
 // An image to compare: a path (an EXR, as `glint compare` reads it), a Frame, or an array of
 // H x W x C (C ≥ 3: RGB first) or H x W (one channel, taken as grey).
 Image imageOf(const py::object& v, const char* which) {
-  if (py::isinstance<py::str>(v) || py::hasattr(v, "__fspath__")) {
+  if (py::isinstance<py::str>(v) || py::isinstance<py::bytes>(v) || py::hasattr(v, "__fspath__")) {
     const std::string path = pathOf(v);
     py::gil_scoped_release unlocked;
     Image img = readImage(path);
@@ -46,7 +48,8 @@ Image imageOf(const py::object& v, const char* which) {
     return img;
   }
   py::object source = v;
-  if (py::isinstance<Frame>(v)) source = v.attr("rgba");
+  const Frame* frame = py::isinstance<Frame>(v) ? &v.cast<const Frame&>() : nullptr;
+  if (frame) source = v.attr("rgba");
   const auto a = py::array_t<float, py::array::c_style | py::array::forcecast>::ensure(source);
   if (!a) throw py::type_error(std::string(which) + " must be a path, a Frame or an array");
   if (a.ndim() != 2 && a.ndim() != 3)
@@ -60,8 +63,12 @@ Image imageOf(const py::object& v, const char* which) {
   Image img;
   img.width = int(w);
   img.height = int(h);
-  img.fullWidth = img.width;
-  img.fullHeight = img.height;
+  // A frame's pixels keep their place in its frame; an array's place is unknown (0 x 0), so
+  // compare sets it beside any.
+  if (frame) {
+    std::tie(img.x, img.y) = frame->origin();
+    std::tie(img.fullWidth, img.fullHeight) = frame->fullSize();
+  }
   img.channels = 4;
   img.pixels.resize(size_t(h * w * 4));
   const float* p = a.data();
@@ -118,6 +125,7 @@ PYBIND11_MODULE(_glint, m) {
         settings.seed = uint64_t(seed);
         settings.spp = int(spp);
         settings.noBrute = !brute;
+        checkSomethingIsCast(settings);
         nlohmann::json figures;
         {
           py::gil_scoped_release unlocked;

@@ -345,6 +345,12 @@ void bindScene(py::module_& m) {
 }
 
 // For glint.validate.
-const Scene& sceneOf(const py::object& scene) { return *scene.cast<const PyScene&>().scene; }
+const Scene& sceneOf(const py::object& scene) {
+  // Not pybind11's "Unable to cast Python instance" for a path or a number.
+  if (!py::isinstance<PyScene>(scene))
+    throw py::type_error("scene must be a glint.Scene (glint.load_scene(path) reads a file), not " +
+                         std::string(py::str(py::type::of(scene).attr("__name__"))));
+  return *scene.cast<const PyScene&>().scene;
+}
 
 }  // namespace glint::python

@@ -6,6 +6,7 @@
 #include <tbb/parallel_reduce.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -99,20 +100,24 @@ class RateCollector : public benchmark::BenchmarkReporter {
 
 int runBench(const BenchArgs& a) {
   checkOutputPaths({{"--json", a.json}});
+  // Before the scene loads: a misspelt backend is known at once. A backend named twice would
+  // be timed twice and its figures reported under one name.
+  std::vector<AccelKind> kinds;
+  std::stringstream list(a.accels);
+  for (std::string name; std::getline(list, name, ',');) {
+    AccelKind k;
+    if (!parseAccelKind(name, k)) throw UsageError("--accel: unknown backend " + inQuotes(name));
+    if (std::find(kinds.begin(), kinds.end(), k) != kinds.end())
+      throw UsageError("--accel: " + inQuotes(name) + " is named twice");
+    kinds.push_back(k);
+  }
+  if (kinds.empty()) throw UsageError("--accel: name at least one backend");
   const auto loadStart = std::chrono::steady_clock::now();
   Scene scene = a.procedural ? makeProceduralScene(a.procedural) : loadSceneOrDefault(a.scenePath);
   if (a.width > 0) scene.render.width = a.width;
   if (a.height > 0) scene.render.height = a.height;
   const double loadSeconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
-  std::vector<AccelKind> kinds;
-  std::stringstream list(a.accels);
-  for (std::string name; std::getline(list, name, ',');) {
-    AccelKind k;
-    if (!parseAccelKind(name, k)) throw UsageError("--accel: unknown backend " + inQuotes(name));
-    kinds.push_back(k);
-  }
-  if (kinds.empty()) throw UsageError("--accel: name at least one backend");
   if (a.structures) {
     const RaySets rays = makeRays(scene, nullptr, a.randomRays);
     nlohmann::json j = studyStructures(scene, kinds, rays.camera, rays.random, a.accelOptions);
@@ -353,7 +358,7 @@ CommandRunner addBenchCommand(CLI::App& app) {
       ->check(CLI::Range(1, 1 << 15));
   cmd->add_option("--height", args->height, "Image height instead of the scene's")
       ->check(CLI::Range(1, 1 << 15));
-  cmd->add_option("--json", args->json, "Write the figures as JSON");
+  cmd->add_option("--json", args->json, "Write the figures as JSON")->check(nonEmpty());
   return [args] { return runBench(*args); };
 }
 

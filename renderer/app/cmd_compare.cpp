@@ -38,8 +38,9 @@ CommandRunner addCompareCommand(CLI::App& app) {
                       defaultText(a->threshold) + ")")
       ->check(positiveNumber());
   cmd->add_option("--diff", a->diff,
-                  "Write a false-colour difference image (.png, .jpg or .tif, 8-bit)");
-  cmd->add_option("--json", a->json, "Write the figures as JSON");
+                  "Write a false-colour difference image (.png, .jpg or .tif, 8-bit)")
+      ->check(nonEmpty());
+  cmd->add_option("--json", a->json, "Write the figures as JSON")->check(nonEmpty());
   return [a] {
     if (!a->diff.empty()) imageOutputFormat("--diff", a->diff, ImageOutput::Display);
     // The inputs are noted first, so that an output naming one is refused before the work.

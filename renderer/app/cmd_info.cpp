@@ -59,8 +59,12 @@ CommandRunner addInfoCommand(CLI::App& app) {
   cmd->add_option("scene", *scenePath, "Scene file: also print build statistics of both backends")
       ->check(CLI::ExistingFile)
       ->each([withScene](const std::string&) { *withScene = true; });
-  cmd->add_flag("--ocio", *ocio, "List the active OCIO config's displays, views and colour spaces");
-  cmd->add_option("--ocio-config", *ocioConfig, "OCIO config (default: $OCIO, else bundled)");
+  CLI::Option* list = cmd->add_flag(
+      "--ocio", *ocio, "List the active OCIO config's displays, views and colour spaces");
+  // Alone it would be read by nothing: the user meant a listing.
+  cmd->add_option("--ocio-config", *ocioConfig,
+                  "OCIO config to list (default: $OCIO, else bundled)")
+      ->needs(list);
   return [scenePath, withScene, ocio, ocioConfig] {
     std::printf("glint        %s\n", GLINT_VERSION);
     std::printf("Embree       %s (native packets: %s)\n", embreeVersionString().c_str(),

@@ -353,12 +353,16 @@ int runRender(const RenderArgs& given) {
                        "or %04d");
   if (a.statsJson == "-" && several)
     throw UsageError("--stats-json - with several --frames: give a numbered file instead");
-  // The whole range must be the scene's, found before the first frame is spent.
-  const Scene first = loadSceneOrDefault(a.scenePath, range.first, a.camera, a.environment);
-  if (range.last > first.animation->last)
+  // The whole range must be the scene's, found before the first frame is spent (and named as
+  // given: loaded at the range's first frame, a still scene was reported as "--frame 0").
+  const Scene scene = loadSceneOrDefault(a.scenePath, std::nullopt, a.camera, a.environment);
+  if (!scene.animation)
+    throw UsageError("--frames " + a.frames +
+                     ": the scene is not animated (it declares no \"animation\")");
+  const FrameRange frames{scene.animation->first, scene.animation->last};
+  if (!frames.contains(range.first) || !frames.contains(range.last))
     throw UsageError("--frames " + a.frames + " is outside the scene's frames " +
-                     std::to_string(first.animation->first) + "-" +
-                     std::to_string(first.animation->last));
+                     std::to_string(frames.first) + "-" + std::to_string(frames.last));
   for (int frame = range.first; frame <= range.last; ++frame) {
     if (interrupt::requested()) return kExitInterrupted;  // a signal between two frames
     const int code = renderFrame(a, frame);
@@ -380,7 +384,8 @@ CommandRunner addRenderCommand(CLI::App& app) {
       // One path each time it is given: CLI11 let it take the scene after it as a second.
       ->allow_extra_args(false);
   cmd->add_option("--display", args->display,
-                  "Also write a display image (.png, .jpg, .tif) through OCIO");
+                  "Also write a display image (.png, .jpg, .tif) through OCIO")
+      ->check(nonEmpty());
   addDisplayOptions(*cmd, args->ocio);
   cmd->add_option("--spp", args->spp, "Samples per pixel")
       ->check(CLI::Range(1, static_cast<int>(kMaxSampleSet)));
@@ -480,7 +485,8 @@ CommandRunner addRenderCommand(CLI::App& app) {
                       "EXR compression (default " + defaultText(args->compression) + ")")
           ->check(CLI::IsMember(exrCompressions()));
   cmd->add_flag("--stats", args->stats, "Print render statistics");
-  cmd->add_option("--stats-json", args->statsJson, "Write render statistics as JSON");
+  cmd->add_option("--stats-json", args->statsJson, "Write render statistics as JSON")
+      ->check(nonEmpty());
   cmd->add_flag("--quiet", args->quiet, "No progress or info messages");
   return [args, compression, &app] {
     (void)app;

@@ -30,6 +30,7 @@ struct ValidateArgs : ValidateSettings {
 
 int runValidate(const ValidateArgs& a) {
   checkOutputPaths({{"--json", a.json}});
+  if (a.ray.empty()) checkSomethingIsCast(a);  // --ray casts its one ray
   Scene scene = loadSceneOrDefault(a.scenePath);
   const ValidationBackends backends(scene, a);
   if (!a.ray.empty()) {  // reproduce one ray from a report line
@@ -78,7 +79,7 @@ CommandRunner addValidateCommand(CLI::App& app) {
   cmd->add_option("--min-agreement", args->minAgreement,
                   "Fail (exit 1) when hit/miss or occlusion agreement is below this")
       ->check(CLI::Range(0.0, 1.0) & notNaN());
-  cmd->add_option("--json", args->json, "Write the figures as JSON");
+  cmd->add_option("--json", args->json, "Write the figures as JSON")->check(nonEmpty());
   takesValues(*cmd,
               cmd->add_option("--ray", args->ray,
                               "Trace one ray: nine numbers, as separate arguments or one quoted "

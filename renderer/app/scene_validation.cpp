@@ -11,6 +11,11 @@
 
 namespace glint {
 
+void checkSomethingIsCast(const ValidateSettings& settings) {
+  if (settings.rays == 0 && settings.spp == 0)
+    throw UsageError("--rays 0 with --spp 0 casts no ray: there would be nothing to check");
+}
+
 ValidationBackends::ValidationBackends(const Scene& scene, const ValidateSettings& settings)
     : embree(scene),
       bvh(scene),

@@ -31,6 +31,10 @@ struct ValidateSettings {
 // Brute force is O(N) per ray: used when the scene has at most this many primitives.
 constexpr size_t kBruteForceLimit = 5000;
 
+// Throws UsageError where the settings cast no ray (--rays 0 with --spp 0): an agreement of 1
+// over no query passed every threshold. Called before the backends are built.
+void checkSomethingIsCast(const ValidateSettings& settings);
+
 // Every backend of `scene`, built once: Embree, and the others checked against it.
 struct ValidationBackends {
   ValidationBackends(const Scene& scene, const ValidateSettings& settings);

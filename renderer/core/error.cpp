@@ -6,6 +6,14 @@
 namespace glint {
 
 namespace {
+
+std::string withNulsWritten(const std::string& message) {
+  if (message.find('\0') == std::string::npos) return message;
+  std::string out;
+  for (const char c : message) out += c == '\0' ? std::string("\\x00") : std::string(1, c);
+  return out;
+}
+
 std::string formatSceneError(const FileLoc& loc, const std::string& path,
                              const std::string& problem) {
   std::string s = loc.file;
@@ -14,7 +22,10 @@ std::string formatSceneError(const FileLoc& loc, const std::string& path,
   if (!path.empty()) s.append(path).append(": ");
   return s.append(problem);
 }
+
 }  // namespace
+
+GlintError::GlintError(const std::string& message) : std::runtime_error(withNulsWritten(message)) {}
 
 SceneError::SceneError(const FileLoc& loc, const std::string& path, const std::string& problem)
     : GlintError(formatSceneError(loc, path, problem)), loc_(loc), path_(path), problem_(problem) {}

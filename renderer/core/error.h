@@ -8,7 +8,10 @@ namespace glint {
 
 class GlintError : public std::runtime_error {
  public:
-  using std::runtime_error::runtime_error;
+  // A NUL in the message (a key or a name from hostile input) is written \x00: what() is read
+  // as a C string, which ended there and hid the rest ("objects[0].bogus" without its reason).
+  explicit GlintError(const std::string& message);
+  explicit GlintError(const char* message) : std::runtime_error(message) {}
 };
 
 // Inputs that cannot work together (crops of different frames, a bad option combination):

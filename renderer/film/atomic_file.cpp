@@ -156,11 +156,25 @@ fs::path directoryOf(const fs::path& target) {
 }  // namespace
 
 void checkOutputPath(const std::string& finalPath) {
+  // A name cut at a NUL by the C calls below would replace another file (Python's Frame.write
+  // of "notes.txt\0.exr" overwrote notes.txt); other control characters would reach terminals.
+  checkPathCharacters(finalPath, "output file");
   const fs::path target(finalPath);
   const fs::path dir = directoryOf(target);
   if (!fs::is_directory(dir))
     throw UsageError("cannot write " + finalPath + ": directory " + dir.string() +
                      " does not exist");
+  // Found now, not by the rename after the work: the temporary file's name is kept short.
+  const long nameMax = ::pathconf(dir.c_str(), _PC_NAME_MAX);
+  const size_t name = target.filename().string().size();
+  if (name > size_t(nameMax > 0 ? nameMax : NAME_MAX))
+    throw UsageError("cannot write " + printablePath(finalPath) + ": its name is " +
+                     std::to_string(name) + " bytes; file names here have at most " +
+                     std::to_string(nameMax > 0 ? nameMax : NAME_MAX));
+  if (finalPath.size() >= PATH_MAX)
+    throw UsageError("cannot write " + printablePath(finalPath) + ": the path is " +
+                     std::to_string(finalPath.size()) + " bytes; paths have fewer than " +
+                     std::to_string(PATH_MAX));
   checkReplaceable(finalPath);
   // The temporary file the write will make, made and removed now: a directory the user may not
   // write, or on a read-only file system, is found before the render rather than after it.

@@ -59,6 +59,53 @@ TEST(Cli, InfoNamesTheCpuFeaturesGlintChoosesCodeBy) {
       << r.output;
 }
 
+TEST(Cli, InfoRefusesAnOcioConfigItWouldNotList) {
+  // --ocio-config without --ocio was read by nothing and the info printed without a word.
+  const auto r = runGlint("info --ocio-config /nonexistent.ocio");
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("--ocio-config requires --ocio"), std::string::npos) << r.output;
+}
+
+TEST(Cli, OutputNamesAreRefusedBeforeTheWork) {
+  // A name past the file system's 255 bytes failed at the rename after the render (exit 1, the
+  // frame lost); an empty output name was read as no output (exit 0, nothing written); a newline
+  // in an output name reached the log as it is.
+  const std::string scene = test::writeTemp("outputs.json", kSmallScene);
+  const std::string dir = test::tempDir().string() + "/";
+  const auto refused = [](const std::string& args, const std::string& why) {
+    const auto r = runGlint(args);
+    EXPECT_EQ(r.exitCode, 2) << args << ": " << r.output;
+    EXPECT_NE(r.output.find(why), std::string::npos) << args << ": " << r.output;
+  };
+  refused("render " + scene + " --quiet -o " + dir + std::string(300, 'y') + ".exr",
+          ": its name is 304 bytes; file names here have at most 255");
+  refused("render " + scene + " --quiet -o '" + dir + "m\nglint: error: x.exr'",
+          "a file name may not hold control characters");
+  ASSERT_EQ(runGlint("render " + scene + " --quiet -o " + dir + "outputs.exr").exitCode, 0);
+  const std::string frame = dir + "outputs.exr";
+  for (const std::string& args :
+       {"render " + scene + " --quiet -o " + dir + "o2.exr --stats-json ''",
+        "render " + scene + " --quiet -o " + dir + "o3.exr --display ''",
+        "compare " + frame + " " + frame + " --json ''",
+        "compare " + frame + " " + frame + " --diff ''",
+        "validate " + scene + " --rays 10 --json ''", "bench " + scene + " --json ''",
+        "converge " + scene + " --spp 1,2 --csv ''"})
+    refused(args, "must not be empty; leave the option out instead");
+  // Nothing to check passed every threshold (an agreement of 1 over no query).
+  refused("validate " + scene + " --rays 0 --spp 0 --min-agreement 0.999",
+          "--rays 0 with --spp 0 casts no ray: there would be nothing to check");
+}
+
+TEST(Cli, ANulInAMessageIsWrittenNotEndingIt) {
+  // A key holding a NUL ended the message there, read as a C string: "objects[0].bogus" and no
+  // reason.
+  const std::string scene = test::writeTemp(
+      "nul-key.json", R"({"camera": {"eye": [0,0,4], "look_at": [0,0,0]}, "bogus\u0000key": 1})");
+  const auto r = runGlint("render " + scene + " -o " + (test::tempDir() / "nul.exr").string());
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find("bogus\\x00key: unknown key"), std::string::npos) << r.output;
+}
+
 TEST(Cli, SceneErrorExitsTwoWithLocation) {
   const std::string scene = test::writeTemp("bad.json",
                                             "{\n\"camera\": {\"eye\": [0,0,1],\n"
@@ -169,6 +216,11 @@ TEST(Cli, OutOfRangeNumbersAreRefusedNotWrapped) {
   const auto bench = runGlint("bench --procedural -1");
   EXPECT_EQ(bench.exitCode, 2);
   EXPECT_NE(bench.output.find("whole number"), std::string::npos) << bench.output;
+  // A backend named twice was timed twice, its figures reported under one name.
+  const auto twice = runGlint("bench " + scene + " --accel embree,bvh,embree");
+  EXPECT_EQ(twice.exitCode, 2) << twice.output;
+  EXPECT_NE(twice.output.find("--accel: \"embree\" is named twice"), std::string::npos)
+      << twice.output;
 }
 
 TEST(Cli, AnEndlessSceneFileIsRefusedAtItsSizeLimit) {

@@ -226,6 +226,21 @@ TEST(Animation, TheCommandLineNamesFramesAndKeepsThemApart) {
   EXPECT_EQ(outside.exitCode, 2);
   EXPECT_NE(outside.output.find("--frame 9 is outside the scene's frames 1-3"), std::string::npos)
       << outside.output;
+  // --frames is named as given, not as its first frame ("--frame 0"), also on a still scene.
+  const auto before = runGlint("render " + file + " --quiet --frames 0-2 -o " + tmp("c.####.exr"));
+  EXPECT_EQ(before.exitCode, 2);
+  EXPECT_NE(before.output.find("--frames 0-2 is outside the scene's frames 1-3"), std::string::npos)
+      << before.output;
+  const std::string still = test::writeTemp(
+      "still.json", R"({"camera": {"eye": [0,0,4], "look_at": [0,0,0]}, "objects": []})");
+  const auto stillFrames =
+      runGlint("render " + still + " --quiet --frames 0-1 -o " + tmp("s.####.exr"));
+  EXPECT_EQ(stillFrames.exitCode, 2);
+  EXPECT_NE(stillFrames.output.find(
+                "--frames 0-1: the scene is not animated (it declares no \"animation\")"),
+            std::string::npos)
+      << stillFrames.output;
+  EXPECT_FALSE(fs::exists(tmp("c.0001.exr")) || fs::exists(tmp("s.0000.exr")));
   // An empty --frames read as none given: the first frame rendered, to an unnumbered file.
   for (const char* command : {"render", "plan"}) {
     const auto empty =

@@ -102,3 +102,39 @@ def test_missing_files_and_bad_outputs(tmp_path, scene_dict):
         frame.write(tmp_path / "frame.bmp")
     with pytest.raises(KeyError):
         frame.channel("nope")
+
+
+def test_an_output_name_cut_at_a_nul_replaces_nothing(tmp_path, scene_dict):
+    # The C calls under Frame.write read "notes.txt\0.exr" as notes.txt: the frame replaced an
+    # unrelated file, past the check that the extension names the format.
+    notes = tmp_path / "notes.txt"
+    notes.write_text("precious")
+    frame = glint.Scene.from_dict(scene_dict).render(spp=1)
+    for name in ("notes.txt\x00.exr", "n2\x00.png"):
+        with pytest.raises(ValueError, match="control character"):
+            frame.write(str(tmp_path / name))
+    assert notes.read_text() == "precious"
+    assert not (tmp_path / "n2").exists()
+
+
+def test_paths_are_the_file_systems_bytes(tmp_path, scene_dict):
+    # bytes were read as str(b"x.exr"), and a name that is not UTF-8 could not be given at all.
+    frame = glint.Scene.from_dict(scene_dict).render(spp=1)
+    for name in (b"bytes.exr", "lat\udce9.exr"):
+        path = tmp_path / name.decode("utf-8", "surrogateescape") if isinstance(name, bytes) \
+            else tmp_path / name
+        given = bytes(tmp_path) + b"/" + name if isinstance(name, bytes) else str(path)
+        frame.write(given)
+        assert path.exists(), name
+        assert glint.read_frame(given).rgba.shape == frame.rgba.shape
+        assert glint.compare(given, frame)["rmse"] == 0
+
+
+def test_validate_takes_a_scene_and_something_to_cast(scene_dict):
+    # A path gave pybind11's "Unable to cast Python instance"; rays=0 with spp=0 checked no ray
+    # and reported an agreement of 1.
+    scene = glint.Scene.from_dict(scene_dict)
+    with pytest.raises(TypeError, match="scene must be a glint.Scene"):
+        glint.validate("scene.json", rays=10)
+    with pytest.raises(ValueError, match="casts no ray"):
+        glint.validate(scene, rays=0, spp=0)
