@@ -144,6 +144,18 @@ py::dict recordDict(const FrameRecord& r) {
   return d;
 }
 
+namespace {
+
+// A message as Python text: a path holding bytes that are not UTF-8 (os.fsencode of a Latin-1
+// name) kept as surrogates, as os.fsdecode gives them, where py::str raised UnicodeDecodeError
+// in place of the error and PyErr_SetString an empty one.
+py::str text(const std::string& message) {
+  return py::reinterpret_steal<py::str>(
+      PyUnicode_DecodeUTF8(message.data(), py::ssize_t(message.size()), "surrogateescape"));
+}
+
+}  // namespace
+
 void registerErrors(py::module_& module) {
   static py::exception<SceneError> sceneError(module, "SceneError", PyExc_ValueError);
   sceneError.doc() =
@@ -153,18 +165,18 @@ void registerErrors(py::module_& module) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const SceneError& e) {
-      py::object error = py::reinterpret_borrow<py::object>(sceneError)(py::str(e.what()));
-      error.attr("file") = e.loc().file;
+      py::object error = py::reinterpret_borrow<py::object>(sceneError)(text(e.what()));
+      error.attr("file") = text(e.loc().file);
       error.attr("line") = e.loc().line;
-      error.attr("path") = e.path();
-      error.attr("problem") = e.problem();
+      error.attr("path") = text(e.path());
+      error.attr("problem") = text(e.problem());
       PyErr_SetObject(sceneError.ptr(), error.ptr());
     } catch (const UsageError& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      PyErr_SetObject(PyExc_ValueError, text(e.what()).ptr());
     } catch (const OutOfMemoryError& e) {
-      PyErr_SetString(PyExc_MemoryError, e.what());
+      PyErr_SetObject(PyExc_MemoryError, text(e.what()).ptr());
     } catch (const GlintError& e) {
-      PyErr_SetString(PyExc_RuntimeError, e.what());
+      PyErr_SetObject(PyExc_RuntimeError, text(e.what()).ptr());
     }
   });
 }

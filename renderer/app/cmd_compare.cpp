@@ -5,6 +5,7 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "core/input_files.h"
+#include "core/log.h"
 #include "film/atomic_file.h"
 #include "film/compare.h"
 #include "film/image_format.h"
@@ -53,6 +54,7 @@ CommandRunner addCompareCommand(CLI::App& app) {
     requireRgb(test, a->test, "compare");
     requireRgb(ref, a->reference, "compare");
     const ImageErrors e = compareImages(test, ref, a->threshold);
+    if (!e.placement.empty()) log::warning(e.placement);
     std::printf(
         "rmse      %.6g\nrelmse    %.6g\nmae       %.6g\nmax_abs   %.6g\npsnr      %.3f dB\n"
         "above     %.4f%% of pixels over %.3g\n",

@@ -238,6 +238,7 @@ int runConverge(const ConvergeArgs& a) {
       std::to_string(scene.render.width) + "×" + std::to_string(scene.render.height);
 
   std::vector<ConvergenceSeries> series;
+  bool placementSaid = false;  // of the reference, once
   for (AccelKind ak : accels) {
     const auto accel = makeAccelerator(ak, scene);
     for (SamplerKind sk : samplers) {
@@ -251,6 +252,8 @@ int runConverge(const ConvergeArgs& a) {
         p.spp = spp;
         const Image img = renderImage(scene, *accel, a.threads, p.seconds, p.cpuSeconds);
         const ImageErrors e = compareImages(img, reference);
+        if (!e.placement.empty() && !placementSaid) log::warning(e.placement);
+        placementSaid = placementSaid || !e.placement.empty();
         p.rmse = e.rmse;
         p.relmse = e.relmse;
         s.points.push_back(p);

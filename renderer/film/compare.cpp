@@ -12,23 +12,29 @@ namespace glint {
 
 namespace {
 
-void checkSameShape(const Image& a, const Image& b) {
+// Throws unless the images can be set pixel for pixel; returns a note where they can but may
+// not be the same pixels: both lie in frames (an array does not), of other sizes.
+std::string checkSameShape(const Image& a, const Image& b) {
   if (a.width != b.width || a.height != b.height)
     throw UsageError("images differ in size: " + std::to_string(a.width) + "x" +
                      std::to_string(a.height) + " against " + std::to_string(b.width) + "x" +
                      std::to_string(b.height));
   if (a.channels < 3 || b.channels < 3) throw UsageError("images need at least RGB channels");
-  // Two crops of one size are other pixels where they lie apart, or in frames of other sizes
-  // (an image without a frame, an array's, sits beside any).
   const auto known = [](const Image& i) { return i.fullWidth > 0 && i.fullHeight > 0; };
+  if (!known(a) || !known(b)) return "";
   const auto place = [](const Image& i) {
     return "(" + std::to_string(i.x) + ", " + std::to_string(i.y) + ") of a " +
            std::to_string(i.fullWidth) + "x" + std::to_string(i.fullHeight) + " frame";
   };
-  if (known(a) && known(b) &&
-      (a.x != b.x || a.y != b.y || a.fullWidth != b.fullWidth || a.fullHeight != b.fullHeight))
-    throw UsageError("images cover other pixels: " + std::to_string(a.width) + "x" +
-                     std::to_string(a.height) + " at " + place(a) + " against " + place(b));
+  const std::string where = std::to_string(a.width) + "x" + std::to_string(a.height) + " at " +
+                            place(a) + " against " + place(b);
+  // Two crops of one frame that lie apart are other pixels of the scene.
+  if (a.fullWidth == b.fullWidth && a.fullHeight == b.fullHeight) {
+    if (a.x != b.x || a.y != b.y) throw UsageError("images cover other pixels: " + where);
+    return "";
+  }
+  // In frames of other sizes they may be (a reference cut out by another tool) or not.
+  return "the images lie in frames of other sizes, " + where + ": compared pixel for pixel";
 }
 
 double channel(const Image& img, size_t pixel, int c) {
@@ -52,16 +58,19 @@ void requireFiniteReference(const Image& reference, const std::string& path) {
   for (size_t p = 0; p < pixels; ++p)
     for (int c = 0; c < 3; ++c)
       if (const double v = channel(reference, p, c); !std::isfinite(v))
-        throw UsageError(path + ": channel " + "RGB"[c] + " is " +
-                         (std::isnan(v) ? "NaN" : "infinite") + " at pixel (" +
+        throw UsageError(path + ": channel " +
+                         (reference.channelNames.size() > size_t(c)
+                              ? reference.channelNames[size_t(c)]
+                              : std::string(1, "RGB"[c])) +
+                         " is " + (std::isnan(v) ? "NaN" : "infinite") + " at pixel (" +
                          std::to_string(reference.x + int(p % size_t(reference.width))) + ", " +
                          std::to_string(reference.y + int(p / size_t(reference.width))) +
                          "): errors against it would not be finite");
 }
 
 ImageErrors compareImages(const Image& a, const Image& b, double threshold) {
-  checkSameShape(a, b);
   ImageErrors e;
+  e.placement = checkSameShape(a, b);
   e.pixels = size_t(a.width) * size_t(a.height);
   double se = 0, rel = 0, ae = 0;
   size_t above = 0;

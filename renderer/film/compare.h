@@ -15,12 +15,15 @@ struct ImageErrors {
   double psnr = 0;    // 10·log10(1 / MSE), peak 1 (display white); +∞ for identical images
   double aboveThreshold = 0;  // share of pixels whose largest channel error exceeds the threshold
   size_t pixels = 0;
+  // Where both images lie in frames of other sizes, a note the caller gives as a warning: they
+  // were compared pixel for pixel, which may not set the same pixels side by side.
+  std::string placement;
 };
 
 inline constexpr double kRelMseEpsilon = 1e-2;
 
-// Throws UsageError when the sizes differ, or when both images lie in frames (an array's does
-// not) and those or their places differ. Non-finite values count as an error of +∞.
+// Throws UsageError when the sizes differ, or when both images lie in frames of one size (an
+// array lies in none) at other places. Non-finite values count as an error of +∞.
 ImageErrors compareImages(const Image& test, const Image& reference, double threshold = 1e-2);
 
 // Throws UsageError, naming `path`, the pixel and the channel, where a reference's R, G or B is

@@ -282,10 +282,12 @@ Image readImage(const std::string& path, ExrParts parts) {
   for (int part = 1; parts == ExrParts::All && part < file->parts(); ++part) {
     const Imf::Header& h = file->header(part);
     const std::string partName = h.hasName() ? h.name() : std::to_string(part);
-    if (h.dataWindow() != header.dataWindow() || h.displayWindow() != header.displayWindow())
-      throw UsageError(path + ": part " + std::to_string(part) + " (" + inQuotes(partName) +
-                       ") covers other pixels than part 0; its parts are read together only "
-                       "where they share their data and display windows");
+    // Laid beside part 0 pixel for pixel, or not at all (another tool's cropped AOV part).
+    if (h.dataWindow() != header.dataWindow() || h.displayWindow() != header.displayWindow()) {
+      img.partsLeftOut.push_back("part " + std::to_string(part) + " (" + inQuotes(partName) +
+                                 ") covers other pixels than part 0");
+      continue;
+    }
     partsRead.emplace_back(part, img.channelNames.size());
     // A name an earlier part already has is qualified by its part's ("diffuse.R").
     for (const std::string& name : channelsInReadingOrder(h.channels())) {

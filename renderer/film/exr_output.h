@@ -56,9 +56,10 @@ void writeExrStream(const std::string& path, const std::string& tmpPath,
 
 // Reads an EXR's channels (full data window) as float, RGBA first; used by tests, `glint
 // compare`, `convert` and `converge`, and with every part by the Python module's read_frame
-// (a --multipart frame's AOVs are parts of their own). Throws UsageError naming the file when
-// it cannot be read, its data window would not fit in memory (film/image_limits.h), or (every
-// part) a part covers other pixels than the first or repeats a channel name.
+// (a --multipart frame's AOVs are parts of their own; a part over other pixels than the first
+// is left out, and named in partsLeftOut). Throws UsageError naming the file when it cannot be
+// read, its data window would not fit in memory (film/image_limits.h), or (every part) a part
+// repeats a channel name once qualified by its part's.
 struct Image {
   int width = 0, height = 0, channels = 0;
   std::vector<std::string> channelNames;  // as in the file; empty for images made in memory
@@ -67,6 +68,7 @@ struct Image {
   std::string colorspace;  // its glint:colorspace, empty when it has none (a foreign EXR)
   // OpenEXR's standard chromaticities, when the file has them: red, green, blue, white (x, y).
   std::optional<std::array<float, 8>> chromaticities;
+  std::vector<std::string> partsLeftOut;  // ExrParts::All: each part not read, and why
 };
 enum class ExrParts { First, All };
 Image readImage(const std::string& path, ExrParts parts = ExrParts::First);

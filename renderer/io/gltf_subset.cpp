@@ -136,14 +136,17 @@ void checkStrides(const std::string& path, const json& doc) {
 // glTF 2.0 allows texture coordinates as normalized unsigned bytes or shorts too (quantized
 // files); Assimp 5.2.5 reads only floats and took the others' bytes for floats: one colour of
 // the texture over the whole mesh, or a refusal naming NaN coordinates that the file lacks.
-void checkTextureCoordinateTypes(const std::string& path, const json& doc) {
+// Such a set is removed from its primitive, with a warning: the mesh renders, its textures
+// read at (0, 0).
+void dropTextureCoordinatesNotFloat(const std::string& path, json& doc) {
   const size_t accessors = countOf(doc, "accessors");
+  std::string dropped;
   for (size_t m = 0; m < countOf(doc, "meshes"); ++m) {
-    const json& mesh = doc["meshes"][m];
+    json& mesh = doc["meshes"][m];
     const auto primitives = mesh.is_object() ? mesh.find("primitives") : mesh.end();
     if (primitives == mesh.end() || !primitives->is_array()) continue;
     for (size_t p = 0; p < primitives->size(); ++p) {
-      const json& primitive = (*primitives)[p];
+      json& primitive = (*primitives)[p];
       const auto attributes =
           primitive.is_object() ? primitive.find("attributes") : primitive.end();
       if (attributes == primitive.end() || !attributes->is_object()) continue;
@@ -153,16 +156,22 @@ void checkTextureCoordinateTypes(const std::string& path, const json& doc) {
         const auto type = accessor.is_object() ? accessor.find("componentType") : accessor.end();
         if (type == accessor.end() || !type->is_number_unsigned() || type->get<uint64_t>() == 5126)
           continue;
-        throw UsageError("mesh " + path + ": meshes[" + std::to_string(m) + "].primitives[" +
-                         std::to_string(p) + "] keeps " + set + " as " +
-                         (type->get<uint64_t>() == 5121   ? "unsigned bytes"
-                          : type->get<uint64_t>() == 5123 ? "unsigned shorts"
-                                                          : "integers") +
-                         "; Glint reads texture coordinates stored as floats only (write the "
-                         "file without quantization)");
+        if (dropped.empty())
+          dropped = "meshes[" + std::to_string(m) + "].primitives[" + std::to_string(p) + "]'s " +
+                    set + " (" +
+                    (type->get<uint64_t>() == 5121   ? "unsigned bytes"
+                     : type->get<uint64_t>() == 5123 ? "unsigned shorts"
+                                                     : "integers") +
+                    ")";
+        attributes->erase(set);
       }
     }
   }
+  if (!dropped.empty())
+    log::warning("mesh " + path + ": texture coordinates stored as integers (quantized), first " +
+                 dropped +
+                 ", are left out: Glint reads them stored as floats only, and its "
+                 "textures are read at (0, 0) there");
 }
 
 // The reduced file's textures, images and samplers, and the materials' references to them:
@@ -287,6 +296,27 @@ std::optional<size_t> gltfMaterialIndex(const std::string& name) {
   return index;
 }
 
+namespace {
+
+// Whether `text` is well-formed UTF-8 (the JSON the subset is written as holds nothing else).
+bool isUtf8(const std::string& text) {
+  for (size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const size_t length = c < 0x80           ? 1
+                          : (c >> 5) == 0x6  ? 2
+                          : (c >> 4) == 0xe  ? 3
+                          : (c >> 3) == 0x1e ? 4
+                                             : 0;
+    if (length == 0 || i + length > text.size()) return false;
+    for (size_t k = 1; k < length; ++k)
+      if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2) return false;
+    i += length;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::string gltfUriPath(const std::string& uri, const std::string& dir) {
   if (uri.rfind("data:", 0) == 0 || uri.find('%') == std::string::npos) return uri;
   std::string decoded;
@@ -302,6 +332,9 @@ std::string gltfUriPath(const std::string& uri, const std::string& dir) {
     decoded += char(byte);
     i += 2;
   }
+  // Escapes of bytes that are not UTF-8 ("caf%E9.png", Latin-1) could not be written back into
+  // the JSON: kept as written, so that a missing file stays a missing file.
+  if (!isUtf8(decoded)) return uri;
   std::error_code ec;
   const std::filesystem::path base(dir);
   return std::filesystem::exists(base / decoded, ec) || !std::filesystem::exists(base / uri, ec)
@@ -361,7 +394,7 @@ std::string gltfSubset(const std::string& path, const std::string& text,
   // Before Assimp or Glint's own reader places a node once per path to it.
   checkGltfExpansion(path, doc);
   checkStrides(path, doc);
-  checkTextureCoordinateTypes(path, doc);
+  dropTextureCoordinatesNotFloat(path, doc);
   keepOnly(doc,
            {"asset", "scene", "scenes", "nodes", "meshes", "materials", "accessors", "bufferViews",
             "buffers", "textures", "images", "samplers", "extensionsUsed", "extensionsRequired"});
@@ -386,10 +419,15 @@ std::string gltfSubset(const std::string& path, const std::string& text,
       textureInfos[i][Normal] = textureInfoOf(material, "normalTexture");
       (*materials)[i].normalScale = normalTextureScale(material);
       if (const json& occlusion = textureInfos[i][Occlusion]; occlusion.is_object())
-        if (const auto strength = occlusion.find("strength");
-            strength != occlusion.end() && strength->is_number() &&
-            std::isfinite(strength->get<double>()))
-          (*materials)[i].occlusionStrength = std::clamp(strength->get<float>(), 0.0f, 1.0f);
+        if (const auto strength = occlusion.find("strength"); strength != occlusion.end()) {
+          const double v = strength->is_number() ? strength->get<double>() : -1;
+          const bool inRange = v >= 0 && v <= 1;  // false for NaN
+          (*materials)[i].occlusionStrength = inRange ? float(v) : v > 1 ? 1.0f : 0.0f;
+          if (!inRange)
+            log::warning("mesh " + path + ": materials[" + std::to_string(i) +
+                         "]: occlusionTexture's strength " + excerpt(strength->dump()) +
+                         " is not a number from 0 to 1: " + (v > 1 ? "1" : "0") + " is used");
+        }
       if (const auto ext = material.find("extensions"); ext != material.end() && ext->is_object())
         if (const auto e = ext->find("KHR_materials_emissive_strength");
             e != ext->end() && e->is_object())

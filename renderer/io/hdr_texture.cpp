@@ -11,12 +11,14 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "core/file_names.h"
 #include "core/memory.h"
 #include "io/texture_reader_support.h"
+#include "materials/mip_pyramid.h"
 
 namespace glint::hdr_texture {
 
@@ -69,6 +71,7 @@ struct Reader {
   bool yFirst = true, yDown = true, xRight = true;
   bool upright() const { return yFirst && yDown && xRight; }
   std::vector<float> whole;  // a file of another orientation, upright, once read
+  std::string name;          // the file's path, or an embedded image's name
   int nextRow = 0;
   std::vector<unsigned char> encoded;  // a run-length-encoded scanline's four planes
   std::vector<float> row;              // a scanline's floats, where fewer channels are asked for
@@ -195,10 +198,20 @@ Header readHeader(Reader& r) {
     line.remove_prefix(3);
     return true;
   };
-  if (!takeAxis(firstAxis, firstUp) || !takeNumber(line, r.scanlines) || !take(line, " ") ||
-      !takeAxis(secondAxis, secondUp) || !takeNumber(line, r.scanlineLength) || line != "\n" ||
-      firstAxis == secondAxis)
+  // A size of 10 digits or more is no image's: refused as the header's, not left to
+  // OpenImageIO, which clamped it to 2^31 - 1 and ran out of memory.
+  bool tooLong = false;
+  const auto size = [&](int& value) {
+    if (takeNumber(line, value)) return true;
+    tooLong = !line.empty() && line[0] >= '0' && line[0] <= '9';
+    return false;
+  };
+  if (!takeAxis(firstAxis, firstUp) || !size(r.scanlines) || !take(line, " ") ||
+      !takeAxis(secondAxis, secondUp) || !size(r.scanlineLength) || line != "\n" ||
+      firstAxis == secondAxis) {
+    if (tooLong) return r.fail("its size line gives a size of 10 digits or more"), Header::Refused;
     return Header::Declined;
+  }
   r.yFirst = firstAxis == 'Y';
   r.yDown = !(r.yFirst ? firstUp : secondUp);
   r.xRight = r.yFirst ? secondUp : firstUp;
@@ -307,9 +320,13 @@ bool hasHdrName(const std::string& name) {
 // A file of another orientation than "-Y +X", read whole into r.whole, upright.
 bool readTurned(Reader& r) {
   const size_t width = size_t(r.width), height = size_t(r.height);
-  checkMemoryFits(double(width) * double(height) * 3 * sizeof(float),
-                  "an HDR texture's pixels, read whole to be turned upright (its scanlines are "
-                  "not rows from the top)");
+  // Beside the MIP pyramid the caller's budget counted (with one band, less than this).
+  checkMemoryFits(double(width) * double(height) * 3 * sizeof(float) +
+                      MipPyramid::bytesFor(r.width, r.height, 3),
+                  "texture " + r.name + " (" + std::to_string(width) + "x" +
+                      std::to_string(height) +
+                      ", read whole to be turned upright: its scanlines are not rows from the "
+                      "top) and its MIP pyramid");
   r.whole.resize(width * height * 3);
   std::vector<float> scanline(3 * size_t(r.scanlineLength));
   for (int s = 0; s < r.scanlines; ++s) {
@@ -366,6 +383,7 @@ void* open(const std::string& path, GlintOiioTextureInfo* info, char* error, siz
   *declined = !hasHdrName(path);
   if (*declined) return nullptr;
   auto r = std::make_unique<Reader>();
+  r->name = path;
   r->source.file = texture_reader::openFile(path, error, errorSize);
   if (!r->source.file) return nullptr;
   return openReader(std::move(r), info, error, errorSize, declined);
@@ -376,6 +394,7 @@ void* openMemory(const std::string& name, const void* bytes, size_t size,
   *declined = !hasHdrName(name);
   if (*declined) return nullptr;
   auto r = std::make_unique<Reader>();
+  r->name = name;
   r->source.bytes = static_cast<const unsigned char*>(bytes);
   r->source.size = size;
   return openReader(std::move(r), info, error, errorSize, declined);

@@ -110,7 +110,7 @@ struct ObjFaceReferences {
                            kKinds[k] + " index " + std::to_string(i) + ", " + why);
         };
         if (i == 0) fail("but OBJ indices start at 1");
-        if (i < 0 && -i > lines[k])
+        if (i < 0 && i < -lines[k])  // not -i: -2^63 has no negation
           fail("but only " + std::to_string(lines[k]) + " " + kKinds[k] + " lines come before it");
         if (i > furthest[k]) {
           furthest[k] = i;
@@ -131,6 +131,42 @@ struct ObjFaceReferences {
   }
 };
 
+// The options of an MTL file's map lines that change where or how a map is read, which Assimp
+// 5.2.5 parses and drops: "map_Kd -s 2 2 1 t.png" rendered the texture at scale 1 without a
+// word. (-bm, a bump or normal map's scale, is applied.)
+struct IgnoredMapOptions {
+  std::vector<std::string> options;  // each once, in the order first given
+  int firstLine = 0;
+
+  void note(int lineNumber, std::string_view line) {
+    static constexpr std::string_view kMaps[] = {"map_", "bump", "disp", "decal", "refl", "norm"};
+    static constexpr std::string_view kIgnored[] = {"-s",      "-o",      "-t",      "-mm",
+                                                    "-texres", "-clamp",  "-cc",     "-boost",
+                                                    "-blendu", "-blendv", "-imfchan"};
+    if (std::none_of(std::begin(kMaps), std::end(kMaps),
+                     [&](std::string_view m) { return line.substr(0, m.size()) == m; }))
+      return;
+    constexpr const char* kSpace = " \t\r";
+    for (size_t begin = line.find_first_not_of(kSpace, line.find_first_of(kSpace));
+         begin != std::string_view::npos; begin = line.find_first_not_of(kSpace, begin)) {
+      const size_t end = std::min(line.find_first_of(kSpace, begin), line.size());
+      const std::string word(line.substr(begin, end - begin));
+      begin = end;
+      if (std::find(std::begin(kIgnored), std::end(kIgnored), word) == std::end(kIgnored) ||
+          std::find(options.begin(), options.end(), word) != options.end())
+        continue;
+      options.push_back(word);
+      if (firstLine == 0) firstLine = lineNumber;
+    }
+  }
+
+  std::string list() const {
+    std::string text;
+    for (const std::string& o : options) text += (text.empty() ? "" : ", ") + o;
+    return text;
+  }
+};
+
 // Adds the names that follow `keyword` at the start of a line of `file` to `names`, and the
 // material libraries its `mtllib` lines name to `libraries` (when given: `file` is the OBJ
 // file itself, whose vertex lines are checked as well, checkObjNumbers, and its faces'
@@ -139,6 +175,7 @@ void collectObjNames(const std::string& mesh, const std::filesystem::path& file,
                      const char* keyword, std::set<std::string>& names,
                      std::vector<std::string>* libraries) {
   ObjFaceReferences references;
+  IgnoredMapOptions ignoredMapOptions;  // of a material library
   std::ifstream in(file, std::ios::binary);
   const std::string key = std::string(keyword) + " ";
   int lineNumber = 0;
@@ -169,9 +206,16 @@ void collectObjNames(const std::string& mesh, const std::filesystem::path& file,
                          std::to_string(kMaxObjMaterials) + " from one OBJ file");
     } else if (libraries && line.compare(at, 7, "mtllib ") == 0) {
       libraries->push_back(rest(7));
+    } else if (!libraries) {
+      ignoredMapOptions.note(lineNumber, std::string_view(line).substr(at));
     }
   }
   if (libraries) references.checkFurthest(mesh);
+  if (!ignoredMapOptions.options.empty())
+    log::warning("mesh " + mesh + ": its material library " + file.string() +
+                 " gives map options " + ignoredMapOptions.list() + " (line " +
+                 std::to_string(ignoredMapOptions.firstLine) +
+                 " first), which Glint does not apply: its maps are read as if without them");
 }
 
 // The last `bytes` bytes of `path`.

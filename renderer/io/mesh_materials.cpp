@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/error.h"
 #include "core/log.h"
 #include "io/json_source.h"
 
@@ -118,10 +119,14 @@ Cutout gltfCutout(const MaterialValues& v, const TextureOpener& open,
   Cutout c;
   aiString mode;
   if (src.Get(AI_MATKEY_GLTF_ALPHAMODE, mode) != AI_SUCCESS) return c;
-  if (std::string(mode.C_Str()) == "BLEND")
+  const std::string alphaMode = mode.C_Str();
+  if (alphaMode == "BLEND")
     log::warning("material " + name +
                  ": alphaMode BLEND is not rendered (Glint cuts out, it does not blend): opaque");
-  if (std::string(mode.C_Str()) != "MASK") return c;
+  else if (alphaMode != "OPAQUE" && alphaMode != "MASK")
+    log::warning("material " + name + ": alphaMode " + inQuotes(alphaMode) +
+                 " is not one glTF defines (OPAQUE, MASK, BLEND): opaque");
+  if (alphaMode != "MASK") return c;
   aiColor4D base(1, 1, 1, 1);
   src.Get(AI_MATKEY_BASE_COLOR, base);
   c.coverage = std::isfinite(base.a) ? std::clamp(base.a, 0.0f, 1.0f) : 1.0f;

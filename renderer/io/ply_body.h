@@ -86,14 +86,13 @@ class Body {
   // Skips blanks to the end of the cursor's line, and past it; false where a token comes first.
   bool endLine() {
     for (;;) {
-      while (at_ < end_ && isSpace(*at_) && *at_ != '\n') ++at_;
+      while (at_ < end_ && isSpace(*at_) && !endsLine(*at_)) pass(*at_++);
       if (at_ < end_) break;
       refill(1);
       if (at_ == end_) return true;  // the file ends with the line
     }
-    if (*at_ != '\n') return false;
-    ++at_;
-    ++line_;
+    if (!endsLine(*at_)) return false;
+    pass(*at_++);  // a CR's LF, if it has one, is passed over by the next token
     return true;
   }
 
@@ -101,10 +100,7 @@ class Body {
   // kMaxTokenChars + 1 characters (the caller refuses it).
   std::string_view token() {
     for (;;) {
-      while (at_ < end_ && isSpace(*at_)) {
-        if (*at_ == '\n') ++line_;
-        ++at_;
-      }
+      while (at_ < end_ && isSpace(*at_)) pass(*at_++);
       if (at_ < end_) break;
       refill(1);
       if (at_ == end_) return {};
@@ -119,12 +115,19 @@ class Body {
     }
     const std::string_view t(reinterpret_cast<const char*>(at_), size_t(p - at_));
     at_ = p;
+    afterCr_ = false;
     return t;
   }
 
  private:
   static bool isSpace(unsigned char c) {
     return c == ' ' || c == '\n' || c == '\r' || c == '\t' || c == '\v' || c == '\f';
+  }
+  static bool endsLine(unsigned char c) { return c == '\n' || c == '\r'; }
+  // Counts lines as the header does: LF, CR LF and a lone CR each end one.
+  void pass(unsigned char c) {
+    if (c == '\r' || (c == '\n' && !afterCr_)) ++line_;
+    afterCr_ = c == '\r';
   }
 
   // Keeps the unread bytes and reads until at least `need` are there or the file ends.
@@ -152,6 +155,7 @@ class Body {
   uint64_t offset_;  // of buffer_[0] in the file
   uint64_t size_;
   uint64_t line_;
+  bool afterCr_ = false;  // the last byte passed was a CR
   bool eof_ = false;
 };
 
@@ -296,7 +300,11 @@ class AsciiValues {
     checkListFits(n, t);
     for (int64_t i = 0; i < n; ++i) next();
   }
-  std::string place() const { return " (line " + std::to_string(body_.line()) + ")"; }
+  // The element's line once a value of it is read (a short line's fault is its own, not the
+  // next line's where its missing value was looked for).
+  std::string place() const {
+    return " (line " + std::to_string(started_ ? line_ : body_.line()) + ")";
+  }
 
  private:
   std::string_view next() {

@@ -78,6 +78,7 @@ PlyHeader parsePlyHeader(const std::string& path, const std::string& head, uint6
                           : std::string()));
   PlyHeader header;
   header.bodyStart = bodyStart;
+  header.bodyLine = lines.size() + 1;
   // The header's lines must be PLY 1.0's as its specification writes them (one "ply", one
   // format line, elements with a count, properties of known types): Assimp 5.2's reader never
   // returned from a binary file whose header repeated and garbled them (a 190-byte file, found

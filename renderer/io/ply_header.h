@@ -30,6 +30,7 @@ struct PlyHeader {
   PlyFormat format = PlyFormat::BinaryLittleEndian;
   std::vector<PlyElement> elements;
   uint64_t bodyStart = 0;  // the first byte after the end_header line
+  uint64_t bodyLine = 0;   // its line number, lines ended as the header's are (a lone CR too)
 };
 
 // A PLY header longer than this (comments, mostly) is refused rather than read on.

@@ -333,8 +333,7 @@ MeshFile readPlyFile(const std::string& path) {
   PlyHeader header = parsePlyHeader(path, head, fileSize);
   checkPlyElementsFitInTheFile(path, header, fileSize);
   MeshFile file;
-  const auto bodyLine =
-      uint64_t(1 + std::count(head.begin(), head.begin() + ptrdiff_t(header.bodyStart), '\n'));
+  const uint64_t bodyLine = header.bodyLine;
   file.parts.push_back(PlyReader(path, std::move(header), fileSize, bodyLine).read());
   // A PLY has no materials Glint reads: the default surface, named as before ("FILE:"), its
   // diffuse colour the vertex colours where the file has them (as io/mesh_io.cpp does).

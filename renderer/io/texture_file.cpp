@@ -159,8 +159,8 @@ std::shared_ptr<const ImageTexture> loadedTexture(const std::string& path, void*
   texels.reserve(row * size_t(info.height) + 1);  // with the pyramid's padding float
   for (int y0 = 0; y0 < info.height; y0 += bandRows) {
     const int y1 = std::min(info.height, y0 + bandRows);
-    // Grown (and so written) a band at a time: a 74-byte PNG declaring 20000 x 20000 texels
-    // took 4.7 GB, zeroed whole, before its first row failed.
+    // Grown (and so written) a band at a time: a small file declaring a huge image fails at its
+    // first missing band, having touched what was read, not the whole declared size.
     texels.resize(row * size_t(y1));
     char readError[512] = "";
     if (functions.read(handle, y0, y1, channels, texels.data() + row * size_t(y0), readError,

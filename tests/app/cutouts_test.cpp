@@ -129,6 +129,15 @@ TEST(Cutouts, GltfMaskCutsWhereBaseColourAlphaIsBelowTheCutoff) {
   // OPAQUE (the default) ignores alpha.
   const Film opaque = render("{" + textured + "}", "opaque");
   for (int x = 0; x < 16; ++x) EXPECT_NEAR(red(opaque, x, 1), 1.04, 1e-5) << x;
+  // A mode glTF does not define is opaque too, and said to be (it was without a word).
+  testing::internal::CaptureStderr();
+  const Film unknown = render(R"({"alphaMode": "MASKX", )" + textured + "}", "unknown");
+  const std::string warnings = testing::internal::GetCapturedStderr();
+  for (int x = 0; x < 16; ++x) EXPECT_NEAR(red(unknown, x, 1), 1.04, 1e-5) << x;
+  EXPECT_NE(warnings.find(R"(alphaMode "MASKX" is not one glTF defines (OPAQUE, MASK, BLEND): )"
+                          "opaque"),
+            std::string::npos)
+      << warnings;
 }
 
 TEST(Cutouts, ARealGltfWithAlphaModeBlendIsRenderedOpaqueWithAWarning) {

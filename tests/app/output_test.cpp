@@ -299,8 +299,8 @@ TEST(Output, CropsMergeIntoTheFullFrameByteForByte) {
 }
 
 TEST(Output, CompareRefusesCropsThatLieApart) {
-  // Two 16 x 14 crops of one frame at other places were compared pixel by pixel (rmse 0.3,
-  // exit 0): different pixels of the scene, not two renders of the same ones.
+  // Two 16 x 14 crops of one frame at other places were compared pixel by pixel (exit 0):
+  // different pixels of the scene, not two renders of the same ones.
   const std::string scene = test::writeTemp("compare-crops.json", kScene);
   const std::string a = tmp("crop-a.exr"), b = tmp("crop-b.exr");
   ASSERT_EQ(runGlint("render " + scene + " --quiet --crop 4 20 3 17 -o " + a).exitCode, 0);
@@ -348,6 +348,20 @@ TEST(Output, MergeRefusesACropWhoseChannelsWereRenamed) {
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("\"Y\""), std::string::npos) << r.output;
+  // In frames of other sizes they may be the same pixels (a reference another tool cut out):
+  // compared, with a warning that says how.
+  const std::string big = tmp("crop-big.exr");
+  ASSERT_EQ(
+      runGlint("render " + scene + " --quiet --width 96 --height 64 --crop 0 16 0 14 -o " + big)
+          .exitCode,
+      0);
+  const auto sizes = runGlint("compare " + big + " " + b);
+  EXPECT_EQ(sizes.exitCode, 0) << sizes.output;
+  EXPECT_NE(sizes.output.find("the images lie in frames of other sizes, 16x14 at (0, 0) of a "
+                              "96x64 frame against (0, 0) of a 48x32 frame: compared pixel for "
+                              "pixel"),
+            std::string::npos)
+      << sizes.output;
   EXPECT_FALSE(fs::exists(merged));
   // The crops as rendered still merge.
   EXPECT_EQ(runGlint("merge " + merged + " " + left + " " + right).exitCode, 0);

@@ -365,5 +365,30 @@ TEST(GltfMaterials, AnEmissiveStrengthGlintCannotUseIsNamedAndReadAsOne) {
   EXPECT_EQ(occurrences(warnings, "emissiveStrength"), 3u) << warnings;
 }
 
+TEST(GltfMaterials, AnOcclusionStrengthOutsideZeroToOneIsNamedAndClamped) {
+  // glTF's occlusion strength is from 0 to 1; 1e30 was clamped to 1 without a word.
+  const auto occlusion = [](const std::string& value) {
+    return R"({"occlusionTexture": {"index": 0, "strength": )" + value + "}}";
+  };
+  const std::string text = R"({"asset": {"version": "2.0"}, "textures": [{"source": 0}],
+      "images": [{"uri": "o.png"}], "materials": [)" +
+                           occlusion("0.5") + ", " + occlusion("1e30") + ", " + occlusion("-1") +
+                           ", " + occlusion(R"("x")") + "]}";
+  testing::internal::CaptureStderr();
+  std::vector<GltfMaterialInfo> materials;
+  gltfSubset("occlusion.gltf", text, &materials);
+  const std::string warnings = testing::internal::GetCapturedStderr();
+  ASSERT_EQ(materials.size(), 4u);
+  const float expected[4] = {0.5f, 1, 0, 0};
+  for (size_t i = 0; i < 4; ++i) EXPECT_EQ(materials[i].occlusionStrength, expected[i]) << i;
+  for (const char* named : {"materials[1]: occlusionTexture's strength 1e+30 is not a number "
+                            "from 0 to 1: 1 is used",
+                            "materials[2]: occlusionTexture's strength -1 is not a number from 0 "
+                            "to 1: 0 is used",
+                            R"(materials[3]: occlusionTexture's strength "x")"})
+    EXPECT_EQ(occurrences(warnings, named), 1u) << named << ": " << warnings;
+  EXPECT_EQ(occurrences(warnings, "strength"), 3u) << warnings;
+}
+
 }  // namespace
 }  // namespace glint

@@ -175,6 +175,23 @@ TEST(HdrTexture, EveryOrientationIsTurnedUpright) {
         EXPECT_EQ(turned.info.height, height) << size;
         EXPECT_EQ(turned.texels, reference.texels) << size;
       }
+  // Two written out by hand, apart from the formula above: "+Y" holds the bottom row first;
+  // "+X 9 -Y 2" holds columns from the left, each from the top.
+  const std::string head = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n";
+  Bytes bottomFirst(head.begin(), head.end());
+  test::append(bottomFirst, {'+', 'Y', ' ', '2', ' ', '+', 'X', ' ', '9', '\n'});
+  bottomFirst.insert(bottomFirst.end(), upright.begin() + 36, upright.end());    // row 1
+  bottomFirst.insert(bottomFirst.end(), upright.begin(), upright.begin() + 36);  // row 0
+  Bytes columns(head.begin(), head.end());
+  test::append(columns, {'+', 'X', ' ', '9', ' ', '-', 'Y', ' ', '2', '\n'});
+  for (size_t column = 0; column < 9; ++column)
+    for (size_t row = 0; row < 2; ++row) {
+      const auto* pixel = &upright[4 * (row * 9 + column)];
+      columns.insert(columns.end(), pixel, pixel + 4);
+    }
+  for (const auto& [what, file] : {std::pair{"+Y 2 +X 9", bottomFirst}, {"+X 9 -Y 2", columns}})
+    EXPECT_EQ(test::readBytesWith(kHdrReader, "by-hand.hdr", file).texels, reference.texels)
+        << what;
   // A file of another orientation too short for its pixels is refused from its header.
   const std::string cut = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n+Y 8000 +X 8000\n";
   const test::Reading tooShort =
@@ -249,6 +266,12 @@ TEST(HdrTexture, AHostileFileIsRefusedNamingTheFileAndWhatWasWrong) {
   writeBytes(huge, flatFile(999999999, 999999999, {1, 2, 3, 4}));
   test::expectRefusedNaming(
       huge, "999999999 x 999999999 pixels cannot fit in the 4 bytes after the header");
+  // A size of 20 digits went to OpenImageIO, which clamped it to 2^31 - 1 and ran out of memory
+  // (exit 1, as if the machine had failed).
+  const std::string head = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 99999999999999999999 +X 8\n";
+  const std::string longSize = (test::tempDir() / "long-size.hdr").string();
+  writeBytes(longSize, Bytes(head.begin(), head.end()));
+  test::expectRefusedNaming(longSize, "invalid HDR data: its size line gives a size of 10 digits");
 }
 
 }  // namespace

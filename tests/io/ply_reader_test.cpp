@@ -292,7 +292,7 @@ TEST(PlyReader, AnAsciiElementHoldsItsLineExactly) {
   shortLine.erase(ascii.rfind(' ', ascii.find('\n', vertex2)), 4);  // " 0.5": v of vertex 2
   EXPECT_NE(
       test::meshLoadError("short-line.ply", shortLine)
-          .find("PLY vertex 2 of 5 (line 19), property v: its line ends before its values do"),
+          .find("PLY vertex 2 of 5 (line 18), property v: its line ends before its values do"),
       std::string::npos)
       << test::meshLoadError("short-line.ply", shortLine);
   std::string longFace = ascii;
@@ -300,11 +300,24 @@ TEST(PlyReader, AnAsciiElementHoldsItsLineExactly) {
   EXPECT_NE(test::meshLoadError("long-face.ply", longFace)
                 .find("PLY face 1 of 2 (line 22): its line holds more values than its properties"),
             std::string::npos);
-  // Blank lines between elements, blanks at a line's end and CR LF line ends are read.
+  // Blank lines between elements, blanks at a line's end, CR LF and lone CR line ends are read.
   std::string spaced = ascii;
   spaced.insert(ascii.find("4 0 1 2 3"), "\n  \n");
   spaced.insert(spaced.find('\n', spaced.find("3 3 2 4")), " \t\r");
   EXPECT_EQ(test::meshLoadError("spaced.ply", spaced), "(loaded)");
+  std::string crOnly = ascii;
+  std::replace(crOnly.begin(), crOnly.end(), '\n', '\r');
+  EXPECT_EQ(test::meshLoadError("cr-only.ply", crOnly), "(loaded)");
+  std::string crLf;
+  for (const char c : ascii) crLf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  EXPECT_EQ(test::meshLoadError("cr-lf.ply", crLf), "(loaded)");
+  // Lines are counted as the header counts them, lone CRs too.
+  std::string crLong = crOnly;
+  crLong.insert(crOnly.find('\r', crOnly.find("1 1 0 0 0 1")), " 7");
+  EXPECT_NE(test::meshLoadError("cr-long.ply", crLong)
+                .find("PLY vertex 2 of 5 (line 18): its line holds more values"),
+            std::string::npos)
+      << test::meshLoadError("cr-long.ply", crLong);
 }
 
 TEST(PlyReader, WhatTheFileLacksIsNamed) {
