@@ -9,6 +9,7 @@
 #include "app/frame_output.h"
 #include "convert.h"
 #include "core/error.h"
+#include "core/input_files.h"
 #include "film/atomic_file.h"
 #include "film/display.h"
 #include "film/exr_output.h"
@@ -77,9 +78,13 @@ Frame::Frame(const std::string& path) {
   {
     // Only the file's reading goes without the GIL: the members hold Python objects.
     py::gil_scoped_release unlocked;
+    const InputReadAlone alone(path);
     img = readImage(path, ExrParts::All);  // a --multipart frame's AOVs too
     record_ = readFrameRecord(path);
   }
+  for (const std::string& part : img.partsLeftOut)
+    if (PyErr_WarnEx(PyExc_UserWarning, (path + ": " + part + "; it is left out").c_str(), 1) != 0)
+      throw py::error_already_set();  // warnings turned into errors
   width_ = img.width;
   height_ = img.height;
   x0_ = img.x;
@@ -127,6 +132,22 @@ void Frame::write(const std::string& path, bool half, const std::string& compres
   if (std::find(exrCompressions().begin(), exrCompressions().end(), compression) ==
       exrCompressions().end())
     throw py::value_error("compression " + inQuotes(compression) + " is not one OpenEXR writes");
+  if (isDisplayFormat(format)) {
+    // What only the EXR frame carries, refused as the command refuses it (it was dropped
+    // without a word).
+    std::vector<std::string> exrOnly;
+    if (half) exrOnly.push_back("half=True");
+    if (multipart) exrOnly.push_back("multipart=True");
+    if (compression != "zip") exrOnly.push_back("compression=" + inQuotes(compression));
+    if (!r.result.film.planes().empty()) exrOnly.push_back("the frame's AOVs");
+    if (!exrOnly.empty()) {
+      std::string what;
+      for (size_t i = 0; i < exrOnly.size(); ++i)
+        what += (i == 0 ? "" : i + 1 == exrOnly.size() ? " and " : ", ") + exrOnly[i];
+      throw py::value_error(path + " is a display image, which cannot carry " + what +
+                            " (only an .exr can): write the frame to an .exr too");
+    }
+  }
   py::gil_scoped_release unlocked;
   if (isDisplayFormat(format)) {
     if (r.result.partial)

@@ -11,6 +11,7 @@
 #include "app/scene_validation.h"
 #include "convert.h"
 #include "core/error.h"
+#include "core/input_files.h"
 #include "film/compare.h"
 #include "film/rgb_channels.h"
 #include "frame.h"
@@ -43,6 +44,7 @@ Image imageOf(const py::object& v, const char* which) {
   if (py::isinstance<py::str>(v) || py::isinstance<py::bytes>(v) || py::hasattr(v, "__fspath__")) {
     const std::string path = pathOf(v);
     py::gil_scoped_release unlocked;
+    const InputReadAlone alone(path);
     Image img = readImage(path);
     requireRgb(img, path, "compare");
     return img;
@@ -108,6 +110,8 @@ PYBIND11_MODULE(_glint, m) {
         py::gil_scoped_release unlocked;
         const ImageErrors e = compareImages(test, reference, threshold);
         py::gil_scoped_acquire locked;
+        if (!e.placement.empty() && PyErr_WarnEx(PyExc_UserWarning, e.placement.c_str(), 1) != 0)
+          throw py::error_already_set();
         return errorsDict(e);
       },
       py::arg("a"), py::arg("b"), py::arg("threshold") = 1e-2,

@@ -31,9 +31,26 @@ struct PyScene {
   std::shared_ptr<const Scene> scene;
 };
 
+// A seed as --seed takes it, 0 to 2^64 - 1 (pybind11's int64_t refused seeds the command line
+// writes into frames, past 2^63, with an opaque TypeError); None where not given.
+std::optional<uint64_t> seedOf(const py::object& seed) {
+  if (seed.is_none()) return std::nullopt;
+  if (!py::isinstance<py::int_>(seed) || py::isinstance<py::bool_>(seed))
+    throw py::type_error("seed must be an int, got " +
+                         std::string(py::str(py::type::of(seed).attr("__name__"))));
+  const unsigned long long value = PyLong_AsUnsignedLongLong(seed.ptr());
+  if (value == static_cast<unsigned long long>(-1) && PyErr_Occurred()) {
+    PyErr_Clear();
+    throw py::value_error("seed must be from 0 to 2^64 - 1, got " + std::string(py::str(seed)));
+  }
+  return uint64_t{value};
+}
+
 // The keyword arguments of Scene.render, checked as `glint render` checks its options.
 struct RenderRequest {
-  std::optional<int64_t> spp, seed, threads, width, height, maxDepth, minSpp, maxSpp;
+  std::optional<int64_t> spp;
+  std::optional<uint64_t> seed;  // 64 bits, as --seed takes
+  std::optional<int64_t> threads, width, height, maxDepth, minSpp, maxSpp;
   std::optional<std::vector<int64_t>> crop;
   std::vector<std::string> aovs;
   std::optional<std::string> sampler;
@@ -156,11 +173,7 @@ std::shared_ptr<Frame> render(const PyScene& source, const RenderRequest& q,
   if (q.width) rs.width = checkedInt("width", q.width, 1, 1 << 15);
   if (q.height) rs.height = checkedInt("height", q.height, 1, 1 << 15);
   if (q.maxDepth) rs.maxDepth = checkedInt("max_depth", q.maxDepth, 0, 1000);
-  if (q.seed) {
-    if (*q.seed < 0)
-      throw py::value_error("seed must be 0 or more, got " + std::to_string(*q.seed));
-    rs.seed = uint64_t(*q.seed);
-  }
+  if (q.seed) rs.seed = *q.seed;
   if (q.sampler && !parseSamplerKind(*q.sampler, rs.sampler))
     throw py::value_error("sampler must be regular, random, stratified or sobol, got " +
                           inQuotes(*q.sampler));
@@ -287,7 +300,7 @@ void bindScene(py::module_& m) {
                              [](const PyScene& s) { return s.scene->features.used(); })
       .def(
           "render",
-          [](const PyScene& s, std::optional<int64_t> spp, std::optional<int64_t> seed,
+          [](const PyScene& s, std::optional<int64_t> spp, const py::object& seed,
              std::optional<int64_t> threads, std::optional<std::vector<int64_t>> crop,
              std::optional<std::vector<std::string>> aovs, std::optional<std::string> sampler,
              std::optional<double> targetRmse, std::optional<double> targetRelmse,
@@ -296,7 +309,7 @@ void bindScene(py::module_& m) {
              std::optional<int64_t> width, std::optional<int64_t> height,
              std::optional<int64_t> maxDepth, const std::string& accel,
              const std::string& integrator, bool resumable) {
-            RenderRequest q{spp,          seed,
+            RenderRequest q{spp,          seedOf(seed),
                             threads,      width,
                             height,       maxDepth,
                             minSpp,       maxSpp,

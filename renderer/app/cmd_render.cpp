@@ -338,6 +338,17 @@ int runRender(const RenderArgs& given) {
   asGiven.push_back({"--display", a.display});
   asGiven.push_back({"--stats-json", a.statsJson});
   checkOutputPaths(asGiven);
+  // Only the frame itself is written back over the frame it continues: --stats-json naming it
+  // replaced the frame with JSON.
+  if (!a.resume.empty())
+    for (const NamedOutput& o : asGiven)
+      if (o.option != "-o" && !o.path.empty() && o.path != "-" && nameOneFile(o.path, a.resume))
+        throw UsageError(o.option + " " + o.path + " names the frame --resume continues: only -o " +
+                         "may write it back");
+  // One frame's state continues one frame.
+  if (!a.resume.empty() && !a.frames.empty() && parseFrameRange(a.frames, "--frames").count() > 1)
+    throw UsageError("--resume continues one frame; --frames " + a.frames +
+                     " names several: give --frame N");
   if (a.frames.empty()) return renderFrame(a, a.frame);
   // Several frames in one process: each output must be numbered, or the frames would replace
   // one another.

@@ -114,6 +114,20 @@ void noteInputFile(const std::string& path) {
   inputs().insert({st.st_dev, st.st_ino});
 }
 
+InputReadAlone::InputReadAlone(const std::string& path) : path_(path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return;
+  const std::lock_guard lock(mutex);
+  wasNoted_ = inputs().count({st.st_dev, st.st_ino}) != 0;
+}
+
+InputReadAlone::~InputReadAlone() {
+  struct stat st {};
+  if (wasNoted_ || ::stat(path_.c_str(), &st) != 0) return;
+  const std::lock_guard lock(mutex);
+  inputs().erase({st.st_dev, st.st_ino});
+}
+
 void allowReplacingInput(const std::string& path) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) return;

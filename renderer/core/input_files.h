@@ -42,6 +42,21 @@ void noteInputFile(const std::string& path);
 // Whether `path` names a file noted above.
 bool isInputFile(const std::string& path);
 
+// A file read on its own, outside a run (the Python module's read_frame and compare, in an
+// interpreter that lives on): noted while it is read, as any input, and forgotten after unless
+// something else had noted it (a scene's mesh), so that a later run may write it.
+class InputReadAlone {
+ public:
+  explicit InputReadAlone(const std::string& path);
+  ~InputReadAlone();
+  InputReadAlone(const InputReadAlone&) = delete;
+  InputReadAlone& operator=(const InputReadAlone&) = delete;
+
+ private:
+  std::string path_;
+  bool wasNoted_ = true;
+};
+
 // Lets an output replace `path`'s file although it is read: the frame --resume continues, read
 // whole before the render and written back under its own name.
 void allowReplacingInput(const std::string& path);

@@ -187,27 +187,28 @@ void checkOutputPath(const std::string& finalPath) {
   ::unlink(probe.c_str());
 }
 
-void checkOutputPaths(const std::vector<NamedOutput>& outputs) {
-  const auto asked = [](const NamedOutput& o) { return !o.path.empty() && o.path != "-"; };
+bool nameOneFile(const std::string& a, const std::string& b) {
   const auto where = [](const std::string& p) {
     std::error_code ec;
     const fs::path canonical = fs::weakly_canonical(fs::absolute(p), ec);
     return ec ? fs::absolute(p).lexically_normal() : canonical;
   };
+  struct stat sa {
+  }, sb{};
+  const bool sameInode = ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 &&
+                         sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+  return sameInode || where(a) == where(b);
+}
+
+void checkOutputPaths(const std::vector<NamedOutput>& outputs) {
+  const auto asked = [](const NamedOutput& o) { return !o.path.empty() && o.path != "-"; };
   for (size_t k = 0; k < outputs.size(); ++k) {
     if (!asked(outputs[k])) continue;
-    struct stat a {};
-    const bool aExists = ::stat(outputs[k].path.c_str(), &a) == 0;
-    for (size_t j = 0; j < k; ++j) {
-      if (!asked(outputs[j])) continue;
-      struct stat b {};
-      const bool sameFile = aExists && ::stat(outputs[j].path.c_str(), &b) == 0 &&
-                            a.st_dev == b.st_dev && a.st_ino == b.st_ino;
-      if (sameFile || where(outputs[j].path) == where(outputs[k].path))
+    for (size_t j = 0; j < k; ++j)
+      if (asked(outputs[j]) && nameOneFile(outputs[j].path, outputs[k].path))
         throw UsageError(outputs[j].option + " " + outputs[j].path + " and " + outputs[k].option +
                          " " + outputs[k].path +
                          " name one file: each output needs a file of its own");
-    }
   }
   for (const NamedOutput& o : outputs)
     if (asked(o)) checkOutputPath(o.path);

@@ -20,6 +20,10 @@ struct NamedOutput {
   std::string option, path;
 };
 
+// Whether two paths name one file: the same path once made absolute and its directories' links
+// resolved, or, for a file that exists, the same device and inode (a hard link, or a link to it).
+bool nameOneFile(const std::string& a, const std::string& b);
+
 // checkOutputPath for each output asked for, after refusing two options that name one file:
 // the same path once made absolute and its directories' links resolved, or, for a file that
 // exists, the same device and inode (a hard link, or a link to it). Every command calls it with

@@ -19,6 +19,7 @@
 
 #include "core/error.h"
 #include "core/input_files.h"
+#include "core/log.h"
 #include "film/atomic_file.h"
 #include "film/exr_input.h"
 #include "film/exr_output.h"
@@ -290,11 +291,43 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<CropRecord>
   // errors and pixel spp the frame's (mergedEstimates). Each crop's passes counted its own
   // pixels and seconds, which make no frame's: they are left out.
   // A scanline frame: a tiled crop's layout and a part's chunk count do not carry over.
-  Imf::Header header = headerWithout(
-      first.header, {"tiles", "chunkCount", "type", "name", "glint:clamped_values",
-                     "glint:render_seconds", "glint:rays", "glint:crop", "glint:merged_crops",
-                     "glint:commandline", "glint:estimated_rmse", "glint:estimated_relmse",
-                     "glint:min_pixel_spp", "glint:max_pixel_spp", "glint:passes"});
+  // Each crop's resume state (render/resume_state.h: its glint_resume channels, where its
+  // passes stood and a checksum over them) is its own: copied, the merged frame's checksum was
+  // the first crop's and --resume called the frame altered. The state is left out, and said to be.
+  Imf::Header header = headerWithout(first.header, {"tiles",
+                                                    "chunkCount",
+                                                    "type",
+                                                    "name",
+                                                    "glint:clamped_values",
+                                                    "glint:render_seconds",
+                                                    "glint:rays",
+                                                    "glint:crop",
+                                                    "glint:merged_crops",
+                                                    "glint:commandline",
+                                                    "glint:estimated_rmse",
+                                                    "glint:estimated_relmse",
+                                                    "glint:min_pixel_spp",
+                                                    "glint:max_pixel_spp",
+                                                    "glint:passes",
+                                                    "glint:resume_hash",
+                                                    "glint:resume_sampling",
+                                                    "glint:resume_finished_end",
+                                                    "glint:resume_cut_end",
+                                                    "glint:resume_checksum"});
+  const auto isResumeState = [](const ExrSlice& s) {
+    return s.name.rfind("glint_resume.", 0) == 0;
+  };
+  std::vector<ExrSlice> written;
+  header.channels() = Imf::ChannelList();
+  for (const ExrSlice& s : first.slices)
+    if (!isResumeState(s)) {
+      written.push_back(s);
+      header.channels().insert(s.name, Imf::Channel(s.type));
+    }
+  if (written.size() < first.slices.size())
+    log::warning("the crops' resume states are left out of " + outPath +
+                 ": a merged frame is not resumed (continue the crops with --resume, then merge "
+                 "them again)");
   addMergedEstimates(crops, header);
   header.dataWindow() = Imath::Box2i({0, 0}, {W - 1, H - 1});
   header.lineOrder() = Imf::INCREASING_Y;
@@ -317,7 +350,7 @@ MergeReport mergeCrops(const std::string& outPath, const std::vector<CropRecord>
     writeExrStream(outPath, tmp, [&](Imf::OStream& stream) {
       Imf::OutputFile out(stream, header);
       Imf::FrameBuffer frameBuffer;
-      for (const ExrSlice& s : first.slices)
+      for (const ExrSlice& s : written)
         frameBuffer.insert(s.name,
                            Imf::Slice::Make(s.type, frame.data() + s.offset, Imath::V2i(0, 0), W, H,
                                             pixelBytes, pixelBytes * size_t(W)));

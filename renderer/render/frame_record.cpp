@@ -464,7 +464,8 @@ std::string resumeDifferences(const FrameRecord& frame, const FrameRecord& rende
   const auto sampler = [](const std::optional<SamplerKind>& v) -> std::optional<std::string> {
     return v ? std::optional<std::string>(samplerName(*v)) : std::nullopt;
   };
-  if (frame.sceneHash && frame.sceneHash != render.sceneHash) out += "the scene file's bytes";
+  if (frame.sceneHash && frame.sceneHash != render.sceneHash)
+    out += "the bytes of the scene file or of a file it reads (a mesh, a texture, an image)";
   differs("size", std::to_string(frame.frameWidth) + "x" + std::to_string(frame.frameHeight),
           std::to_string(render.frameWidth) + "x" + std::to_string(render.frameHeight));
   differs("seed", number(frame.seed), number(render.seed));

@@ -114,7 +114,13 @@ ResumeState readResumeState(const std::string& path, const PixelWindow& window, 
   std::vector<ExrSlice> slices;
   for (int i = 0; i < kChannels; ++i) {
     const Imf::Channel* c = header.channels().findChannel(channelName(i));
-    if (!c || c->type != Imf::UINT)
+    // Bits in UINT channels: a tool that rewrote them as float (oiiotool does) rounded them.
+    if (c && c->type != Imf::UINT)
+      throw UsageError(path + "'s resume state is altered: its channel " + channelName(i) + " is " +
+                       (c->type == Imf::HALF ? "half" : "float") +
+                       ", not UINT (a tool that converts its words to float rounds them): "
+                       "continue the frame Glint wrote");
+    if (!c)
       throw UsageError(
           path + " holds no resume state (" + channelName(i) +
           "): only a frame Glint wrote with --resumable, or a partial, preview "

@@ -298,6 +298,41 @@ TEST(Output, CropsMergeIntoTheFullFrameByteForByte) {
   EXPECT_NE(other.output.find("different scene or settings"), std::string::npos) << other.output;
 }
 
+TEST(Output, MergedResumableCropsLeaveTheirResumeStatesOut) {
+  // Each crop's state was copied with the first crop's checksum: --resume of the merged frame
+  // called it altered. The state is left out with a warning; resuming the frame says it holds
+  // none, and its pixels are the crops'.
+  const std::string scene = test::writeTemp("merge-resumable.json", kScene);
+  const std::string left = tmp("resumable-left.exr"), right = tmp("resumable-right.exr");
+  ASSERT_EQ(
+      runGlint("render " + scene + " --quiet --resumable --crop 0 20 0 32 -o " + left).exitCode, 0);
+  ASSERT_EQ(
+      runGlint("render " + scene + " --quiet --resumable --crop 20 48 0 32 -o " + right).exitCode,
+      0);
+  const std::string merged = tmp("resumable-merged.exr");
+  const auto m = runGlint("merge " + merged + " " + left + " " + right);
+  EXPECT_EQ(m.exitCode, 0) << m.output;
+  EXPECT_NE(m.output.find("the crops' resume states are left out of " + merged), std::string::npos)
+      << m.output;
+  const OIIO::ImageSpec spec = specOf(merged);
+  EXPECT_EQ(spec.channelnames, (std::vector<std::string>{"R", "G", "B", "A"}));
+  EXPECT_EQ(spec.find_attribute("glint:resume_checksum"), nullptr);
+  const auto resumed =
+      runGlint("render " + scene + " --quiet --spp 8 --resume " + merged + " -o " + tmp("r.exr"));
+  EXPECT_EQ(resumed.exitCode, 2) << resumed.output;
+  EXPECT_NE(resumed.output.find("holds no resume state"), std::string::npos) << resumed.output;
+  ASSERT_EQ(
+      runGlint("render " + scene + " --quiet --resumable -o " + tmp("resumable-full.exr")).exitCode,
+      0);
+  const auto rgbaOf = [](const Image& image) {
+    std::vector<float> rgba;
+    for (size_t p = 0; p < image.pixels.size(); p += size_t(image.channels))
+      rgba.insert(rgba.end(), image.pixels.begin() + long(p), image.pixels.begin() + long(p) + 4);
+    return rgba;
+  };
+  EXPECT_EQ(readImage(merged).pixels, rgbaOf(readImage(tmp("resumable-full.exr"))));
+}
+
 TEST(Output, CompareRefusesCropsThatLieApart) {
   // Two 16 x 14 crops of one frame at other places were compared pixel by pixel (exit 0):
   // different pixels of the scene, not two renders of the same ones.
@@ -313,6 +348,20 @@ TEST(Output, CompareRefusesCropsThatLieApart) {
       << apart.output;
   const auto same = runGlint("compare " + a + " " + a);
   EXPECT_EQ(same.exitCode, 0) << same.output;
+  // In frames of other sizes they may be the same pixels (a reference another tool cut out):
+  // compared, with a warning that says how.
+  const std::string big = tmp("crop-big.exr");
+  ASSERT_EQ(
+      runGlint("render " + scene + " --quiet --width 96 --height 64 --crop 0 16 0 14 -o " + big)
+          .exitCode,
+      0);
+  const auto sizes = runGlint("compare " + big + " " + b);
+  EXPECT_EQ(sizes.exitCode, 0) << sizes.output;
+  EXPECT_NE(sizes.output.find("the images lie in frames of other sizes, 16x14 at (0, 0) of a "
+                              "96x64 frame against (0, 0) of a 48x32 frame: compared pixel for "
+                              "pixel"),
+            std::string::npos)
+      << sizes.output;
 }
 
 TEST(Output, MergeRefusesACropWhoseChannelsWereRenamed) {
@@ -348,20 +397,6 @@ TEST(Output, MergeRefusesACropWhoseChannelsWereRenamed) {
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("\"Y\""), std::string::npos) << r.output;
-  // In frames of other sizes they may be the same pixels (a reference another tool cut out):
-  // compared, with a warning that says how.
-  const std::string big = tmp("crop-big.exr");
-  ASSERT_EQ(
-      runGlint("render " + scene + " --quiet --width 96 --height 64 --crop 0 16 0 14 -o " + big)
-          .exitCode,
-      0);
-  const auto sizes = runGlint("compare " + big + " " + b);
-  EXPECT_EQ(sizes.exitCode, 0) << sizes.output;
-  EXPECT_NE(sizes.output.find("the images lie in frames of other sizes, 16x14 at (0, 0) of a "
-                              "96x64 frame against (0, 0) of a 48x32 frame: compared pixel for "
-                              "pixel"),
-            std::string::npos)
-      << sizes.output;
   EXPECT_FALSE(fs::exists(merged));
   // The crops as rendered still merge.
   EXPECT_EQ(runGlint("merge " + merged + " " + left + " " + right).exitCode, 0);

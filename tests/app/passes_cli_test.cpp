@@ -116,6 +116,56 @@ TEST(PassesCli, ResumeGivesTheStraightRendersPixelsAndRefusesAnotherFrame) {
   }
 }
 
+TEST(PassesCli, OnlyTheFrameIsWrittenOverTheFrameItContinues) {
+  // --stats-json naming the --resume frame replaced it with JSON, exit 0; --frames with --resume
+  // rendered the first frame, then failed on the second.
+  const std::string part = tmp("resume-kept.exr");
+  ASSERT_EQ(test::runGlint("render " + soft("--resumable --spp 4 -o " + part)).exitCode, 0);
+  const std::string before = test::readFile(part);
+  const auto stats =
+      test::runGlint("render " + soft("--spp 8 --resume " + part + " -o " + tmp("resume-next.exr") +
+                                      " --stats-json " + part));
+  EXPECT_EQ(stats.exitCode, 2) << stats.output;
+  EXPECT_NE(stats.output.find("--stats-json " + part + " names the frame --resume continues"),
+            std::string::npos)
+      << stats.output;
+  EXPECT_EQ(test::readFile(part), before);
+  const auto frames = test::runGlint(
+      "render " + soft("--spp 8 --resume " + part + " --frames 3-5 -o " + tmp("f.####.exr")));
+  EXPECT_EQ(frames.exitCode, 2) << frames.output;
+  EXPECT_NE(frames.output.find("--resume continues one frame; --frames 3-5 names several"),
+            std::string::npos)
+      << frames.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp("f.0003.exr")));
+}
+
+TEST(PassesCli, AResumeStateConvertedToFloatIsNamedAsAltered) {
+  // A frame another tool rewrote (oiiotool writes its UINT words as float) was said to hold no
+  // resume state, though its channels are there.
+  const std::string frame = tmp("resume-to-float.exr"), converted = tmp("resume-float.exr");
+  ASSERT_EQ(test::runGlint("render " + soft("--resumable --spp 4 -o " + frame)).exitCode, 0);
+  {
+    auto in = OIIO::ImageInput::open(frame);
+    ASSERT_TRUE(in);
+    OIIO::ImageSpec spec = in->spec();
+    std::vector<float> pixels(spec.image_pixels() * size_t(spec.nchannels));
+    ASSERT_TRUE(in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data()));
+    spec.set_format(OIIO::TypeDesc::FLOAT);
+    spec.channelformats.clear();
+    auto out = OIIO::ImageOutput::create(converted);
+    ASSERT_TRUE(out && out->open(converted, spec));
+    ASSERT_TRUE(out->write_image(OIIO::TypeDesc::FLOAT, pixels.data()));
+    ASSERT_TRUE(out->close());
+  }
+  const auto r =
+      test::runGlint("render " + soft("--spp 8 --resume " + converted + " -o " + tmp("rf.exr")));
+  EXPECT_EQ(r.exitCode, 2) << r.output;
+  EXPECT_NE(r.output.find(converted + "'s resume state is altered: its channel glint_resume.00 "
+                                      "is float, not UINT"),
+            std::string::npos)
+      << r.output;
+}
+
 TEST(PassesCli, AMultipartFrameKeepsItsResumeStateWithTheBeautyAndResumes) {
   // The resume state stays in part 0 with the beauty: as a part of its own, --resume (which
   // reads part 0) found none, and Blender, which cannot name its channels, failed that part.

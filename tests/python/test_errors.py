@@ -66,7 +66,8 @@ def test_non_json_values_are_scene_errors(scene_dict):
     (dict(spp=1 << 40), "spp must be from 1"),
     (dict(width=1 << 20), "width must be from 1"),
     (dict(threads=0), "threads must be from 1"),
-    (dict(seed=-5), "seed must be 0 or more"),
+    (dict(seed=-5), "seed must be from 0 to 2\\^64 - 1"),
+    (dict(seed=1 << 64), "seed must be from 0 to 2\\^64 - 1"),
     (dict(crop=(0, 10)), "crop is"),
     (dict(crop=(10, 5, 0, 4)), "must be non-empty and inside"),
     (dict(crop=(0, 33, 0, 4)), "must be non-empty and inside"),
@@ -90,6 +91,8 @@ def test_bad_argument_types_raise_type_errors(scene_dict):
         scene.render(progress=3)
     with pytest.raises(TypeError):
         scene.render(16)  # keywords only
+    with pytest.raises(TypeError, match="seed must be an int"):
+        scene.render(seed=1.5)
 
 
 def test_missing_files_and_bad_outputs(tmp_path, scene_dict):
@@ -138,3 +141,34 @@ def test_validate_takes_a_scene_and_something_to_cast(scene_dict):
         glint.validate("scene.json", rays=10)
     with pytest.raises(ValueError, match="casts no ray"):
         glint.validate(scene, rays=0, spp=0)
+
+
+def test_a_frame_read_alone_may_be_written_again(tmp_path, scene_dict):
+    # read_frame and compare noted the file as an input of "this run", which in an interpreter
+    # is the session: writing it again was refused for good.
+    scene = glint.Scene.from_dict(scene_dict)
+    path = tmp_path / "again.exr"
+    scene.render(spp=1).write(path)
+    glint.read_frame(path)
+    glint.compare(path, path)
+    scene.render(spp=2).write(path)
+    assert glint.read_frame(path).record["glint:spp"] == 2
+
+
+def test_every_seed_the_command_line_takes(scene_dict):
+    # Seeds past 2^63, which --seed takes and frames record, were an opaque TypeError.
+    frame = glint.Scene.from_dict(scene_dict).render(spp=1, seed=(1 << 64) - 1)
+    assert frame.record["glint:seed"] == (1 << 64) - 1
+
+
+def test_a_display_image_refuses_what_only_an_exr_carries(tmp_path, scene_dict):
+    # half=True and a frame's AOVs were dropped from a .png without a word; the command refuses
+    # the same (-o x.png --half).
+    scene = glint.Scene.from_dict(scene_dict)
+    with pytest.raises(ValueError, match="cannot carry half=True"):
+        scene.render(spp=1).write(tmp_path / "half.png", half=True)
+    with pytest.raises(ValueError, match="cannot carry the frame's AOVs"):
+        scene.render(spp=1, aovs=["depth"]).write(tmp_path / "aovs.png")
+    assert not (tmp_path / "half.png").exists() and not (tmp_path / "aovs.png").exists()
+    scene.render(spp=1).write(tmp_path / "plain.png")
+    assert (tmp_path / "plain.png").exists()
