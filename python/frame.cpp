@@ -207,8 +207,10 @@ void bindFrame(py::module_& m) {
           [](py::object self) {
             Frame& f = self.cast<Frame&>();
             py::dict d;
+            // The resume state (glint_resume.*) is Glint's bits, not an image: channel() reads it.
             for (const Layer& l : f.layers())
-              if (l.name != "rgba") d[py::str(l.name)] = view(f, self, l.first, l.count, false);
+              if (l.name != "rgba" && l.name != "glint_resume")
+                d[py::str(l.name)] = view(f, self, l.first, l.count, false);
             return d;
           },
           "{name: H x W x C float32}: a render's AOVs by their names (depth, normal, ...); a "

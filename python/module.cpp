@@ -49,6 +49,8 @@ Image imageOf(const py::object& v, const char* which) {
     requireRgb(img, path, "compare");
     return img;
   }
+  if (v.is_none())
+    throw py::type_error(std::string(which) + " must be a path, a Frame or an array, not None");
   py::object source = v;
   const Frame* frame = py::isinstance<Frame>(v) ? &v.cast<const Frame&>() : nullptr;
   if (frame) source = v.attr("rgba");

@@ -193,8 +193,8 @@ bool nameOneFile(const std::string& a, const std::string& b) {
     const fs::path canonical = fs::weakly_canonical(fs::absolute(p), ec);
     return ec ? fs::absolute(p).lexically_normal() : canonical;
   };
-  struct stat sa {
-  }, sb{};
+  struct stat sa {};
+  struct stat sb {};
   const bool sameInode = ::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0 &&
                          sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
   return sameInode || where(a) == where(b);

@@ -506,6 +506,20 @@ std::string gltfSubset(const std::string& path, const std::string& text,
     keepOnly(image, {"name", "uri", "mimeType", "bufferView"});
   });
   forEachIn(doc, "samplers", [](json& sampler) { keepOnly(sampler, {"wrapS", "wrapT"}); });
+  // A texture whose image only an extension names (KHR_texture_basisu, EXT_texture_webp) has no
+  // source: Assimp dropped it without a word.
+  size_t sourceless = 0, firstSourceless = 0;
+  for (size_t t = countOf(doc, "textures"); t-- > 0;)
+    if (const json& texture = doc["textures"][t];
+        texture.is_object() && !texture.contains("source")) {
+      ++sourceless;
+      firstSourceless = t;
+    }
+  if (sourceless > 0)
+    log::warning("mesh " + path + ": " + std::to_string(sourceless) + " texture(s), textures[" +
+                 std::to_string(firstSourceless) +
+                 "] first, name no source image Glint reads (an extension's image, or none): "
+                 "the materials using them render without them");
   const bool texturesKept = texturesAreWellFormed(doc);
   if (!texturesKept) {
     // Assimp 5.2.5 trusts them: an embedded image whose mimeType was not image/... made its

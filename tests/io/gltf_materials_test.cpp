@@ -365,6 +365,22 @@ TEST(GltfMaterials, AnEmissiveStrengthGlintCannotUseIsNamedAndReadAsOne) {
   EXPECT_EQ(occurrences(warnings, "emissiveStrength"), 3u) << warnings;
 }
 
+TEST(GltfMaterials, ATextureWithoutASourceImageIsNamed) {
+  // A texture whose image only an extension names (here KHR_texture_basisu) was dropped by
+  // Assimp without a word.
+  const std::string text = R"({"asset": {"version": "2.0"}, "images": [{"uri": "a.png"}],
+      "textures": [{"source": 0}, {"extensions": {"KHR_texture_basisu": {"source": 0}}}],
+      "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 1}}}]})";
+  testing::internal::CaptureStderr();
+  gltfSubset("sourceless.gltf", text);
+  const std::string warnings = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(occurrences(warnings,
+                        "sourceless.gltf: 1 texture(s), textures[1] first, name no "
+                        "source image Glint reads"),
+            1u)
+      << warnings;
+}
+
 TEST(GltfMaterials, AnOcclusionStrengthOutsideZeroToOneIsNamedAndClamped) {
   // glTF's occlusion strength is from 0 to 1; 1e30 was clamped to 1 without a word.
   const auto occlusion = [](const std::string& value) {

@@ -1,5 +1,7 @@
 """Mistakes in scenes and arguments: clean Python exceptions, never a crash."""
+import json
 import math
+import subprocess
 
 import pytest
 
@@ -172,3 +174,16 @@ def test_a_display_image_refuses_what_only_an_exr_carries(tmp_path, scene_dict):
     assert not (tmp_path / "half.png").exists() and not (tmp_path / "aovs.png").exists()
     scene.render(spp=1).write(tmp_path / "plain.png")
     assert (tmp_path / "plain.png").exists()
+
+
+def test_a_resumable_frames_state_is_not_an_aov(tmp_path, scene_dict, binary):
+    # A --resumable frame listed its 23 glint_resume channels among .aovs; they are Glint's bits.
+    scene = tmp_path / "scene.json"
+    scene.write_text(json.dumps(scene_dict))
+    subprocess.run([binary, "render", str(scene), "--spp", "2", "--resumable", "--quiet", "-o",
+                    str(tmp_path / "r.exr")], check=True)
+    frame = glint.read_frame(tmp_path / "r.exr")
+    assert frame.aovs == {}
+    assert frame.channel("glint_resume.00").shape == frame.rgba.shape[:2]
+    with pytest.raises(TypeError, match="not None"):
+        glint.compare(None, frame)
