@@ -10,6 +10,7 @@
 #include "convert.h"
 #include "core/error.h"
 #include "core/input_files.h"
+#include "core/word_list.h"
 #include "film/atomic_file.h"
 #include "film/display.h"
 #include "film/exr_output.h"
@@ -140,13 +141,9 @@ void Frame::write(const std::string& path, bool half, const std::string& compres
     if (multipart) exrOnly.push_back("multipart=True");
     if (compression != "zip") exrOnly.push_back("compression=" + inQuotes(compression));
     if (!r.result.film.planes().empty()) exrOnly.push_back("the frame's AOVs");
-    if (!exrOnly.empty()) {
-      std::string what;
-      for (size_t i = 0; i < exrOnly.size(); ++i)
-        what += (i == 0 ? "" : i + 1 == exrOnly.size() ? " and " : ", ") + exrOnly[i];
-      throw py::value_error(path + " is a display image, which cannot carry " + what +
+    if (!exrOnly.empty())
+      throw py::value_error(path + " is a display image, which cannot carry " + wordList(exrOnly) +
                             " (only an .exr can): write the frame to an .exr too");
-    }
   }
   py::gil_scoped_release unlocked;
   if (isDisplayFormat(format)) {

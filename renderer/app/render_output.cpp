@@ -3,15 +3,14 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/word_list.h"
 
 namespace glint {
 
 ImageFormat renderOutputFormat(const std::string& path, const std::vector<std::string>& exrOnly) {
   const ImageFormat format = imageOutputFormat("-o", path, ImageOutput::ExrOrDisplay);
   if (!isDisplayFormat(format) || exrOnly.empty()) return format;
-  std::string flags;
-  for (size_t i = 0; i < exrOnly.size(); ++i)
-    flags += (i == 0 ? "" : i + 1 == exrOnly.size() ? " and " : ", ") + exrOnly[i];
+  const std::string flags = wordList(exrOnly);
   const std::string exr = std::filesystem::path(path).replace_extension(".exr").string();
   throw UsageError("-o " + excerpt(path) + " writes a display-referred " + formatName(format) +
                    ", which cannot carry what " + flags + (exrOnly.size() == 1 ? " asks" : " ask") +

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "core/file_names.h"
+#include "core/word_list.h"
 
 namespace glint {
 
@@ -34,10 +35,7 @@ std::string sceneFormatList(bool meshesOnly) {
     lastName = f.name;
     entries.push_back(std::string(f.name) + " (" + f.extension + ")");
   }
-  std::string s;
-  for (size_t i = 0; i < entries.size(); ++i)
-    s += (i == 0 ? "" : i + 1 == entries.size() ? " and " : ", ") + entries[i];
-  return s;
+  return wordList(entries);
 }
 
 }  // namespace glint
