@@ -146,6 +146,8 @@ const char* viewBytes(const json& doc, Buffers& buffers, const json& viewIndex, 
   return bytes->data() + *viewOffset + offset;
 }
 
+// The index types glTF 2.0 allows (unsigned byte, short, int): 0 for the others, whose bytes are
+// no index (gltf_subset.cpp's elementBytes sizes every component type, signed and float too).
 uint64_t indexBytes(uint64_t componentType) {
   return componentType == 5121 ? 1 : componentType == 5123 ? 2 : componentType == 5125 ? 4 : 0;
 }

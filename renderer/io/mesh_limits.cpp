@@ -36,24 +36,26 @@ std::string headOf(const std::string& path, size_t bytes) {
   return head;
 }
 
+// The next word of `line`, split at `spaces`, taken off it; empty at the line's end. Split
+// without a stream or a string a word: these checks read every line of OBJ files of up to 1 GiB
+// before Assimp does.
+std::string_view takeWord(std::string_view& line, const char* spaces = " \t\r\v\f") {
+  const size_t begin = std::min(line.find_first_not_of(spaces), line.size());
+  const size_t end = std::min(line.find_first_of(spaces, begin), line.size());
+  const std::string_view word = line.substr(begin, end - begin);
+  line.remove_prefix(end);
+  return word;
+}
+
 // Throws when a `v`, `vt` or `vn` line (`line`, number `lineNumber`) of OBJ file `mesh` holds a
 // number that is not a finite float: nan, inf, or past float's range. Assimp 5.2.5 read a
 // texture coordinate's nan or 1e39 as 0 without a word (the image's corner), where Glint refuses
 // the same values in a PLY file.
 void checkObjNumbers(const std::string& mesh, int lineNumber, std::string_view line) {
-  // Split without a stream or a string a word: the check reads every vertex line of mesh files
-  // of up to 1 GiB before Assimp does.
-  constexpr const char* kSpace = " \t\r\v\f";
-  const auto nextWord = [&line] {
-    const size_t begin = std::min(line.find_first_not_of(kSpace), line.size());
-    const size_t end = std::min(line.find_first_of(kSpace, begin), line.size());
-    const std::string_view word = line.substr(begin, end - begin);
-    line.remove_prefix(end);
-    return word;
-  };
-  const std::string_view keyword = nextWord();
+  const std::string_view keyword = takeWord(line);
   if (keyword != "v" && keyword != "vt" && keyword != "vn") return;
-  for (std::string_view word = nextWord(); !word.empty() && word[0] != '#'; word = nextWord()) {
+  for (std::string_view word = takeWord(line); !word.empty() && word[0] != '#';
+       word = takeWord(line)) {
     // As strtod reads it: from_chars takes no leading '+', and gives no value out of range.
     const std::string_view digits = word[0] == '+' ? word.substr(1) : word;
     double v = 0;
@@ -79,8 +81,7 @@ struct ObjFaceReferences {
   int furthestLine[2] = {0, 0};
 
   void countVertexLine(std::string_view line) {
-    const size_t at = line.find_first_not_of(" \t");
-    const std::string_view word = line.substr(at, line.find_first_of(" \t\r", at) - at);
+    const std::string_view word = takeWord(line, " \t\r");
     if (word == "vt") ++lines[0];
     if (word == "vn") ++lines[1];
   }
@@ -89,14 +90,9 @@ struct ObjFaceReferences {
   // before this one (negative indices count back from the line). Words that are not numbers
   // are Assimp's to judge.
   void checkFace(const std::string& mesh, int lineNumber, std::string_view line) {
-    constexpr const char* kSpace = " \t\r\v\f";
-    line.remove_prefix(std::min(line.find_first_not_of(kSpace), line.size()) + 1);  // "f"
-    while (true) {
-      const size_t begin = line.find_first_not_of(kSpace);
-      if (begin == std::string_view::npos || line[begin] == '#') return;
-      const size_t end = std::min(line.find_first_of(kSpace, begin), line.size());
-      std::string_view word = line.substr(begin, end - begin);
-      line.remove_prefix(end);
+    takeWord(line);  // "f"
+    for (std::string_view word = takeWord(line); !word.empty() && word[0] != '#';
+         word = takeWord(line)) {
       for (int k = -1; k < 2 && !word.empty(); ++k) {  // the vertex (k = -1), vt, vn
         const size_t slash = std::min(word.find('/'), word.size());
         const std::string_view index = word.substr(0, slash);
@@ -147,11 +143,10 @@ struct IgnoredMapOptions {
                      [&](std::string_view m) { return line.substr(0, m.size()) == m; }))
       return;
     constexpr const char* kSpace = " \t\r";
-    for (size_t begin = line.find_first_not_of(kSpace, line.find_first_of(kSpace));
-         begin != std::string_view::npos; begin = line.find_first_not_of(kSpace, begin)) {
-      const size_t end = std::min(line.find_first_of(kSpace, begin), line.size());
-      const std::string word(line.substr(begin, end - begin));
-      begin = end;
+    takeWord(line, kSpace);  // the map's keyword
+    for (std::string_view taken = takeWord(line, kSpace); !taken.empty();
+         taken = takeWord(line, kSpace)) {
+      const std::string word(taken);
       if (std::find(std::begin(kIgnored), std::end(kIgnored), word) == std::end(kIgnored) ||
           std::find(options.begin(), options.end(), word) != options.end())
         continue;
