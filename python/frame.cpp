@@ -62,7 +62,7 @@ Frame::Frame(Rendered r) {
   for (int y = w.y0; y < w.y1; ++y)
     for (int x = w.x0; x < w.x1; ++x) {
       float* out = &pixels_[(size_t(y - w.y0) * size_t(width_) + size_t(x - w.x0)) * c];
-      const double* rgba = film.pixel(x, y);
+      const float* rgba = film.pixel(x, y);
       for (int k = 0; k < 4; ++k) *out++ = toChannel(rgba[k], clamped);
       for (size_t p = 0; p < film.planes().size(); ++p) {
         const double* v = film.planePixel(p, x, y);

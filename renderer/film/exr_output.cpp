@@ -75,8 +75,18 @@ namespace {
 struct Channel {
   std::string name;
   Imf::PixelType type;
-  const double* source;   // interleaved values
-  size_t stride, offset;  // channels per pixel in `source`, and this one's index
+  const float* beauty = nullptr;  // interleaved values: the film's RGBA,
+  const double* plane = nullptr;  // or an AOV plane's
+  size_t stride = 0, offset = 0;  // channels per pixel in the source, and this one's index
+  bool clamped = false;           // whether a value is beyond the type's finite range
+
+  double value(size_t pixel) const {
+    const size_t i = pixel * stride + offset;
+    return beauty ? double(beauty[i]) : plane[i];
+  }
+  // Whether OpenEXR reads it straight from the film: the pixels are written as they are, with
+  // no copy of the frame made to pack them.
+  bool direct() const { return beauty && type == Imf::FLOAT && !clamped; }
 };
 
 struct Part {
@@ -90,7 +100,7 @@ std::vector<Part> layoutParts(const Film& film, bool half, bool multipart) {
   parts[0].name = "rgba";
   const char* rgbaNames[] = {"R", "G", "B", "A"};
   for (size_t c = 0; c < 4; ++c)
-    parts[0].channels.push_back({rgbaNames[c], beautyType, film.rgba().data(), 4, c});
+    parts[0].channels.push_back({rgbaNames[c], beautyType, film.rgba().data(), nullptr, 4, c});
   for (const FilmPlane& plane : film.planes()) {
     // A UINT plane is Glint's own state (the resume state), not an image: it stays with the
     // beauty in part 0, where --resume reads it. In a part of its own it would hold no channel
@@ -98,7 +108,7 @@ std::vector<Part> layoutParts(const Film& film, bool half, bool multipart) {
     if (multipart && !plane.isUint) parts.push_back({plane.name, {}});
     Part& part = multipart && plane.isUint ? parts.front() : parts.back();
     for (size_t c = 0; c < plane.channels.size(); ++c)
-      part.channels.push_back({plane.channels[c], plane.isUint ? Imf::UINT : Imf::FLOAT,
+      part.channels.push_back({plane.channels[c], plane.isUint ? Imf::UINT : Imf::FLOAT, nullptr,
                                plane.values.data(), plane.channels.size(), c});
   }
   return parts;
@@ -129,34 +139,44 @@ bool clampToType(double& v, Imf::PixelType type) {
   return true;
 }
 
-// How many values of the parts' channels clampToType changes (counted before the headers are
-// written, so that they can say it, without packing every part at once).
-uint64_t countClamped(const std::vector<Part>& parts, size_t pixels) {
+// How many values of the parts' channels clampToType changes, marking the channels that hold
+// one (counted before the headers are written, so that they can say it, without packing every
+// part at once).
+uint64_t countClamped(std::vector<Part>& parts, size_t pixels) {
   uint64_t clamped = 0;
-  for (const Part& part : parts)
-    for (const Channel& c : part.channels) {
+  for (Part& part : parts)
+    for (Channel& c : part.channels) {
       if (c.type == Imf::UINT) continue;
+      uint64_t inChannel = 0;
       for (size_t p = 0; p < pixels; ++p) {
-        double v = c.source[p * c.stride + c.offset];
-        clamped += clampToType(v, c.type);
+        double v = c.value(p);
+        inChannel += clampToType(v, c.type);
       }
+      c.clamped = inChannel > 0;
+      clamped += inChannel;
     }
   return clamped;
 }
 
-// The pixels of a part in its native per-channel types, interleaved; values beyond a type's
-// finite range clamped to it: an EXR never holds Inf or NaN.
-// Every byte is written.
+// The pixels of a part's channels that OpenEXR cannot read from their source (Channel::direct)
+// in their native types, interleaved; values beyond a type's finite range clamped to it: an
+// EXR never holds Inf or NaN. Every byte is written.
 using PackedPart = std::vector<unsigned char, UnwrittenAllocator<unsigned char>>;
 
+size_t packedBytesPerPixel(const Part& part) {
+  size_t bytes = 0;
+  for (const Channel& c : part.channels)
+    if (!c.direct()) bytes += pixelTypeSize(c.type);
+  return bytes;
+}
+
 PackedPart packPart(const Part& part, size_t pixels) {
-  size_t bytesPerPixel = 0;
-  for (const Channel& c : part.channels) bytesPerPixel += pixelTypeSize(c.type);
-  PackedPart out(pixels * bytesPerPixel);
+  PackedPart out(pixels * packedBytesPerPixel(part));
   unsigned char* dst = out.data();
-  for (size_t p = 0; p < pixels; ++p)
+  for (size_t p = 0; !out.empty() && p < pixels; ++p)
     for (const Channel& c : part.channels) {
-      double v = c.source[p * c.stride + c.offset];
+      if (c.direct()) continue;
+      double v = c.value(p);
       if (c.type == Imf::UINT) {
         const auto u = static_cast<uint32_t>(v);
         std::memcpy(dst, &u, 4);
@@ -180,7 +200,7 @@ PackedPart packPart(const Part& part, size_t pixels) {
 uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
                   const ExrOptions& options) {
   const PixelWindow& w = film.window();
-  const std::vector<Part> parts = layoutParts(film, options.half, options.multipart);
+  std::vector<Part> parts = layoutParts(film, options.half, options.multipart);
   const uint64_t clamped = countClamped(parts, size_t(w.area()));
   meta.ints.push_back(
       {"glint:clamped_values", static_cast<int>(std::min<uint64_t>(clamped, INT32_MAX))});
@@ -216,16 +236,22 @@ uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
     headers.push_back(std::move(h));
   }
 
-  // The pixels of part i as OpenEXR slices of its packed buffer.
+  // The pixels of part i as OpenEXR slices of the film or of the part's packed buffer.
   const auto frameBufferOf = [&](size_t i, const PackedPart& data) {
-    size_t pixelBytes = 0;
-    for (const Channel& c : parts[i].channels) pixelBytes += pixelTypeSize(c.type);
+    const size_t packedBytes = packedBytesPerPixel(parts[i]);
     Imf::FrameBuffer frameBuffer;
     size_t offset = 0;
-    for (const Channel& c : parts[i].channels) {
+    const auto slice = [&](const Channel& c, const void* first, size_t pixelBytes) {
       frameBuffer.insert(
-          c.name, Imf::Slice::Make(c.type, data.data() + offset, Imath::V2i(w.x0, w.y0), w.width(),
-                                   w.height(), pixelBytes, pixelBytes * size_t(w.width())));
+          c.name, Imf::Slice::Make(c.type, first, Imath::V2i(w.x0, w.y0), w.width(), w.height(),
+                                   pixelBytes, pixelBytes * size_t(w.width())));
+    };
+    for (const Channel& c : parts[i].channels) {
+      if (c.direct()) {
+        slice(c, c.beauty + c.offset, c.stride * sizeof(float));
+        continue;
+      }
+      slice(c, data.data() + offset, packedBytes);
       offset += pixelTypeSize(c.type);
     }
     return frameBuffer;

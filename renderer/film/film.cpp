@@ -1,5 +1,7 @@
 #include "film/film.h"
 
+#include <cmath>
+#include <limits>
 #include <utility>
 
 #include "core/check.h"
@@ -12,7 +14,7 @@ Film::Film(int fullWidth, int fullHeight, const PixelWindow& window, FilmPixels 
   GLINT_CHECK(window.y0 >= 0 && window.y1 <= fullHeight && window.y0 < window.y1);
   const size_t values = static_cast<size_t>(window.area()) * 4;
   if (pixels == FilmPixels::Zeroed)
-    rgba_.assign(values, 0.0);
+    rgba_.assign(values, 0.0f);
   else
     rgba_.resize(values);
 }
@@ -23,21 +25,28 @@ size_t Film::offset(int x, int y) const {
          4;
 }
 
+namespace {
+// `v` in float; past float's largest finite value an infinity of its sign, where rounding to
+// nearest would give that largest value to the values within half a unit above it.
+float toFilmValue(double v) {
+  constexpr double kLargest = std::numeric_limits<float>::max();
+  constexpr float kInfinity = std::numeric_limits<float>::infinity();
+  if (std::abs(v) > kLargest) return v > 0 ? kInfinity : -kInfinity;
+  return static_cast<float>(v);
+}
+}  // namespace
+
 void Film::setPixel(int x, int y, double r, double g, double b, double a) {
-  double* p = &rgba_[offset(x, y)];
-  p[0] = r;
-  p[1] = g;
-  p[2] = b;
-  p[3] = a;
+  float* p = &rgba_[offset(x, y)];
+  p[0] = toFilmValue(r);
+  p[1] = toFilmValue(g);
+  p[2] = toFilmValue(b);
+  p[3] = toFilmValue(a);
 }
 
-const double* Film::pixel(int x, int y) const { return &rgba_[offset(x, y)]; }
+const float* Film::pixel(int x, int y) const { return &rgba_[offset(x, y)]; }
 
-std::vector<float> Film::toFloatRgba() const {
-  std::vector<float> out(rgba_.size());
-  for (size_t i = 0; i < rgba_.size(); ++i) out[i] = static_cast<float>(rgba_[i]);
-  return out;
-}
+std::vector<float> Film::toFloatRgba() const { return {rgba_.begin(), rgba_.end()}; }
 
 size_t Film::addPlane(std::string name, std::vector<std::string> channels, bool isUint) {
   FilmPlane p{std::move(name), std::move(channels), isUint, {}};

@@ -1,6 +1,8 @@
 #pragma once
-// The film: scene-linear RGBA for the pixels of a crop window of the full frame, accumulated in
-// double. Each pixel is written by exactly one tile task, so no synchronisation is needed.
+// The film: scene-linear RGBA for the pixels of a crop window of the full frame, in float, the
+// precision of the files it goes to (the pixels' states behind it are double), so that an EXR
+// is written straight from it. Each pixel is written by exactly one tile task, so no
+// synchronisation is needed.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -41,11 +43,13 @@ class Film {
   int fullHeight() const { return fullHeight_; }
   const PixelWindow& window() const { return window_; }
 
-  // (x, y) in full-frame pixel coordinates, inside window().
+  // (x, y) in full-frame pixel coordinates, inside window(). Each value is rounded to float;
+  // one beyond float's finite range becomes an infinity, so that whoever writes the film to a
+  // file sees that it has to be clamped.
   void setPixel(int x, int y, double r, double g, double b, double a);
-  const double* pixel(int x, int y) const;  // 4 values: R, G, B, A
+  const float* pixel(int x, int y) const;  // 4 values: R, G, B, A
   // The window's pixels row by row, 4 values each.
-  std::span<const double> rgba() const { return rgba_; }
+  std::span<const float> rgba() const { return rgba_; }
 
   // Row-major float RGBA of the window, for image output.
   std::vector<float> toFloatRgba() const;
@@ -70,7 +74,7 @@ class Film {
   size_t offset(int x, int y) const;
   int fullWidth_, fullHeight_;
   PixelWindow window_;
-  std::vector<double, UnwrittenAllocator<double>> rgba_;
+  std::vector<float, UnwrittenAllocator<float>> rgba_;
   std::vector<FilmPlane> planes_;
   std::vector<std::pair<std::string, std::string>> stringAttributes_;
   std::vector<std::pair<std::string, int>> intAttributes_;

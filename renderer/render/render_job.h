@@ -134,12 +134,11 @@ struct RenderResult {
 // --max-spp override, so a render session checks it before anything renders.
 void checkSampleSets(const Scene& scene, int64_t spp);
 
-// Throws UsageError when a frame of `pixels` pixels with `channels` film channels (RGBA and
-// the AOVs') would not fit in `availableBytes`: the film holds doubles, and writing it makes
-// float copies, about pixels × (12·channels + 16) bytes at the peak. Without this check an
-// oversized frame was accepted and killed by the kernel when its film was first touched.
-// availableBytes 0 means unknown: no check.
-void checkFrameFits(int64_t pixels, size_t channels, uint64_t availableBytes);
+// Throws UsageError when a frame of `pixels` pixels of `bytesPerPixel` bytes each at the peak
+// (the film, the pixels' states, the AOVs and the copies made to write them) would not fit in
+// `availableBytes`. Without this check an oversized frame was accepted and killed by the kernel
+// when its film was first touched. availableBytes 0 means unknown: no check.
+void checkFrameFits(int64_t pixels, size_t bytesPerPixel, uint64_t availableBytes);
 
 // Called after each finished pass with the frame so far (its film resolved, its stats up to
 // that pass): previews. Runs on the calling thread, between passes, inside the render's arena

@@ -20,13 +20,19 @@ namespace {
 
 // Throws UsageError when the frame's film, AOV planes and per-pixel states would not fit in
 // memory (checkFrameFits): the AOV planes' channels come from the layout itself, made on a
-// one-pixel film, and a pixel's state between passes is counted in doubles.
-void checkFrameMemory(const Scene& scene, const AovSet& aovs, const PixelWindow& sampledWindow) {
+// one-pixel film. A pixel holds its RGBA in float (and a float copy where the frame is
+// developed for display or clamped to be written), its state between passes, the passes'
+// choices (ChoiceCache, when adaptive) and each AOV channel's sum and resolved value in double
+// with a float copy to write it.
+void checkFrameMemory(const Scene& scene, const AovSet& aovs, const PixelWindow& sampledWindow,
+                      bool adaptive) {
   Film probe(1, 1, PixelWindow{0, 1, 0, 1});
   AovLayout::create(aovs, scene, probe);
-  size_t channels = 4 + sizeof(PixelEstimate) / 12;
-  for (const FilmPlane& plane : probe.planes()) channels += 2 * plane.channels.size();
-  checkFrameFits(sampledWindow.area(), channels, availableMemoryBytes());
+  size_t bytes = 2 * 4 * sizeof(float) + sizeof(PixelEstimate) + sizeof(uint8_t);
+  if (adaptive) bytes += 5 * sizeof(double) + sizeof(int64_t);
+  for (const FilmPlane& plane : probe.planes())
+    bytes += plane.channels.size() * (2 * sizeof(double) + sizeof(float));
+  checkFrameFits(sampledWindow.area(), bytes, availableMemoryBytes());
 }
 
 // An adaptive frame continues as a straight render only if its passes are where this plan's
@@ -155,7 +161,7 @@ RenderSession::Shape RenderSession::planFrame(const Scene& scene, const RenderOp
   const int apron = s.plan.apron();
   s.sampledWindow = {std::max(0, s.window.x0 - apron), std::min(rs.width, s.window.x1 + apron),
                      std::max(0, s.window.y0 - apron), std::min(rs.height, s.window.y1 + apron)};
-  checkFrameMemory(scene, opt.aovs, s.sampledWindow);
+  checkFrameMemory(scene, opt.aovs, s.sampledWindow, s.plan.adaptive());
   // AOV work happens only when AOVs are asked for (leave out what is not needed).
   if (opt.integrator == IntegratorKind::Reference && opt.aovs.any())
     throw UsageError("the reference integrator renders the beauty only: drop --aov");

@@ -66,7 +66,7 @@ TEST(Textures, MapKdOnUvsReproducesTheTexturesLinearisedTexels) {
   // the texel's linearised value up to float rounding of the filter weights (1e-5).
   const int middles[4][2] = {{4, 4}, {11, 4}, {4, 11}, {11, 11}};
   for (int q = 0; q < 4; ++q) {
-    const double* px = film.pixel(middles[q][0], middles[q][1]);
+    const float* px = film.pixel(middles[q][0], middles[q][1]);
     for (int c = 0; c < 3; ++c)
       EXPECT_NEAR(px[c], srgbToLinear(kQuadrant[q][c]), 1e-5)
           << "quadrant " << q << " channel " << c;
@@ -211,8 +211,8 @@ TEST(Textures, ATextureSeenInAFlatMirrorIsFilteredAsSeenDirectly) {
   double maxDifference = 0, contrast = 0;
   for (int y = 8; y < 40; ++y)
     for (int x = 8; x < 40; ++x) {
-      maxDifference =
-          std::max(maxDifference, std::fabs(direct.pixel(x, y)[0] - mirrored.pixel(x, y)[0]));
+      maxDifference = std::max(maxDifference,
+                               std::fabs(double(direct.pixel(x, y)[0]) - mirrored.pixel(x, y)[0]));
       contrast = std::max(contrast, std::fabs(direct.pixel(x, y)[0] - 0.5));
     }
   // The two agree to float rounding of the hit points (the mirrored point is found through a

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cfloat>
+#include <cmath>
 #include <cstdio>
 #include <random>
 #include <regex>
@@ -93,6 +95,42 @@ TEST(ExrOutput, PixelChunksAreTheSameBytesForAnyOpenExrThreadCount) {
   ASSERT_EQ(alone.size(), 8u);
   EXPECT_EQ(chunks(4), alone);
   setExrThreads(0);  // as the process started
+}
+
+TEST(ExrOutput, AFloatCropIsWrittenAsTheFilmHoldsItAndOnlyValuesPastFloatAreClamped) {
+  // A float beauty is read by OpenEXR straight from the film, a channel holding a value past
+  // float's range through a clamped copy: the file must hold the film's floats exactly, in the
+  // crop's place, with each value past the range (an infinity, a double just above float's
+  // largest value, which rounding to nearest would make that value) clamped and counted, and
+  // NaN written as 0.
+  const PixelWindow window{3, 7, 2, 5};
+  Film film(10, 8, window);
+  const double justAbove = double(FLT_MAX) * (1 + 1e-9);  // within half a float unit above
+  for (int y = window.y0; y < window.y1; ++y)
+    for (int x = window.x0; x < window.x1; ++x)
+      film.setPixel(x, y, 0.1 * x + 0.01 * y, 1.0 / 3 + y, -0.25 * x, 0.5);
+  film.setPixel(4, 3, 1e39, std::nan(""), -justAbove, 0.5);
+  const std::string path = tmp("direct-crop.exr");
+  EXPECT_EQ(writeExr(path, film, {}), 3u);
+  const Image img = readImage(path);
+  ASSERT_EQ(img.channelNames, (std::vector<std::string>{"R", "G", "B", "A"}));
+  ASSERT_EQ(img.width, 4);
+  ASSERT_EQ(img.height, 3);
+  EXPECT_EQ(img.x, 3);
+  EXPECT_EQ(img.y, 2);
+  for (int y = window.y0; y < window.y1; ++y)
+    for (int x = window.x0; x < window.x1; ++x) {
+      const float* in = &img.pixels[(size_t(y - 2) * 4 + size_t(x - 3)) * 4];
+      const float* held = film.pixel(x, y);
+      if (x == 4 && y == 3) {
+        EXPECT_EQ(in[0], FLT_MAX);
+        EXPECT_EQ(in[1], 0.0f);
+        EXPECT_EQ(in[2], -FLT_MAX);
+        EXPECT_EQ(in[3], 0.5f);
+        continue;
+      }
+      for (int c = 0; c < 4; ++c) EXPECT_EQ(in[c], held[c]) << x << "," << y << " " << c;
+    }
 }
 
 TEST(ExrOutput, OiiotoolStatsSeeEveryPartOfAMultiPartFrame) {

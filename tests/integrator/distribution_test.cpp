@@ -133,7 +133,7 @@ TEST(AreaLights, ShrunkenSeedQuadConvergesToThePointLight) {
   double maxDiff = 0;
   for (int y = 0; y < 16; ++y)
     for (int x = 0; x < 24; ++x)
-      maxDiff = std::max(maxDiff, std::fabs(point.pixel(x, y)[0] - quad.pixel(x, y)[0]));
+      maxDiff = std::max(maxDiff, std::fabs(double(point.pixel(x, y)[0]) - quad.pixel(x, y)[0]));
   EXPECT_LE(maxDiff, 1e-4);
 }
 

@@ -75,19 +75,20 @@ TEST(SampleSets, SetsBeyondTheSamplersLimitAreRefusedBeforeRendering) {
 }
 
 TEST(FrameMemory, AFrameThatCannotFitIsRefusedWithItsSize) {
-  // pixels × (12·channels + 16) bytes: 1000 RGBA pixels need 64 000 bytes.
-  EXPECT_NO_THROW(checkFrameFits(1000, 4, 64000));
-  EXPECT_NO_THROW(checkFrameFits(1000, 4, 0));  // unknown memory: no check
+  // pixels × bytes a pixel: 1000 pixels of 64 bytes need 64 000 bytes.
+  EXPECT_NO_THROW(checkFrameFits(1000, 64, 64000));
+  EXPECT_NO_THROW(checkFrameFits(1000, 64, 0));  // unknown memory: no check
   try {
-    checkFrameFits(1000, 4, 63999);
+    checkFrameFits(1000, 64, 63999);
     FAIL() << "accepted";
   } catch (const UsageError& e) {
-    EXPECT_NE(std::string(e.what()).find("1000 pixels with 4 channels"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("a frame of 1000 pixels needs about"), std::string::npos)
         << e.what();
+    EXPECT_NE(std::string(e.what()).find("64 bytes a pixel"), std::string::npos) << e.what();
   }
-  // A 32768² frame with depth, normal and albedo AOVs: 4 + 1 + 3 + 3 = 11 channels, 148 bytes a
-  // pixel, 1.6e11 bytes in all: more than 100 GiB.
-  EXPECT_THROW(checkFrameFits(int64_t{1} << 30, 11, uint64_t{100} << 30), UsageError);
+  // A 32768² frame with depth, normal and albedo AOVs (7 channels of 20 bytes) beside its RGBA
+  // (32), state (96) and mask (1): 269 bytes a pixel, 2.9e11 bytes in all, more than 100 GiB.
+  EXPECT_THROW(checkFrameFits(int64_t{1} << 30, 269, uint64_t{100} << 30), UsageError);
 }
 
 struct Placement {
@@ -117,7 +118,7 @@ TEST_P(LitSurfaces, NoLitPointIsReportedInShadow) {
              R"(, "material": "m"}]})");
   for (int y = 0; y < 12; ++y)
     for (int x = 0; x < 24; ++x) {
-      const double* p = film.pixel(x, y);
+      const float* p = film.pixel(x, y);
       ASSERT_EQ(p[3], 1.0) << "pixel misses the surfaces: the test setup is wrong";
       EXPECT_NEAR(p[0], 0.4, 0.4e-4) << "pixel " << x << "," << y;
     }

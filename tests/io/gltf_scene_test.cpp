@@ -63,7 +63,7 @@ std::array<double, 3> centre(const std::string& file, const std::string& camera)
   RenderOptions opt;
   opt.progress = false;
   const Film film = renderScene(scene, *accel, opt).film;
-  const double* px = film.pixel(16, 16);
+  const float* px = film.pixel(16, 16);
   return {px[0], px[1], px[2]};
 }
 

@@ -310,7 +310,7 @@ Film renderSquare(const std::string& material, const std::string& name) {
 // pixel is at most half a texel, so the filter does not widen).
 void expectRegion(const Film& film, int x, int y, int column, int row, double plus,
                   const std::string& what) {
-  const double* px = film.pixel(x, y);
+  const float* px = film.pixel(x, y);
   for (int c = 0; c < 3; ++c)
     EXPECT_NEAR(px[c], srgbToLinear(regionCode(column, row, c)) + plus, 1e-5)
         << what << ": pixel (" << x << ", " << y << ") should show region (" << column << ", "

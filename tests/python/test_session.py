@@ -114,8 +114,8 @@ def test_no_leak_across_200_renders(scene_dict):
         frame = scene.render(seed=i, **settings)
         assert frame.rgba.shape == (64, 64, 4)
     grown = rss_bytes() - before
-    # A frame holds ~0.9 MB (the film in double, the float buffer, the pixels' estimates): 180
-    # kept would add ~160 MB, measured; dropped, they add ~1 MB. The bound leaves room for the
+    # A frame holds ~0.9 MB (the film, its AOVs, the pixels' estimates): 180 kept would add
+    # ~160 MB, measured; dropped, they add ~1 MB. The bound leaves room for the
     # allocator's slack.
     assert grown < 24 << 20, grown
 

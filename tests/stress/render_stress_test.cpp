@@ -25,7 +25,7 @@ TEST(Furnace, GlassSphereNeverExceedsTheBackground) {
     "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "g"}]})");
   double maxL = 0;
   for (int y = 0; y < 48; ++y)
-    for (int x = 0; x < 48; ++x) maxL = std::max(maxL, r.film.pixel(x, y)[0]);
+    for (int x = 0; x < 48; ++x) maxL = std::max(maxL, double(r.film.pixel(x, y)[0]));
   EXPECT_LE(maxL, 1 + 1e-4);
   EXPECT_GT(maxL, 0.9);
 }
