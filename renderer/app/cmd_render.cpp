@@ -164,6 +164,7 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
                      " asks for AOVs whose sums are not kept with the frame: its continuation "
                      "would be refused; drop --resumable, or those AOVs");
   opt.sampling = a.sampling;
+  opt.previews = a.previewEvery > 0;
   AccelKind kind = AccelKind::Embree;
   parseAccelKind(a.accel, kind);
 

@@ -42,6 +42,10 @@ struct RenderOptions {
   // pixels go on from there, and its passes from where they stood. Null: from nothing.
   const ResumeState* resumeFrom = nullptr;
   AovSet aovs;  // none by default
+  // Whether the frame is taken between passes (runToEnd's callback: previews), each time a
+  // copy of its states and film written with them: counted when the session checks that the
+  // frame fits in memory.
+  bool previews = false;
   // Whether each tile's thread CPU time is noted in RenderStats::timing besides its wall time
   // (a system call per tile: only for `--stats-json`).
   bool tileCpuTimes = false;

@@ -18,21 +18,38 @@ namespace glint {
 
 namespace {
 
-// Throws UsageError when the frame's film, AOV planes and per-pixel states would not fit in
-// memory (checkFrameFits): the AOV planes' channels come from the layout itself, made on a
-// one-pixel film. A pixel holds its RGBA in float (and a float copy where the frame is
-// developed for display or clamped to be written), its state between passes, the passes'
-// choices (ChoiceCache, when adaptive) and each AOV channel's sum and resolved value in double
-// with a float copy to write it.
-void checkFrameMemory(const Scene& scene, const AovSet& aovs, const PixelWindow& sampledWindow,
-                      bool adaptive) {
+// What a frame holds per pixel at its peak (checkFrameFits): its RGBA in float, a float copy
+// (to develop it for display, or to clamp it for the file) and the display image's codes; its
+// state between passes and whether a pass takes it; the adaptive choices (ChoiceCache); each
+// AOV channel's sum, resolved value (double) and packed float; the object id's and
+// Cryptomatte's per-pixel tables; and the state written with a frame that can be continued (a
+// copy of its film with the state's channels). The AOV planes' channels come from the layout
+// itself, made on a one-pixel film.
+struct FrameBytes {
+  size_t frame = 0;     // per pixel, at the peak of a render without previews
+  size_t snapshot = 0;  // what a snapshot (a preview) adds
+};
+
+FrameBytes frameBytesPerPixel(const Scene& scene, const RenderOptions& opt, const PassPlan& plan) {
   Film probe(1, 1, PixelWindow{0, 1, 0, 1});
-  AovLayout::create(aovs, scene, probe);
-  size_t bytes = 2 * 4 * sizeof(float) + sizeof(PixelEstimate) + sizeof(uint8_t);
-  if (adaptive) bytes += 5 * sizeof(double) + sizeof(int64_t);
-  for (const FilmPlane& plane : probe.planes())
-    bytes += plane.channels.size() * (2 * sizeof(double) + sizeof(float));
-  checkFrameFits(sampledWindow.area(), bytes, availableMemoryBytes());
+  const AovLayout layout = AovLayout::create(opt.aovs, scene, probe);
+  size_t aovChannels = 0;
+  for (const FilmPlane& plane : probe.planes()) aovChannels += plane.channels.size();
+  constexpr size_t kRgba = 4 * sizeof(float), kDisplayCodes = 4 * sizeof(uint16_t);
+  const size_t written = aovChannels * sizeof(double);  // a film's AOV planes
+  const size_t withState = resumeStateBytesPerPixel() + written;
+  FrameBytes bytes;
+  bytes.frame = 2 * kRgba + kDisplayCodes + sizeof(PixelEstimate) + sizeof(uint8_t);
+  if (plan.adaptive()) bytes.frame += 5 * sizeof(double) + sizeof(int64_t);
+  bytes.frame += aovChannels * (2 * sizeof(double) + sizeof(float));
+  if (layout.objectId != SIZE_MAX) bytes.frame += sizeof(CoverageTable);
+  if (layout.cryptoObject != SIZE_MAX) bytes.frame += 2 * sizeof(CoverageTable);
+  const bool continuable =
+      opt.sampling.progressive || opt.sampling.timeLimitSeconds > 0 || opt.resumeFrom;
+  if (continuable) bytes.frame += withState;
+  // A preview is a copy of the states and a resolved film, written with its state.
+  bytes.snapshot = sizeof(PixelEstimate) + kRgba + written + (continuable ? 0 : withState);
+  return bytes;
 }
 
 // An adaptive frame continues as a straight render only if its passes are where this plan's
@@ -161,7 +178,10 @@ RenderSession::Shape RenderSession::planFrame(const Scene& scene, const RenderOp
   const int apron = s.plan.apron();
   s.sampledWindow = {std::max(0, s.window.x0 - apron), std::min(rs.width, s.window.x1 + apron),
                      std::max(0, s.window.y0 - apron), std::min(rs.height, s.window.y1 + apron)};
-  checkFrameMemory(scene, opt.aovs, s.sampledWindow, s.plan.adaptive());
+  const FrameBytes bytes = frameBytesPerPixel(scene, opt, s.plan);
+  const bool snapshots = opt.previews && s.plan.ends.size() > 1;  // one pass: no preview
+  checkFrameFits(s.sampledWindow.area(), bytes.frame + (snapshots ? bytes.snapshot : 0),
+                 availableMemoryBytes());
   // AOV work happens only when AOVs are asked for (leave out what is not needed).
   if (opt.integrator == IntegratorKind::Reference && opt.aovs.any())
     throw UsageError("the reference integrator renders the beauty only: drop --aov");

@@ -70,6 +70,10 @@ std::string checksumOf(std::span<const PixelEstimate> estimates, const PassPosit
 
 }  // namespace
 
+size_t resumeStateBytesPerPixel() {
+  return kChannels * (sizeof(double) + sizeof(uint32_t)) + 4 * sizeof(float);
+}
+
 void addResumeState(Film& film, ExrMetadata& metadata, std::span<const PixelEstimate> estimates,
                     const PassPosition& position, const std::string& resumeHash) {
   const std::vector<uint8_t>& chosen = position.cutChosen;

@@ -7,6 +7,7 @@
 // glint:resume_finished_end, glint:resume_cut_end and glint:resume_checksum. Bits, not values:
 // a resumed render adds its samples to exactly the state a straight one would have, and takes
 // the same choices, so it writes the same pixels.
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -38,6 +39,10 @@ struct ResumeState {
   PixelEstimates estimates;  // the window's pixels, row-major
   PassPosition position;
 };
+
+// The bytes a pixel's state adds to a frame written with it: its channels in the film's plane
+// and packed for the file, and the copy of the pixel's RGBA the frame written with them is.
+size_t resumeStateBytesPerPixel();
 
 // Adds the state plane to `film` (whose window the estimates cover, row-major) and the
 // position's attributes to `metadata`, with a checksum over both and `resumeHash`.
