@@ -141,7 +141,9 @@ bool clampToType(double& v, Imf::PixelType type) {
 
 // How many values of the parts' channels clampToType changes, marking the channels that hold
 // one (counted before the headers are written, so that they can say it, without packing every
-// part at once).
+// part at once). The beauty is counted from the film's floats: for a half channel, a mean
+// within float rounding above 65504 reads 65504 and is not counted (it is written as 65504
+// either way).
 uint64_t countClamped(std::vector<Part>& parts, size_t pixels) {
   uint64_t clamped = 0;
   for (Part& part : parts)

@@ -4,8 +4,7 @@
 Whole processes, 2 threads each: `glint render scenes/peers/cornell_box.json` and
 `pathtracer --max-path-length 1 --spp 16` (the same work: one camera and one shadow ray per
 sample). After one warm-up of each, every round runs Glint, the pathtracer, the pathtracer,
-Glint (the next round in the reverse order), so that load from other processes hits both
-alike. Prints each program's median wall and CPU seconds (user + system of the process, from
+Glint, so that load from other processes hits both alike. Prints each program's median wall and CPU seconds (user + system of the process, from
 getrusage) and Glint's over the pathtracer's. With --baseline, a second Glint binary (a build
 side by side) joins each round.
 
@@ -61,9 +60,8 @@ def main():
         for name in names:
             timed(programs[name])
         runs = {name: [] for name in names}
-        order = names + names[::-1]
-        for r in range(args.rounds):
-            for name in order if r % 2 == 0 else order[::-1]:
+        for _ in range(args.rounds):
+            for name in names + names[::-1]:
                 runs[name].append(timed(programs[name]))
     finally:
         shutil.rmtree(out)
