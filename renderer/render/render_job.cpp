@@ -87,15 +87,15 @@ void checkSampleSets(const Scene& scene, int64_t spp) {
   }
 }
 
-void checkFrameFits(int64_t pixels, size_t bytesPerPixel, uint64_t availableBytes) {
+void checkFrameFits(int64_t pixels, size_t bytesPerPixel, uint64_t availableBytes,
+                    const std::string& parts) {
   const double needed = double(pixels) * double(bytesPerPixel);
   if (availableBytes == 0 || needed <= double(availableBytes)) return;
-  throw UsageError(
-      "a frame of " + std::to_string(pixels) + " pixels needs about " + gigabytes(needed) +
-      " of memory (" + std::to_string(bytesPerPixel) +
-      " bytes a pixel: its colour and sampling state, its AOVs and the copies written); " +
-      gigabytes(double(availableBytes)) +
-      " is available: render it in pieces with --crop, or on a farm");
+  throw UsageError("a frame of " + std::to_string(pixels) + " pixels needs about " +
+                   gigabytes(needed) + " of memory (" + std::to_string(bytesPerPixel) +
+                   " bytes a pixel" + (parts.empty() ? "" : ": " + parts) + "); " +
+                   gigabytes(double(availableBytes)) +
+                   " is available: render it in pieces with --crop, or on a farm");
 }
 
 RenderResult renderScene(const Scene& scene, const Accelerator& accel, const RenderOptions& opt,

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <functional>
 #include <optional>
+#include <string>
 
 #include "accel/accelerator.h"
 #include "camera/camera.h"
@@ -139,10 +140,12 @@ struct RenderResult {
 void checkSampleSets(const Scene& scene, int64_t spp);
 
 // Throws UsageError when a frame of `pixels` pixels of `bytesPerPixel` bytes each at the peak
-// (the film, the pixels' states, the AOVs and the copies made to write them) would not fit in
-// `availableBytes`. Without this check an oversized frame was accepted and killed by the kernel
-// when its film was first touched. availableBytes 0 means unknown: no check.
-void checkFrameFits(int64_t pixels, size_t bytesPerPixel, uint64_t availableBytes);
+// (the film, the pixels' states, the AOVs and the copies made to write them; `parts` says
+// which, for the message) would not fit in `availableBytes`. Without this check an oversized
+// frame was accepted and killed by the kernel when its film was first touched. availableBytes
+// 0 means unknown: no check.
+void checkFrameFits(int64_t pixels, size_t bytesPerPixel, uint64_t availableBytes,
+                    const std::string& parts = {});
 
 // Called after each finished pass with the frame so far (its film resolved, its stats up to
 // that pass): previews. Runs on the calling thread, between passes, inside the render's arena

@@ -13,42 +13,57 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/memory.h"
+#include "core/word_list.h"
 
 namespace glint {
 
 namespace {
 
-// What a frame holds per pixel at its peak (checkFrameFits): its RGBA in float, a float copy
-// (to develop it for display, or to clamp it for the file) and the display image's codes; its
-// state between passes and whether a pass takes it; the adaptive choices (ChoiceCache); each
-// AOV channel's sum, resolved value (double) and packed float; the object id's and
-// Cryptomatte's per-pixel tables; and the state written with a frame that can be continued (a
-// copy of its film with the state's channels). The AOV planes' channels come from the layout
-// itself, made on a one-pixel film.
+// What a frame holds per pixel at its peak (checkFrameFits), in parts named for the message:
+// - its colour and sampling state: its RGBA in float, a float copy (to develop it for
+//   display, or to clamp it for the file) and the display image's codes; its state between
+//   passes, and the window's copy of it where a crop samples an apron; whether a pass takes
+//   it; the adaptive choices (ChoiceCache);
+// - its AOVs: each channel's sum, resolved value (double) and packed float; the object id's
+//   and Cryptomatte's per-pixel tables;
+// - the state written with a frame that can be continued: a copy of its film with the state's
+//   channels;
+// - previews: each a copy of the states and a resolved film, written with its state.
+// The AOV planes' channels come from the layout itself, made on a one-pixel film.
 struct FrameBytes {
-  size_t frame = 0;     // per pixel, at the peak of a render without previews
-  size_t snapshot = 0;  // what a snapshot (a preview) adds
+  size_t total = 0;
+  std::vector<std::string> parts;  // "AOVs 140", ...
+
+  void add(const std::string& part, size_t bytes) {
+    if (bytes == 0) return;
+    total += bytes;
+    parts.push_back(part + " " + std::to_string(bytes));
+  }
 };
 
-FrameBytes frameBytesPerPixel(const Scene& scene, const RenderOptions& opt, const PassPlan& plan) {
+FrameBytes frameBytesPerPixel(const Scene& scene, const RenderOptions& opt, const PassPlan& plan,
+                              bool apron) {
   Film probe(1, 1, PixelWindow{0, 1, 0, 1});
   const AovLayout layout = AovLayout::create(opt.aovs, scene, probe);
   size_t aovChannels = 0;
   for (const FilmPlane& plane : probe.planes()) aovChannels += plane.channels.size();
   constexpr size_t kRgba = 4 * sizeof(float), kDisplayCodes = 4 * sizeof(uint16_t);
-  const size_t written = aovChannels * sizeof(double);  // a film's AOV planes
-  const size_t withState = resumeStateBytesPerPixel() + written;
   FrameBytes bytes;
-  bytes.frame = 2 * kRgba + kDisplayCodes + sizeof(PixelEstimate) + sizeof(uint8_t);
-  if (plan.adaptive()) bytes.frame += 5 * sizeof(double) + sizeof(int64_t);
-  bytes.frame += aovChannels * (2 * sizeof(double) + sizeof(float));
-  if (layout.objectId != SIZE_MAX) bytes.frame += sizeof(CoverageTable);
-  if (layout.cryptoObject != SIZE_MAX) bytes.frame += 2 * sizeof(CoverageTable);
-  const bool continuable =
-      opt.sampling.progressive || opt.sampling.timeLimitSeconds > 0 || opt.resumeFrom;
-  if (continuable) bytes.frame += withState;
-  // A preview is a copy of the states and a resolved film, written with its state.
-  bytes.snapshot = sizeof(PixelEstimate) + kRgba + written + (continuable ? 0 : withState);
+  bytes.add("colour and sampling state",
+            2 * kRgba + kDisplayCodes + (apron ? 2 : 1) * sizeof(PixelEstimate) + sizeof(uint8_t) +
+                (plan.adaptive() ? 5 * sizeof(double) + sizeof(int64_t) : 0));
+  bytes.add("AOVs", aovChannels * (2 * sizeof(double) + sizeof(float)) +
+                        (layout.objectId != SIZE_MAX ? sizeof(CoverageTable) : 0) +
+                        (layout.cryptoObject != SIZE_MAX ? 2 * sizeof(CoverageTable) : 0));
+  const size_t withState = resumeStateBytesPerPixel() + aovChannels * sizeof(double);
+  const char* continuedBy = opt.resumeFrom                      ? "--resume"
+                            : opt.sampling.progressive          ? "--resumable"
+                            : opt.sampling.timeLimitSeconds > 0 ? "--time-limit"
+                                                                : nullptr;
+  if (continuedBy) bytes.add(std::string("the state kept for ") + continuedBy, withState);
+  if (opt.previews && plan.ends.size() > 1)  // one pass: no preview
+    bytes.add("previews", sizeof(PixelEstimate) + kRgba + aovChannels * sizeof(double) +
+                              (continuedBy ? 0 : withState));
   return bytes;
 }
 
@@ -178,10 +193,10 @@ RenderSession::Shape RenderSession::planFrame(const Scene& scene, const RenderOp
   const int apron = s.plan.apron();
   s.sampledWindow = {std::max(0, s.window.x0 - apron), std::min(rs.width, s.window.x1 + apron),
                      std::max(0, s.window.y0 - apron), std::min(rs.height, s.window.y1 + apron)};
-  const FrameBytes bytes = frameBytesPerPixel(scene, opt, s.plan);
-  const bool snapshots = opt.previews && s.plan.ends.size() > 1;  // one pass: no preview
-  checkFrameFits(s.sampledWindow.area(), bytes.frame + (snapshots ? bytes.snapshot : 0),
-                 availableMemoryBytes());
+  const FrameBytes bytes =
+      frameBytesPerPixel(scene, opt, s.plan, s.sampledWindow.area() != s.window.area());
+  checkFrameFits(s.sampledWindow.area(), bytes.total, availableMemoryBytes(),
+                 wordList(bytes.parts));
   // AOV work happens only when AOVs are asked for (leave out what is not needed).
   if (opt.integrator == IntegratorKind::Reference && opt.aovs.any())
     throw UsageError("the reference integrator renders the beauty only: drop --aov");

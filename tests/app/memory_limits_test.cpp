@@ -239,24 +239,32 @@ TEST(MemoryLimits, AMeshThatOutgrowsTheLimitInAssimpsProcessingIsOutOfMemory) {
 
 TEST(MemoryLimits, AFrameIsCheckedWithTheCopiesWrittenWithItsStateAndPreviews) {
   SKIP_UNDER_ASAN();
-  // A 2000² frame holds about 140 bytes a pixel (0.55 GB) and renders under 1.1 GB. Written
-  // with its state (--resumable) it needs about 290 more (the state's 23 channels in the film
-  // and packed, a copy of the film), and each preview a copy of the states and the film written
-  // with them: both are refused before any work, where they used to render and then fail to
-  // write the frame, out of memory.
+  // A 2000² frame holds 137 bytes a pixel (0.55 GB) and renders under 1.5 GB on 2 threads
+  // (each thread's stack counts against the limit). Written with its state (--resumable) it
+  // needs 292 more (the state's 23 channels in the film and packed, a copy of the film: 1.7 GB
+  // in all), and with previews 404 more (a copy of the states and the film, written with their
+  // state: 2.2 GB): both are refused before any work, naming the part, where they used to
+  // render and then fail to write the frame, out of memory.
   const std::string scene = test::writeTemp("big-frame.json", R"({
     "render": {"width": 2000, "height": 2000, "spp": 1},
     "camera": {"eye": [0,0,4], "look_at": [0,0,0]},
     "materials": {"m": {"type": "phong", "kd": [0.5,0.5,0.5]}},
     "lights": [{"type": "point", "position": [0,3,4], "intensity": [5,5,5]}],
     "objects": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})");
-  const std::string out = " -o " + (test::tempDir() / "big-frame.exr").string() + " --quiet";
-  const Outcome plain = underLimit(1100, "render " + scene + out);
+  const std::string render =
+      "render " + scene + " --threads 2 --quiet -o " + (test::tempDir() / "big-frame.exr").string();
+  const Outcome plain = underLimit(1500, render);
   EXPECT_EQ(plain.status, 0) << plain.output;
-  for (const std::string extra : {" --resumable", " --spp 2 --min-spp 1 --preview-every 0.001"}) {
-    const Outcome o = underLimit(1100, "render " + scene + out + extra);
+  const std::pair<std::string, std::string> copies[] = {
+      {" --resumable", "the state kept for --resumable 292"},
+      {" --spp 2 --min-spp 1 --preview-every 0.001", "previews 404"}};
+  for (const auto& [extra, part] : copies) {
+    const Outcome o = underLimit(1500, render + extra);
     EXPECT_EQ(o.status, 2) << extra << "\n" << o.output;
     EXPECT_NE(o.output.find("a frame of 4000000 pixels needs about"), std::string::npos)
+        << extra << "\n"
+        << o.output;
+    EXPECT_NE(o.output.find("colour and sampling state 137 and " + part), std::string::npos)
         << extra << "\n"
         << o.output;
   }

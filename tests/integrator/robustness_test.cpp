@@ -86,9 +86,19 @@ TEST(FrameMemory, AFrameThatCannotFitIsRefusedWithItsSize) {
         << e.what();
     EXPECT_NE(std::string(e.what()).find("64 bytes a pixel"), std::string::npos) << e.what();
   }
-  // A 32768² frame with depth, normal and albedo AOVs (7 channels of 20 bytes) beside its RGBA
-  // (32), state (96) and mask (1): 269 bytes a pixel, 2.9e11 bytes in all, more than 100 GiB.
-  EXPECT_THROW(checkFrameFits(int64_t{1} << 30, 269, uint64_t{100} << 30), UsageError);
+  // A 32768² frame with depth, normal and albedo AOVs (7 channels of 20 bytes) beside its
+  // colour and sampling state (137): 277 bytes a pixel, 3.0e11 bytes in all, more than 100 GiB;
+  // the message names the parts it is given.
+  try {
+    checkFrameFits(int64_t{1} << 30, 277, uint64_t{100} << 30,
+                   "colour and sampling state 137 and AOVs 140");
+    FAIL() << "accepted";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find(
+                  "(277 bytes a pixel: colour and sampling state 137 and AOVs 140)"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 struct Placement {
