@@ -4,9 +4,9 @@
 Whole processes, 2 threads each: `glint render scenes/peers/cornell_box.json` and
 `pathtracer --max-path-length 1 --spp 16` (the same work: one camera and one shadow ray per
 sample). After one warm-up of each, every round runs Glint, the pathtracer, the pathtracer,
-Glint, so that load from other processes hits both alike. Prints each program's median wall and CPU seconds (user + system of the process, from
-getrusage) and Glint's over the pathtracer's. With --baseline, a second Glint binary (a build
-side by side) joins each round.
+Glint, so that load from other processes hits both alike. Prints each program's median wall
+and CPU seconds (user + system of the process, from getrusage) and Glint's over the
+pathtracer's. With --baseline, a second Glint binary (a build side by side) joins each round.
 
 Needs embree-tools (Debian) for the pathtracer and its model.
 """
