@@ -174,8 +174,9 @@ size_t packedBytesPerPixel(const Part& part) {
 
 PackedPart packPart(const Part& part, size_t pixels) {
   PackedPart out(pixels * packedBytesPerPixel(part));
+  if (out.empty()) return out;  // every channel is read from the film
   unsigned char* dst = out.data();
-  for (size_t p = 0; !out.empty() && p < pixels; ++p)
+  for (size_t p = 0; p < pixels; ++p)
     for (const Channel& c : part.channels) {
       if (c.direct()) continue;
       double v = c.value(p);
