@@ -35,6 +35,7 @@ py::object errorsDict(const ImageErrors& e) {
   d["psnr"] = finite(e.psnr);
   d["share_above_threshold"] = e.aboveThreshold;
   d["pixels"] = e.pixels;
+  d["nonfinite_pixels"] = e.nonfinitePixels;
   return d;
 }
 
@@ -82,6 +83,13 @@ Image imageOf(const py::object& v, const char* which) {
   return img;
 }
 
+// What compare's errors call an argument: its path, or the argument and what it is.
+std::string nameOf(const py::object& v, const char* which) {
+  if (py::isinstance<py::str>(v) || py::isinstance<py::bytes>(v) || py::hasattr(v, "__fspath__"))
+    return pathOf(v);
+  return std::string(which) + (py::isinstance<Frame>(v) ? " (a Frame)" : " (an array)");
+}
+
 }  // namespace
 
 }  // namespace glint::python
@@ -109,11 +117,14 @@ PYBIND11_MODULE(_glint, m) {
         if (!(threshold > 0) || !std::isfinite(threshold))
           throw py::value_error("threshold must be a finite number above 0");
         const Image test = imageOf(a, "a"), reference = imageOf(b, "b");
+        const ComparedNames names{nameOf(a, "a"), nameOf(b, "b")};
         py::gil_scoped_release unlocked;
-        const ImageErrors e = compareImages(test, reference, threshold);
+        const ImageErrors e = compareImages(test, reference, threshold, names);
         py::gil_scoped_acquire locked;
-        if (!e.placement.empty() && PyErr_WarnEx(PyExc_UserWarning, e.placement.c_str(), 1) != 0)
-          throw py::error_already_set();
+        for (const std::string& note :
+             {e.placement, e.nonfinitePixels > 0 ? nonfiniteNote(e, names) : std::string()})
+          if (!note.empty() && PyErr_WarnEx(PyExc_UserWarning, note.c_str(), 1) != 0)
+            throw py::error_already_set();
         return errorsDict(e);
       },
       py::arg("a"), py::arg("b"), py::arg("threshold") = 1e-2,

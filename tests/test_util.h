@@ -141,14 +141,17 @@ inline std::string sceneErrorOf(const std::string& text) {
 
 struct RunResult {
   int exitCode = -1;
-  std::string output;  // stdout and stderr together
+  std::string output;  // stdout and stderr together, unless runGlint's `streams` say otherwise
 };
 
 // Runs the glint binary through the shell; `environment` (e.g. "LD_DEBUG=files") is set for
 // glint alone.
-inline RunResult runGlint(const std::string& args, const std::string& environment = "") {
+// `streams` the shell's redirection of the rest: standard error into the output by default.
+inline RunResult runGlint(const std::string& args, const std::string& environment = "",
+                          const std::string& streams = "2>&1") {
   RunResult r;
-  const std::string cmd = environment + " " + std::string(GLINT_BINARY) + " " + args + " 2>&1";
+  const std::string cmd =
+      environment + " " + std::string(GLINT_BINARY) + " " + args + " " + streams;
   FILE* pipe = ::popen(cmd.c_str(), "r");
   if (!pipe) return r;
   std::array<char, 4096> buf;

@@ -99,7 +99,7 @@ class RateCollector : public benchmark::BenchmarkReporter {
 };
 
 int runBench(const BenchArgs& a) {
-  checkOutputPaths({{"--json", a.json}});
+  checkCommandOutputs({{"--json", a.json}});
   // Before the scene loads: a misspelt backend is known at once. A backend named twice would
   // be timed twice and its figures reported under one name.
   std::vector<AccelKind> kinds;

@@ -20,7 +20,7 @@ nlohmann::json errorsJson(const ImageErrors& e) {
   return {{"rmse", finite(e.rmse)}, {"relmse", finite(e.relmse)},
           {"mae", finite(e.mae)},   {"max_abs", finite(e.maxAbs)},
           {"psnr", finite(e.psnr)}, {"share_above_threshold", e.aboveThreshold},
-          {"pixels", e.pixels}};
+          {"pixels", e.pixels},     {"nonfinite_pixels", e.nonfinitePixels}};
 }
 
 CommandRunner addCompareCommand(CLI::App& app) {
@@ -47,19 +47,21 @@ CommandRunner addCompareCommand(CLI::App& app) {
     // The inputs are noted first, so that an output naming one is refused before the work.
     noteInputFile(a->test);
     noteInputFile(a->reference);
-    checkOutputPaths({{"--diff", a->diff}, {"--json", a->json}});
+    checkCommandOutputs({{"--diff", a->diff}, {"--json", a->json}});
     // R, G and B, which readImage puts first: an image of other channels (depth, a luminance
     // "Y") is refused by name rather than measured as if it were colour.
     const Image test = readImage(a->test), ref = readImage(a->reference);
     requireRgb(test, a->test, "compare");
     requireRgb(ref, a->reference, "compare");
-    const ImageErrors e = compareImages(test, ref, a->threshold);
+    const ComparedNames names{a->test, a->reference};
+    const ImageErrors e = compareImages(test, ref, a->threshold, names);
     if (!e.placement.empty()) log::warning(e.placement);
+    if (e.nonfinitePixels > 0) log::warning(nonfiniteNote(e, names));
     std::printf(
         "rmse      %.6g\nrelmse    %.6g\nmae       %.6g\nmax_abs   %.6g\npsnr      %.3f dB\n"
         "above     %.4f%% of pixels over %.3g\n",
         e.rmse, e.relmse, e.mae, e.maxAbs, e.psnr, 100 * e.aboveThreshold, a->threshold);
-    if (!a->diff.empty()) writeDifferenceImage(a->diff, test, ref);
+    if (!a->diff.empty()) writeDifferenceImage(a->diff, test, ref, names);
     if (!a->json.empty()) writeTextFileAtomically(a->json, errorsJson(e).dump(2) + "\n");
     return kExitOk;
   };

@@ -167,7 +167,7 @@ int runConverge(const ConvergeArgs& a) {
   // rendered, not after.
   for (const std::string* input : {&a.scenePath, &a.reference, &a.fromRender})
     if (!input->empty()) noteInputFile(*input);
-  checkOutputPaths({{"--csv", a.csv}, {"--plot", a.plot}, {"--json", a.json}});
+  checkCommandOutputs({{"--csv", a.csv}, {"--plot", a.plot}, {"--json", a.json}});
   if (!a.fromRender.empty()) return convergeFromRender(a);
   Scene scene = loadSceneOrDefault(a.scenePath);
   if (a.width) scene.render.width = *a.width;
@@ -251,7 +251,10 @@ int runConverge(const ConvergeArgs& a) {
         ConvergencePoint p;
         p.spp = spp;
         const Image img = renderImage(scene, *accel, a.threads, p.seconds, p.cpuSeconds);
-        const ImageErrors e = compareImages(img, reference);
+        const ImageErrors e =
+            compareImages(img, reference, 1e-2,
+                          {"the " + s.name + " render at " + std::to_string(spp) + " spp",
+                           a.reference.empty() ? "the reference" : a.reference});
         if (!e.placement.empty() && !placementSaid) log::warning(e.placement);
         placementSaid = placementSaid || !e.placement.empty();
         p.rmse = e.rmse;

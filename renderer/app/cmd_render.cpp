@@ -193,7 +193,7 @@ int renderFrame(const RenderArgs& a, std::optional<int> frame) {
   for (const Job& job : jobs) outputs.push_back({"-o", job.out});
   outputs.push_back({"--display", display});
   outputs.push_back({"--stats-json", stats});
-  checkOutputPaths(outputs);
+  checkCommandOutputs(outputs);
   const bool displayImages =
       !display.empty() || std::any_of(jobs.begin(), jobs.end(), [](const Job& job) {
         return isDisplayFormat(renderOutputFormat(job.out, {}));
@@ -338,7 +338,7 @@ int runRender(const RenderArgs& given) {
   for (const std::string& out : a.outputs) asGiven.push_back({"-o", out});
   asGiven.push_back({"--display", a.display});
   asGiven.push_back({"--stats-json", a.statsJson});
-  checkOutputPaths(asGiven);
+  checkCommandOutputs(asGiven);
   // Only the frame itself is written back over the frame it continues: --stats-json naming it
   // replaced the frame with JSON.
   if (!a.resume.empty())

@@ -29,7 +29,7 @@ struct ValidateArgs : ValidateSettings {
 };
 
 int runValidate(const ValidateArgs& a) {
-  checkOutputPaths({{"--json", a.json}});
+  checkCommandOutputs({{"--json", a.json}});
   if (a.ray.empty()) checkSomethingIsCast(a);  // --ray casts its one ray
   Scene scene = loadSceneOrDefault(a.scenePath);
   const ValidationBackends backends(scene, a);

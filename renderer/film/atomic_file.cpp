@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <chrono>
@@ -202,7 +203,14 @@ bool nameOneFile(const std::string& a, const std::string& b) {
 
 void checkOutputPaths(const std::vector<NamedOutput>& outputs) {
   const auto asked = [](const NamedOutput& o) { return !o.path.empty() && o.path != "-"; };
+  const NamedOutput* toStandardOutput = nullptr;
   for (size_t k = 0; k < outputs.size(); ++k) {
+    if (outputs[k].path == "-") {
+      if (toStandardOutput)
+        throw UsageError(toStandardOutput->option + " - and " + outputs[k].option +
+                         " - both name standard output: it can carry one of them");
+      toStandardOutput = &outputs[k];
+    }
     if (!asked(outputs[k])) continue;
     for (size_t j = 0; j < k; ++j)
       if (asked(outputs[j]) && nameOneFile(outputs[j].path, outputs[k].path))
@@ -212,6 +220,29 @@ void checkOutputPaths(const std::vector<NamedOutput>& outputs) {
   }
   for (const NamedOutput& o : outputs)
     if (asked(o)) checkOutputPath(o.path);
+}
+
+namespace {
+// The process's standard output, kept by checkCommandOutputs for the output named "-"; −1: not
+// kept (it is file descriptor 1 itself).
+int keptStandardOutput = -1;
+}  // namespace
+
+void checkCommandOutputs(const std::vector<NamedOutput>& outputs) {
+  checkOutputPaths(outputs);
+  if (keptStandardOutput >= 0 || std::none_of(outputs.begin(), outputs.end(),
+                                              [](const NamedOutput& o) { return o.path == "-"; }))
+    return;
+  std::fflush(stdout);
+  const int kept = ::fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, STDERR_FILENO + 1);
+  if (kept < 0) throw UsageError("standard output is not open, and an output names it (-)");
+  if (::dup2(STDERR_FILENO, STDOUT_FILENO) < 0) {
+    const int error = errno;
+    ::close(kept);
+    throw GlintError(std::string("cannot send the report to standard error: ") +
+                     std::strerror(error));
+  }
+  keptStandardOutput = kept;
 }
 
 void writeFileAtomically(const std::string& finalPath,
@@ -239,9 +270,19 @@ void writeFileAtomically(const std::string& finalPath,
 
 void writeTextFileAtomically(const std::string& finalPath, const std::string& text) {
   if (finalPath == "-") {  // CLI.md: JSON outputs take `-` for standard output
-    std::fwrite(text.data(), 1, text.size(), stdout);
-    if (std::fflush(stdout) != 0)
-      throw GlintError(std::string("cannot write to standard output: ") + std::strerror(errno));
+    if (keptStandardOutput < 0) {
+      std::fwrite(text.data(), 1, text.size(), stdout);
+      if (std::fflush(stdout) != 0)
+        throw GlintError(std::string("cannot write to standard output: ") + std::strerror(errno));
+      return;
+    }
+    for (size_t written = 0; written < text.size();) {
+      const ssize_t n = ::write(keptStandardOutput, text.data() + written, text.size() - written);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0)
+        throw GlintError(std::string("cannot write to standard output: ") + std::strerror(errno));
+      written += size_t(n);
+    }
     return;
   }
   writeFileAtomically(finalPath, [&](const std::string& tmp) {

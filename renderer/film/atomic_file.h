@@ -26,9 +26,16 @@ bool nameOneFile(const std::string& a, const std::string& b);
 
 // checkOutputPath for each output asked for, after refusing two options that name one file:
 // the same path once made absolute and its directories' links resolved, or, for a file that
-// exists, the same device and inode (a hard link, or a link to it). Every command calls it with
-// all its outputs before doing any work, so that one output never overwrites another.
+// exists, the same device and inode (a hard link, or a link to it), or both standard output.
+// Every command calls it with all its outputs before doing any work, so that one output never
+// overwrites another.
 void checkOutputPaths(const std::vector<NamedOutput>& outputs);
+
+// checkOutputPaths, then, where an output is "-", standard output kept for it alone: what the
+// program prints from then on goes to standard error, so that a pipe reading the output (JSON
+// into jq) gets nothing else. For a command line program; a library's host (the Python module)
+// keeps its standard output and calls checkOutputPaths.
+void checkCommandOutputs(const std::vector<NamedOutput>& outputs);
 
 // Calls write(tmpPath) to produce the data, then publishes it at finalPath. On any failure the
 // temporary file is removed, finalPath is left untouched, and a GlintError names the cause. A
@@ -40,7 +47,8 @@ void checkOutputPaths(const std::vector<NamedOutput>& outputs);
 void writeFileAtomically(const std::string& finalPath,
                          const std::function<void(const std::string& tmpPath)>& write);
 
-// The same for a text file (JSON figures, CSV); "-" writes to standard output.
+// The same for a text file (JSON figures, CSV); "-" writes to standard output (the one
+// checkCommandOutputs kept, where it did).
 void writeTextFileAtomically(const std::string& finalPath, const std::string& text);
 
 }  // namespace glint

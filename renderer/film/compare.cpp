@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <utility>
 
 #include "core/error.h"
 #include "film/image_file.h"
@@ -14,20 +15,25 @@ namespace {
 
 // Throws unless the images can be set pixel for pixel; returns a note where they can but may
 // not be the same pixels: both lie in frames (an array does not), of other sizes.
-std::string checkSameShape(const Image& a, const Image& b) {
+std::string checkSameShape(const Image& a, const Image& b, const ComparedNames& names) {
+  const auto size = [](const Image& i) {
+    return std::to_string(i.width) + "x" + std::to_string(i.height);
+  };
   if (a.width != b.width || a.height != b.height)
-    throw UsageError("images differ in size: " + std::to_string(a.width) + "x" +
-                     std::to_string(a.height) + " against " + std::to_string(b.width) + "x" +
-                     std::to_string(b.height));
-  if (a.channels < 3 || b.channels < 3) throw UsageError("images need at least RGB channels");
+    throw UsageError("images differ in size: " + names.test + " is " + size(a) + ", " +
+                     names.reference + " " + size(b));
+  for (const auto& [image, name] : {std::pair{&a, &names.test}, std::pair{&b, &names.reference}})
+    if (image->channels < 3)
+      throw UsageError(*name + " has " + std::to_string(image->channels) +
+                       " channels: images are compared by R, G and B");
   const auto known = [](const Image& i) { return i.fullWidth > 0 && i.fullHeight > 0; };
   if (!known(a) || !known(b)) return "";
   const auto place = [](const Image& i) {
     return "(" + std::to_string(i.x) + ", " + std::to_string(i.y) + ") of a " +
            std::to_string(i.fullWidth) + "x" + std::to_string(i.fullHeight) + " frame";
   };
-  const std::string where = std::to_string(a.width) + "x" + std::to_string(a.height) + " at " +
-                            place(a) + " against " + place(b);
+  const std::string where =
+      size(a) + ": " + names.test + " at " + place(a) + ", " + names.reference + " at " + place(b);
   // Two crops of one frame that lie apart are other pixels of the scene.
   if (a.fullWidth == b.fullWidth && a.fullHeight == b.fullHeight) {
     if (a.x != b.x || a.y != b.y) throw UsageError("images cover other pixels: " + where);
@@ -68,16 +74,19 @@ void requireFiniteReference(const Image& reference, const std::string& path) {
                          "): errors against it would not be finite");
 }
 
-ImageErrors compareImages(const Image& a, const Image& b, double threshold) {
+ImageErrors compareImages(const Image& a, const Image& b, double threshold,
+                          const ComparedNames& names) {
   ImageErrors e;
-  e.placement = checkSameShape(a, b);
+  e.placement = checkSameShape(a, b, names);
   e.pixels = size_t(a.width) * size_t(a.height);
   double se = 0, rel = 0, ae = 0;
   size_t above = 0;
   for (size_t p = 0; p < e.pixels; ++p) {
+    bool finite = true;
     for (int c = 0; c < 3; ++c) {
       const double ref = channel(b, p, c);
       const double d = channel(a, p, c) - ref;
+      finite = finite && std::isfinite(channel(a, p, c)) && std::isfinite(ref);
       const double ad = std::isfinite(d) ? std::fabs(d) : std::numeric_limits<double>::infinity();
       se += ad * ad;
       rel += ad * ad / (ref * ref + kRelMseEpsilon);
@@ -85,6 +94,7 @@ ImageErrors compareImages(const Image& a, const Image& b, double threshold) {
       e.maxAbs = std::max(e.maxAbs, ad);
     }
     above += pixelError(a, b, p) > threshold;
+    e.nonfinitePixels += !finite;
   }
   const double n = double(e.pixels) * 3;
   const double mse = se / n;
@@ -96,8 +106,15 @@ ImageErrors compareImages(const Image& a, const Image& b, double threshold) {
   return e;
 }
 
-void writeDifferenceImage(const std::string& path, const Image& a, const Image& b) {
-  checkSameShape(a, b);
+std::string nonfiniteNote(const ImageErrors& e, const ComparedNames& names) {
+  return names.test + " against " + names.reference + ": " + std::to_string(e.nonfinitePixels) +
+         " of " + std::to_string(e.pixels) +
+         " pixels hold a NaN or infinite R, G or B, whose errors count as infinite";
+}
+
+void writeDifferenceImage(const std::string& path, const Image& a, const Image& b,
+                          const ComparedNames& names) {
+  checkSameShape(a, b, names);
   // Stops of the ramp at log10(error) = −4, −3, −2, −1, 0.
   static const float kRamp[5][3] = {
       {0, 0, 0}, {0.1f, 0.2f, 0.9f}, {0.1f, 0.8f, 0.3f}, {1, 0.85f, 0.1f}, {1, 1, 1}};

@@ -15,6 +15,7 @@ struct ImageErrors {
   double psnr = 0;    // 10·log10(1 / MSE), peak 1 (display white); +∞ for identical images
   double aboveThreshold = 0;  // share of pixels whose largest channel error exceeds the threshold
   size_t pixels = 0;
+  size_t nonfinitePixels = 0;  // pixels with a NaN or infinite R, G or B in either image
   // Where both images lie in frames of other sizes, a note the caller gives as a warning: they
   // were compared pixel for pixel, which may not set the same pixels side by side.
   std::string placement;
@@ -22,9 +23,20 @@ struct ImageErrors {
 
 inline constexpr double kRelMseEpsilon = 1e-2;
 
-// Throws UsageError when the sizes differ, or when both images lie in frames of one size (an
-// array lies in none) at other places. Non-finite values count as an error of +∞.
-ImageErrors compareImages(const Image& test, const Image& reference, double threshold = 1e-2);
+// What the errors of compareImages name the two images by: their paths, where they have them.
+struct ComparedNames {
+  std::string test = "the image", reference = "the reference";
+};
+
+// Throws UsageError, naming both images, when the sizes differ, or when both images lie in
+// frames of one size (an array lies in none) at other places. Non-finite values count as an
+// error of +∞.
+ImageErrors compareImages(const Image& test, const Image& reference, double threshold = 1e-2,
+                          const ComparedNames& names = {});
+
+// The warning for errors with non-finite pixels (nonfinitePixels > 0), which make the figures
+// infinite or NaN (null in JSON, where identical images' +∞ PSNR is null too).
+std::string nonfiniteNote(const ImageErrors& errors, const ComparedNames& names);
 
 // Throws UsageError, naming `path`, the pixel and the channel, where a reference's R, G or B is
 // not finite: every error measured against it would be +∞ or NaN (converge's log-log axes).
@@ -32,6 +44,7 @@ void requireFiniteReference(const Image& reference, const std::string& path);
 
 // A false-colour image of the per-pixel error (largest channel |a − b|), on a logarithmic ramp
 // from 1e-4 (black) through blue, green, yellow to 1 and above (white); PNG.
-void writeDifferenceImage(const std::string& path, const Image& test, const Image& reference);
+void writeDifferenceImage(const std::string& path, const Image& test, const Image& reference,
+                          const ComparedNames& names = {});
 
 }  // namespace glint

@@ -8,6 +8,10 @@
 #include <OpenImageIO/imageio.h>
 
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <utility>
+#include <vector>
 
 #include "test_util.h"
 
@@ -189,6 +193,41 @@ TEST(CommandPromises, UnreadableScenesAndUnwritableDirectoriesAreFoundFirstWithE
                                      (dir / "read-only").string() + " (Permission denied)"))
       << w.output;
   EXPECT_FALSE(contains(w.output, "rendering")) << w.output;
+}
+
+TEST(CommandPromises, AnOutputToStandardOutputIsAllThatStandardOutputCarries) {
+  // compare, converge and validate printed their report on standard output before the JSON
+  // asked for with `--json -`: a pipe into a JSON reader failed on the first line.
+  const std::string frame = tmp("stdout-frame.exr");
+  ASSERT_EQ(
+      runGlint("render " + kScene + " --quiet --width 16 --height 12 --spp 4 -o " + frame).exitCode,
+      0);
+  const std::string errorsTo = "2>" + tmp("stdout-report.txt");
+  const std::vector<std::pair<std::string, std::string>> commands = {
+      {"compare " + frame + " " + frame + " --json -", "rmse"},
+      {"converge --from-render " + frame + " --json -", "from_render"},
+      {"validate " + kScene + " --rays 64 --spp 0 --no-brute --json -", "disagreements"},
+      {"render " + kScene + " --width 16 --height 12 --spp 4 -o " + tmp("stdout-render.exr") +
+           " --stats-json -",
+       "rays"}};
+  for (const auto& [command, key] : commands) {
+    const auto r = runGlint(command, "", errorsTo);
+    ASSERT_EQ(r.exitCode, 0) << command << "\n" << r.output;
+    nlohmann::json j;
+    ASSERT_NO_THROW(j = nlohmann::json::parse(r.output)) << command << "\n" << r.output;
+    EXPECT_TRUE(j.contains(key)) << command << "\n" << r.output;
+  }
+  // The report is still given, on standard error.
+  const auto report = runGlint("compare " + frame + " " + frame + " --json -", "", errorsTo);
+  EXPECT_EQ(report.output.find("rmse      0"), std::string::npos) << report.output;
+  std::ifstream stderrText(tmp("stdout-report.txt"));
+  const std::string said((std::istreambuf_iterator<char>(stderrText)), {});
+  EXPECT_TRUE(contains(said, "rmse      0")) << said;
+  // Two outputs cannot share it.
+  const auto both = runGlint("converge --from-render " + frame + " --json - --csv -");
+  EXPECT_EQ(both.exitCode, 2) << both.output;
+  EXPECT_TRUE(contains(both.output, "--csv - and --json - both name standard output"))
+      << both.output;
 }
 
 }  // namespace

@@ -342,8 +342,8 @@ TEST(Output, CompareRefusesCropsThatLieApart) {
   ASSERT_EQ(runGlint("render " + scene + " --quiet --crop 0 16 0 14 -o " + b).exitCode, 0);
   const auto apart = runGlint("compare " + a + " " + b);
   EXPECT_EQ(apart.exitCode, 2) << apart.output;
-  EXPECT_NE(apart.output.find("images cover other pixels: 16x14 at (4, 3) of a 48x32 frame "
-                              "against (0, 0) of a 48x32 frame"),
+  EXPECT_NE(apart.output.find("images cover other pixels: 16x14: " + a +
+                              " at (4, 3) of a 48x32 frame, " + b + " at (0, 0) of a 48x32 frame"),
             std::string::npos)
       << apart.output;
   const auto same = runGlint("compare " + a + " " + a);
@@ -357,11 +357,21 @@ TEST(Output, CompareRefusesCropsThatLieApart) {
       0);
   const auto sizes = runGlint("compare " + big + " " + b);
   EXPECT_EQ(sizes.exitCode, 0) << sizes.output;
-  EXPECT_NE(sizes.output.find("the images lie in frames of other sizes, 16x14 at (0, 0) of a "
-                              "96x64 frame against (0, 0) of a 48x32 frame: compared pixel for "
-                              "pixel"),
+  EXPECT_NE(sizes.output.find("the images lie in frames of other sizes, 16x14: " + big +
+                              " at (0, 0) of a 96x64 frame, " + b +
+                              " at (0, 0) of a 48x32 frame: compared pixel for pixel"),
             std::string::npos)
       << sizes.output;
+  // Of other sizes, they are refused naming both files and their sizes.
+  ASSERT_EQ(runGlint("render " + scene + " --quiet --width 20 --height 10 -o " + tmp("small.exr"))
+                .exitCode,
+            0);
+  const auto sizeApart = runGlint("compare " + a + " " + tmp("small.exr"));
+  EXPECT_EQ(sizeApart.exitCode, 2) << sizeApart.output;
+  EXPECT_NE(sizeApart.output.find("images differ in size: " + a + " is 16x14, " + tmp("small.exr") +
+                                  " 20x10"),
+            std::string::npos)
+      << sizeApart.output;
 }
 
 TEST(Output, MergeRefusesACropWhoseChannelsWereRenamed) {

@@ -45,12 +45,26 @@ TEST(Compare, OnePixelOffAndIdentical) {
   EXPECT_NEAR(e.rmse, std::sqrt(1.0 / 12), 1e-12);
   EXPECT_NEAR(e.maxAbs, 1, 0);
   EXPECT_EQ(e.aboveThreshold, 0.25);
+  EXPECT_EQ(e.nonfinitePixels, 0u);
   a.pixels[4] = std::nanf("");  // a non-finite value is an infinite error, not a silent pass
   EXPECT_TRUE(std::isinf(compareImages(a, b).maxAbs));
+  // ... and counted, so that a null PSNR from it is told from identical images' +∞: the NaN in
+  // the test image and an infinity in the reference, two pixels.
+  b.pixels[8] = std::numeric_limits<float>::infinity();
+  const ImageErrors broken = compareImages(a, b, 1e-2, {"a.exr", "b.exr"});
+  EXPECT_EQ(broken.nonfinitePixels, 2u);
+  EXPECT_EQ(nonfiniteNote(broken, {"a.exr", "b.exr"}),
+            "a.exr against b.exr: 2 of 4 pixels hold a NaN or infinite R, G or B, whose errors "
+            "count as infinite");
 }
 
-TEST(Compare, SizeMismatchIsAUsageError) {
+TEST(Compare, SizeMismatchIsAUsageErrorNamingBothImages) {
   EXPECT_THROW(compareImages(constant(2, 2, 0, 0, 0), constant(2, 3, 0, 0, 0)), UsageError);
+  try {
+    compareImages(constant(2, 2, 0, 0, 0), constant(2, 3, 0, 0, 0), 1e-2, {"t.exr", "r.exr"});
+  } catch (const UsageError& e) {
+    EXPECT_STREQ(e.what(), "images differ in size: t.exr is 2x2, r.exr 2x3");
+  }
 }
 
 TEST(Compare, CommandLineWritesJsonAndDiff) {

@@ -6,6 +6,7 @@ import sys
 import textwrap
 
 import numpy as np
+import pytest
 
 import glint
 from conftest import BUILD
@@ -130,6 +131,14 @@ def test_validate_compare_read_frame_version(tmp_path, scene_dict):
     b = scene.render(spp=64, seed=1)
     same = glint.compare(a, a)
     assert same["rmse"] == 0 and same["psnr"] is None  # +inf written as None, as --json does
+    assert same["nonfinite_pixels"] == 0  # told from a None that non-finite pixels make
+    broken = a.rgba.copy()
+    broken[0, 0, 0] = np.nan
+    with pytest.warns(UserWarning, match="1 of 768 pixels hold a NaN or infinite R, G or B"):
+        assert glint.compare(broken, a)["nonfinite_pixels"] == 1
+    with pytest.raises(ValueError, match="images differ in size: a \\(an array\\) is "
+                       "24x32, b \\(a Frame\\) 32x24"):
+        glint.compare(np.zeros((32, 24, 3), np.float32), a)
     err = glint.compare(a.rgba, b.rgba)
     assert err["rmse"] > 0 and err["pixels"] == 32 * 24
     a.write(tmp_path / "a.exr")
