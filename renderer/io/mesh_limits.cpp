@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "io/collada_limits.h"
+#include "io/fbx_limits.h"
 #include "io/ply_header.h"
 #include "io/scene_formats.h"
 
@@ -298,6 +299,7 @@ void checkMeshFileBeforeImport(const std::string& path) {
     checkPlyCounts(path, headOf(path, kMaxPlyHeaderBytes), size);
   if (lower(p.extension().string()) == ".dae") checkColladaCounts(path, headOf(path, size));
   if (lower(p.extension().string()) == ".stl") checkStlEnds(path, size);
+  if (lower(p.extension().string()) == ".fbx") checkFbxEmbeddedContent(path, headOf(path, size));
 }
 
 }  // namespace glint

@@ -31,7 +31,8 @@ std::string meshFormatList();
 // Throws GlintError naming `path` when its extension is not one of the above, it is larger
 // than kMaxMeshFileBytes, an OBJ file names too many materials, a PLY header does not end or
 // declares more elements than the bytes after it can hold, a Collada file fails
-// checkColladaCounts, or an ASCII STL file fails checkStlEnds.
+// checkColladaCounts, an ASCII STL file fails checkStlEnds, or an ASCII FBX file fails
+// checkFbxEmbeddedContent (io/fbx_limits.h).
 void checkMeshFileBeforeImport(const std::string& path);
 
 // The OBJ check alone: throws GlintError naming `path` (or the material library) when the file
