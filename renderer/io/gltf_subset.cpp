@@ -16,6 +16,7 @@
 #include "core/log.h"
 #include "io/gltf_dropped.h"
 #include "io/gltf_expansion.h"
+#include "io/gltf_layout.h"
 #include "io/gltf_texture_transform.h"
 
 namespace glint {
@@ -501,6 +502,8 @@ std::string gltfSubset(const std::string& path, const std::string& text,
         keepOnly(*a, {"POSITION", "NORMAL", "TANGENT", "TEXCOORD_0", "TEXCOORD_1", "COLOR_0"});
     });
   });
+  // Once the primitives are those Assimp reads.
+  checkGltfBufferLayout(path, doc);
   forEachIn(doc, "textures", [](json& texture) { keepOnly(texture, {"source", "sampler"}); });
   forEachIn(doc, "images", [](json& image) {
     keepOnly(image, {"name", "uri", "mimeType", "bufferView"});

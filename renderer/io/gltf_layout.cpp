@@ -1,0 +1,183 @@
+#include "io/gltf_layout.h"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+#include <set>
+
+#include "core/error.h"
+#include "io/expansion_limits.h"
+
+namespace glint {
+
+namespace {
+
+using nlohmann::json;
+
+// `key` of `object` as a whole number, `otherwise` where it is absent; nullopt where it is not
+// a whole number (a negative, fractional or other value).
+std::optional<uint64_t> wholeOf(const json& object, const char* key,
+                                std::optional<uint64_t> otherwise) {
+  const auto it = object.find(key);
+  if (it == object.end()) return otherwise;
+  if (it->is_number_unsigned()) return it->get<uint64_t>();
+  if (it->is_number_integer() && it->get<int64_t>() >= 0) return uint64_t(it->get<int64_t>());
+  return std::nullopt;
+}
+
+const json* elementAt(const json& doc, const char* list, const json& index) {
+  const auto it = doc.find(list);
+  if (it == doc.end() || !it->is_array() || !index.is_number_unsigned() ||
+      index.get<uint64_t>() >= it->size())
+    return nullptr;
+  const json& e = (*it)[index.get<size_t>()];
+  return e.is_object() ? &e : nullptr;
+}
+
+uint64_t componentBytes(const json& componentType) {
+  if (!componentType.is_number_unsigned()) return 0;
+  switch (componentType.get<uint64_t>()) {
+    case 5120:
+    case 5121:
+      return 1;
+    case 5122:
+    case 5123:
+      return 2;
+    case 5125:
+    case 5126:
+      return 4;
+    default:
+      return 0;
+  }
+}
+
+uint64_t elementBytes(const json& accessor) {
+  const auto type = accessor.find("type");
+  if (type == accessor.end() || !type->is_string()) return 0;
+  const std::string& s = type->get_ref<const std::string&>();
+  const uint64_t components = s == "SCALAR"                ? 1
+                              : s == "VEC2"                ? 2
+                              : s == "VEC3"                ? 3
+                              : s == "VEC4" || s == "MAT2" ? 4
+                              : s == "MAT3"                ? 9
+                              : s == "MAT4"                ? 16
+                                                           : 0;
+  return components * componentBytes(accessor.value("componentType", json()));
+}
+
+class LayoutCheck {
+ public:
+  LayoutCheck(const std::string& path, const json& doc) : path_(path), doc_(doc) {}
+
+  // The accessors the file's triangles read, and the bytes of those without a buffer view.
+  void accessors() const {
+    std::set<uint64_t> read;
+    const auto meshes = doc_.find("meshes");
+    if (meshes != doc_.end() && meshes->is_array())
+      for (const json& mesh : *meshes)
+        if (mesh.is_object() && mesh.contains("primitives") && mesh["primitives"].is_array())
+          for (const json& primitive : mesh["primitives"]) {
+            if (!primitive.is_object()) continue;
+            if (const auto it = primitive.find("indices");
+                it != primitive.end() && it->is_number_unsigned())
+              read.insert(it->get<uint64_t>());
+            if (const auto a = primitive.find("attributes"); a != primitive.end() && a->is_object())
+              for (const json& index : *a)
+                if (index.is_number_unsigned()) read.insert(index.get<uint64_t>());
+          }
+    uint64_t unbacked = 0;
+    for (const uint64_t i : read) {
+      const json* accessor = elementAt(doc_, "accessors", json(i));
+      if (!accessor) continue;  // Assimp names it
+      const std::string where = "accessors[" + std::to_string(i) + "]";
+      const uint64_t element = elementBytes(*accessor);
+      const auto count = wholeOf(*accessor, "count", std::nullopt);
+      if (element == 0 || !count) continue;  // Assimp refuses it
+      if (accessor->contains("bufferView")) {
+        fitsInView(where, *accessor, *count, element, true);
+      } else {
+        unbacked = saturatingAdd(unbacked, saturatingMul(*count, element));
+        if (unbacked > kMaxUnbackedAccessorBytes)
+          fail(where + " has no bufferView and " + std::to_string(*count) + " elements of " +
+               std::to_string(element) + " bytes: the accessors without one may hold " +
+               std::to_string(kMaxUnbackedAccessorBytes) +
+               " bytes in all (they are zeros but for their sparse values)");
+      }
+      const auto sparse = accessor->find("sparse");
+      if (sparse == accessor->end() || !sparse->is_object()) continue;
+      const auto sparseCount = wholeOf(*sparse, "count", std::nullopt);
+      if (!sparseCount) continue;
+      if (const auto indices = sparse->find("indices");
+          indices != sparse->end() && indices->is_object())
+        fitsInView(where + ".sparse.indices", *indices, *sparseCount,
+                   componentBytes(indices->value("componentType", json())), false);
+      if (const auto values = sparse->find("values");
+          values != sparse->end() && values->is_object())
+        fitsInView(where + ".sparse.values", *values, *sparseCount, element, false);
+    }
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw UsageError("mesh " + path_ + ": " + what);
+  }
+
+  static std::string sumText(uint64_t a, uint64_t b) {
+    return a > UINT64_MAX - b ? "past 2^64" : std::to_string(a + b);
+  }
+
+  // That buffer view `index` lies within its buffer, with a stride glTF allows.
+  void viewFits(const json& index, const json& view) const {
+    const std::string where = "bufferViews[" + index.dump() + "]";
+    const auto offset = wholeOf(view, "byteOffset", 0);
+    const auto length = wholeOf(view, "byteLength", std::nullopt);
+    if (!offset || !length) fail(where + ": its byteOffset and byteLength must be whole numbers");
+    if (const auto stride = wholeOf(view, "byteStride", 4);
+        !stride || *stride < 4 || *stride > 252 || *stride % 4 != 0)
+      fail(where + ": its byteStride " + view["byteStride"].dump() +
+           " is not one glTF 2.0 allows (a multiple of 4 from 4 to 252)");
+    const json* buffer = elementAt(doc_, "buffers", view.value("buffer", json()));
+    if (!buffer) return;  // Assimp names the missing buffer
+    const auto bufferLength = wholeOf(*buffer, "byteLength", std::nullopt);
+    if (bufferLength && (*offset > *bufferLength || *length > *bufferLength - *offset))
+      fail(where + " lies past its buffer: bytes " + std::to_string(*offset) + " to " +
+           sumText(*offset, *length) + " of buffers[" + view["buffer"].dump() + "]'s " +
+           std::to_string(*bufferLength));
+  }
+
+  // That `count` elements of `element` bytes from `reader`'s byteOffset lie within its buffer
+  // view, and the view within its buffer: strided by the view's byteStride where `strided` and
+  // the view has one, else packed.
+  void fitsInView(const std::string& where, const json& reader, uint64_t count, uint64_t element,
+                  bool strided) const {
+    if (count == 0 || element == 0) return;
+    const json& index = reader.value("bufferView", json());
+    const json* view = elementAt(doc_, "bufferViews", index);
+    if (!view) return;  // Assimp names it
+    viewFits(index, *view);
+    const auto offset = wholeOf(reader, "byteOffset", 0);
+    const uint64_t length = *wholeOf(*view, "byteLength", std::nullopt);
+    if (!offset) fail(where + ": its byteOffset must be a whole number");
+    const uint64_t step = strided ? *wholeOf(*view, "byteStride", element) : element;
+    // The last element's end, offset + (count − 1)·step + element, without wrapping.
+    const uint64_t end =
+        saturatingAdd(saturatingAdd(*offset, saturatingMul(count - 1, step)), element);
+    if (end > length)
+      fail(where + " reads " + std::to_string(count) + " elements of " + std::to_string(element) +
+           " bytes from byte " + std::to_string(*offset) + " of bufferViews[" +
+           reader["bufferView"].dump() + "], to byte " +
+           (end == UINT64_MAX ? std::string("past 2^64") : std::to_string(end)) +
+           "; the view holds " + std::to_string(length));
+  }
+
+  const std::string& path_;
+  const json& doc_;
+};
+
+}  // namespace
+
+void checkGltfBufferLayout(const std::string& path, const json& doc) {
+  LayoutCheck(path, doc).accessors();
+}
+
+}  // namespace glint

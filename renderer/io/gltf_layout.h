@@ -1,0 +1,27 @@
+#pragma once
+// Where a glTF file's accessors lie in its buffers, checked before Assimp reads them. Assimp
+// 5.2.5 adds offsets and lengths in 64 bits without checking them: a bufferView byteOffset near
+// 2^64 wrapped its bounds test and it read memory before the buffer (the geometry rendered from
+// whatever lay there); and it allocates an accessor that has no bufferView (zeros, then its
+// sparse values) at whatever count it declares: 840 bytes of glTF took 2.65 GB.
+#include <nlohmann/json_fwd.hpp>
+
+#include <cstdint>
+#include <string>
+
+namespace glint {
+
+// The bytes, in all, of the accessors without a bufferView that a file's triangles may read:
+// such an accessor is zeros but for its sparse values, which real files use for morph targets
+// (which Glint leaves out), not for a mesh's vertices; 64 MiB is 5.6 million float positions.
+inline constexpr uint64_t kMaxUnbackedAccessorBytes = uint64_t{1} << 26;
+
+// Throws UsageError naming `path` and the element when, in `doc` (glTF 2.0 JSON, trimmed to what
+// Glint reads), an accessor a primitive reads (an attribute, its indices, their sparse indices
+// and values) does not lie within its buffer view, or its view within its buffer's byteLength,
+// or the view's byteStride is not one glTF allows (a multiple of 4 from 4 to 252); or when those
+// without a buffer view hold more than kMaxUnbackedAccessorBytes. What no primitive reads is
+// left alone: Assimp does not read it either.
+void checkGltfBufferLayout(const std::string& path, const nlohmann::json& doc);
+
+}  // namespace glint

@@ -1,0 +1,116 @@
+// Where a glTF file's accessors lie in its buffers (io/gltf_layout.h): offsets near 2^64 that
+// wrapped Assimp's bounds test (it read memory before the buffer), and accessors without a
+// buffer view that made it allocate gigabytes from a file of 840 bytes.
+#include "io/gltf_layout.h"
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+#include "core/error.h"
+
+namespace glint {
+namespace {
+
+using nlohmann::json;
+
+// A triangle: POSITION (3 floats × 3) in view 0, indices (3 shorts) in view 1, one buffer.
+json triangle() {
+  return json::parse(R"({
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "buffers": [{"byteLength": 44}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                    {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+                  {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})");
+}
+
+std::string refusal(const json& doc) {
+  try {
+    checkGltfBufferLayout("m.gltf", doc);
+    return "(accepted)";
+  } catch (const UsageError& e) {
+    return e.what();
+  }
+}
+
+TEST(GltfLayout, AccessorsWithinTheirViewsAndViewsWithinTheirBuffersPass) {
+  EXPECT_EQ(refusal(triangle()), "(accepted)");
+  // Interleaved: a stride of 24 holds the positions' 12 bytes, the last ending at 2·24 + 12.
+  json doc = triangle();
+  doc["bufferViews"][0]["byteLength"] = 60;
+  doc["bufferViews"][0]["byteStride"] = 24;
+  doc["buffers"][0]["byteLength"] = 96;
+  doc["bufferViews"][1]["byteOffset"] = 60;
+  EXPECT_EQ(refusal(doc), "(accepted)");
+  // An accessor no triangle reads is not Glint's to judge (a morph target's, dropped).
+  doc = triangle();
+  doc["accessors"].push_back(json::parse(R"({"componentType": 5126, "count": 1e9,
+                                             "type": "VEC3"})"));
+  doc["accessors"][2]["count"] = uint64_t{1} << 40;
+  EXPECT_EQ(refusal(doc), "(accepted)");
+}
+
+TEST(GltfLayout, OffsetsThatWrapPast2To64AreRefused) {
+  json doc = triangle();
+  doc["bufferViews"][0]["byteOffset"] = UINT64_MAX - 7;  // + 36 wraps to 28
+  EXPECT_EQ(refusal(doc),
+            "mesh m.gltf: bufferViews[0] lies past its buffer: bytes 18446744073709551608 to "
+            "past 2^64 of buffers[0]'s 44");
+  doc = triangle();
+  doc["accessors"][0]["byteOffset"] = UINT64_MAX - 3;
+  EXPECT_EQ(refusal(doc),
+            "mesh m.gltf: accessors[0] reads 3 elements of 12 bytes from byte "
+            "18446744073709551612 of bufferViews[0], to byte past 2^64; the view holds 36");
+  doc = triangle();
+  doc["accessors"][1]["count"] = 4;  // 8 bytes from a view of 6
+  EXPECT_EQ(refusal(doc),
+            "mesh m.gltf: accessors[1] reads 4 elements of 2 bytes from byte 0 of "
+            "bufferViews[1], to byte 8; the view holds 6");
+}
+
+TEST(GltfLayout, StridesGltfDoesNotAllowAreRefused) {
+  // byteStride 2^32 − 4 was read as tightly packed.
+  for (const uint64_t stride : {uint64_t{2}, uint64_t{254}, uint64_t{13}, uint64_t{4294967292}}) {
+    json doc = triangle();
+    doc["bufferViews"][0]["byteStride"] = stride;
+    EXPECT_EQ(refusal(doc), "mesh m.gltf: bufferViews[0]: its byteStride " +
+                                std::to_string(stride) +
+                                " is not one glTF 2.0 allows (a multiple of 4 from 4 to 252)");
+  }
+  json doc = triangle();
+  doc["bufferViews"][0]["byteOffset"] = -4;
+  EXPECT_EQ(refusal(doc),
+            "mesh m.gltf: bufferViews[0]: its byteOffset and byteLength must be whole numbers");
+}
+
+TEST(GltfLayout, SparseValuesMustLieInTheirViewsAndZerosAreBudgeted) {
+  json doc = triangle();
+  doc["accessors"][0].erase("bufferView");
+  doc["accessors"][0]["sparse"] = json::parse(R"({"count": 2,
+      "indices": {"bufferView": 1, "componentType": 5125},
+      "values": {"bufferView": 0, "byteOffset": 20}})");
+  // Two 4-byte indices from a view of 6; two 12-byte values from byte 20 of a view of 36.
+  EXPECT_EQ(refusal(doc),
+            "mesh m.gltf: accessors[0].sparse.indices reads 2 elements of 4 bytes from byte 0 of "
+            "bufferViews[1], to byte 8; the view holds 6");
+  doc["accessors"][0]["sparse"]["indices"]["componentType"] = 5123;
+  EXPECT_EQ(refusal(doc),
+            "mesh m.gltf: accessors[0].sparse.values reads 2 elements of 12 bytes from byte 20 "
+            "of bufferViews[0], to byte 44; the view holds 36");
+  doc["accessors"][0]["sparse"]["values"]["byteOffset"] = 12;
+  EXPECT_EQ(refusal(doc), "(accepted)");
+  // 2^26 positions of zeros from 840 bytes of glTF took 2.65 GB.
+  doc["accessors"][0]["count"] = uint64_t{1} << 26;
+  EXPECT_EQ(refusal(doc),
+            "mesh m.gltf: accessors[0] has no bufferView and 67108864 elements of 12 bytes: the "
+            "accessors without one may hold 67108864 bytes in all (they are zeros but for "
+            "their sparse values)");
+  doc["accessors"][0]["count"] = kMaxUnbackedAccessorBytes / 12;
+  EXPECT_EQ(refusal(doc), "(accepted)");
+}
+
+}  // namespace
+}  // namespace glint
