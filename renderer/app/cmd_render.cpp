@@ -326,6 +326,8 @@ std::vector<std::string> exrOnlyFlags(const RenderArgs& a) {
 int runRender(const RenderArgs& given) {
   // Every image output's format, before anything is loaded.
   for (const std::string& out : given.outputs) renderOutputFormat(out, exrOnlyFlags(given));
+  checkIdsSurviveCompression(AovSet::parse(given.aovs).has(Aov::Cryptomatte),
+                             {given.half, given.compression, given.multipart});
   if (!given.display.empty()) imageOutputFormat("--display", given.display, ImageOutput::Display);
   RenderArgs a = given;
   if (!a.resume.empty()) allowReplacingInput(a.resume);  // -o may name it (its help)

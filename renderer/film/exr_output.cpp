@@ -54,7 +54,31 @@ Imf::Compression compressionNamed(const std::string& name) {
   throw UsageError("unknown EXR compression " + excerpt(name));
 }
 
+bool roundsFloats(const std::string& compression) {
+  return compression == "pxr24" || compression == "dwaa" || compression == "dwab";
+}
+
+// Whether `plane` is a Cryptomatte layer of `film`: its name is one the film's
+// cryptomatte/KEY/name attributes give, followed by its rank's two digits.
+bool holdsIds(const Film& film, const FilmPlane& plane) {
+  if (plane.isUint || plane.name.size() < 3) return false;
+  const std::string layer = plane.name.substr(0, plane.name.size() - 2);
+  for (const auto& [key, value] : film.stringAttributes())
+    if (key.rfind("cryptomatte/", 0) == 0 && key.size() > 5 &&
+        key.compare(key.size() - 5, 5, "/name") == 0 && value == layer)
+      return true;
+  return false;
+}
+
 }  // namespace
+
+void checkIdsSurviveCompression(bool hasIds, const ExrOptions& options) {
+  if (hasIds && !options.multipart && roundsFloats(options.compression))
+    throw UsageError("compression " + options.compression +
+                     " rounds floats and would destroy the Cryptomatte IDs: write the frame "
+                     "multipart (its Cryptomatte parts are then compressed with zip) or with a "
+                     "compression that keeps floats (zip, zips, piz, rle, b44, b44a or none)");
+}
 
 void setExrThreads(int threads) {
   if (Imf::globalThreadCount() != threads) Imf::setGlobalThreadCount(threads);
@@ -92,6 +116,7 @@ struct Channel {
 struct Part {
   std::string name;
   std::vector<Channel> channels;
+  bool keepsFloats = false;  // it holds Cryptomatte IDs, which no compression may round
 };
 
 std::vector<Part> layoutParts(const Film& film, bool half, bool multipart) {
@@ -107,6 +132,7 @@ std::vector<Part> layoutParts(const Film& film, bool half, bool multipart) {
     // a compositor reads, and Blender fails such a part and leaves the parts after it black.
     if (multipart && !plane.isUint) parts.push_back({plane.name, {}});
     Part& part = multipart && plane.isUint ? parts.front() : parts.back();
+    part.keepsFloats = part.keepsFloats || holdsIds(film, plane);
     for (size_t c = 0; c < plane.channels.size(); ++c)
       part.channels.push_back({plane.channels[c], plane.isUint ? Imf::UINT : Imf::FLOAT, nullptr,
                                plane.values.data(), plane.channels.size(), c});
@@ -203,6 +229,9 @@ PackedPart packPart(const Part& part, size_t pixels) {
 uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
                   const ExrOptions& options) {
   const PixelWindow& w = film.window();
+  checkIdsSurviveCompression(std::any_of(film.planes().begin(), film.planes().end(),
+                                         [&](const FilmPlane& p) { return holdsIds(film, p); }),
+                             options);
   std::vector<Part> parts = layoutParts(film, options.half, options.multipart);
   const uint64_t clamped = countClamped(parts, size_t(w.area()));
   meta.ints.push_back(
@@ -212,7 +241,9 @@ uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
   for (const Part& part : parts) {
     Imf::Header h(Imath::Box2i({0, 0}, {film.fullWidth() - 1, film.fullHeight() - 1}),
                   Imath::Box2i({w.x0, w.y0}, {w.x1 - 1, w.y1 - 1}));
-    h.compression() = compressionNamed(options.compression);
+    h.compression() = compressionNamed(part.keepsFloats && roundsFloats(options.compression)
+                                           ? std::string("zip")
+                                           : options.compression);
     for (const Channel& c : part.channels) h.channels().insert(c.name, Imf::Channel(c.type));
     // OpenEXR's standard statement of the pixels' primaries and white (its default: Rec.709,
     // D65), and when the frame was made.

@@ -41,6 +41,16 @@ void setExrThreads(int threads);
 // The compression names OpenEXR (through OpenImageIO) accepts.
 const std::vector<std::string>& exrCompressions();
 
+// Cryptomatte IDs are a hash's bits stored as floats: pxr24 (24-bit floats) and dwaa and dwab
+// (lossy for channels named R, G, B) change them, and no matte matches its name any more.
+// Throws UsageError, before any work, where a frame with Cryptomatte layers (`hasIds`) would be
+// written in one part with such a compression; a multipart frame writes the Cryptomatte parts
+// with zip instead (writeExr).
+void checkIdsSurviveCompression(bool hasIds, const ExrOptions& options);
+
+// Writes the film; a part holding Cryptomatte layers (the planes the film's cryptomatte/KEY/name
+// attributes name) is compressed with zip where options.compression would change its IDs
+// (checkIdsSurviveCompression), and a single-part frame with them is refused.
 // Returns how many values lay beyond their channel type's finite range (±65504 for half,
 // ±FLT_MAX for float) and were clamped to it; the file records the count as
 // glint:clamped_values (saturating at 2^31 − 1). Nothing written is Inf or NaN.

@@ -221,5 +221,65 @@ TEST(Cryptomatte, CropsMergeWithTheLayersAndTheMetadata) {
   EXPECT_GT(covered, 0);
 }
 
+// Every part of a multipart file: its name, its compression and its channels' values.
+struct PartOf {
+  std::string compression;
+  std::map<std::string, std::vector<float>> channels;
+};
+std::map<std::string, PartOf> readParts(const std::string& path) {
+  std::map<std::string, PartOf> parts;
+  auto in = OIIO::ImageInput::open(path);
+  EXPECT_TRUE(in) << path;
+  for (int k = 0; in && in->seek_subimage(k, 0); ++k) {
+    const OIIO::ImageSpec& s = in->spec();
+    PartOf& part = parts[s.get_string_attribute("name")];
+    part.compression = s.get_string_attribute("compression");
+    for (int c = 0; c < s.nchannels; ++c) {
+      std::vector<float> v(size_t(s.width) * size_t(s.height));
+      EXPECT_TRUE(in->read_image(k, 0, c, c + 1, OIIO::TypeDesc::FLOAT, v.data()));
+      part.channels[s.channelnames[size_t(c)]] = std::move(v);
+    }
+  }
+  return parts;
+}
+
+TEST(Cryptomatte, ACompressionThatRoundsFloatsNeverReachesTheIds) {
+  // With --compression dwaa every ID was altered (0x6a2fb100 for 6a2fb16e) and no matte matched
+  // its manifest, exit 0. In one part the frame is now refused before any work; multipart, its
+  // Cryptomatte parts are compressed with zip and hold the IDs a zip frame holds, bit for bit.
+  const std::string dir = test::tempDir().string();
+  const std::string common = "render --quiet --width 24 --height 16 --spp 2 --aov cryptomatte ";
+  const auto onePart = test::runGlint(common + "--compression dwaa -o " + dir + "/cm_dwaa.exr");
+  EXPECT_EQ(onePart.exitCode, 2) << onePart.output;
+  EXPECT_NE(onePart.output.find("compression dwaa rounds floats and would destroy the "
+                                "Cryptomatte IDs: write the frame multipart"),
+            std::string::npos)
+      << onePart.output;
+  EXPECT_FALSE(std::filesystem::exists(dir + "/cm_dwaa.exr"));
+  for (const std::string compression : {"dwaa", "pxr24"}) {
+    const std::string lossy = dir + "/cm_" + compression + "_parts.exr";
+    ASSERT_EQ(test::runGlint(common + "--multipart --compression " + compression + " -o " + lossy)
+                  .exitCode,
+              0);
+    ASSERT_EQ(test::runGlint(common + "--multipart -o " + dir + "/cm_zip_parts.exr").exitCode, 0);
+    const auto parts = readParts(lossy), exact = readParts(dir + "/cm_zip_parts.exr");
+    ASSERT_EQ(parts.size(), exact.size());
+    EXPECT_EQ(parts.at("rgba").compression, compression);
+    int idParts = 0;
+    for (const auto& [name, part] : parts) {
+      if (name.rfind("Crypto", 0) != 0) continue;
+      ++idParts;
+      EXPECT_EQ(part.compression, "zip") << name;
+      for (const auto& [channel, values] : part.channels) {
+        const std::vector<float>& want = exact.at(name).channels.at(channel);
+        ASSERT_EQ(values.size(), want.size());
+        EXPECT_EQ(std::memcmp(values.data(), want.data(), values.size() * sizeof(float)), 0)
+            << name << " " << channel;
+      }
+    }
+    EXPECT_EQ(idParts, 6) << compression;  // 3 ranks' layers of objects and of materials
+  }
+}
+
 }  // namespace
 }  // namespace glint
