@@ -410,7 +410,7 @@ void EmbreeAccel::addGeometries(RTCScene rtcScene, uint32_t groupId) {
         const bool cutout = scene_.hasCutout(g);
         // A cut-out is tested one ray at a time, beside its hole test.
         const bool lanes =
-            !cutout && (g.kind == GeomKind::Quad ||
+            !cutout && ((g.kind == GeomKind::Quad && quadNormalInRange(scene_.quads[g.index])) ||
                         (g.kind == GeomKind::Sphere && scene_.sphereCenterKeys[g.index].empty()));
         auto shape = std::make_unique<UserShape>(
             UserShape{g.kind, &scene_, g.index, lanes, cutout ? &g : nullptr});

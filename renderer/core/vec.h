@@ -55,6 +55,20 @@ constexpr Vec3f cross(const Vec3f& a, const Vec3f& b) {
 }
 inline float length(const Vec3f& a) { return std::sqrt(dot(a, a)); }
 [[gnu::always_inline]] inline Vec3f normalize(const Vec3f& a) { return a / length(a); }
+// normalize for a vector of any finite size: a surface's unnormalised normal (an edge cross
+// product) squares past float's range for edges of about 10^9.5, and below its normal range for
+// edges under 10^-9.5, where normalize gives 0, NaN or a few bits. Those are divided by their
+// largest coordinate first; others take normalize's own operations, the same bits.
+inline Vec3f normalizeAnyScale(const Vec3f& a) {
+  const float squared = dot(a, a);
+  if (squared >= std::numeric_limits<float>::min() && squared <= std::numeric_limits<float>::max())
+      [[likely]]
+    return a / std::sqrt(squared);
+  const float largest = std::max(std::fabs(a.x), std::max(std::fabs(a.y), std::fabs(a.z)));
+  if (!(largest > 0) || !std::isfinite(largest)) return normalize(a);
+  // Divided, not multiplied by 1/largest, which is infinite for a subnormal largest.
+  return normalize(Vec3f{a.x / largest, a.y / largest, a.z / largest});
+}
 inline Vec3f abs(const Vec3f& a) { return {std::fabs(a.x), std::fabs(a.y), std::fabs(a.z)}; }
 inline float maxComponent(const Vec3f& a) { return std::max(a.x, std::max(a.y, a.z)); }
 inline Vec3f min(const Vec3f& a, const Vec3f& b) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 namespace glint {
@@ -32,7 +33,41 @@ float intersectSphere(const Sphere& s, const Ray& ray) {
   return kInfinity;
 }
 
+bool quadNormalInRange(const Quad& q) {
+  const Vec3f n = cross(q.edge1, q.edge2);
+  const float nn = dot(n, n);
+  return nn >= std::numeric_limits<float>::min() && nn <= std::numeric_limits<float>::max();
+}
+
+namespace {
+
+// intersectQuad for a quad whose normal squares out of float's range (edges past about 10^9.5,
+// where α and β were ∞/∞ = NaN and the hit a NaN point, or under 10^-9.5): the same tests with
+// the normal divided by its largest coordinate, which leaves t, α and β as they are.
+float intersectQuadScaled(const Quad& q, const Ray& ray, float& u, float& v) {
+  const Vec3f n = cross(q.edge1, q.edge2);
+  const float largest = maxComponent(abs(n));
+  if (!(largest > 0) || !std::isfinite(largest)) return kInfinity;  // no plane to meet
+  const Vec3f m{n.x / largest, n.y / largest, n.z / largest};
+  const float denom = dot(m, ray.d);
+  if (denom == 0) return kInfinity;
+  const float t = dot(q.corner - ray.o, m) / denom;
+  if (!(t > ray.tMin && t < ray.tMax)) return kInfinity;
+  const Vec3f rel = ray.at(t) - q.corner;
+  const float nm = dot(n, m);
+  const float alpha = dot(cross(rel, q.edge2), m) / nm;
+  const float beta = dot(cross(q.edge1, rel), m) / nm;
+  if (!(alpha >= 0 && alpha <= 1 && beta >= 0 && beta <= 1)) return kInfinity;
+  u = alpha;
+  v = beta;
+  return t;
+}
+
+}  // namespace
+
 float intersectQuad(const Quad& q, const Ray& ray, float& u, float& v) {
+  if (!quadNormalInRange(q)) [[unlikely]]
+    return intersectQuadScaled(q, ray, u, v);
   const Vec3f n = cross(q.edge1, q.edge2);
   const float denom = dot(n, ray.d);
   if (denom == 0) return kInfinity;

@@ -34,6 +34,10 @@ float intersectSphere(const Sphere& s, const Ray& ray);
 // it misses (CSG needs both ends of the inside interval, wherever the ray starts).
 bool sphereRoots(const Sphere& s, const Ray& ray, float& t0, float& t1);
 float intersectQuad(const Quad& q, const Ray& ray, float& u, float& v);
+// Whether q's normal (edge1 × edge2) squares within float's normal range, where intersectQuad
+// takes the formula quadLanes (geometry/shape_lanes_kernel.h) follows; others are tested one
+// ray at a time.
+bool quadNormalInRange(const Quad& q);
 // Inline: the batched plane loops (accel/accelerator.cpp) run it once a ray and plane.
 inline float intersectPlane(const Plane& p, const Ray& ray) {
   const float denom = dot(p.normal, ray.d);

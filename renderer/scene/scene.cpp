@@ -192,12 +192,17 @@ bool Scene::worldPointInLanes(const Ray& ray, const Hit& hit, ShadingPoint& sp) 
     default:
       return false;
   }
+  // A normal whose square leaves float's normal range takes shadingPoint's normalizeAnyScale.
+  const float squared = sum3(n * n);
+  if (!(squared >= std::numeric_limits<float>::min() &&
+        squared <= std::numeric_limits<float>::max())) [[unlikely]]
+    return false;
   sp.t = hit.t;
   sp.materialId = g.materialId;
   sp.objectId = g.objectId;
   storeLanes(sp.p, p);
   storeLanes(sp.pError, pError);
-  const F4 ng = n * (1.0f / std::sqrt(sum3(n * n)));
+  const F4 ng = n * (1.0f / std::sqrt(squared));
   storeLanes(sp.ng, ng);
   storeLanes(sp.ns, ng);
   sp.lifted = false;
@@ -319,7 +324,7 @@ template <bool kInstanced>
   // store forwarding.
   storeWhole(sp.p, p);
   storeWhole(sp.pError, pError);
-  const Vec3f ng = normalize(n);
+  const Vec3f ng = normalizeAnyScale(n);
   storeWhole(sp.ng, ng);
   storeWhole(sp.ns, smoothMesh ? smoothNormal(*smoothMesh, hit, worldFromObject, ng) : ng);
   sp.lifted = smoothMesh != nullptr;

@@ -183,5 +183,48 @@ TEST(WorldPointInLanes, LeavesMovingAndSmoothSurfacesToTheGeneralPath) {
   EXPECT_FALSE(WorldPointPaths::inLanes(scene, world.rayTowards({0, 0, 0}, 1), hit, sp));
 }
 
+TEST(WorldPointInLanes, TrianglesOfAnySizeGetAUnitNormal) {
+  // A triangle of edges 6·10^9 (a ground plane modelled in millimetres of a city) has an edge
+  // cross product whose square passes float's range: its normal was normalised to (0, 0, 0)
+  // and the surface rendered black. Edges of 10^-12 square below float's normal range. Both
+  // leave the lanes (false) for the general path, which scales the normal before normalising
+  // it; a triangle of ordinary size keeps normalize's bits. 10^18 is as far as Embree takes
+  // coordinates (core/ray.h); 10^-20 gives a subnormal cross product.
+  for (const float size : {3e9f, 1e18f, 1e-12f, 1e-20f, 1.0f}) {
+    Scene scene;
+    scene.groups.resize(1);
+    TriangleMesh mesh;
+    mesh.positions = {{-size, -size, -1}, {size, -size, -1}, {0, size, -1}};
+    mesh.indices = {0, 1, 2};
+    scene.meshes.push_back(std::move(mesh));
+    scene.groups[0].geometries.push_back({GeomKind::Mesh, 0, 0, 0});
+    Ray ray;
+    ray.o = {0, 0, 4};
+    ray.d = {0, 0, -1};
+    Hit hit;
+    hit.t = 5;
+    hit.u = hit.v = 1.0f / 3;
+    hit.geomId = 0;
+    hit.primId = 0;
+    ShadingPoint lanes, general;
+    const bool inLanes = WorldPointPaths::inLanes(scene, ray, hit, lanes);
+    EXPECT_EQ(inLanes, size == 1.0f) << size;
+    WorldPointPaths::oneAtATime(scene, ray, hit, general);
+    EXPECT_TRUE(sameBits(general.ng, Vec3f{0, 0, 1}))
+        << size << ": " << general.ng.x << " " << general.ng.y << " " << general.ng.z;
+    if (inLanes) EXPECT_TRUE(sameBits(lanes.ng, general.ng));
+  }
+  // normalizeAnyScale itself: normalize's bits in float's range, a unit vector beyond it, and
+  // what normalize gives for zero and non-finite vectors.
+  const Vec3f ordinary{0.3f, -4, 12};
+  EXPECT_TRUE(sameBits(normalizeAnyScale(ordinary), normalize(ordinary)));
+  for (const float s : {1e20f, 1e-25f, 1e37f, 1e-44f}) {
+    const Vec3f n = normalizeAnyScale(s * Vec3f{3, 4, 0});
+    EXPECT_NEAR(n.x, 0.6f, 1e-7f) << s;
+    EXPECT_NEAR(n.y, 0.8f, 1e-7f) << s;
+  }
+  EXPECT_TRUE(std::isnan(normalizeAnyScale(Vec3f{0, 0, 0}).x));
+}
+
 }  // namespace
 }  // namespace glint

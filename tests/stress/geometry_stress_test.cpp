@@ -23,11 +23,13 @@ using stress::num;
 using stress::vec;
 
 // 1. Scale sweep: a lit quad of size s under a point light at height s above its centre, seen
-// from above, at s = 1e-6 … 1e6. Guards: self-shadowing ("acne") from an offset too small for
-// the scale, or light leaking from one too large. Criterion: every pixel equals the closed form
-// k_d·I·cosθ (no falloff), cosθ = s/√(d² + s²), within 1e-4 relative — no lit point in shadow.
+// from above, at s = 1e-9 … 1e12. Guards: self-shadowing ("acne") from an offset too small for
+// the scale, or light leaking from one too large; and a normal whose square leaves float's range
+// (at 1e10 the quad's α and β were ∞/∞ and its surface black). Criterion: every pixel equals the
+// closed form k_d·I·cosθ (no falloff), cosθ = s/√(d² + s²), within 1e-4 relative — no lit point in
+// shadow.
 TEST(ScaleSweep, LitQuadMatchesTheClosedFormAtEveryScale) {
-  for (double s : {1e-6, 1e-3, 1.0, 1e3, 1e6}) {
+  for (double s : {1e-9, 1e-6, 1e-3, 1.0, 1e3, 1e6, 1e10, 1e12}) {
     const RenderResult r = stress::renderText(
         R"({"render": {"width": 16, "height": 16, "spp": 1, "sampler": "regular"},
       "camera": {"type": "orthographic", "eye": )" +
