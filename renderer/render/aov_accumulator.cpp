@@ -155,7 +155,13 @@ void PixelAovs::begin() {
 void PixelAovs::add(const Radiance& r, const AovSample& s) {
   // A non-finite sample counts as black in every plane: its record (which may hold the
   // non-finite values) is not used, so nothing non-finite reaches the EXR.
-  if (!s.hit || !r.valid) return;
+  if (!r.valid) return;
+  // A miss is the background the camera sees: none of the surface's planes, and all of the
+  // beauty's share past the direct light, so that direct + indirect is the beauty everywhere.
+  if (!s.hit) {
+    indirect_[0] += r.L.r, indirect_[1] += r.L.g, indirect_[2] += r.L.b;
+    return;
+  }
   if (!anyHit_ || s.depth < minDepth_) minDepth_ = s.depth;
   anyHit_ = true;
   const auto addVec = [](double* acc, const Vec3f& v) {

@@ -255,5 +255,42 @@ TEST(Aov, AskingForAovsChangesNoBeautyPixel) {
   EXPECT_GE(scenes, 14);
 }
 
+TEST(Aov, DirectAndIndirectAddUpToTheBeautyEvenWhereTheBackgroundIsSeen) {
+  // indirect is the beauty less the direct light: where a camera sample missed (the background,
+  // the sky of an environment light, an antialiased silhouette) both were 0, and comp's rebuilt
+  // beauty lacked the sky. Each plane is a mean of the same samples in double, so they differ
+  // from the beauty by their float rounding alone.
+  for (const char* name : {"whitted", "sky", "transparent_shadows_on"}) {
+    Scene scene = loadSceneFile(std::string(GLINT_SCENES_DIR) + "/" + name + ".json");
+    scene.render.width = 32;
+    scene.render.height = 24;
+    scene.render.spp = 4;
+    const auto accel = makeAccelerator(AccelKind::Embree, scene);
+    RenderOptions opt;
+    opt.progress = false;
+    opt.aovs = AovSet::parse("direct,indirect");
+    const Film film = renderScene(scene, *accel, opt).film;
+    const FilmPlane *direct = nullptr, *indirect = nullptr;
+    for (const FilmPlane& p : film.planes()) {
+      if (p.name == "direct") direct = &p;
+      if (p.name == "indirect") indirect = &p;
+    }
+    ASSERT_TRUE(direct && indirect) << name;
+    int background = 0;
+    for (int y = 0; y < 24; ++y)
+      for (int x = 0; x < 32; ++x) {
+        const size_t i = 3 * (size_t(y) * 32 + size_t(x));
+        background += direct->values[i] == 0 && film.pixel(x, y)[0] > 0;
+        for (int c = 0; c < 3; ++c) {
+          const double d = direct->values[i + size_t(c)], n = indirect->values[i + size_t(c)];
+          const double beauty = film.pixel(x, y)[c];
+          EXPECT_NEAR(d + n, beauty, 1e-6 * (std::fabs(d) + std::fabs(n) + beauty) + 1e-9)
+              << name << " pixel " << x << "," << y << " channel " << c;
+        }
+      }
+    EXPECT_GT(background, 0) << name << ": the test needs pixels where the background is seen";
+  }
+}
+
 }  // namespace
 }  // namespace glint
