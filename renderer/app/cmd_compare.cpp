@@ -26,7 +26,7 @@ nlohmann::json errorsJson(const ImageErrors& e) {
 CommandRunner addCompareCommand(CLI::App& app) {
   struct Args {
     std::string test, reference, diff, json;
-    double threshold = 1e-2;
+    double threshold = kDefaultCompareThreshold;
   };
   auto a = std::make_shared<Args>();
   CLI::App* cmd = app.add_subcommand("compare", "Error metrics between an image and a reference");

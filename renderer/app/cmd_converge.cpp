@@ -252,7 +252,7 @@ int runConverge(const ConvergeArgs& a) {
         p.spp = spp;
         const Image img = renderImage(scene, *accel, a.threads, p.seconds, p.cpuSeconds);
         const ImageErrors e =
-            compareImages(img, reference, 1e-2,
+            compareImages(img, reference, kDefaultCompareThreshold,
                           {"the " + s.name + " render at " + std::to_string(spp) + " spp",
                            a.reference.empty() ? "the reference" : a.reference});
         if (!e.placement.empty() && !placementSaid) log::warning(e.placement);

@@ -280,7 +280,8 @@ void writeTextFileAtomically(const std::string& finalPath, const std::string& te
       const ssize_t n = ::write(keptStandardOutput, text.data() + written, text.size() - written);
       if (n < 0 && errno == EINTR) continue;
       if (n <= 0)
-        throw GlintError(std::string("cannot write to standard output: ") + std::strerror(errno));
+        throw GlintError(std::string("cannot write to standard output: ") +
+                         (n < 0 ? std::strerror(errno) : "nothing was written"));
       written += size_t(n);
     }
     return;

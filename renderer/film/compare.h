@@ -22,6 +22,8 @@ struct ImageErrors {
 };
 
 inline constexpr double kRelMseEpsilon = 1e-2;
+// The per-pixel error share_above_threshold counts by default.
+inline constexpr double kDefaultCompareThreshold = 1e-2;
 
 // What the errors of compareImages name the two images by: their paths, where they have them.
 struct ComparedNames {
@@ -31,7 +33,8 @@ struct ComparedNames {
 // Throws UsageError, naming both images, when the sizes differ, or when both images lie in
 // frames of one size (an array lies in none) at other places. Non-finite values count as an
 // error of +∞.
-ImageErrors compareImages(const Image& test, const Image& reference, double threshold = 1e-2,
+ImageErrors compareImages(const Image& test, const Image& reference,
+                          double threshold = kDefaultCompareThreshold,
                           const ComparedNames& names = {});
 
 // The warning for errors with non-finite pixels (nonfinitePixels > 0), which make the figures

@@ -100,7 +100,8 @@ template <class F32, class I32, class Sqrt>
   return L::store(r.valid & ~missed & (t < r.tMax), t, zero, zero, first, hits);
 }
 
-// intersectQuad (shapes.cpp) line by line, branches turned into selects.
+// intersectQuad (shapes.cpp) line by line, branches turned into selects: for quads whose normal
+// squares within float's range (quadNormalInRange), the only ones given to the lanes.
 template <class F32, class I32>
 [[gnu::always_inline]] inline uint32_t quadLanes(const Quad& q, const RayLanes& rays, int first,
                                                  LaneHits& hits) {

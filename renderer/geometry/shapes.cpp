@@ -42,8 +42,8 @@ bool quadNormalInRange(const Quad& q) {
 namespace {
 
 // intersectQuad for a quad whose normal squares out of float's range (edges past about 10^9.5,
-// where α and β were ∞/∞ = NaN and the hit a NaN point, or under 10^-9.5): the same tests with
-// the normal divided by its largest coordinate, which leaves t, α and β as they are.
+// where α and β would be ∞/∞ = NaN and the hit a NaN point, or under 10^-9.5): the same tests
+// with the normal divided by its largest coordinate, which leaves t, α and β as they are.
 float intersectQuadScaled(const Quad& q, const Ray& ray, float& u, float& v) {
   const Vec3f n = cross(q.edge1, q.edge2);
   const float largest = maxComponent(abs(n));

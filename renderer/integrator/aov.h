@@ -18,7 +18,7 @@ enum class Aov : uint32_t {
   Position = 8,    // P: world-space hit point
   ObjectId = 16,   // IndexOB.X: objects[] index + 1, 0 = background (float)
   Direct = 32,     // local shading at the first hit (ambient + lights)
-  Indirect = 64,   // everything else: reflection and refraction
+  Indirect = 64,   // everything else: reflection, refraction and the background seen
   Lights = 128,    // direct light per light source (light_NAME, or lightK if unnamed)
   Variance = 256,  // variance of the beauty pixel estimate
   // Cryptomatte object and material layers: ranked (ID, coverage) pairs of the first hits

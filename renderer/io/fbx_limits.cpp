@@ -45,31 +45,57 @@ std::string base64Fault(std::string_view text) {
 void checkFbxEmbeddedContent(const std::string& path, const std::string& bytes) {
   if (bytes.rfind("Kaydara FBX Binary", 0) == 0) return;
   const std::string_view b(bytes);
-  const auto fail = [&](size_t at, const std::string& what) {
-    const size_t line = 1 + size_t(std::count(b.begin(), b.begin() + std::ptrdiff_t(at), '\n'));
+  size_t line = 1;
+  const auto fail = [&](const std::string& what) {
     throw GlintError("mesh " + path + ":" + std::to_string(line) + ": its embedded texture " +
                      "(Content) " + what);
   };
-  constexpr std::string_view kKey = "Content:";
-  for (size_t key = b.find(kKey); key != std::string_view::npos; key = b.find(kKey, key + 1)) {
-    // The property's key begins its line.
-    const size_t lineStart = b.find_last_of('\n', key == 0 ? 0 : key - 1);
-    const size_t from = lineStart == std::string_view::npos || key == 0 ? 0 : lineStart + 1;
-    if (b.substr(from, key - from).find_first_not_of(" \t") != std::string_view::npos) continue;
-    // Its values: quoted strings, separated by commas and white space.
-    for (size_t at = key + kKey.size(); at < b.size();) {
-      const char c = b[at];
-      if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == ',') {
-        ++at;
-        continue;
-      }
-      if (c != '"') break;
-      const size_t end = b.find('"', at + 1);
-      if (end == std::string_view::npos) fail(at, "has a string that is never closed");
-      if (const std::string fault = base64Fault(b.substr(at + 1, end - at - 1)); !fault.empty())
-        fail(at, "is not base64: its string " + fault);
-      at = end + 1;
+  // The file's tokens as Assimp's ASCII tokenizer cuts them: ';' comments to the line's end,
+  // quoted strings, the separators , { } and :, and runs of other characters; a token followed
+  // by ':' is a key. Content's values are the tokens after its key up to the next key or brace.
+  bool inContent = false;
+  for (size_t at = 0; at < b.size();) {
+    const char c = b[at];
+    if (c == '\n') ++line;
+    if (c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == ',') {
+      ++at;
+      continue;
     }
+    if (c == ';') {
+      at = std::min(b.find('\n', at), b.size());
+      continue;
+    }
+    if (c == '{' || c == '}' || c == ':') {
+      inContent = inContent && c == ':';  // a key's colon; a brace ends its values
+      ++at;
+      continue;
+    }
+    size_t end;
+    if (c == '"') {
+      end = b.find('"', at + 1);
+      if (end == std::string_view::npos) {
+        if (inContent) fail("has a string that is never closed");
+        return;  // Assimp's tokenizer refuses the file itself
+      }
+      ++end;
+    } else {
+      end = b.find_first_of(" \t\r\n,{}:;\"", at);
+      if (end == std::string_view::npos) end = b.size();
+    }
+    const std::string_view token = b.substr(at, end - at);
+    const size_t next = b.find_first_not_of(" \t\r", end);
+    const bool key = next != std::string_view::npos && b[next] == ':';
+    if (key) {
+      inContent = token == "Content";
+    } else if (inContent) {
+      if (token.size() < 2 || token.front() != '"')
+        fail("is not base64: " + inQuotes(std::string(token.substr(0, 16))) +
+             " is not a quoted string");
+      if (const std::string fault = base64Fault(token.substr(1, token.size() - 2)); !fault.empty())
+        fail("is not base64: its string " + fault);
+    }
+    line += size_t(std::count(token.begin(), token.end(), '\n'));
+    at = end;
   }
 }
 

@@ -147,7 +147,7 @@ const char* viewBytes(const json& doc, Buffers& buffers, const json& viewIndex, 
 }
 
 // The index types glTF 2.0 allows (unsigned byte, short, int): 0 for the others, whose bytes are
-// no index (gltf_subset.cpp's elementBytes sizes every component type, signed and float too).
+// no index (gltfElementBytes, io/gltf_layout.h, sizes every component type, signed and float too).
 uint64_t indexBytes(uint64_t componentType) {
   return componentType == 5121 ? 1 : componentType == 5123 ? 2 : componentType == 5125 ? 4 : 0;
 }

@@ -35,8 +35,8 @@ const json* elementAt(const json& doc, const char* list, const json& index) {
 }
 
 uint64_t componentBytes(const json& componentType) {
-  if (!componentType.is_number_unsigned()) return 0;
-  switch (componentType.get<uint64_t>()) {
+  if (!componentType.is_number_integer()) return 0;
+  switch (componentType.get<int64_t>()) {
     case 5120:
     case 5121:
       return 1;
@@ -51,23 +51,20 @@ uint64_t componentBytes(const json& componentType) {
   }
 }
 
-uint64_t elementBytes(const json& accessor) {
-  const auto type = accessor.find("type");
-  if (type == accessor.end() || !type->is_string()) return 0;
-  const std::string& s = type->get_ref<const std::string&>();
-  const uint64_t components = s == "SCALAR"                ? 1
-                              : s == "VEC2"                ? 2
-                              : s == "VEC3"                ? 3
-                              : s == "VEC4" || s == "MAT2" ? 4
-                              : s == "MAT3"                ? 9
-                              : s == "MAT4"                ? 16
-                                                           : 0;
-  return components * componentBytes(accessor.value("componentType", json()));
-}
-
 class LayoutCheck {
  public:
   LayoutCheck(const std::string& path, const json& doc) : path_(path), doc_(doc) {}
+
+  // The buffer views of embedded images, which Assimp copies out of their buffers.
+  void imageViews() const {
+    const auto images = doc_.find("images");
+    if (images == doc_.end() || !images->is_array()) return;
+    for (const json& image : *images) {
+      if (!image.is_object() || !image.contains("bufferView")) continue;
+      const json& index = image["bufferView"];
+      if (const json* view = elementAt(doc_, "bufferViews", index)) viewFits(index, *view);
+    }
+  }
 
   // The accessors the file's triangles read, and the bytes of those without a buffer view.
   void accessors() const {
@@ -90,9 +87,13 @@ class LayoutCheck {
       const json* accessor = elementAt(doc_, "accessors", json(i));
       if (!accessor) continue;  // Assimp names it
       const std::string where = "accessors[" + std::to_string(i) + "]";
-      const uint64_t element = elementBytes(*accessor);
+      const uint64_t element = gltfElementBytes(*accessor);
+      if (element == 0)
+        fail(where + " has no type and componentType glTF 2.0 defines (" +
+             accessor->value("type", json()).dump() + ", " +
+             accessor->value("componentType", json()).dump() + ")");
       const auto count = wholeOf(*accessor, "count", std::nullopt);
-      if (element == 0 || !count) continue;  // Assimp refuses it
+      if (!count) continue;  // Assimp refuses it
       if (accessor->contains("bufferView")) {
         fitsInView(where, *accessor, *count, element, true);
       } else {
@@ -108,9 +109,11 @@ class LayoutCheck {
       const auto sparseCount = wholeOf(*sparse, "count", std::nullopt);
       if (!sparseCount) continue;
       if (const auto indices = sparse->find("indices");
-          indices != sparse->end() && indices->is_object())
-        fitsInView(where + ".sparse.indices", *indices, *sparseCount,
-                   componentBytes(indices->value("componentType", json())), false);
+          indices != sparse->end() && indices->is_object()) {
+        const uint64_t indexBytes = componentBytes(indices->value("componentType", json()));
+        if (indexBytes == 0) fail(where + ".sparse.indices has no componentType glTF 2.0 defines");
+        fitsInView(where + ".sparse.indices", *indices, *sparseCount, indexBytes, false);
+      }
       if (const auto values = sparse->find("values");
           values != sparse->end() && values->is_object())
         fitsInView(where + ".sparse.values", *values, *sparseCount, element, false);
@@ -176,8 +179,24 @@ class LayoutCheck {
 
 }  // namespace
 
+uint64_t gltfElementBytes(const json& accessor) {
+  const auto type = accessor.find("type");
+  if (type == accessor.end() || !type->is_string()) return 0;
+  const std::string& s = type->get_ref<const std::string&>();
+  const uint64_t components = s == "SCALAR"                ? 1
+                              : s == "VEC2"                ? 2
+                              : s == "VEC3"                ? 3
+                              : s == "VEC4" || s == "MAT2" ? 4
+                              : s == "MAT3"                ? 9
+                              : s == "MAT4"                ? 16
+                                                           : 0;
+  return components * componentBytes(accessor.value("componentType", json()));
+}
+
 void checkGltfBufferLayout(const std::string& path, const json& doc) {
-  LayoutCheck(path, doc).accessors();
+  const LayoutCheck check(path, doc);
+  check.accessors();
+  check.imageViews();
 }
 
 }  // namespace glint

@@ -16,12 +16,18 @@ namespace glint {
 // (which Glint leaves out), not for a mesh's vertices; 64 MiB is 5.6 million float positions.
 inline constexpr uint64_t kMaxUnbackedAccessorBytes = uint64_t{1} << 26;
 
+// The bytes of one element of `accessor` (componentType × type), 0 where either is missing or
+// not one glTF 2.0 defines. Byte and short matrices' column padding is left out.
+uint64_t gltfElementBytes(const nlohmann::json& accessor);
+
 // Throws UsageError naming `path` and the element when, in `doc` (glTF 2.0 JSON, trimmed to what
 // Glint reads), an accessor a primitive reads (an attribute, its indices, their sparse indices
-// and values) does not lie within its buffer view, or its view within its buffer's byteLength,
-// or the view's byteStride is not one glTF allows (a multiple of 4 from 4 to 252); or when those
-// without a buffer view hold more than kMaxUnbackedAccessorBytes. What no primitive reads is
-// left alone: Assimp does not read it either.
+// and values) has no type or componentType glTF defines (Assimp reads a missing one as the
+// smallest), or does not lie within its buffer view; when such a view, or an image's, does not
+// lie within its buffer's byteLength or has a byteStride glTF does not allow (a multiple of 4
+// from 4 to 252); or when the accessors without a buffer view hold more than
+// kMaxUnbackedAccessorBytes. Accessors no primitive reads (a morph target's) are left alone:
+// Assimp does not read them either.
 void checkGltfBufferLayout(const std::string& path, const nlohmann::json& doc);
 
 }  // namespace glint

@@ -75,41 +75,6 @@ size_t countOf(const json& doc, const char* key) {
   return it != doc.end() && it->is_array() ? it->size() : 0;
 }
 
-// The bytes of one element of an accessor (componentType × type), 0 for what glTF 2.0 does not
-// define (Assimp refuses those itself). Byte and short matrices' column padding is left out:
-// the stride check below may pass more, never refuse a file that meets the rule.
-uint64_t elementBytes(const json& accessor) {
-  const auto type = accessor.find("componentType");
-  const auto shape = accessor.find("type");
-  if (type == accessor.end() || !type->is_number_unsigned() || shape == accessor.end() ||
-      !shape->is_string())
-    return 0;
-  const uint64_t component = [&]() -> uint64_t {
-    switch (type->get<uint64_t>()) {
-      case 5120:
-      case 5121:
-        return 1;  // (unsigned) byte
-      case 5122:
-      case 5123:
-        return 2;  // (unsigned) short
-      case 5125:
-      case 5126:
-        return 4;  // unsigned int, float
-      default:
-        return 0;
-    }
-  }();
-  const std::string& s = shape->get_ref<const std::string&>();
-  const uint64_t components = s == "SCALAR"                ? 1
-                              : s == "VEC2"                ? 2
-                              : s == "VEC3"                ? 3
-                              : s == "VEC4" || s == "MAT2" ? 4
-                              : s == "MAT3"                ? 9
-                              : s == "MAT4"                ? 16
-                                                           : 0;
-  return component * components;
-}
-
 // glTF 2.0 requires a buffer view's byteStride to hold a whole element of each accessor reading
 // it (the validator's ACCESSOR_SMALL_BYTESTRIDE). Assimp 5.2.5 reads overlapping elements
 // instead, and the mesh rendered as other geometry, without a word.
@@ -123,7 +88,7 @@ void checkStrides(const std::string& path, const json& doc) {
     const json& view = doc["bufferViews"][viewIndex->get<size_t>()];
     const auto stride = view.is_object() ? view.find("byteStride") : view.end();
     if (stride == view.end() || !stride->is_number_unsigned()) continue;
-    const uint64_t element = elementBytes(accessor);
+    const uint64_t element = gltfElementBytes(accessor);
     if (stride->get<uint64_t>() < element)
       throw UsageError("mesh " + path + ": accessors[" + std::to_string(i) +
                        "] reads bufferViews[" + std::to_string(viewIndex->get<size_t>()) +

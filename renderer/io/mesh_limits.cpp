@@ -299,7 +299,10 @@ void checkMeshFileBeforeImport(const std::string& path) {
     checkPlyCounts(path, headOf(path, kMaxPlyHeaderBytes), size);
   if (lower(p.extension().string()) == ".dae") checkColladaCounts(path, headOf(path, size));
   if (lower(p.extension().string()) == ".stl") checkStlEnds(path, size);
-  if (lower(p.extension().string()) == ".fbx") checkFbxEmbeddedContent(path, headOf(path, size));
+  // A binary FBX file passes without being read whole.
+  if (lower(p.extension().string()) == ".fbx" &&
+      headOf(path, 18).rfind("Kaydara FBX Binary", 0) != 0)
+    checkFbxEmbeddedContent(path, headOf(path, size));
 }
 
 }  // namespace glint

@@ -8,7 +8,11 @@ QuadLight::QuadLight(const Vec3f& corner, const Vec3f& edge1, const Vec3f& edge2
     : corner_(corner), edge1_(edge1), edge2_(edge2) {
   const Vec3f n = cross(edge1, edge2);
   area_ = length(n);
-  normal_ = n / area_;
+  // Edges past about 10^9.5 square |n| past float's range: scaled first, as normalizeAnyScale
+  // does for the normal (which is n / |n|, normalize's bits, in range).
+  if (const float largest = maxComponent(abs(n)); !(area_ < kInfinity) && largest < kInfinity)
+    area_ = largest * length(Vec3f{n.x / largest, n.y / largest, n.z / largest});
+  normal_ = normalizeAnyScale(n);
 }
 
 DiskLight::DiskLight(const Vec3f& center, const Vec3f& normal, float radius)

@@ -62,6 +62,24 @@ TEST(FbxLimits, ContentThatIsNotBase64IsRefusedNamingTheLineAndTheByte) {
             "mesh m.fbx:5: its embedded texture (Content) has a string that is never closed");
 }
 
+TEST(FbxLimits, ContentIsFoundAsAssimpsTokenizerFindsIt) {
+  // A review crashed Assimp past an earlier version of the check, which read Content's strings
+  // line by line: a comment between the key and its string, the key after other tokens on its
+  // line, and a value that is not a quoted string (Assimp strips one byte from each end of it
+  // unchecked: one byte long, its length wrapped).
+  EXPECT_EQ(refusal(fbxWithContent(",\n; a comment \"\n \"iVBO-w0K\"")),
+            "mesh m.fbx:7: its embedded texture (Content) is not base64: its string has \"-\" "
+            "at character 5, outside base64's alphabet");
+  EXPECT_EQ(refusal("; FBX\nVideo: 1 {\n\tType: \"Clip\" Content: , \"iV*A\"\n}\n"),
+            "mesh m.fbx:3: its embedded texture (Content) is not base64: its string has \"*\" "
+            "at character 3, outside base64's alphabet");
+  EXPECT_EQ(refusal(fbxWithContent("\"iVBORw0K\", x")),
+            "mesh m.fbx:5: its embedded texture (Content) is not base64: \"x\" is not a quoted "
+            "string");
+  // The next key ends the values: a later property's bare values are its own.
+  EXPECT_EQ(refusal(fbxWithContent("\"iVBORw0K\"\n\t\tVersion: 202")), "(accepted)");
+}
+
 TEST(FbxLimits, TheLoaderRefusesAnEmbeddedTextureAssimpWouldCrashOn) {
   // assimp-testmodels' embedded_ascii/box.FBX with one byte of its texture's base64 changed
   // crashed Glint (SIGSEGV) in render, info and a scene naming it.

@@ -71,6 +71,25 @@ TEST(GltfLayout, OffsetsThatWrapPast2To64AreRefused) {
             "bufferViews[1], to byte 8; the view holds 6");
 }
 
+TEST(GltfLayout, AccessorsWithoutATypeAndImagesViewsAreChecked) {
+  // Assimp reads an accessor without a type as SCALAR and one without a componentType as BYTE:
+  // an earlier version of the check skipped them, and a wrapped offset read before the buffer.
+  json doc = triangle();
+  doc["accessors"][0].erase("type");
+  doc["bufferViews"][0]["byteOffset"] = UINT64_MAX - 7;
+  EXPECT_EQ(refusal(doc),
+            "mesh m.gltf: accessors[0] has no type and componentType glTF 2.0 defines (null, "
+            "5126)");
+  // Assimp copies an embedded image out of its buffer view.
+  doc = triangle();
+  doc["bufferViews"].push_back(json::parse(R"({"buffer": 0, "byteLength": 32})"));
+  doc["bufferViews"][2]["byteOffset"] = UINT64_MAX - 15;
+  doc["images"] = json::parse(R"([{"bufferView": 2, "mimeType": "image/png"}])");
+  EXPECT_EQ(refusal(doc),
+            "mesh m.gltf: bufferViews[2] lies past its buffer: bytes 18446744073709551600 to "
+            "past 2^64 of buffers[0]'s 44");
+}
+
 TEST(GltfLayout, StridesGltfDoesNotAllowAreRefused) {
   // byteStride 2^32 − 4 was read as tightly packed.
   for (const uint64_t stride : {uint64_t{2}, uint64_t{254}, uint64_t{13}, uint64_t{4294967292}}) {

@@ -100,5 +100,16 @@ TEST(Lights, AnAreaLightIsTheMeanOfItsSamples) {
   EXPECT_EQ(lightSampleCount(Light{PointLight{}}), 1);
 }
 
+TEST(Lights, AQuadLightOfAnySizeHasItsAreaAndAUnitNormal) {
+  // Edges of 10^10: |edge1 × edge2| = 10^20 squares past float's range, and the light's area
+  // was +∞ and its normal (0, 0, 0), a dark light.
+  const QuadLight huge({0, 0, 0}, {1e10f, 0, 0}, {0, 1e10f, 0});
+  EXPECT_FLOAT_EQ(huge.area(), 1e20f);
+  EXPECT_FLOAT_EQ(huge.normal().z, 1);
+  const QuadLight unit({0, 0, 0}, {2, 0, 0}, {0, 3, 0});
+  EXPECT_EQ(unit.area(), 6);
+  EXPECT_EQ(unit.normal().z, 1);
+}
+
 }  // namespace
 }  // namespace glint
