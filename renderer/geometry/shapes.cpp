@@ -39,16 +39,18 @@ bool quadNormalInRange(const Quad& q) {
   return nn >= std::numeric_limits<float>::min() && nn <= std::numeric_limits<float>::max();
 }
 
-namespace {
-
-// intersectQuad for a quad whose normal squares out of float's range (edges past about 10^9.5,
-// where α and β would be ∞/∞ = NaN and the hit a NaN point, or under 10^-9.5): the same tests
-// with the normal divided by its largest coordinate, which leaves t, α and β as they are.
-float intersectQuadScaled(const Quad& q, const Ray& ray, float& u, float& v) {
+float intersectQuad(const Quad& q, const Ray& ray, float& u, float& v) {
   const Vec3f n = cross(q.edge1, q.edge2);
-  const float largest = maxComponent(abs(n));
-  if (!(largest > 0) || !std::isfinite(largest)) return kInfinity;  // no plane to meet
-  const Vec3f m{n.x / largest, n.y / largest, n.z / largest};
+  // The plane's normal m: n itself, or, where n squares out of float's range (edges past about
+  // 10^9.5, where α and β would be ∞/∞ = NaN and the hit a NaN point, or under 10^-9.5), n over
+  // its largest coordinate, which leaves t, α and β as they are. For m = n the operations are
+  // quadLanes' (the same bits).
+  Vec3f m = n;
+  if (!quadNormalInRange(q)) [[unlikely]] {
+    const float largest = maxComponent(abs(n));
+    if (!(largest > 0) || !std::isfinite(largest)) return kInfinity;  // no plane to meet
+    m = {n.x / largest, n.y / largest, n.z / largest};
+  }
   const float denom = dot(m, ray.d);
   if (denom == 0) return kInfinity;
   const float t = dot(q.corner - ray.o, m) / denom;
@@ -57,26 +59,6 @@ float intersectQuadScaled(const Quad& q, const Ray& ray, float& u, float& v) {
   const float nm = dot(n, m);
   const float alpha = dot(cross(rel, q.edge2), m) / nm;
   const float beta = dot(cross(q.edge1, rel), m) / nm;
-  if (!(alpha >= 0 && alpha <= 1 && beta >= 0 && beta <= 1)) return kInfinity;
-  u = alpha;
-  v = beta;
-  return t;
-}
-
-}  // namespace
-
-float intersectQuad(const Quad& q, const Ray& ray, float& u, float& v) {
-  if (!quadNormalInRange(q)) [[unlikely]]
-    return intersectQuadScaled(q, ray, u, v);
-  const Vec3f n = cross(q.edge1, q.edge2);
-  const float denom = dot(n, ray.d);
-  if (denom == 0) return kInfinity;
-  const float t = dot(q.corner - ray.o, n) / denom;
-  if (!(t > ray.tMin && t < ray.tMax)) return kInfinity;
-  const Vec3f rel = ray.at(t) - q.corner;
-  const float nn = dot(n, n);
-  const float alpha = dot(cross(rel, q.edge2), n) / nn;
-  const float beta = dot(cross(q.edge1, rel), n) / nn;
   if (alpha < 0 || alpha > 1 || beta < 0 || beta > 1) return kInfinity;
   u = alpha;
   v = beta;
