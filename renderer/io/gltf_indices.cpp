@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/input_files.h"
+#include "io/gltf_layout.h"
 #include "io/gltf_subset.h"
 #include "io/mesh_limits.h"
 
@@ -120,20 +121,11 @@ class Buffers {
   std::map<uint64_t, std::optional<std::string>> read_;
 };
 
-const json* element(const json& doc, const char* key, const json& index) {
-  const auto list = doc.find(key);
-  if (list == doc.end() || !list->is_array() || !index.is_number_unsigned() ||
-      index.get<uint64_t>() >= list->size())
-    return nullptr;
-  const json& e = (*list)[index.get<size_t>()];
-  return e.is_object() ? &e : nullptr;
-}
-
 // The bytes of `count` values of `size` bytes at `offset` in buffer view `viewIndex`; null where
 // they are not all there (Assimp reports that itself).
 const char* viewBytes(const json& doc, Buffers& buffers, const json& viewIndex, uint64_t offset,
                       uint64_t count, uint64_t size) {
-  const json* view = element(doc, "bufferViews", viewIndex);
+  const json* view = gltfElementAt(doc, "bufferViews", viewIndex);
   if (!view || size == 0) return nullptr;
   const auto viewOffset = unsignedOf(*view, "byteOffset", 0);
   const auto viewLength = unsignedOf(*view, "byteLength", 0);
@@ -195,8 +187,8 @@ void checkGltfIndices(const std::string& path, const std::string& gltfJson,
           !primitive.contains("attributes") || !primitive["attributes"].is_object() ||
           !primitive["attributes"].contains("POSITION"))
         continue;
-      const json* positions = element(doc, "accessors", primitive["attributes"]["POSITION"]);
-      const json* indices = element(doc, "accessors", primitive["indices"]);
+      const json* positions = gltfElementAt(doc, "accessors", primitive["attributes"]["POSITION"]);
+      const json* indices = gltfElementAt(doc, "accessors", primitive["indices"]);
       if (!positions || !indices) continue;
       const auto vertices = unsignedOf(*positions, "count", 0);
       const auto count = unsignedOf(*indices, "count", 0);

@@ -25,15 +25,6 @@ std::optional<uint64_t> wholeOf(const json& object, const char* key,
   return std::nullopt;
 }
 
-const json* elementAt(const json& doc, const char* list, const json& index) {
-  const auto it = doc.find(list);
-  if (it == doc.end() || !it->is_array() || !index.is_number_unsigned() ||
-      index.get<uint64_t>() >= it->size())
-    return nullptr;
-  const json& e = (*it)[index.get<size_t>()];
-  return e.is_object() ? &e : nullptr;
-}
-
 uint64_t componentBytes(const json& componentType) {
   if (!componentType.is_number_integer()) return 0;
   switch (componentType.get<int64_t>()) {
@@ -62,7 +53,7 @@ class LayoutCheck {
     for (const json& image : *images) {
       if (!image.is_object() || !image.contains("bufferView")) continue;
       const json& index = image["bufferView"];
-      if (const json* view = elementAt(doc_, "bufferViews", index)) viewFits(index, *view);
+      if (const json* view = gltfElementAt(doc_, "bufferViews", index)) viewFits(index, *view);
     }
   }
 
@@ -84,7 +75,7 @@ class LayoutCheck {
           }
     uint64_t unbacked = 0;
     for (const uint64_t i : read) {
-      const json* accessor = elementAt(doc_, "accessors", json(i));
+      const json* accessor = gltfElementAt(doc_, "accessors", json(i));
       if (!accessor) continue;  // Assimp names it
       const std::string where = "accessors[" + std::to_string(i) + "]";
       const uint64_t element = gltfElementBytes(*accessor);
@@ -139,7 +130,7 @@ class LayoutCheck {
         !stride || *stride < 4 || *stride > 252 || *stride % 4 != 0)
       fail(where + ": its byteStride " + view["byteStride"].dump() +
            " is not one glTF 2.0 allows (a multiple of 4 from 4 to 252)");
-    const json* buffer = elementAt(doc_, "buffers", view.value("buffer", json()));
+    const json* buffer = gltfElementAt(doc_, "buffers", view.value("buffer", json()));
     if (!buffer) return;  // Assimp names the missing buffer
     const auto bufferLength = wholeOf(*buffer, "byteLength", std::nullopt);
     if (bufferLength && (*offset > *bufferLength || *length > *bufferLength - *offset))
@@ -155,7 +146,7 @@ class LayoutCheck {
                   bool strided) const {
     if (count == 0 || element == 0) return;
     const json& index = reader.value("bufferView", json());
-    const json* view = elementAt(doc_, "bufferViews", index);
+    const json* view = gltfElementAt(doc_, "bufferViews", index);
     if (!view) return;  // Assimp names it
     viewFits(index, *view);
     const auto offset = wholeOf(reader, "byteOffset", 0);
@@ -178,6 +169,15 @@ class LayoutCheck {
 };
 
 }  // namespace
+
+const json* gltfElementAt(const json& doc, const char* list, const json& index) {
+  const auto it = doc.find(list);
+  if (it == doc.end() || !it->is_array() || !index.is_number_unsigned() ||
+      index.get<uint64_t>() >= it->size())
+    return nullptr;
+  const json& e = (*it)[index.get<size_t>()];
+  return e.is_object() ? &e : nullptr;
+}
 
 uint64_t gltfElementBytes(const json& accessor) {
   const auto type = accessor.find("type");

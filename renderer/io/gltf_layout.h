@@ -16,6 +16,11 @@ namespace glint {
 // (which Glint leaves out), not for a mesh's vertices; 64 MiB is 5.6 million float positions.
 inline constexpr uint64_t kMaxUnbackedAccessorBytes = uint64_t{1} << 26;
 
+// Element `index` of `doc`'s array `list` ("accessors", "bufferViews", ...), null where the
+// index is not a whole number within it or the element is not an object.
+const nlohmann::json* gltfElementAt(const nlohmann::json& doc, const char* list,
+                                    const nlohmann::json& index);
+
 // The bytes of one element of `accessor` (componentType × type), 0 where either is missing or
 // not one glTF 2.0 defines. Byte and short matrices' column padding is left out.
 uint64_t gltfElementBytes(const nlohmann::json& accessor);
