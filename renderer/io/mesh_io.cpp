@@ -111,11 +111,15 @@ void checkAnImporterOfTheExtensionReadsIt(Assimp::Importer& importer, const std:
                    " (Assimp's readers of ." + ext + " do not recognise it)");
 }
 
-// Opens the textures a mesh file's materials name: relative to the mesh file, with Windows
-// separators turned around (OBJ files from Windows tools write .\\wood.jpg) and, where the
-// name's case does not match, the one file in the folder whose name matches regardless of case.
-// A texture that cannot be read is warned about and left out (the slot keeps its colour): real
-// assets often name textures they were not shipped with.
+// Opens the textures a mesh file's materials name. An image the file carries is read from the
+// file: by index ("*0", a .glb's buffer view or a data URI) or by the name of the file it was
+// (an FBX's embedded Content, matched as Assimp matches it, by the name after the last
+// separator), as Blender takes an FBX's packed images before any file of that name. Others are
+// read relative to the mesh file, with Windows separators turned around (OBJ files from Windows
+// tools write .\\wood.jpg) and, where the name's case does not match, the one file in the
+// folder whose name matches regardless of case. A texture that cannot be read is warned about and
+// left out (the slot keeps its colour): real assets often name textures they were not shipped
+// with.
 TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
   const std::filesystem::path dir = std::filesystem::path(meshPath).parent_path();
   auto opened = std::make_shared<std::map<std::string, std::shared_ptr<const ImageTexture>>>();
@@ -123,18 +127,18 @@ TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
           &scene](const std::string& named) -> std::shared_ptr<const ImageTexture> {
     if (const auto it = opened->find(named); it != opened->end()) return it->second;
     std::shared_ptr<const ImageTexture>& slot = (*opened)[named];
-    std::string name = named;
-    std::replace(name.begin(), name.end(), '\\', '/');
-    if (!name.empty() && name[0] == '*') {
-      // An image inside the file (a .glb's buffer view, a data URI): Assimp hands it over
-      // compressed, as the PNG or JPEG file it was.
-      const aiTexture* t = scene.GetEmbeddedTexture(name.c_str());
+    const aiTexture* t = named.empty() ? nullptr : scene.GetEmbeddedTexture(named.c_str());
+    if (t || (!named.empty() && named[0] == '*')) {
       try {
+        // Assimp hands a compressed image over as the PNG or JPEG (or other) file it was.
         if (!t || t->mHeight != 0 || !t->pcData)
-          throw GlintError("Glint reads embedded PNG and JPEG images only");
-        const std::string hint = t->achFormatHint;
+          throw GlintError("Glint reads embedded image files only, not raw texels");
+        // Readers are chosen by the name's extension: the format Assimp names, where the name
+        // does not end in it.
+        const std::string hint = t->achFormatHint[0] ? t->achFormatHint : "png";
+        const bool ends = lowerExtension(named) == "." + lowerCase(hint);
         slot = openImageTextureInMemory(
-            meshPath + "#" + name + "." + (hint.empty() ? std::string("png") : hint),
+            meshPath + "#" + named + (ends ? "" : "." + hint),
             std::string(reinterpret_cast<const char*>(t->pcData), t->mWidth));
       } catch (const OutOfMemoryError&) {
         throw;  // not a texture to leave out: the rest would not fit either
@@ -144,6 +148,8 @@ TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
       }
       return slot;
     }
+    std::string name = named;
+    std::replace(name.begin(), name.end(), '\\', '/');
     std::filesystem::path file(name);
     if (file.is_relative()) file = dir / file;
     std::error_code ec;

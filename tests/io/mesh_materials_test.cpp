@@ -277,5 +277,36 @@ TEST(MeshMaterials, ATexturePathOfAnotherMachineFindsTheImageBesideTheMesh) {
   EXPECT_EQ(f.materials[0].surface.kd.pattern, TexturePattern::Image) << dir;
 }
 
+TEST(MeshMaterials, AnFbxsEmbeddedImagesAreReadFromTheFile) {
+  // FBX files carry their images (a Video's Content) under the name of the file each was; Assimp
+  // keeps them as embedded textures named so. Before this, Glint looked for those names on disk
+  // and left the textures out ("texture not found"). The file's own image is taken even where a
+  // file of that name lies beside the mesh, as Blender takes an FBX's packed images.
+  const std::filesystem::path models = "/usr/share/assimp/models/FBX";
+  if (!std::filesystem::is_directory(models / "embedded_ascii"))
+    GTEST_SKIP() << "assimp-testmodels is not installed (" << models
+                 << " is missing); tools/lib.sh installs it";
+  const std::string beside = test::writeHalfMatte();
+  const std::filesystem::path dir = std::filesystem::path(beside).parent_path();
+  std::filesystem::copy_file(models / "embedded_ascii/box_embedded_texture_fragmented.fbx",
+                             dir / "fragmented.fbx",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::filesystem::copy_file(beside, dir / "paper.png",
+                             std::filesystem::copy_options::overwrite_existing);
+  // Which image each names: an ASCII FBX's PNG in one Content string and in fragments, and a
+  // binary FBX's TGA, whose names point at files that are not there ("../../Desktop/...").
+  for (const std::filesystem::path& mesh :
+       {models / "embedded_ascii/box.FBX", dir / "fragmented.fbx",
+        models / "box_orphant_embedded_texture.fbx"}) {
+    SCOPED_TRACE(mesh.string());
+    const MeshFile f = loadMeshFile(mesh.string());
+    const auto textured = std::find_if(f.materials.begin(), f.materials.end(),
+                                       [](const Material& m) { return m.surface.kd.image; });
+    ASSERT_NE(textured, f.materials.end());
+    EXPECT_NE(textured->surface.kd.image->path().find(mesh.string() + "#"), std::string::npos)
+        << textured->surface.kd.image->path();
+  }
+}
+
 }  // namespace
 }  // namespace glint
