@@ -260,11 +260,10 @@ FileSceneInfo readGltfSceneInfo(const std::string& path) {
   if (!in) throw UsageError("cannot open glTF file " + path + ": " + std::strerror(errno));
   const std::string bytes((std::istreambuf_iterator<char>(in)), {});
   if (in.bad()) throw GlintError("cannot read glTF file " + path);
-  // The same checks as the mesh reader's (nesting depth, glTF 2, strict JSON), on the same text.
+  // The same checks as the mesh reader's (nesting depth, glTF 2, strict JSON), on the same text;
+  // what the file holds that Glint leaves out is said once, when the mesh reader takes it.
   const std::string text = lowerExtension(path) == ".glb" ? glbJsonChunk(path, bytes) : bytes;
-  gltfSubset(path, text);
-  json doc = json::parse(text);
-  return Reader(path, std::move(doc)).read();
+  return Reader(path, parseGltfDocument(path, text)).read();
 }
 
 }  // namespace glint

@@ -308,8 +308,7 @@ std::string gltfUriPath(const std::string& uri, const std::string& dir) {
              : uri;
 }
 
-std::string gltfSubset(const std::string& path, const std::string& text,
-                       std::vector<GltfMaterialInfo>* materials) {
+json parseGltfDocument(const std::string& path, const std::string& text) {
   if (nestingDepth(text) > kMaxDepth)
     throw UsageError("mesh " + path + ": its JSON nests more than " + std::to_string(kMaxDepth) +
                      " levels deep (a glTF file needs about 6)");
@@ -322,8 +321,6 @@ std::string gltfSubset(const std::string& path, const std::string& text,
     throw UsageError("mesh " + path + ": not glTF JSON: " + excerpt(e.what()));
   }
   if (!doc.is_object()) throw UsageError("mesh " + path + ": not glTF: not a JSON object");
-  // Named before anything is removed (io/gltf_dropped.h), warned about once the file is taken.
-  const std::vector<std::string> dropped = gltfDroppedFeatures(doc);
   // glTF 1.0 files give their version as "1.0" or as the number 1 (Cesium's exporters), and
   // keep nodes, meshes and the rest in objects keyed by name where glTF 2.0 has arrays: named
   // here rather than reported as "nodes is not an array".
@@ -346,6 +343,14 @@ std::string gltfSubset(const std::string& path, const std::string& text,
       throw UsageError("mesh " + path + ": its \"" + key +
                        "\" is an object keyed by name, as in glTF 1.0, which is not supported; "
                        "Glint reads glTF 2.0");
+  return doc;
+}
+
+std::string gltfSubset(const std::string& path, const std::string& text,
+                       std::vector<GltfMaterialInfo>* materials) {
+  json doc = parseGltfDocument(path, text);
+  // Named before anything is removed (io/gltf_dropped.h), warned about once the file is taken.
+  const std::vector<std::string> dropped = gltfDroppedFeatures(doc);
   // URIs decoded for Assimp, which opens them as C strings: "b.bin\u0000x" (or "b.bin%00x")
   // would open b.bin behind a name that says otherwise (core/input_files.h).
   const std::string dir = std::filesystem::path(path).parent_path().string();

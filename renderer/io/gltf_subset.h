@@ -12,6 +12,8 @@
 // Geometry-compression extensions stay. The textures' KHR_texture_transform, texCoord and
 // samplers are read by Glint (io/gltf_texture_transform.h), not by Assimp (whose reader of the
 // transform indexes the offset and scale arrays without checking their sizes).
+#include <nlohmann/json.hpp>
+
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,10 +44,14 @@ struct GltfMaterialInfo {
 std::string gltfMaterialTag(size_t index);
 std::optional<size_t> gltfMaterialIndex(const std::string& name);
 
-// The glTF JSON `text` of `path` reduced as above. Throws GlintError naming `path` when it is
-// not a JSON object (nlohmann's strict reader: invalid UTF-8 is refused, which Assimp's lenient
+// The glTF JSON `text` of `path`, parsed. Throws UsageError naming `path` when it is not a
+// JSON object (nlohmann's strict reader: invalid UTF-8 is refused, which Assimp's lenient
 // reader would take whole), nests more than 64 levels (Assimp's reader recurses once per
-// level) or declares a glTF version other than 2. Given `materials`, it receives one entry per
+// level) or declares a glTF version other than 2. It warns of nothing.
+nlohmann::json parseGltfDocument(const std::string& path, const std::string& text);
+
+// The glTF JSON `text` of `path` reduced as above, after parseGltfDocument's checks; what it
+// drops or cannot use is warned about. Given `materials`, it receives one entry per
 // element of the file's `materials` (a malformed texture transform is warned about there and
 // ignored), and each material's name in the subset is its gltfMaterialTag.
 std::string gltfSubset(const std::string& path, const std::string& text,

@@ -14,6 +14,7 @@
 
 #include "accel/accelerator.h"
 #include "film/image_file.h"
+#include "io/gltf_scene.h"
 #include "io/gltf_subset.h"
 #include "io/mesh_io.h"
 #include "render/render_job.h"
@@ -304,6 +305,17 @@ TEST(GltfMaterials, ClearCoatTestNamesEachDroppedFeatureInOneWarning) {
             std::string::npos)
       << warnings;
   EXPECT_EQ(warnings.find("normalTexture (6"), std::string::npos) << warnings;
+}
+
+TEST(GltfMaterials, ReadingAFilesCamerasAndLightsLeavesTheWarningToTheMeshReader) {
+  // A .gltf rendered as the scene is read twice, for its cameras and lights and then as the
+  // mesh: the warning was printed twice.
+  const std::string path = "/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << "assimp-testmodels is not installed";
+  testing::internal::CaptureStderr();
+  readGltfSceneInfo(path);
+  const std::string warnings = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(warnings, "");
 }
 
 TEST(GltfMaterials, EveryDroppedFeatureOfAFileIsNamedOnceAndRenderedOnesAreNot) {
