@@ -552,9 +552,13 @@ std::string glbJsonChunk(const std::string& path, const std::string& bytes) {
     throw UsageError("mesh " + path +
                      ": binary glTF 1.0 is not supported; Glint reads glTF 2.0 (GLB version 2)");
   if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0 || u32(4) != 2 ||
-      u32(16) != 0x4E4F534Au || 20 + uint64_t{u32(12)} > bytes.size())
+      u32(16) != 0x4E4F534Au)
     throw UsageError("mesh " + path +
                      ": not a GLB 2 file (magic \"glTF\", version 2, a JSON chunk first)");
+  if (20 + uint64_t{u32(12)} > bytes.size())
+    throw UsageError("mesh " + path + ": its JSON chunk claims " + std::to_string(u32(12)) +
+                     " bytes, but the file holds " + std::to_string(bytes.size() - 20) +
+                     " after the chunk's header (a cut or damaged GLB file)");
   return bytes.substr(20, u32(12));
 }
 

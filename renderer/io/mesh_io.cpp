@@ -127,8 +127,15 @@ TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
           &scene](const std::string& named) -> std::shared_ptr<const ImageTexture> {
     if (const auto it = opened->find(named); it != opened->end()) return it->second;
     std::shared_ptr<const ImageTexture>& slot = (*opened)[named];
-    const aiTexture* t = named.empty() ? nullptr : scene.GetEmbeddedTexture(named.c_str());
-    if (t || (!named.empty() && named[0] == '*')) {
+    if (named.empty()) {
+      // Assimp's name for a glTF image whose data URI holds no bytes: no file to look for.
+      log::warning("mesh " + meshPath +
+                   ": texture left out: a material names an image without "
+                   "a name or bytes");
+      return slot;
+    }
+    const aiTexture* t = scene.GetEmbeddedTexture(named.c_str());
+    if (t || named[0] == '*') {
       try {
         // Assimp hands a compressed image over as the PNG or JPEG (or other) file it was.
         if (!t || t->mHeight != 0 || !t->pcData)

@@ -485,6 +485,44 @@ std::string triangleWithIndices(const char* base64) {
                   {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}]})";
 }
 
+TEST(MeshFile, AGlbCutInsideItsJsonChunkIsNamedAsCut) {
+  // A GLB 2 header whose JSON chunk claims 100 bytes more than the file holds: the file is GLB 2
+  // (it was called "not a GLB 2 file"), cut or damaged.
+  const std::string text = R"({"asset": {"version": "2.0"}})";  // 29 bytes
+  std::string glb = "glTF";
+  const auto put = [&](uint32_t v) { glb.append(reinterpret_cast<const char*>(&v), 4); };
+  put(2);
+  put(uint32_t(20 + text.size()));
+  put(uint32_t(text.size() + 100));
+  put(0x4E4F534Au);
+  glb += text;
+  const std::string message = test::meshLoadError("cut.glb", glb);
+  EXPECT_NE(message.find("its JSON chunk claims 129 bytes, but the file holds 29 after the "
+                         "chunk's header"),
+            std::string::npos)
+      << message;
+}
+
+TEST(MeshFile, AGltfImageWhoseDataUriHoldsNoBytesIsLeftOutNamedSo) {
+  // Assimp names such an image with an empty path, which was looked for as a file: "texture
+  // /tmp/ is a directory". The triangle renders without its texture.
+  std::string gltf =
+      triangleWithIndices("AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA=");
+  gltf.insert(gltf.rfind('}'), R"(, "images": [{"uri": "data:image/png;base64,"}],
+    "textures": [{"source": 0}], "materials": [{"pbrMetallicRoughness":
+      {"baseColorTexture": {"index": 0}}}])");
+  gltf.replace(gltf.find(R"("indices": 1})"), 13, R"("indices": 1, "material": 0})");
+  testing::internal::CaptureStderr();
+  const MeshFile f = loadMeshFile(test::writeTemp("empty-image.gltf", gltf));
+  const std::string warnings = testing::internal::GetCapturedStderr();
+  ASSERT_EQ(f.materials.size(), 1u);
+  EXPECT_EQ(f.materials[0].surface.kd.image, nullptr);
+  EXPECT_NE(warnings.find("texture left out: a material names an image without a name or bytes"),
+            std::string::npos)
+      << warnings;
+  EXPECT_EQ(warnings.find("directory"), std::string::npos) << warnings;
+}
+
 TEST(MeshFile, AGltfIndexPastItsVerticesIsRefusedNotDropped) {
   // Assimp's glTF 2 reader dropped the triangle without a word (assimp-testmodels'
   // IndexOutOfRange rendered a triangle short, exit 0). Indices 0, 1, 3 of 3 vertices: the
