@@ -51,6 +51,24 @@ nlohmann::json fileLight(const FileLight& l) {
   return light;
 }
 
+// The scene `meshFileAsScene` writes for the mesh file `path`, loaded. Its errors name what the
+// user gave, not the written scene's lines: the --environment image, the mesh file itself (whose
+// reader's message names it), or a light of the file by the JSON path it took (lights[i], the
+// file's i-th light).
+Scene loadMeshFileScene(const nlohmann::json& scene, const std::string& path,
+                        const std::string& dir, std::optional<int> frame,
+                        const std::string& environment) {
+  try {
+    return loadSceneText(scene.dump(), path, dir, frame);
+  } catch (const SceneError& e) {
+    const std::string environmentImage =
+        "lights[" + std::to_string(scene["lights"].size() - 1) + "].image";
+    if (!environment.empty() && e.path() == environmentImage)
+      throw SceneError({"--environment " + environment, 0}, "", e.problem());
+    throw SceneError({path, 0}, e.path() == "objects[0].file" ? "" : e.path(), e.problem());
+  }
+}
+
 // A mesh file given in place of a scene: the file with its own materials. A glTF file's own
 // lights (KHR_lights_punctual), or those of a Collada, FBX, ... file (io/scene_formats.h's
 // MeshScene kind), light it and its own camera (`cameraName`, else its first) sees it;
@@ -98,7 +116,7 @@ Scene meshFileAsScene(const std::string& path, std::optional<int> frame,
       {"camera", {{"eye", {0, 0, 0}}, {"look_at", {0, 0, -1}}, {"vfov", 40}}},
       {"lights", lights},
       {"objects", {{{"type", "mesh"}, {"file", file.filename().string()}}}}};
-  Scene s = loadSceneText(scene.dump(), path, file.parent_path().string(), frame);
+  Scene s = loadMeshFileScene(scene, path, file.parent_path().string(), frame, environment);
   if (!cameraName.empty() || !own.cameras.empty()) {
     const FileCamera* chosen = own.cameras.empty() ? nullptr : &own.cameras[0];
     if (!cameraName.empty()) {

@@ -72,5 +72,24 @@ TEST(EnvironmentCli, RefusedForASceneFileAndForAMissingImage) {
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
+TEST(EnvironmentCli, ErrorsOfAMeshFileSceneNameWhatTheUserGave) {
+  // The scene Glint writes for a mesh file has no lines the user knows: an image that cannot
+  // be read was reported as "wuson.obj:1: lights[1].image: ...", a mesh file as
+  // "m.gltf:1: objects[0].file: ...".
+  const std::string out = (test::tempDir() / "named_sky.exr").string();
+  const std::string bad = test::writeTemp("bad-sky.hdr", "#?RADIANCE\n");
+  const auto image = runGlint("render " + kMesh + " --environment " + bad + " -o " + out);
+  EXPECT_EQ(image.exitCode, 2);
+  EXPECT_NE(image.output.find("error: --environment " + bad + ": cannot read texture " + bad),
+            std::string::npos)
+      << image.output;
+  const std::string mesh = test::writeTemp("cut.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n");
+  const auto cut = runGlint("render " + mesh + " -o " + out);
+  EXPECT_EQ(cut.exitCode, 2);
+  EXPECT_NE(cut.output.find("error: " + mesh + ": "), std::string::npos) << cut.output;
+  EXPECT_EQ(cut.output.find("objects[0]"), std::string::npos) << cut.output;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 }  // namespace
 }  // namespace glint
