@@ -129,6 +129,9 @@ py::dict recordDict(const FrameRecord& r) {
   put("glint:commandline", r.commandLine);
   put("glint:colorspace", r.colorspace);
   put("glint:spp", r.spp);
+  put("glint:max_spp", r.maxSpp);
+  put("glint:time_limit_seconds", r.timeLimitSeconds);
+  put("glint:resume_sampling", r.resumeSampling);
   put("glint:max_depth", r.maxDepth);
   put("glint:partial", r.partial);
   put("glint:min_pixel_spp", r.minPixelSpp);

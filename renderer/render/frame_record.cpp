@@ -189,13 +189,14 @@ bool FrameRecord::operator==(const FrameRecord& o) const {
          passesEqual && resumeHash == o.resumeHash && resumeSampling == o.resumeSampling &&
          accel == o.accel && seed == o.seed && sameWindow(crop, o.crop) &&
          commandLine == o.commandLine && colorspace == o.colorspace && spp == o.spp &&
-         maxDepth == o.maxDepth && partial == o.partial && minPixelSpp == o.minPixelSpp &&
-         maxPixelSpp == o.maxPixelSpp && frame == o.frame && renderSeconds == o.renderSeconds &&
-         rays == o.rays && estimatedRmse == o.estimatedRmse &&
-         estimatedRelmse == o.estimatedRelmse && worldToCamera == o.worldToCamera &&
-         worldToNdc == o.worldToNdc && clampedValues == o.clampedValues &&
-         mergedCrops == o.mergedCrops && resumeChecksum == o.resumeChecksum &&
-         frameWidth == o.frameWidth && frameHeight == o.frameHeight && holdsState == o.holdsState;
+         maxSpp == o.maxSpp && timeLimitSeconds == o.timeLimitSeconds && maxDepth == o.maxDepth &&
+         partial == o.partial && minPixelSpp == o.minPixelSpp && maxPixelSpp == o.maxPixelSpp &&
+         frame == o.frame && renderSeconds == o.renderSeconds && rays == o.rays &&
+         estimatedRmse == o.estimatedRmse && estimatedRelmse == o.estimatedRelmse &&
+         worldToCamera == o.worldToCamera && worldToNdc == o.worldToNdc &&
+         clampedValues == o.clampedValues && mergedCrops == o.mergedCrops &&
+         resumeChecksum == o.resumeChecksum && frameWidth == o.frameWidth &&
+         frameHeight == o.frameHeight && holdsState == o.holdsState;
 }
 
 uint64_t settingsHash(const Scene& scene, int spp, const std::string& accel,
@@ -322,6 +323,8 @@ FrameRecord frameRecord(const Scene& scene, const FrameSettings& s, const PassPl
   r.partial = partial;
   r.minPixelSpp = st.minPixelSpp;
   r.maxPixelSpp = st.maxPixelSpp;
+  if (plan.adaptive() || plan.timeLimitSeconds > 0) r.maxSpp = plan.maxSpp;
+  if (plan.timeLimitSeconds > 0) r.timeLimitSeconds = static_cast<float>(plan.timeLimitSeconds);
   if (scene.animation) r.frame = scene.animation->frame;
   r.renderSeconds = static_cast<float>(st.seconds);
   r.rays = static_cast<float>(st.rays.total());
@@ -367,6 +370,8 @@ void writeFrameRecord(const FrameRecord& r, ExrMetadata& m) {
   text("glint:commandline", r.commandLine);
   text("glint:colorspace", r.colorspace);
   number("glint:spp", r.spp);
+  number("glint:max_spp", r.maxSpp);
+  amount("glint:time_limit_seconds", r.timeLimitSeconds);
   number("glint:max_depth", r.maxDepth);
   if (r.partial) number("glint:partial", *r.partial ? 1 : 0);
   number("glint:min_pixel_spp", r.minPixelSpp);
@@ -423,6 +428,8 @@ FrameRecord readFrameRecord(const std::string& path) {
   r.commandLine = read.text("glint:commandline");
   r.colorspace = read.text("glint:colorspace");
   r.spp = read.number("glint:spp", 1, kMostInt);
+  r.maxSpp = read.number("glint:max_spp", 1, kMostInt);
+  r.timeLimitSeconds = read.amount("glint:time_limit_seconds");
   r.maxDepth = read.number("glint:max_depth", 0, kMostInt);
   if (const std::optional<int> partial = read.number("glint:partial", 0, 1)) r.partial = *partial;
   r.minPixelSpp = read.number("glint:min_pixel_spp", 0, kMostInt);

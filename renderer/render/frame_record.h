@@ -63,7 +63,11 @@ struct FrameRecord {
   std::optional<PixelWindow> crop;                // glint:crop, "x0 x1 y0 y1"
   std::optional<std::string> commandLine;         // glint:commandline
   std::optional<std::string> colorspace;          // glint:colorspace, an OCIO name
-  std::optional<int> spp;                         // glint:spp
+  std::optional<int> spp;                         // glint:spp, the scene's (or --spp's)
+  // glint:max_spp and glint:time_limit_seconds: where an adaptive or time-limited render's
+  // pixels stop, unknown in advance; glint:spp is then only what the scene asked for.
+  std::optional<int> maxSpp;
+  std::optional<float> timeLimitSeconds;
   std::optional<int> maxDepth;                    // glint:max_depth
   std::optional<bool> partial;                    // glint:partial
   std::optional<int> minPixelSpp, maxPixelSpp;    // glint:min_pixel_spp, glint:max_pixel_spp

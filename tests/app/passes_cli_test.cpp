@@ -45,6 +45,34 @@ TEST(PassesCli, StatsAndMetadataCarryTheEstimateAndThePasses) {
   EXPECT_TRUE(nlohmann::json::parse(test::readFile(stats))["estimated_rmse"].is_null());
 }
 
+TEST(PassesCli, AnAdaptiveOrTimeLimitedFrameRecordsWhereItsPixelsMayStop) {
+  // glint:spp is the scene's 16; an adaptive frame's pixels go past it, to --max-spp, and its
+  // record said neither where they may stop nor what it aimed at.
+  const std::string out = tmp("bounds.exr");
+  ASSERT_EQ(test::runGlint("render " + soft("--target-rmse 0.001 --max-spp 64 -o " + out)).exitCode,
+            0);
+  {
+    auto in = OIIO::ImageInput::open(out);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_int_attribute("glint:spp"), 16);
+    EXPECT_EQ(in->spec().get_int_attribute("glint:max_spp"), 64);
+    EXPECT_EQ(in->spec().get_string_attribute("glint:resume_sampling"), "target-rmse 0.001");
+    EXPECT_EQ(in->spec().find_attribute("glint:time_limit_seconds"), nullptr);
+  }
+  ASSERT_EQ(test::runGlint("render " + soft("--time-limit 60 --max-spp 32 -o " + out)).exitCode, 0);
+  {
+    auto in = OIIO::ImageInput::open(out);
+    ASSERT_TRUE(in);
+    EXPECT_EQ(in->spec().get_int_attribute("glint:max_spp"), 32);
+    EXPECT_EQ(in->spec().get_float_attribute("glint:time_limit_seconds"), 60.0f);
+  }
+  // A plain frame's pixels all take glint:spp: nothing more to say.
+  ASSERT_EQ(test::runGlint("render " + soft("--spp 8 -o " + out)).exitCode, 0);
+  auto in = OIIO::ImageInput::open(out);
+  ASSERT_TRUE(in);
+  EXPECT_EQ(in->spec().find_attribute("glint:max_spp"), nullptr);
+}
+
 TEST(PassesCli, ResumeGivesTheStraightRendersPixelsAndRefusesAnotherFrame) {
   const std::string part = tmp("resume-part.exr"), straight = tmp("resume-straight.exr");
   ASSERT_EQ(test::runGlint("render " + soft("--resumable --spp 8 -o " + part)).exitCode, 0);

@@ -94,6 +94,8 @@ struct Fixture {
     r.commandLine = settings.commandLine;
     r.colorspace = "lin_rec709";
     r.spp = 8;
+    r.maxSpp = 64;
+    r.timeLimitSeconds = 2.5f;
     r.maxDepth = 5;
     r.partial = true;
     r.minPixelSpp = 4;
@@ -191,6 +193,8 @@ TEST(FrameRecord, EveryFieldReadsBackAsWritten) {
   EXPECT_EQ(r.commandLine, "glint render a.json --crop 1 3 0 2");
   EXPECT_EQ(r.colorspace, "lin_rec709");
   EXPECT_EQ(r.spp, 8);
+  EXPECT_EQ(r.maxSpp, 64);
+  EXPECT_EQ(r.timeLimitSeconds, 2.5f);
   EXPECT_EQ(r.maxDepth, 5);
   EXPECT_EQ(r.partial, true);
   EXPECT_EQ(r.minPixelSpp, 4);
