@@ -433,6 +433,16 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
                            std::to_string(m->mFaces[f].mIndices[c]) + ", but there are only " +
                            std::to_string(m->mNumVertices));
   }
+  // An STL facet's normal only restates its vertices' winding, and exporters write 0 0 0, or
+  // NaN for a facet of no area, as often as the normal: STL is flat by definition, so its
+  // triangles are shaded from their vertices and the file's normals are not read (a NaN one
+  // refused the whole file; a zero one shaded its facet black).
+  if (ext == ".stl")
+    for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
+      aiMesh* m = s->mMeshes[mi];
+      delete[] m->mNormals;
+      m->mNormals = nullptr;
+    }
   // Check for NaN and Inf before Assimp joins vertices: its vertex welding compares positions
   // (and normals) and would silently merge or drop non-finite ones.
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi)

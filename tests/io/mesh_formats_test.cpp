@@ -122,6 +122,22 @@ TEST(MeshFormats, AsciiStl) {
             std::string::npos);
 }
 
+TEST(MeshFormats, AnStlIsShadedFromItsVerticesNotItsFacetNormals) {
+  // A facet of no area whose exporter wrote its normal as NaN (as some do): the file was refused
+  // whole ("the normal of vertex 3 of mesh 0 is not finite"). STL is flat by definition and its
+  // normals restate the winding: they are not read, and the part is shaded flat.
+  const std::string stl =
+      "solid s\n"
+      "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 1 1 0\nendloop\n"
+      "endfacet\n"
+      "facet normal nan nan nan\nouter loop\nvertex 0 0 0\nvertex 0 0 0\nvertex 1 1 0\n"
+      "endloop\nendfacet\nendsolid s\n";
+  const MeshFile f = loadMeshFile(test::writeTemp("nan-normal.stl", stl));
+  ASSERT_EQ(f.parts.size(), 1u);
+  EXPECT_TRUE(f.parts[0].normals.empty());
+  EXPECT_NEAR(bounds(f).hi.x, 1, 1e-6);
+}
+
 TEST(MeshFormats, Ac3d) {
   // One triangle (SURF 0x10: a polygon) with its red material.
   const std::string ac =
