@@ -13,6 +13,7 @@
 #include <assimp/Importer.hpp>
 #include <cmath>
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -62,30 +63,60 @@ class BoundedFiles : public Assimp::DefaultIOSystem {
 
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     const bool isMesh = ComparePaths(file, meshPath_.c_str());
-    if (isMesh && meshBytes_)
-      return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(meshBytes_->data()),
-                                        meshBytes_->size());
+    if (isMesh && meshBytes_) return inMemory(*meshBytes_);
     std::error_code ec;
     if (!isMesh && !std::filesystem::exists(file, ec))
-      return nullptr;  // Assimp asks for files that may not be there (an OBJ's default .mtl)
+      return severalLibraries(file);  // or a file that may not be there (an OBJ's default .mtl)
+    if (!isMesh && !checked(file)) return nullptr;
+    return DefaultIOSystem::Open(file, mode);
+  }
+
+ private:
+  static Assimp::IOStream* inMemory(const std::string& bytes) {
+    return new Assimp::MemoryIOStream(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
+  }
+
+  // Whether a file the mesh names may be read: within what the mesh's files may hold together.
+  bool checked(const std::string& file) {
     try {
-      if (!isMesh)
-        referencedBytes_ +=
-            checkInputFile(file, kMaxMeshFileBytes - std::min(referencedBytes_, kMaxMeshFileBytes),
-                           "mesh " + meshPath_ + "'s file");
+      referencedBytes_ +=
+          checkInputFile(file, kMaxMeshFileBytes - std::min(referencedBytes_, kMaxMeshFileBytes),
+                         "mesh " + meshPath_ + "'s file");
+      return true;
     } catch (const GlintError& e) {
       // Assimp fails the import for a buffer it cannot open but goes on without a material
       // library: said either way.
       if (refusal_ != e.what()) log::warning(e.what());  // Assimp may ask more than once
       refusal_ = e.what();
-      return nullptr;
+      return false;
     }
-    return DefaultIOSystem::Open(file, mode);
   }
 
- private:
+  // An OBJ's `mtllib a.mtl b.mtl`, which Assimp opens as the one name "dir/a.mtl b.mtl": the
+  // libraries it names (objMaterialLibraries) read one after the other, as one. Null where it
+  // names fewer than two files that are there.
+  Assimp::IOStream* severalLibraries(const std::string& file) {
+    const std::filesystem::path dir = std::filesystem::path(meshPath_).parent_path();
+    const std::string prefix = dir.empty() ? "" : dir.string() + "/";
+    if (file.rfind(prefix, 0) != 0) return nullptr;
+    const std::vector<std::string> libraries =
+        objMaterialLibraries(dir, file.substr(prefix.size()));
+    if (libraries.size() < 2) return nullptr;
+    std::string& bytes = joinedLibraries_.emplace_back();
+    for (const std::string& library : libraries) {
+      const std::string path = (dir / library).string();
+      std::error_code ec;
+      if (!std::filesystem::is_regular_file(path, ec) || !checked(path)) continue;
+      std::ifstream in(path, std::ios::binary);
+      bytes.append(std::istreambuf_iterator<char>(in), {});
+      bytes += '\n';
+    }
+    return bytes.empty() ? nullptr : inMemory(bytes);
+  }
+
   std::string meshPath_;
   std::optional<std::string> meshBytes_;
+  std::deque<std::string> joinedLibraries_;  // what severalLibraries' streams read
   uint64_t referencedBytes_ = 0;
   std::string refusal_;
 };

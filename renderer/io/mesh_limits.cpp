@@ -9,6 +9,7 @@
 #include <fstream>
 #include <limits>
 #include <set>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -201,6 +202,11 @@ void collectObjNames(const std::string& mesh, const std::filesystem::path& file,
                          keyword + "\" lines with distinct names); Glint reads at most " +
                          std::to_string(kMaxObjMaterials) + " from one OBJ file");
     } else if (libraries && line.compare(at, 7, "mtllib ") == 0) {
+      // Assimp opens and parses the library again for each line.
+      if (libraries->size() == kMaxObjMaterials)
+        throw GlintError("mesh " + mesh + ":" + std::to_string(lineNumber) + ": more than " +
+                         std::to_string(kMaxObjMaterials) + " mtllib lines; Glint reads at most " +
+                         std::to_string(kMaxObjMaterials) + " from one OBJ file");
       libraries->push_back(rest(7));
     } else if (!libraries) {
       ignoredMapOptions.note(lineNumber, std::string_view(line).substr(at));
@@ -247,21 +253,46 @@ void checkStlEnds(const std::string& path, uint64_t size) {
                      "short?); Assimp would read the facets before the cut without a word");
 }
 
+std::vector<std::string> objMaterialLibraries(const std::filesystem::path& dir,
+                                              const std::string& value) {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(dir / value, ec)) return {value};
+  std::vector<std::string> words;
+  std::istringstream in(value);
+  // One past the most checkObjFile takes, so that it can tell.
+  for (std::string word; words.size() <= kMaxObjMaterials && in >> word;) words.push_back(word);
+  return words.empty() ? std::vector<std::string>{value} : words;
+}
+
 void checkObjFile(const std::string& path) {
   std::set<std::string> used, defined;
   std::vector<std::string> libraries;
   collectObjNames(path, path, "usemtl", used, &libraries);
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  for (const std::string& library : libraries) {
+  // Each library once, however often it is named (a file of a million `mtllib a.mtl` lines
+  // read a.mtl a million times), and the missing ones named up to a few.
+  std::set<std::string> named;
+  for (const std::string& line : libraries)
+    for (std::string& library : objMaterialLibraries(dir, line))
+      if (named.insert(library).second && named.size() > kMaxObjMaterials)
+        throw GlintError("mesh " + path + " names more than " + std::to_string(kMaxObjMaterials) +
+                         " material libraries; Glint reads at most " +
+                         std::to_string(kMaxObjMaterials) + " from one OBJ file");
+  constexpr size_t kMissingNamed = 8;
+  size_t missing = 0;
+  for (const std::string& library : named) {
     std::error_code ec;
     const std::filesystem::path file = dir / library;
     // Assimp opens only regular files a mesh names (io/mesh_io.cpp); so does this count.
     if (std::filesystem::is_regular_file(file, ec))
       collectObjNames(path, file, "newmtl", defined, nullptr);
-    else
+    else if (++missing <= kMissingNamed)
       log::warning("mesh " + path + ": its material library " + inQuotes(library) +
                    " is not a file beside it; its materials are left out");
   }
+  if (missing > kMissingNamed)
+    log::warning("mesh " + path + ": " + std::to_string(missing - kMissingNamed) +
+                 " more material libraries it names are not files beside it");
   // Assimp gives a face of an undefined material its default grey without a word.
   for (const std::string& name : used)
     if (!defined.count(name))

@@ -7,7 +7,9 @@
 // the file (docs/scene-format.md, docs/hardening.md). PLY files are read by Glint's own reader
 // (io/ply_reader.h), which keeps these checks; Collada files pass io/collada_limits.h's.
 #include <cstdint>
+#include <filesystem>
 #include <string>
+#include <vector>
 
 namespace glint {
 
@@ -40,6 +42,13 @@ void checkMeshFileBeforeImport(const std::string& path);
 // material names, and naming the line where a vertex, texture coordinate or normal holds a
 // number that is not a finite float (Assimp read a texture coordinate's nan and 1e39 as 0).
 void checkObjFile(const std::string& path);
+
+// The material libraries an OBJ `mtllib` line's `value` names, relative to the OBJ file's
+// folder `dir`: the value itself where it names a file there (a name may hold spaces), else each
+// of its words, as the OBJ format lists several libraries on one line (at most
+// kMaxObjMaterials + 1 of them).
+std::vector<std::string> objMaterialLibraries(const std::filesystem::path& dir,
+                                              const std::string& value);
 
 // Throws GlintError naming `path` (`size` bytes) when it is an ASCII STL file (it starts with
 // "solid" and its size is not that of the binary file its header describes) whose last line is

@@ -85,6 +85,27 @@ TEST(MeshMaterials, AnObjKeepsOnePartAndOneMaterialPerUsemtlGroup) {
   EXPECT_TRUE(water.surface.kd.isBlack());          // glass has no diffuse colour
 }
 
+TEST(MeshMaterials, AnMtllibLineNamingSeveralLibrariesReadsEachOfThem) {
+  // The OBJ format lets one mtllib line list several libraries; Assimp opened "a.mtl b.mtl" as
+  // one file name and every face took its default grey. A library whose own name holds a space
+  // is still read by that name.
+  test::writeTemp("first.mtl", "newmtl red\nKd 1 0 0\n");
+  test::writeTemp("second.mtl", "newmtl blue\nKd 0 0 1\n");
+  test::writeTemp("third lib.mtl", "newmtl green\nKd 0 1 0\n");
+  const std::string obj = test::writeTemp(
+      "libraries.obj",
+      "mtllib first.mtl second.mtl\nmtllib third lib.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\n"
+      "usemtl red\nf 1 2 3\nusemtl blue\nf 1 3 2\nusemtl green\nf 2 1 3\n");
+  testing::internal::CaptureStderr();
+  const MeshFile f = loadMeshFile(obj);
+  const std::string warnings = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(warnings, "");
+  EXPECT_FLOAT_EQ(uniform(named(f, "libraries.obj:red").surface.kd).r, 1.0f);
+  EXPECT_FLOAT_EQ(uniform(named(f, "libraries.obj:blue").surface.kd).b, 1.0f);
+  EXPECT_FLOAT_EQ(uniform(named(f, "libraries.obj:blue").surface.kd).r, 0.0f);
+  EXPECT_FLOAT_EQ(uniform(named(f, "libraries.obj:green").surface.kd).g, 1.0f);
+}
+
 TEST(MeshMaterials, ARealObjWithUsemtlKeepsItsMaterials) {
   // assimp-testmodels' cube_usemtl.obj: 12 triangles in groups of mtl (Ns 200, Ks 0.05),
   // mtl2 (Ns 16, Ks 0.375) and mtl3, which its MTL does not define.
