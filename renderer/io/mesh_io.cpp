@@ -27,10 +27,12 @@
 #include "core/input_files.h"
 #include "core/log.h"
 #include "core/out_of_memory.h"
+#include "io/ac3d_shading.h"
 #include "io/assimp_scene_info.h"
 #include "io/expansion_limits.h"
 #include "io/gltf_indices.h"
 #include "io/gltf_subset.h"
+#include "io/json_source.h"
 #include "io/mesh_limits.h"
 #include "io/mesh_materials.h"
 #include "io/object_names.h"
@@ -412,6 +414,46 @@ const aiScene* processOrThrow(Assimp::Importer& importer, unsigned steps, const 
   return s;
 }
 
+// An AC3D file whose surfaces are shaded smooth, given vertex normals (creaseNormals): Assimp's
+// reader leaves none, and such a model rendered faceted. An edge sharper than the file's crease
+// stays sharp.
+void smoothAc3dSurfaces(const aiScene& scene, const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const Ac3dShading shading = readAc3dShading(in);
+  if (shading.smoothSurfaces == 0) return;
+  if (shading.flatSurfaces > 0)
+    log::warning("mesh " + path + ": " + std::to_string(shading.flatSurfaces) + " of its " +
+                 std::to_string(shading.flatSurfaces + shading.smoothSurfaces) +
+                 " surfaces are flat-shaded; Glint shades every surface of the file smooth "
+                 "(edges sharper than its crease angle stay sharp)");
+  if (shading.creasesDiffer)
+    log::warning("mesh " + path + ": its objects give different crease angles; Glint smooths " +
+                 "them all at the largest, " + formatNumber(shading.creaseDegrees) + " degrees");
+  size_t crowded = 0;
+  for (unsigned mi = 0; mi < scene.mNumMeshes; ++mi) {
+    aiMesh& m = *scene.mMeshes[mi];
+    if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || m.mNormals) continue;
+    std::vector<Vec3f> positions(m.mNumVertices);
+    for (unsigned v = 0; v < m.mNumVertices; ++v)
+      positions[v] = {m.mVertices[v].x, m.mVertices[v].y, m.mVertices[v].z};
+    std::vector<uint32_t> triangles;
+    for (unsigned f = 0; f < m.mNumFaces; ++f)
+      if (m.mFaces[f].mNumIndices == 3)
+        triangles.insert(triangles.end(), m.mFaces[f].mIndices, m.mFaces[f].mIndices + 3);
+    size_t crowdedHere = 0;
+    const std::vector<Vec3f> normals =
+        creaseNormals(positions, triangles, shading.creaseDegrees, crowdedHere);
+    crowded += crowdedHere;
+    m.mNormals = new aiVector3D[m.mNumVertices];
+    for (unsigned v = 0; v < m.mNumVertices; ++v)
+      m.mNormals[v] = aiVector3D(normals[v].x, normals[v].y, normals[v].z);
+  }
+  if (crowded > 0)
+    log::warning("mesh " + path + ": at " + std::to_string(crowded) + " vertices more than " +
+                 std::to_string(kMaxCornersCompared) +
+                 " faces meet; they keep their faces' own normals there");
+}
+
 MeshFile readMeshFile(const std::string& path, bool readTextures) {
   checkInputFile(path, kMaxMeshFileBytes, "mesh");
   checkMeshFileBeforeImport(path);
@@ -500,6 +542,7 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
     }
   s = processOrThrow(
       importer, aiProcess_Triangulate | aiProcess_RemoveComponent | aiProcess_SortByPType, path);
+  if (ext == ".ac") smoothAc3dSurfaces(*s, path);
   checkFlattenedTriangles(path, *s);
   checkNodePlacements(path, *s);
   const FaceNames faceNames(*s);

@@ -7,8 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "collada_util.h"
 #include "core/error.h"
@@ -152,6 +156,61 @@ TEST(MeshFormats, Ac3d) {
   EXPECT_NEAR(f.materials[0].surface.kd.constant.r, 1, 1e-6);
   EXPECT_NEAR(f.materials[0].surface.kd.constant.g, 0, 1e-6);
   EXPECT_NE(test::meshLoadError("half.ac", ac.substr(0, ac.size() / 2)), "(loaded)");
+}
+
+// Two quads meeting along the y axis at a ridge: each leans 10° from +z (their normals 20°
+// apart), shaded smooth (SURF 0x10) unless `flags` says otherwise, in an object of `crease`.
+std::string ac3dRidge(const char* flags, const std::string& crease) {
+  const double s = std::sin(10 * M_PI / 180), c = std::cos(10 * M_PI / 180);
+  const auto v = [](double x, double y, double z) {
+    return std::to_string(x) + " " + std::to_string(y) + " " + std::to_string(z) + "\n";
+  };
+  std::string ac =
+      "AC3Db\nMATERIAL \"m\" rgb 1 1 1  amb 0 0 0  emis 0 0 0  spec 0 0 0  shi 1  "
+      "trans 0\nOBJECT world\nkids 1\nOBJECT poly\n" +
+      crease + "numvert 6\n" + v(-c, 0, -s) + v(0, 0, 0) + v(0, 1, 0) + v(-c, 1, -s) + v(c, 0, -s) +
+      v(c, 1, -s) + "numsurf 2\n";
+  for (const char* refs : {"0 1 2 3", "1 4 5 2"}) {
+    ac += std::string("SURF ") + flags + "\nmat 0\nrefs 4\n";
+    std::istringstream corners(refs);
+    for (int corner; corners >> corner;) ac += std::to_string(corner) + " 0 0\n";
+  }
+  return ac + "kids 0\n";
+}
+
+// The normals of `f`'s vertices on the ridge (x = 0).
+std::vector<Vec3f> ridgeNormals(const MeshFile& f) {
+  std::vector<Vec3f> out;
+  for (const TriangleMesh& part : f.parts)
+    for (size_t i = 0; i < part.normals.size(); ++i)
+      if (std::abs(part.positions[i].x) < 1e-6f) out.push_back(part.normals[i]);
+  return out;
+}
+
+TEST(MeshFormats, Ac3dSmoothSurfacesAreSmoothedWithinTheirCreaseAngle) {
+  // Assimp's reader gives AC3D files no normals: a model of smooth surfaces rendered faceted.
+  // The quads' normals are 20° apart: within a 45° crease their shared vertices take the
+  // average, +z (to float rounding); past a 15° crease they keep each face's, 10° either side.
+  const MeshFile smooth =
+      loadMeshFile(test::writeTemp("ridge45.ac", ac3dRidge("0x10", "crease 45\n")));
+  std::vector<Vec3f> n = ridgeNormals(smooth);
+  ASSERT_FALSE(n.empty());
+  for (const Vec3f& v : n) EXPECT_NEAR(v.z, 1, 1e-5) << v.x << " " << v.y << " " << v.z;
+  const MeshFile creased =
+      loadMeshFile(test::writeTemp("ridge15.ac", ac3dRidge("0x10", "crease 15\n")));
+  n = ridgeNormals(creased);
+  ASSERT_FALSE(n.empty());
+  for (const Vec3f& v : n) {
+    EXPECT_NEAR(std::abs(v.x), std::sin(10 * M_PI / 180), 1e-5);
+    EXPECT_NEAR(v.z, std::cos(10 * M_PI / 180), 1e-5);
+  }
+  // No crease line: 45°, smoothed. Flat surfaces (SURF 0x00, Wuson.ac's) stay flat: no normals.
+  n = ridgeNormals(loadMeshFile(test::writeTemp("ridge.ac", ac3dRidge("0x10", ""))));
+  ASSERT_FALSE(n.empty());
+  EXPECT_NEAR(n[0].z, 1, 1e-5);
+  const MeshFile flat = loadMeshFile(test::writeTemp("flat.ac", ac3dRidge("0x00", "crease 45\n")));
+  ASSERT_EQ(flat.parts.size(), 1u);
+  EXPECT_TRUE(flat.parts[0].normals.empty());
 }
 
 TEST(MeshFormats, X3d) {

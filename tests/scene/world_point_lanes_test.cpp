@@ -212,7 +212,9 @@ TEST(WorldPointInLanes, TrianglesOfAnySizeGetAUnitNormal) {
     WorldPointPaths::oneAtATime(scene, ray, hit, general);
     EXPECT_TRUE(sameBits(general.ng, Vec3f{0, 0, 1}))
         << size << ": " << general.ng.x << " " << general.ng.y << " " << general.ng.z;
-    if (inLanes) EXPECT_TRUE(sameBits(lanes.ng, general.ng));
+    if (inLanes) {
+      EXPECT_TRUE(sameBits(lanes.ng, general.ng));
+    }
   }
   // normalizeAnyScale itself: normalize's bits in float's range, a unit vector beyond it, and
   // what normalize gives for zero and non-finite vectors.
