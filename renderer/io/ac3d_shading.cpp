@@ -48,7 +48,8 @@ Ac3dShading readAc3dShading(std::istream& in) {
       std::string flags;
       words >> flags;
       const unsigned long value = std::strtoul(flags.c_str(), nullptr, 0);
-      if ((value & 0xF) != 0) continue;  // a line, not a polygon
+      const unsigned long type = value & 0xF;
+      if (type == 1 || type == 2) continue;  // a closed or open line: no surface
       if (value & 0x10) {
         ++out.smoothSurfaces;
         object.smooth = true;

@@ -18,7 +18,8 @@ namespace glint {
 inline constexpr double kDefaultAc3dCreaseDegrees = 45;
 
 struct Ac3dShading {
-  int smoothSurfaces = 0, flatSurfaces = 0;  // polygons (SURF type 0) shaded each way
+  // Surfaces (polygons and triangle strips, not lines: SURF types 1 and 2) shaded each way.
+  int smoothSurfaces = 0, flatSurfaces = 0;
   // The largest crease of the objects with smooth surfaces, and whether they differ.
   double creaseDegrees = 0;
   bool creasesDiffer = false;

@@ -343,6 +343,8 @@ json parseGltfDocument(const std::string& path, const std::string& text) {
       throw UsageError("mesh " + path + ": its \"" + key +
                        "\" is an object keyed by name, as in glTF 1.0, which is not supported; "
                        "Glint reads glTF 2.0");
+  // Before Assimp or Glint's own reader (cameras and lights) places a node once per path to it.
+  checkGltfExpansion(path, doc);
   return doc;
 }
 
@@ -362,8 +364,6 @@ std::string gltfSubset(const std::string& path, const std::string& text,
         checkPathCharacters(item["uri"].get<std::string>(),
                             "mesh " + path + ": " + key + "[" + std::to_string(i) + "].uri");
       }
-  // Before Assimp or Glint's own reader places a node once per path to it.
-  checkGltfExpansion(path, doc);
   checkStrides(path, doc);
   dropTextureCoordinatesNotFloat(path, doc);
   keepOnly(doc,

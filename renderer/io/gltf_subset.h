@@ -47,7 +47,8 @@ std::optional<size_t> gltfMaterialIndex(const std::string& name);
 // The glTF JSON `text` of `path`, parsed. Throws UsageError naming `path` when it is not a
 // JSON object (nlohmann's strict reader: invalid UTF-8 is refused, which Assimp's lenient
 // reader would take whole), nests more than 64 levels (Assimp's reader recurses once per
-// level) or declares a glTF version other than 2. It warns of nothing.
+// level), declares a glTF version other than 2 or places nodes too many times
+// (checkGltfExpansion). It warns of nothing.
 nlohmann::json parseGltfDocument(const std::string& path, const std::string& text);
 
 // The glTF JSON `text` of `path` reduced as above, after parseGltfDocument's checks; what it

@@ -94,16 +94,17 @@ class BoundedFiles : public Assimp::DefaultIOSystem {
     }
   }
 
-  // An OBJ's `mtllib a.mtl b.mtl`, which Assimp opens as the one name "dir/a.mtl b.mtl": the
+  // An OBJ's `mtllib a.mtl b.mtl`, which Assimp opens as the one name "dir/a.mtl b.mtl" (and
+  // `mtllib /abs/a.mtl` as "dir//abs/a.mtl", `mtllib a.mtl ` with its trailing space): the
   // libraries it names (objMaterialLibraries) read one after the other, as one. Null where it
-  // names fewer than two files that are there.
+  // names no file that is there, and for any other format's files.
   Assimp::IOStream* severalLibraries(const std::string& file) {
+    if (lowerExtension(meshPath_) != ".obj") return nullptr;
     const std::filesystem::path dir = std::filesystem::path(meshPath_).parent_path();
     const std::string prefix = dir.empty() ? "" : dir.string() + "/";
     if (file.rfind(prefix, 0) != 0) return nullptr;
     const std::vector<std::string> libraries =
         objMaterialLibraries(dir, file.substr(prefix.size()));
-    if (libraries.size() < 2) return nullptr;
     std::string& bytes = joinedLibraries_.emplace_back();
     for (const std::string& library : libraries) {
       const std::string path = (dir / library).string();
@@ -174,9 +175,13 @@ TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
         if (!t || t->mHeight != 0 || !t->pcData)
           throw GlintError("Glint reads embedded image files only, not raw texels");
         // Readers are chosen by the name's extension: the format Assimp names, where the name
-        // does not end in it.
-        const std::string hint = t->achFormatHint[0] ? t->achFormatHint : "png";
-        const bool ends = lowerExtension(named) == "." + lowerCase(hint);
+        // does not end in it. Assimp names none for an extension of four letters (.tiff): the
+        // name's own then, and PNG for a name without one.
+        const std::string ext = lowerExtension(named);
+        const std::string hint = t->achFormatHint[0] ? lowerCase(t->achFormatHint)
+                                 : ext.size() > 1    ? ext.substr(1)
+                                                     : "png";
+        const bool ends = ext == "." + hint;
         slot = openImageTextureInMemory(
             meshPath + "#" + named + (ends ? "" : "." + hint),
             std::string(reinterpret_cast<const char*>(t->pcData), t->mWidth));

@@ -174,7 +174,11 @@ void collectObjNames(const std::string& mesh, const std::filesystem::path& file,
   ObjFaceReferences references;
   IgnoredMapOptions ignoredMapOptions;  // of a material library
   std::ifstream in(file, std::ios::binary);
-  const std::string key = std::string(keyword) + " ";
+  // A keyword and the blank after it (Assimp takes a tab as a space).
+  const auto startsWith = [](const std::string& line, size_t at, std::string_view word) {
+    return line.compare(at, word.size(), word) == 0 && at + word.size() < line.size() &&
+           (line[at + word.size()] == ' ' || line[at + word.size()] == '\t');
+  };
   int lineNumber = 0;
   for (std::string line; std::getline(in, line);) {
     ++lineNumber;
@@ -193,15 +197,15 @@ void collectObjNames(const std::string& mesh, const std::filesystem::path& file,
         value.pop_back();
       return value.substr(std::min(value.size(), value.find_first_not_of(" \t")));
     };
-    if (line.compare(at, key.size(), key) == 0) {
-      names.insert(rest(key.size()));
+    if (startsWith(line, at, keyword)) {
+      names.insert(rest(std::string_view(keyword).size() + 1));
       if (names.size() > kMaxObjMaterials)
         throw GlintError("mesh " + mesh +
                          (file == mesh ? "" : ": its material library " + file.string()) +
                          " names more than " + std::to_string(kMaxObjMaterials) + " materials (\"" +
                          keyword + "\" lines with distinct names); Glint reads at most " +
                          std::to_string(kMaxObjMaterials) + " from one OBJ file");
-    } else if (libraries && line.compare(at, 7, "mtllib ") == 0) {
+    } else if (libraries && startsWith(line, at, "mtllib")) {
       // Assimp opens and parses the library again for each line.
       if (libraries->size() == kMaxObjMaterials)
         throw GlintError("mesh " + mesh + ":" + std::to_string(lineNumber) + ": more than " +
@@ -258,9 +262,11 @@ std::vector<std::string> objMaterialLibraries(const std::filesystem::path& dir,
   std::error_code ec;
   if (std::filesystem::is_regular_file(dir / value, ec)) return {value};
   std::vector<std::string> words;
+  std::set<std::string> seen;  // a library named twice on a line is read once
   std::istringstream in(value);
   // One past the most checkObjFile takes, so that it can tell.
-  for (std::string word; words.size() <= kMaxObjMaterials && in >> word;) words.push_back(word);
+  for (std::string word; words.size() <= kMaxObjMaterials && in >> word;)
+    if (seen.insert(word).second) words.push_back(word);
   return words.empty() ? std::vector<std::string>{value} : words;
 }
 
@@ -271,13 +277,17 @@ void checkObjFile(const std::string& path) {
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
   // Each library once, however often it is named (a file of a million `mtllib a.mtl` lines
   // read a.mtl a million times), and the missing ones named up to a few.
+  // Assimp reads a line's libraries anew for each line: the times they are named are bounded.
   std::set<std::string> named;
+  size_t references = 0;
   for (const std::string& line : libraries)
-    for (std::string& library : objMaterialLibraries(dir, line))
-      if (named.insert(library).second && named.size() > kMaxObjMaterials)
-        throw GlintError("mesh " + path + " names more than " + std::to_string(kMaxObjMaterials) +
-                         " material libraries; Glint reads at most " +
+    for (std::string& library : objMaterialLibraries(dir, line)) {
+      named.insert(library);
+      if (++references > kMaxObjMaterials)
+        throw GlintError("mesh " + path + " names material libraries more than " +
+                         std::to_string(kMaxObjMaterials) + " times; Glint reads at most " +
                          std::to_string(kMaxObjMaterials) + " from one OBJ file");
+    }
   constexpr size_t kMissingNamed = 8;
   size_t missing = 0;
   for (const std::string& library : named) {

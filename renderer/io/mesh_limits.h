@@ -39,13 +39,14 @@ void checkMeshFileBeforeImport(const std::string& path);
 
 // The OBJ check alone: throws GlintError naming `path` (or the material library) when the file
 // and the libraries its `mtllib` lines name use or define more than kMaxObjMaterials distinct
-// material names, and naming the line where a vertex, texture coordinate or normal holds a
-// number that is not a finite float (Assimp read a texture coordinate's nan and 1e39 as 0).
+// material names, or its `mtllib` lines name libraries more than kMaxObjMaterials times, and naming
+// the line where a vertex, texture coordinate or normal holds a number that is not a finite float
+// (Assimp read a texture coordinate's nan and 1e39 as 0).
 void checkObjFile(const std::string& path);
 
 // The material libraries an OBJ `mtllib` line's `value` names, relative to the OBJ file's
 // folder `dir`: the value itself where it names a file there (a name may hold spaces), else each
-// of its words, as the OBJ format lists several libraries on one line (at most
+// of its distinct words, as the OBJ format lists several libraries on one line (at most
 // kMaxObjMaterials + 1 of them).
 std::vector<std::string> objMaterialLibraries(const std::filesystem::path& dir,
                                               const std::string& value);

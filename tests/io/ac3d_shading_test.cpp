@@ -30,6 +30,14 @@ TEST(Ac3dShading, CountsPolygonsByShadingAndTakesTheLargestCreaseOfSmoothObjects
   EXPECT_FALSE(s.creasesDiffer);
 }
 
+TEST(Ac3dShading, ATriangleStripIsASurfaceAndLinesAreNot) {
+  // SURF types: 0 polygon, 1 closed line, 2 line, 4 triangle strip (which Assimp reads).
+  const Ac3dShading s =
+      shadingOf("AC3Db\nOBJECT poly\nSURF 0x14\nSURF 0x12\nSURF 0x11\nSURF 0x04\nkids 0\n");
+  EXPECT_EQ(s.smoothSurfaces, 1);
+  EXPECT_EQ(s.flatSurfaces, 1);
+}
+
 TEST(Ac3dShading, SmoothObjectsOfDifferentCreasesAreNamedAndTheLargestTaken) {
   // The second object gives no crease line: the default, 45, beside the first's 20.
   const Ac3dShading s = shadingOf(
@@ -69,7 +77,7 @@ Fan fanOf(int n) {
 
 TEST(Ac3dShading, CreaseNormalsOfAFlatFanAreItsNormalAndACrowdedPointKeepsItsFaces) {
   // 256 triangles meet at the centre: compared pairwise, each centre corner sums 256 equal
-  // normals, +z. Past kMaxCornersCompared (257) the centre keeps each face's own normal, also
+  // normals, +z. Past kMaxCornersCompared (256) the centre keeps each face's own normal, also
   // +z here, and is counted, so the work stays bounded (a million would take 10^12 steps).
   for (const int n : {256, 257}) {
     const Fan f = fanOf(n);

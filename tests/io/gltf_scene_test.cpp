@@ -164,6 +164,23 @@ TEST(GltfScene, ACyclicNodeTreeIsRefused) {
   }
 }
 
+TEST(GltfScene, ANodeTreeThatExpandsPastTheLimitIsRefusedBeforeItsCamerasAreRead) {
+  // 41 nodes, each listing the next twice: 2^41 paths, which the camera and light reader walked
+  // one by one (it hung) once it no longer ran the subset's checks. It is refused as the mesh
+  // reader refuses it.
+  std::string nodes = R"({"mesh": 0, "children": [1, 1]})";
+  for (int i = 1; i < 41; ++i)
+    nodes += ", {\"children\": [" + std::to_string(i + 1) + ", " + std::to_string(i + 1) + "]}";
+  nodes += ", {}";
+  const std::string file = test::writeTemp("quad_dag.gltf", quadScene(nodes));
+  try {
+    readGltfSceneInfo(file);
+    FAIL() << "no error";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("node copies"), std::string::npos) << e.what();
+  }
+}
+
 // glTF's orthographic projection maps [−xmag, xmag] × [−ymag, ymag] onto the image (glTF 2.0,
 // "Projection Matrices"): xmag 1.5, ymag 1 showed ±1.33 across, the 4:3 default's width at
 // ymag's height.

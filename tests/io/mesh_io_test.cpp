@@ -751,24 +751,60 @@ TEST(MeshFile, AnObjNamingMoreThan4096MaterialsIsRefusedBeforeAssimpReadsIt) {
             std::string::npos);
 }
 
-TEST(MeshFile, AnObjNamingMoreThan4096MaterialLibrariesIsRefusedBeforeAssimpReadsIt) {
-  // Assimp opens and parses a library once for each mtllib line: two million lines naming one
-  // small library took 17 s. 4096 lines load; a 4097th is refused at its line. One line's
-  // words are libraries too (the OBJ format lists several on a line), bounded alike.
+TEST(MeshFile, AnObjNamingMaterialLibrariesMoreThan4096TimesIsRefusedBeforeAssimpReadsIt) {
+  // Assimp opens and parses a line's libraries for each mtllib line: two million lines naming
+  // one small library took 17 s. 4096 lines load; a 4097th is refused at its line, after a tab
+  // as after a space (Assimp reads both). A line's words are libraries too (the OBJ format lists
+  // several on a line), each read once however often the line repeats it, and the times the
+  // lines name libraries are bounded alike.
   test::writeTemp("one.mtl", "newmtl m\nKd 1 0 0\n");
   const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n";
-  std::string lines;
-  for (int i = 0; i < 4096; ++i) lines += "mtllib one.mtl\n";
-  EXPECT_EQ(test::meshLoadError("lines4096.obj", lines + triangle), "(loaded)");
-  const std::string refused =
-      test::meshLoadError("lines4097.obj", lines + "mtllib one.mtl\n" + triangle);
-  EXPECT_NE(refused.find("lines4097.obj:4097: more than 4096 mtllib lines"), std::string::npos)
-      << refused;
-  std::string words = "mtllib";
-  for (int i = 0; i < 4097; ++i) words += " lib" + std::to_string(i) + ".mtl";
-  const std::string many = test::meshLoadError("words.obj", words + "\n" + triangle);
-  EXPECT_NE(many.find("words.obj names more than 4096 material libraries"), std::string::npos)
+  for (const char* blank : {" ", "\t"}) {
+    std::string lines;
+    for (int i = 0; i < 4096; ++i) lines += std::string("mtllib") + blank + "one.mtl\n";
+    EXPECT_EQ(test::meshLoadError("lines4096.obj", lines + triangle), "(loaded)");
+    const std::string refused =
+        test::meshLoadError("lines4097.obj", lines + "mtllib" + blank + "one.mtl\n" + triangle);
+    EXPECT_NE(refused.find("lines4097.obj:4097: more than 4096 mtllib lines"), std::string::npos)
+        << refused;
+  }
+  std::string repeated;
+  for (int line = 0; line < 40; ++line) {
+    repeated += "mtllib";
+    for (int i = 0; i < 4097; ++i) repeated += " one.mtl";
+    repeated += "\n";
+  }
+  EXPECT_EQ(test::meshLoadError("repeated.obj", repeated + triangle), "(loaded)");
+  std::string words;
+  for (int line = 0; line < 2; ++line) {
+    words += "mtllib";
+    for (int i = 0; i < 2049; ++i) words += " lib" + std::to_string(i) + ".mtl";
+    words += "\n";
+  }
+  const std::string many = test::meshLoadError("words.obj", words + triangle);
+  EXPECT_NE(many.find("words.obj names material libraries more than 4096 times"), std::string::npos)
       << many;
+}
+
+TEST(MeshFile, OnlyAnObjsMaterialLibraryNameIsReadAsSeveralFiles) {
+  // A glTF buffer named "p.bin n.bin" beside p.bin and n.bin is missing, not the two joined;
+  // an OBJ's one library named with a trailing space, or by an absolute path (Assimp opens
+  // "dir/a.mtl " and "dir//abs/a.mtl"), is read.
+  test::writeTemp("p.bin", std::string(36, '\0'));
+  test::writeTemp("n.bin", std::string(36, '\0'));
+  std::string gltf = triangleWithIndices("AAAA");
+  const std::string uri = "data:application/octet-stream;base64,AAAA";
+  gltf.replace(gltf.find(uri), uri.size(), "p.bin n.bin");
+  EXPECT_NE(test::meshLoadError("joined.gltf", gltf), "(loaded)");
+  const std::string red = test::writeTemp("red.mtl", "newmtl red\nKd 1 0 0\n");
+  for (const std::string& line : {std::string("mtllib red.mtl \n"), "mtllib " + red + "\n"}) {
+    const MeshFile f = loadMeshFile(
+        test::writeTemp("one-library.obj", line + "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl red\n"
+                                                  "f 1 2 3\n"));
+    ASSERT_EQ(f.materials.size(), 1u) << line;
+    EXPECT_EQ(f.materials[0].surface.kd.constant.r, 1.0f) << line;
+    EXPECT_EQ(f.materials[0].surface.kd.constant.g, 0.0f) << line;
+  }
 }
 
 }  // namespace
