@@ -164,8 +164,7 @@ TextureOpener textureOpener(const std::string& meshPath, const aiScene& scene) {
     if (named.empty()) {
       // Assimp's name for a glTF image whose data URI holds no bytes: no file to look for.
       log::warning("mesh " + meshPath +
-                   ": texture left out: a material names an image without "
-                   "a name or bytes");
+                   ": texture left out: a material names an image without a name or bytes");
       return slot;
     }
     const aiTexture* t = scene.GetEmbeddedTexture(named.c_str());
