@@ -4,6 +4,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <string_view>
 
 #include "core/error.h"
 
@@ -71,15 +72,20 @@ FrameRange parseFrameRange(const std::string& text, const std::string& what) {
 namespace {
 
 // Where the frame number goes in the file name (not the directories): the last run of '#', or
-// else the last printf-style "%d" / "%0Nd"; npos when there is neither.
+// else the last printf-style "%d" / "%0Nd", read as printf reads them: "%%" is a literal '%'
+// (so "%%d" is not a field), and a '%' that starts no conversion stays as written. npos when
+// there is neither.
 struct FrameField {
   size_t begin = std::string::npos, end = 0, width = 0;
+  size_t nameBegin = 0;
+  bool printf = false;  // the name's "%%" then stand for '%'
 };
 
 FrameField frameField(const std::string& pattern) {
   const size_t slash = pattern.find_last_of('/');
   const size_t nameBegin = slash == std::string::npos ? 0 : slash + 1;
   FrameField f;
+  f.nameBegin = nameBegin;
   const size_t hash = pattern.find_last_of('#');
   if (hash != std::string::npos && hash >= nameBegin) {
     f.end = hash + 1;
@@ -88,15 +94,32 @@ FrameField frameField(const std::string& pattern) {
     f.width = f.end - f.begin;
     return f;
   }
-  for (size_t at = pattern.rfind('%'); at != std::string::npos && at >= nameBegin;
-       at = at == 0 ? std::string::npos : pattern.rfind('%', at - 1)) {
+  for (size_t at = nameBegin; at < pattern.size(); ++at) {
+    if (pattern[at] != '%') continue;
+    if (at + 1 < pattern.size() && pattern[at + 1] == '%') {
+      ++at;
+      continue;
+    }
     size_t i = at + 1, width = 0;
     if (i < pattern.size() && pattern[i] == '0') ++i;
     for (; i < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[i])); ++i)
       width = std::min<size_t>(width * 10 + size_t(pattern[i] - '0'), 32);
-    if (i < pattern.size() && pattern[i] == 'd') return {at, i + 1, width};
+    if (i < pattern.size() && pattern[i] == 'd') {
+      f = {at, i + 1, width, nameBegin, true};
+      at = i;
+    }
   }
   return f;
+}
+
+// `text` with each "%%" written as '%'.
+std::string percentsUnescaped(std::string_view text) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    out += text[i];
+    if (text[i] == '%' && i + 1 < text.size() && text[i + 1] == '%') ++i;
+  }
+  return out;
 }
 
 }  // namespace
@@ -110,7 +133,11 @@ std::string frameFileName(const std::string& pattern, int frame) {
   if (f.begin == std::string::npos) return pattern;
   std::string digits = std::to_string(frame);
   if (digits.size() < f.width) digits.insert(0, f.width - digits.size(), '0');
-  return pattern.substr(0, f.begin) + digits + pattern.substr(f.end);
+  if (!f.printf) return pattern.substr(0, f.begin) + digits + pattern.substr(f.end);
+  const std::string_view all(pattern);
+  return pattern.substr(0, f.nameBegin) +
+         percentsUnescaped(all.substr(f.nameBegin, f.begin - f.nameBegin)) + digits +
+         percentsUnescaped(all.substr(f.end));
 }
 
 }  // namespace glint

@@ -28,7 +28,7 @@ FrameRange parseFrameRange(const std::string& text, const std::string& what);
 // The path with its last run of '#' in the file name replaced by the frame number, zero-padded
 // to the run's length (longer numbers are written in full): "out/a.####.exr", 7 →
 // "out/a.0007.exr"; without '#', the last printf-style "%04d" or "%d" likewise (Nuke's and
-// ffmpeg's way). A path with neither is returned unchanged.
+// ffmpeg's way), the name's "%%" then written as '%'. A path with neither is returned unchanged.
 std::string frameFileName(const std::string& pattern, int frame);
 bool hasFrameDigits(const std::string& pattern);
 

@@ -104,6 +104,13 @@ TEST(FarmPlan, FrameNamesReplaceTheLastRunOfHashes) {
   EXPECT_EQ(frameFileName("a.%04d.####.exr", 3), "a.%04d.0003.exr");
   EXPECT_EQ(frameFileName("dir%04d/shot.exr", 3), "dir%04d/shot.exr");  // not in the file name
   EXPECT_FALSE(hasFrameDigits("100%.exr"));
+  // As printf reads them: "%%" is a literal '%', in a printf-style name only.
+  EXPECT_EQ(frameFileName("100%%.%04d.exr", 7), "100%.0007.exr");
+  EXPECT_EQ(frameFileName("a.%04d.%%%%.exr", 7), "a.0007.%%.exr");
+  EXPECT_EQ(frameFileName("a.%%d.%d.exr", 7), "a.%d.7.exr");
+  EXPECT_FALSE(hasFrameDigits("a.%%d.exr"));  // "%%d" is "%d" written out, not a field
+  EXPECT_EQ(frameFileName("100%%.####.exr", 7), "100%%.0007.exr");  // '#' names are literal
+  EXPECT_EQ(frameFileName("50%%/a.%d.exr", 7), "50%%/a.7.exr");     // directories too
   // Only the file name counts: a '#' in a directory is not a frame number.
   EXPECT_EQ(frameFileName("take#2/shot.exr", 3), "take#2/shot.exr");
   EXPECT_FALSE(hasFrameDigits("take#2/shot.exr"));
