@@ -15,6 +15,7 @@
 #include "film/display.h"
 #include "film/exr_output.h"
 #include "film/image_format.h"
+#include "integrator/aov.h"
 #include "render/tile_scheduler.h"
 
 namespace glint::python {
@@ -103,7 +104,10 @@ Frame::Frame(const std::string& path) {
     const std::string layer = layerOf(channels_[k]);
     size_t end = k + 1;
     while (end < channels_.size() && layerOf(channels_[end]) == layer) ++end;
-    layers_.push_back({layer, int(k), int(end - k)});
+    // Named as the render names it where its channels are an AOV's (Z: depth, N: normal).
+    const AovPlane* aov = aovPlaneWithChannels(
+        {channels_.begin() + ptrdiff_t(k), channels_.begin() + ptrdiff_t(end)});
+    layers_.push_back({aov ? aov->name : layer, int(k), int(end - k)});
     k = end;
   }
 }
@@ -210,8 +214,8 @@ void bindFrame(py::module_& m) {
                 d[py::str(l.name)] = view(f, self, l.first, l.count, false);
             return d;
           },
-          "{name: H x W x C float32}: a render's AOVs by their names (depth, normal, ...); a "
-          "read frame's layers by their EXR names (Z, N, Albedo, ...)")
+          "{name: H x W x C float32}: the AOVs by their names (depth, normal, ...), in a frame "
+          "read from a file too; its other layers by their EXR names")
       .def(
           "channel",
           [](py::object self, const std::string& name) {

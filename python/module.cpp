@@ -109,7 +109,7 @@ PYBIND11_MODULE(_glint, m) {
         return std::make_shared<Frame>(pathOf(path));  // reads the file without the GIL
       },
       py::arg("path"),
-      "An EXR frame: every channel as NumPy views (.rgba, .aovs by layer, .channel(name)) and "
+      "An EXR frame: every channel as NumPy views (.rgba, .aovs by AOV name, .channel(name)) and "
       "its record (.record: the glint:* attributes)");
   m.def(
       "compare",

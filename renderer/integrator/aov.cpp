@@ -1,7 +1,9 @@
 #include "integrator/aov.h"
 
+#include <algorithm>
 #include <sstream>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace glint {
@@ -36,6 +38,44 @@ AovSet AovSet::parse(const std::string& list) {
     }
   }
   return set;
+}
+
+namespace {
+
+const std::vector<AovPlane>& fixedPlanes() {
+  const auto rgb = [](const std::string& layer) {
+    return std::vector<std::string>{layer + ".R", layer + ".G", layer + ".B"};
+  };
+  static const std::vector<AovPlane> planes = {
+      {Aov::Depth, "depth", {"Z"}},
+      {Aov::Normal, "normal", {"N.X", "N.Y", "N.Z"}},
+      {Aov::Albedo, "albedo", rgb("Albedo")},
+      {Aov::Position, "position", {"P.X", "P.Y", "P.Z"}},
+      // Blender's name for its object index pass (pass IndexOB, channel X), which its EXR
+      // reader and compositor take as a float pass; a channel it cannot name it drops, and a
+      // part left with none stops its reading of the parts after it.
+      {Aov::ObjectId, "objectid", {"IndexOB.X"}},
+      {Aov::Direct, "direct", rgb("direct")},
+      {Aov::Indirect, "indirect", rgb("indirect")},
+      {Aov::Variance, "variance", rgb("Variance")},
+  };
+  return planes;
+}
+
+}  // namespace
+
+const AovPlane& aovPlane(Aov aov) {
+  const std::vector<AovPlane>& planes = fixedPlanes();
+  const auto it =
+      std::find_if(planes.begin(), planes.end(), [&](const AovPlane& p) { return p.aov == aov; });
+  GLINT_CHECK(it != planes.end());
+  return *it;
+}
+
+const AovPlane* aovPlaneWithChannels(const std::vector<std::string>& channels) {
+  for (const AovPlane& p : fixedPlanes())
+    if (p.channels == channels) return &p;
+  return nullptr;
 }
 
 }  // namespace glint

@@ -43,6 +43,19 @@ class AovSet {
   uint32_t bits_ = 0;
 };
 
+// The plane an AOV of fixed channels is written as: the AOV's name and its EXR channels, named
+// as Blender, tev and pbrt-v4 name them where they have a name (docs/output.md). Per-light and
+// Cryptomatte planes are named after the scene instead.
+struct AovPlane {
+  Aov aov;
+  std::string name;
+  std::vector<std::string> channels;
+};
+const AovPlane& aovPlane(Aov aov);  // for every AOV but Lights and Cryptomatte
+// The AOV whose plane has exactly these channels, or null: how a frame read back names its
+// layers as the render did.
+const AovPlane* aovPlaneWithChannels(const std::vector<std::string>& channels);
+
 struct AovSample {
   Vec3f viewAxis;  // in: the camera's unit view direction (depth is measured along it)
   bool hit = false;

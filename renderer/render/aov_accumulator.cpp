@@ -74,19 +74,18 @@ AovLayout AovLayout::create(const AovSet& set, const Scene& scene, Film& film) {
   AovLayout l;
   l.set = set;
   l.lights = lightCount;
-  // Channel names as Blender, tev and pbrt-v4 write them where they have one (docs/output.md):
-  // Z, N, P, Albedo, Variance.
+  const auto add = [&](Aov aov) {
+    const AovPlane& p = aovPlane(aov);
+    return film.addPlane(p.name, p.channels);
+  };
   const auto rgb = [](const std::string& layer) {
     return std::vector<std::string>{layer + ".R", layer + ".G", layer + ".B"};
   };
-  if (set.has(Aov::Depth)) l.depth = film.addPlane("depth", {"Z"});
-  if (set.has(Aov::Normal)) l.normal = film.addPlane("normal", {"N.X", "N.Y", "N.Z"});
-  if (set.has(Aov::Albedo)) l.albedo = film.addPlane("albedo", rgb("Albedo"));
-  if (set.has(Aov::Position)) l.position = film.addPlane("position", {"P.X", "P.Y", "P.Z"});
+  if (set.has(Aov::Depth)) l.depth = add(Aov::Depth);
+  if (set.has(Aov::Normal)) l.normal = add(Aov::Normal);
+  if (set.has(Aov::Albedo)) l.albedo = add(Aov::Albedo);
+  if (set.has(Aov::Position)) l.position = add(Aov::Position);
   if (set.has(Aov::ObjectId)) {
-    // Blender's name for its object index pass (pass IndexOB, channel X), which its EXR reader
-    // and compositor take as a float pass; a channel it cannot name it drops, and a part left
-    // with none stops its reading of the parts after it.
     std::vector<bool> inWorld;
     const std::vector<std::string> names = objectNamesOf(scene, inWorld);
     const uint64_t ids = names.size();
@@ -94,11 +93,11 @@ AovLayout AovLayout::create(const AovSet& set, const Scene& scene, Film& film) {
       throw UsageError("--aov objectid: the scene has " + std::to_string(ids) +
                        " object ids; the float channel holds ids up to " +
                        std::to_string(kMaxObjectIdAov) + " exactly (use --aov cryptomatte)");
-    l.objectId = film.addPlane("objectid", {"IndexOB.X"});
+    l.objectId = add(Aov::ObjectId);
     film.addAttribute("glint:objectid_manifest", objectIdManifest(names, inWorld));
   }
-  if (set.has(Aov::Direct)) l.direct = film.addPlane("direct", rgb("direct"));
-  if (set.has(Aov::Indirect)) l.indirect = film.addPlane("indirect", rgb("indirect"));
+  if (set.has(Aov::Direct)) l.direct = add(Aov::Direct);
+  if (set.has(Aov::Indirect)) l.indirect = add(Aov::Indirect);
   if (set.has(Aov::Lights)) {
     if (lightCount > size_t(AovSet::kMaxLights))
       throw UsageError("--aov lights: the scene has " + std::to_string(lightCount) +
@@ -115,7 +114,7 @@ AovLayout AovLayout::create(const AovSet& set, const Scene& scene, Film& film) {
     film.addAttribute("glint:light_layers",
                       names.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
   }
-  if (set.has(Aov::Variance)) l.variance = film.addPlane("variance", rgb("Variance"));
+  if (set.has(Aov::Variance)) l.variance = add(Aov::Variance);
   if (set.has(Aov::Cryptomatte)) {
     std::vector<bool> inWorld;
     const std::vector<std::string> objects = objectNamesOf(scene, inWorld);

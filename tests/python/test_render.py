@@ -47,8 +47,10 @@ def test_aov_arrays_equal_the_exr_layers(rendered):
         assert np.array_equal(frame.aovs["normal"][..., k], command.channel("N." + axis))
     for k, c in enumerate("RGB"):
         assert np.array_equal(frame.aovs["albedo"][..., k], command.channel("Albedo." + c))
-    # The read frame's layers by their EXR names hold the same arrays.
-    assert np.array_equal(command.aovs["N"], frame.aovs["normal"])
+    # The frame read back names its AOVs as the render does, and holds the same arrays.
+    assert set(command.aovs) == set(AOVS)
+    for name in AOVS:
+        assert np.array_equal(command.aovs[name], frame.aovs[name])
     # Where every sample hit a surface (a miss's depth is 1e10), each pixel's normal is a mean of
     # unit normals: at most 1, and 1 inside a surface (the floor's is exactly (0, 1, 0)).
     hit = frame.aovs["depth"][..., 0] < 1e3
@@ -116,9 +118,20 @@ def test_multipart_frame_reads_as_the_single_part_one(rendered, binary):
                    ",".join(AOVS), "--multipart")
     multipart = glint.read_frame(tmp_path / "multipart.exr")
     assert sorted(multipart.channels) == sorted(command.channels)
-    assert set(multipart.aovs) == set(command.aovs) == {"Z", "N", "Albedo"}
+    assert set(multipart.aovs) == set(command.aovs) == {"depth", "normal", "albedo"}
     for name in command.channels:
         assert np.array_equal(multipart.channel(name), command.channel(name)), name
+
+
+def test_read_frame_names_only_glints_own_planes_as_aovs(tmp_path):
+    # A layer is named as a render names its AOV only where its channels are exactly those of
+    # the AOV's plane: another tool's two-channel N stays N, and its own layers keep their names.
+    path = tmp_path / "other.exr"
+    subprocess.run(["oiiotool", "--pattern", "constant:color=0.5,0.25,1,2,3,4,5", "4x2", "7",
+                    "--chnames", "R,G,B,A,N.X,N.Y,Z", "-d", "float", "-o", str(path)], check=True)
+    frame = glint.read_frame(path)
+    assert set(frame.aovs) == {"N", "depth"}
+    assert frame.aovs["N"].shape == (2, 4, 2) and np.all(frame.aovs["depth"] == 5)
 
 
 def test_crop_and_sampler_as_the_command(tmp_path, scene_dict, binary):
