@@ -20,6 +20,7 @@
 #include "film/display_tag.h"
 #include "film/image_file.h"
 #include "film/image_format.h"
+#include "film/ocio_cycles.h"
 #include "film/ocio_files.h"
 
 namespace OCIO = OCIO_NAMESPACE;
@@ -29,7 +30,8 @@ namespace glint {
 namespace {
 
 // `path`: a config file; empty: $OCIO, else the bundled config; "-": the bundled config.
-// Every file the config reads is checked before any processor reads it (film/ocio_files.h).
+// Every file the config reads is checked before any processor reads it (film/ocio_files.h),
+// and its references for loops (film/ocio_cycles.h).
 OCIO::ConstConfigRcPtr loadConfig(const std::string& path, std::string& source) {
   try {
     if (!path.empty() && path != "-") {
@@ -37,6 +39,7 @@ OCIO::ConstConfigRcPtr loadConfig(const std::string& path, std::string& source) 
       source = path;
       const auto config = OCIO::Config::CreateFromFile(path.c_str());
       checkOcioConfigFiles(config, source);
+      checkOcioReferenceCycles(config, source);
       return config;
     }
     if (const char* env = std::getenv("OCIO"); env && *env && path.empty()) {
@@ -44,6 +47,7 @@ OCIO::ConstConfigRcPtr loadConfig(const std::string& path, std::string& source) 
       source = std::string("$OCIO = ") + env;
       const auto config = OCIO::Config::CreateFromFile(env);
       checkOcioConfigFiles(config, source);
+      checkOcioReferenceCycles(config, source);
       return config;
     }
     source = "bundled (ocio/config.ocio)";

@@ -244,21 +244,26 @@ TEST(Ocio, OiiotoolDevelopsTheSameDisplayImageAsConvert) {
   }
 }
 
-// The bundled config in `dir` with a look "grade" whose FileTransform reads `lut` (resolved
-// through the config's search path, the config's own folder).
-std::string configWithLook(const std::filesystem::path& dir, const std::string& lut) {
+// The bundled config in `dir` (as look.ocio) with `looks` (YAML) appended, its search path the
+// config's own folder.
+std::string bundledConfigWith(const std::filesystem::path& dir, const std::string& looks) {
   std::string text = [] {
     std::ifstream f(std::string(GLINT_SOURCE_DIR) + "/ocio/config.ocio");
     return std::string(std::istreambuf_iterator<char>(f), {});
   }();
   text.replace(text.find("search_path: \"\""), 15, "search_path: \".\"");
-  text +=
-      "\nlooks:\n  - !<Look>\n    name: grade\n    process_space: lin_rec709\n"
-      "    transform: !<FileTransform> {src: " +
-      lut + ", interpolation: linear}\n";
   const std::filesystem::path config = dir / "look.ocio";
-  std::ofstream(config) << text;
+  std::ofstream(config) << text << "\nlooks:\n" << looks;
   return config.string();
+}
+
+// The bundled config in `dir` with a look "grade" whose FileTransform reads `lut` (resolved
+// through the config's search path).
+std::string configWithLook(const std::filesystem::path& dir, const std::string& lut) {
+  return bundledConfigWith(dir,
+                           "  - !<Look>\n    name: grade\n    process_space: lin_rec709\n"
+                           "    transform: !<FileTransform> {src: " +
+                               lut + ", interpolation: linear}\n");
 }
 
 std::string displayRefusal(const DisplaySettings& s) {
@@ -307,6 +312,50 @@ TEST(Ocio, EveryFileAConfigReadsIsCheckedBeforeOcioOpensIt) {
   EXPECT_EQ(displayRefusal(s),
             "OCIO config " + s.configPath + " is a FIFO; it must be a regular file");
   ::alarm(0);
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Ocio, ALoopOfReferencesIsRefusedBeforeOcioFollowsIt) {
+  // OCIO's processor builder follows a look that applies itself, or a colour space converted
+  // through itself, until the stack overflows (a segfault). Each loop is refused, named.
+  const std::filesystem::path dir = test::tempDir() / "ocio-loops";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto look = [](const std::string& name, const std::string& applies) {
+    return "  - !<Look>\n    name: " + name +
+           "\n    process_space: lin_rec709\n    transform: !<LookTransform> {src: lin_rec709, "
+           "dst: lin_rec709, looks: " +
+           applies + "}\n";
+  };
+  DisplaySettings s;
+  s.view = "Raw";
+  s.look = "a";
+  // A look applying another is no loop: accepted, and the identity through Raw.
+  s.configPath = bundledConfigWith(dir, look("a", "+b") + look("b", "-c") + look("c", "\"\""));
+  EXPECT_EQ(displayRefusal(s), "(accepted)");
+  s.configPath = bundledConfigWith(dir, look("a", "a"));
+  EXPECT_EQ(displayRefusal(s), "OCIO (" + s.configPath +
+                                   "): look \"a\" → look \"a\": these refer to each other in a "
+                                   "loop, which OCIO would follow until its stack overflows");
+  // Round three looks, and the whole config: a display that uses none of them is refused too.
+  s.look = "";
+  s.configPath = bundledConfigWith(dir, look("a", "b") + look("b", "+c, a") + look("c", "a"));
+  EXPECT_NE(displayRefusal(s).find("look \"a\" → look \"b\" → "), std::string::npos)
+      << displayRefusal(s);
+  // A colour space converted through itself, by its alias.
+  std::string text = [] {
+    std::ifstream f(std::string(GLINT_SOURCE_DIR) + "/ocio/config.ocio");
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  }();
+  text.replace(text.find("\ncolorspaces:\n") + 14, 0,
+               "  - !<ColorSpace>\n    name: selfref\n    aliases: [me]\n"
+               "    to_scene_reference: !<ColorSpaceTransform> {src: me, dst: lin_rec709}\n");
+  s.configPath = (dir / "space.ocio").string();
+  std::ofstream(s.configPath) << text;
+  EXPECT_NE(displayRefusal(s).find("colour space \"selfref\" → colour space \"selfref\": these "
+                                   "refer to each other in a loop"),
+            std::string::npos)
+      << displayRefusal(s);
   std::filesystem::remove_all(dir);
 }
 
