@@ -8,6 +8,7 @@
 #include <cstring>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <type_traits>
 #include <vector>
 
@@ -42,6 +43,38 @@ struct OpenedImage {
   std::unique_ptr<OIIO::ImageInput> in;
 };
 
+// Why a texture's first channels, which Glint reads as its colour (or data) and alpha, are not
+// those of a texture; empty where they are. Names mean something only where the file can
+// name them freely (OpenEXR): there three or more channels must begin with R, G, B (A) or
+// X, Y, Z, under one layer's prefix or none. A frame's depth or a chroma image (Y, RY, BY)
+// was read as colour.
+std::string unreadChannels(const OIIO::ImageInput& in) {
+  const OIIO::ImageSpec& spec = in.spec();
+  if (std::string_view(in.format_name()) != "openexr" || spec.nchannels < 3 ||
+      spec.channelnames.size() < 3)
+    return "";
+  const auto suffix = [&](int c, std::string& prefix) {
+    const std::string& name = spec.channelnames[size_t(c)];
+    const size_t dot = name.rfind('.');
+    prefix = dot == std::string::npos ? "" : name.substr(0, dot + 1);
+    return dot == std::string::npos ? name : name.substr(dot + 1);
+  };
+  std::string prefix[3], names[3];
+  for (int c = 0; c < 3; ++c) names[c] = suffix(c, prefix[c]);
+  const bool oneLayer = prefix[0] == prefix[1] && prefix[1] == prefix[2];
+  const auto are = [&](const char* a, const char* b, const char* c) {
+    return names[0] == a && names[1] == b && names[2] == c;
+  };
+  if (oneLayer && (are("R", "G", "B") || are("X", "Y", "Z") || are("r", "g", "b"))) return "";
+  std::string list;
+  for (size_t c = 0; c < spec.channelnames.size() && c < 8; ++c)
+    list += (c ? ", " : "") + spec.channelnames[c];
+  if (spec.channelnames.size() > 8) list += ", ...";
+  return "its channels are " + list +
+         "; Glint reads a texture's first three channels as R, G, B (or X, Y, Z), and these are "
+         "not (pick a layer out with oiiotool --ch R,G,B)";
+}
+
 // Opens `name` (through `proxy` when it is held in memory) and fills `info` from its header;
 // null with OpenImageIO's message.
 void* openImage(const char* name, std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy,
@@ -70,6 +103,14 @@ void* openImage(const char* name, std::unique_ptr<OIIO::Filesystem::IOMemReader>
   std::snprintf(info->colorspace, sizeof info->colorspace, "%s",
                 spec.get_string_attribute("oiio:ColorSpace").c_str());
   info->tileHeight = spec.tile_width > 0 ? std::max(spec.tile_height, 1) : 0;
+  if (spec.deep) {
+    std::snprintf(error, errorSize, "it holds deep data, which Glint does not read");
+    return nullptr;
+  }
+  if (const std::string why = unreadChannels(*image->in); !why.empty()) {
+    std::snprintf(error, errorSize, "%s", why.c_str());
+    return nullptr;
+  }
   if (spec.tile_width > 0 && spec.tile_depth > 1) {
     std::snprintf(error, errorSize, "a volume texture (tiles %d deep) is not supported",
                   spec.tile_depth);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <OpenImageIO/deepdata.h>
 #include <OpenImageIO/imageio.h>
 
 #include <bit>
@@ -68,6 +69,56 @@ TEST(TextureFile, TiledAndScanlineFilesGiveTheSameTexels) {
   ASSERT_EQ(image.height, height);
   EXPECT_EQ(image.texels[size_t(5 * width + 7)].r, 507.0f);
   EXPECT_EQ(image.texels[size_t(5 * width + 7)].g, 507.25f);
+}
+
+// Why openImageTexture refused `path` ("(accepted)" if it did not).
+std::string textureRefusal(const std::string& path) {
+  try {
+    openImageTexture(path);
+  } catch (const GlintError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+TEST(TextureFile, AnExrsFirstChannelsMustBeAColourOrAVector) {
+  // A frame's AOV layers (Z, then foo.R ...) had Z read as red, and a chroma image (Y, RY, BY)
+  // rendered grey. Three or more channels must begin with R, G, B or X, Y, Z of one layer.
+  const auto refusal = [](const std::string& name, std::vector<std::string> channels) {
+    const std::string path = (test::tempDir() / (name + ".exr")).string();
+    OIIO::ImageSpec spec(2, 2, int(channels.size()), OIIO::TypeDesc::FLOAT);
+    spec.channelnames = std::move(channels);
+    const std::vector<float> texels(size_t(4 * spec.nchannels), 0.5f);
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+    EXPECT_TRUE(out && out->open(path, spec) &&
+                out->write_image(OIIO::TypeDesc::FLOAT, texels.data()) && out->close());
+    return textureRefusal(path);
+  };
+  EXPECT_EQ(refusal("rgba", {"R", "G", "B", "A"}), "(accepted)");
+  EXPECT_EQ(refusal("layer", {"diffuse.R", "diffuse.G", "diffuse.B"}), "(accepted)");
+  EXPECT_EQ(refusal("normal", {"N.X", "N.Y", "N.Z"}), "(accepted)");
+  const std::string aov = refusal("aov", {"Z", "foo.R", "foo.G", "foo.B"});
+  EXPECT_NE(aov.find("aov.exr: its channels are Z, foo.R, foo.G, foo.B; Glint reads a "
+                     "texture's first three channels as R, G, B (or X, Y, Z)"),
+            std::string::npos)
+      << aov;
+  EXPECT_NE(refusal("chroma", {"Y", "RY", "BY"}).find("its channels are Y, BY, RY;"),
+            std::string::npos);
+  EXPECT_NE(refusal("mixed", {"a.R", "b.G", "a.B"}).find("its channels are"), std::string::npos);
+}
+
+TEST(TextureFile, ADeepImageIsRefusedByName) {
+  // OpenImageIO opened it, then failed its first read: "called read_native_scanlines without
+  // an open file".
+  const std::string path = (test::tempDir() / "deep.exr").string();
+  OIIO::ImageSpec spec(2, 2, 4, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = {"R", "G", "B", "A"};
+  spec.deep = true;
+  OIIO::DeepData deep(spec);
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+  ASSERT_TRUE(out && out->open(path, spec) && out->write_deep_image(deep) && out->close());
+  EXPECT_EQ(textureRefusal(path),
+            "cannot read texture " + path + ": it holds deep data, which Glint does not read");
 }
 
 TEST(TextureFile, AGreyAlphaImageGivesItsGreyToColourAndItsAlphaToCoverage) {
