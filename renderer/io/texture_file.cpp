@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <new>
 #include <stdexcept>
 #include <string_view>
@@ -15,6 +16,7 @@
 #include "film/image_limits.h"
 #include "film/oiio_module.h"
 #include "io/own_texture_readers.h"
+#include "io/psd_sections.h"
 #include "materials/mip_pyramid.h"
 
 namespace glint {
@@ -185,9 +187,24 @@ std::shared_ptr<const ImageTexture> loadedTexture(const std::string& path, void*
       std::move(toRendering));
 }
 
+// Refuses a Photoshop file whose sections run past its end before OpenImageIO allocates them
+// (io/psd_sections.h).
+void checkPsdSections(const std::string& name, const ReadAt& read, uint64_t size) {
+  if (const std::string why = psdSectionsPastTheEnd(read, size); !why.empty())
+    throw GlintError("cannot read texture " + name + ": " + why);
+}
+
 std::shared_ptr<const ImageTexture> openTextureFile(const std::string& path,
                                                     const std::string& colorspace) {
-  checkInputFile(path, kMaxTextureFileBytes, "texture");
+  const uint64_t size = checkInputFile(path, kMaxTextureFileBytes, "texture");
+  std::ifstream file(path, std::ios::binary);
+  checkPsdSections(
+      path,
+      [&](uint64_t offset, char* out, size_t bytes) {
+        return bool(file.seekg(std::streamoff(offset))) &&
+               bool(file.read(out, std::streamsize(bytes)));
+      },
+      size);
   GlintOiioTextureInfo info{};
   char error[512] = "";
   // Glint's own readers first (each declines what is not its format): a scene whose textures
@@ -204,6 +221,14 @@ std::shared_ptr<const ImageTexture> openTextureFile(const std::string& path,
 
 std::shared_ptr<const ImageTexture> openTextureBytes(const std::string& name,
                                                      const std::string& bytes) {
+  checkPsdSections(
+      name,
+      [&](uint64_t offset, char* out, size_t count) {
+        if (offset > bytes.size() || count > bytes.size() - offset) return false;
+        bytes.copy(out, count, size_t(offset));
+        return true;
+      },
+      bytes.size());
   GlintOiioTextureInfo info{};
   char error[512] = "";
   for (const OwnTextureReader* reader : kOwnTextureReaders) {

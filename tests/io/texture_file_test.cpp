@@ -9,6 +9,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <fstream>
 #include <memory>
 #include <random>
 #include <string>
@@ -119,6 +120,42 @@ TEST(TextureFile, ADeepImageIsRefusedByName) {
   ASSERT_TRUE(out && out->open(path, spec) && out->write_deep_image(deep) && out->close());
   EXPECT_EQ(textureRefusal(path),
             "cannot read texture " + path + ": it holds deep data, which Glint does not read");
+}
+
+// A 2 × 2 RGB Photoshop file of 8-bit raw texels (red 10, 20, 30, 40; green 50 ...; blue 90
+// ...), its colour mode data section claiming `colourModeBytes` (holding none).
+std::string photoshopFile(uint32_t colourModeBytes) {
+  std::string f = "8BPS";
+  const auto be = [&](uint64_t v, int bytes) {
+    for (int i = bytes - 1; i >= 0; --i) f += char((v >> (8 * i)) & 0xff);
+  };
+  be(1, 2);                   // version 1: PSD
+  f += std::string(6, '\0');  // reserved
+  be(3, 2);                   // channels
+  be(2, 4), be(2, 4);         // height, width
+  be(8, 2), be(3, 2);         // depth, colour mode RGB
+  be(colourModeBytes, 4);     // colour mode data
+  be(0, 4), be(0, 4);         // image resources, layer and mask information
+  be(0, 2);                   // image data, raw: each channel's plane in turn
+  for (int v = 10; v <= 120; v += 10) f += char(v);
+  return f;
+}
+
+TEST(TextureFile, APhotoshopFileWhoseSectionsRunPastItsEndIsRefusedBeforeItIsRead) {
+  // OpenImageIO's PSD reader allocates what a section's length claims: 66 bytes claiming
+  // 4 GiB of colour mode data took 4.3 GB and 13 s before they failed.
+  const std::string good = (test::tempDir() / "good.psd").string();
+  std::ofstream(good, std::ios::binary) << photoshopFile(0);
+  const auto t = openImageTexture(good);
+  const Rgb texel = texelAt(*t, 2, 2, 1, 0);  // the second texel of each plane
+  EXPECT_NEAR(texel.r, 20 / 255.0f, 1e-6);
+  EXPECT_NEAR(texel.g, 60 / 255.0f, 1e-6);
+  EXPECT_NEAR(texel.b, 100 / 255.0f, 1e-6);
+  const std::string bad = (test::tempDir() / "bad.psd").string();
+  std::ofstream(bad, std::ios::binary) << photoshopFile(0xffffffff);
+  EXPECT_EQ(textureRefusal(bad), "cannot read texture " + bad +
+                                     ": its colour mode data claims 4294967295 bytes, but 22 "
+                                     "remain (a cut or damaged Photoshop file)");
 }
 
 TEST(TextureFile, AGreyAlphaImageGivesItsGreyToColourAndItsAlphaToCoverage) {
