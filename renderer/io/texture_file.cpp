@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/input_files.h"
+#include "core/log.h"
 #include "core/memory.h"
 #include "core/out_of_memory.h"
 #include "film/display.h"
@@ -31,15 +32,18 @@ int keptChannels(int fileChannels) { return fileChannels <= 4 ? fileChannels : 3
 class TextureFile final : public ImageTexture {
  public:
   TextureFile(std::string path, int fileChannels, MipPyramid pyramid,
-              std::unique_ptr<const ToRenderingSpace> toRendering)
+              std::unique_ptr<const ToRenderingSpace> toRendering, bool negative)
       : path_(std::move(path)),
         fileChannels_(fileChannels),
         pyramid_(std::move(pyramid)),
-        toRendering_(std::move(toRendering)) {}
+        toRendering_(std::move(toRendering)),
+        negative_(negative) {}
 
   Rgb color(const ImageFootprint& at) const override {
     float texel[3];
     readRgb(at, texel);
+    if (negative_) [[unlikely]]
+      for (float& v : texel) v = std::max(v, 0.0f);
     if (!toRendering_->isIdentity()) toRendering_->apply(texel);
     return {texel[0], texel[1], texel[2]};
   }
@@ -97,6 +101,7 @@ class TextureFile final : public ImageTexture {
   int fileChannels_;
   MipPyramid pyramid_;
   std::unique_ptr<const ToRenderingSpace> toRendering_;
+  bool negative_;  // some colour channel of a texel is negative: color() reads them as 0
 };
 
 }  // namespace
@@ -182,9 +187,17 @@ std::shared_ptr<const ImageTexture> loadedTexture(const std::string& path, void*
                          (std::isnan(texels[i]) ? "NaN" : "an infinity") + " in channel " +
                          std::to_string(i % size_t(channels)) +
                          "; a texture's values must be finite");
+  // Negative values are data (a normal map's), never a colour: as one they count as 0.
+  size_t negative = 0;
+  if (info.isFloat)
+    for (size_t i = 0; i < texels.size(); i += size_t(channels))
+      for (int c = 0; c < std::min(channels, 3); ++c) negative += texels[i + size_t(c)] < 0;
+  if (negative > 0)
+    log::warning("texture " + path + ": " + std::to_string(negative) +
+                 " colour values are negative; where the image gives a colour they count as 0");
   return std::make_shared<TextureFile>(
       path, info.channels, MipPyramid(info.width, info.height, channels, std::move(texels)),
-      std::move(toRendering));
+      std::move(toRendering), negative > 0);
 }
 
 // Refuses a Photoshop file whose sections run past its end before OpenImageIO allocates them

@@ -158,6 +158,26 @@ TEST(TextureFile, APhotoshopFileWhoseSectionsRunPastItsEndIsRefusedBeforeItIsRea
                                      "remain (a cut or damaged Photoshop file)");
 }
 
+TEST(TextureFile, NegativeValuesCountAsZeroAsAColourButStayAsData) {
+  // A float texture of (-1, 0.5, -0.25) rendered a negative red into the frame as a diffuse
+  // colour, without a word. As data (a normal map's) negative values are meaningful.
+  const std::string path = (test::tempDir() / "negative.exr").string();
+  OIIO::ImageSpec spec(2, 2, 3, OIIO::TypeDesc::FLOAT);
+  const std::vector<float> texels = {-1, 0.5f, -0.25f, -1, 0.5f, -0.25f,
+                                     -1, 0.5f, -0.25f, -1, 0.5f, -0.25f};
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+  ASSERT_TRUE(out && out->open(path, spec) &&
+              out->write_image(OIIO::TypeDesc::FLOAT, texels.data()) && out->close());
+  const auto t = openImageTexture(path);
+  const ImageFootprint at{{0.5f, 0.5f}, {0, 0}, {0, 0}};
+  const Rgb data = t->data(at), colour = t->color(at);  // a float file: linear, no conversion
+  EXPECT_EQ(data.r, -1.0f);
+  EXPECT_EQ(data.b, -0.25f);
+  EXPECT_EQ(colour.r, 0.0f);
+  EXPECT_EQ(colour.g, 0.5f);
+  EXPECT_EQ(colour.b, 0.0f);
+}
+
 TEST(TextureFile, AGreyAlphaImageGivesItsGreyToColourAndItsAlphaToCoverage) {
   const std::string path = (test::tempDir() / "grey_alpha.exr").string();
   writeImage(path, 4, 4, 2, 0);
