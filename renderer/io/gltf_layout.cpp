@@ -2,8 +2,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <optional>
 #include <set>
+#include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "io/expansion_limits.h"
@@ -54,6 +57,30 @@ class LayoutCheck {
       if (!image.is_object() || !image.contains("bufferView")) continue;
       const json& index = image["bufferView"];
       if (const json* view = gltfElementAt(doc_, "bufferViews", index)) viewFits(index, *view);
+    }
+  }
+
+  // That each attribute Glint reads is stored as glTF 2.0 allows (its §3.7.2.1): Assimp read
+  // a POSITION of SCALAR shorts, or of VEC2 floats, as whatever floats its bytes made.
+  void attributeTypes() const {
+    const auto meshes = doc_.find("meshes");
+    if (meshes == doc_.end() || !meshes->is_array()) return;
+    for (size_t m = 0; m < meshes->size(); ++m) {
+      const json& mesh = (*meshes)[m];
+      if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
+        continue;
+      for (size_t p = 0; p < mesh["primitives"].size(); ++p) {
+        const json& primitive = mesh["primitives"][p];
+        const auto a = primitive.is_object() ? primitive.find("attributes") : primitive.end();
+        if (a == primitive.end() || !a->is_object()) continue;
+        for (const auto& [name, index] : a->items()) {
+          const json* accessor = gltfElementAt(doc_, "accessors", index);
+          if (!accessor) continue;  // Assimp names it
+          attributeType("meshes[" + std::to_string(m) + "].primitives[" + std::to_string(p) +
+                            "].attributes." + name,
+                        name, index, *accessor);
+        }
+      }
     }
   }
 
@@ -114,6 +141,46 @@ class LayoutCheck {
  private:
   [[noreturn]] void fail(const std::string& what) const {
     throw UsageError("mesh " + path_ + ": " + what);
+  }
+
+  // The types glTF 2.0 gives the attribute `name` (floats, or normalized unsigned bytes and
+  // shorts where it allows them); attributes it leaves open (an application's _NAME) pass.
+  void attributeType(const std::string& where, const std::string& name, const json& index,
+                     const json& accessor) const {
+    const auto startsWith = [&](const char* prefix) { return name.rfind(prefix, 0) == 0; };
+    std::vector<std::string> types;
+    bool normalizedIntegers = false;
+    if (name == "POSITION" || name == "NORMAL") {
+      types = {"VEC3"};
+    } else if (name == "TANGENT") {
+      types = {"VEC4"};
+    } else if (startsWith("TEXCOORD_")) {
+      types = {"VEC2"};
+      normalizedIntegers = true;
+    } else if (startsWith("COLOR_")) {
+      types = {"VEC3", "VEC4"};
+      normalizedIntegers = true;
+    } else {
+      return;
+    }
+    const std::string type = accessor.value("type", json()).is_string()
+                                 ? accessor["type"].get<std::string>()
+                                 : std::string();
+    const json& component = accessor.value("componentType", json());
+    const int64_t c = component.is_number_integer() ? component.get<int64_t>() : 0;
+    const bool normalized = accessor.value("normalized", json(false)) == json(true);
+    const bool typeOk = std::find(types.begin(), types.end(), type) != types.end();
+    const bool componentOk =
+        c == 5126 || (normalizedIntegers && normalized && (c == 5121 || c == 5123));
+    if (typeOk && componentOk) return;
+    std::string allowed = types[0] + (types.size() > 1 ? " or " + types[1] : "") + " of floats";
+    if (normalizedIntegers) allowed += " or of normalized unsigned bytes or shorts";
+    if (typeOk && !normalizedIntegers && c >= 5120 && c <= 5125)
+      allowed += " (integers are KHR_mesh_quantization's, which Glint does not read)";
+    fail(where + ": accessors[" + index.dump() + "] is " +
+         excerpt(accessor.value("type", json()).dump()) + " of componentType " +
+         excerpt(component.dump()) + (normalized ? " (normalized)" : "") + "; glTF 2.0 stores " +
+         name + " as " + allowed);
   }
 
   static std::string sumText(uint64_t a, uint64_t b) {
@@ -196,6 +263,7 @@ uint64_t gltfElementBytes(const json& accessor) {
 void checkGltfBufferLayout(const std::string& path, const json& doc) {
   const LayoutCheck check(path, doc);
   check.accessors();
+  check.attributeTypes();
   check.imageViews();
 }
 

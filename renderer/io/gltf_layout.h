@@ -26,11 +26,13 @@ const nlohmann::json* gltfElementAt(const nlohmann::json& doc, const char* list,
 uint64_t gltfElementBytes(const nlohmann::json& accessor);
 
 // Throws UsageError naming `path` and the element when, in `doc` (glTF 2.0 JSON, trimmed to what
-// Glint reads), an accessor a primitive reads (an attribute, its indices, their sparse indices
-// and values) has no type or componentType glTF defines (Assimp reads a missing one as the
-// smallest), or does not lie within its buffer view; when such a view, or an image's, does not
-// lie within its buffer's byteLength or has a byteStride glTF does not allow (a multiple of 4
-// from 4 to 252); or when the accessors without a buffer view hold more than
+// Glint reads), an attribute is stored in a type glTF does not give it (POSITION and NORMAL
+// VEC3 of floats, TANGENT VEC4, TEXCOORD_n VEC2 and COLOR_n VEC3 or VEC4 of floats or of
+// normalized unsigned bytes or shorts), an accessor a primitive reads (an attribute, its indices,
+// their sparse indices and values) has no type or componentType glTF defines (Assimp reads a
+// missing one as the smallest), or does not lie within its buffer view; when such a view, or an
+// image's, does not lie within its buffer's byteLength or has a byteStride glTF does not allow (a
+// multiple of 4 from 4 to 252); or when the accessors without a buffer view hold more than
 // kMaxUnbackedAccessorBytes. Accessors no primitive reads (a morph target's) are left alone:
 // Assimp does not read them either.
 void checkGltfBufferLayout(const std::string& path, const nlohmann::json& doc);
