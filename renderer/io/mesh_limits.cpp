@@ -50,27 +50,43 @@ std::string_view takeWord(std::string_view& line, const char* spaces = " \t\r\v\
 }
 
 // Throws when a `v`, `vt` or `vn` line (`line`, number `lineNumber`) of OBJ file `mesh` holds a
-// number that is not a finite float: nan, inf, or past float's range. Assimp 5.2.5 read a
-// texture coordinate's nan or 1e39 as 0 without a word (the image's corner), where Glint refuses
-// the same values in a PLY file.
+// word that is not a decimal number as Assimp reads one (a comma may stand for the point), or
+// one that is not a finite float (nan, inf, past float's range), or a count of numbers Assimp
+// does not read as a vertex (x y z, x y z w, or x y z r g b), coordinate (u v, u v w) or normal
+// (x y z). Assimp 5.2.5 read a texture coordinate's nan or 1e39 as 0 without a word (the
+// image's corner), where Glint refuses the same values in a PLY file; it read "0x1p3" as 0,
+// and a vertex of two numbers, or of words, it skipped, its faces then refused as "vertex index
+// out of range".
 void checkObjNumbers(const std::string& mesh, int lineNumber, std::string_view line) {
   const std::string_view keyword = takeWord(line);
   if (keyword != "v" && keyword != "vt" && keyword != "vn") return;
+  const auto fail = [&](const std::string& why) {
+    throw GlintError("mesh " + mesh + ":" + std::to_string(lineNumber) + ": " +
+                     std::string(keyword) + " " + why);
+  };
+  int numbers = 0;
   for (std::string_view word = takeWord(line); !word.empty() && word[0] != '#';
-       word = takeWord(line)) {
+       word = takeWord(line), ++numbers) {
     // As strtod reads it: from_chars takes no leading '+', and gives no value out of range.
-    const std::string_view digits = word[0] == '+' ? word.substr(1) : word;
+    std::string digits(word[0] == '+' ? word.substr(1) : word);
+    if (const size_t comma = digits.find(','); comma != std::string::npos) digits[comma] = '.';
     double v = 0;
     const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
-    if (digits.empty() || end != digits.data() + digits.size())
-      continue;  // not a number at all: Assimp's to judge
-    if (error == std::errc::result_out_of_range)
-      v = std::strtod(std::string(word).c_str(), nullptr);
+    if (digits.empty() || end != digits.data() + digits.size() ||
+        (error != std::errc() && error != std::errc::result_out_of_range))
+      fail("holds " + excerpt(std::string(word)) + ", which is not a decimal number");
+    if (error == std::errc::result_out_of_range) v = std::strtod(digits.c_str(), nullptr);
     if (!(std::fabs(v) <= std::numeric_limits<float>::max()))
-      throw GlintError("mesh " + mesh + ":" + std::to_string(lineNumber) + ": " +
-                       std::string(keyword) + " holds " + excerpt(std::string(word)) +
-                       ", which is not a finite float");
+      fail("holds " + excerpt(std::string(word)) + ", which is not a finite float");
   }
+  const bool read = keyword == "v"    ? numbers == 3 || numbers == 4 || numbers == 6
+                    : keyword == "vt" ? numbers == 2 || numbers == 3
+                                      : numbers == 3;
+  if (!read)
+    fail("holds " + std::to_string(numbers) + (numbers == 1 ? " number" : " numbers") + "; " +
+         (keyword == "v"    ? "a vertex is x y z, x y z w or x y z r g b"
+          : keyword == "vt" ? "a texture coordinate is u v or u v w"
+                            : "a normal is x y z"));
 }
 
 // The texture coordinates (vt) and normals (vn) an OBJ file's faces refer to, against those it
@@ -93,6 +109,16 @@ struct ObjFaceReferences {
   // are Assimp's to judge.
   void checkFace(const std::string& mesh, int lineNumber, std::string_view line) {
     takeWord(line);  // "f"
+    // Assimp takes a face of one or two vertices among triangles for a point or a line that its
+    // own validation then refuses, naming no line.
+    int vertices = 0;
+    for (std::string_view words = line, w = takeWord(words); !w.empty() && w[0] != '#';
+         w = takeWord(words))
+      ++vertices;
+    if (vertices < 3)
+      throw GlintError("mesh " + mesh + ":" + std::to_string(lineNumber) + ": f gives " +
+                       std::to_string(vertices) + (vertices == 1 ? " vertex" : " vertices") +
+                       "; a face has at least 3 (a line is written l)");
     for (std::string_view word = takeWord(line); !word.empty() && word[0] != '#';
          word = takeWord(line)) {
       for (int k = -1; k < 2 && !word.empty(); ++k) {  // the vertex (k = -1), vt, vn

@@ -307,6 +307,31 @@ TEST(MeshFile, NonFiniteVertexValuesOfAnObjAreRefusedAtTheirLine) {
       "(loaded)");
 }
 
+TEST(MeshFile, VertexLinesAssimpMisreadsAreRefusedAtTheirLine) {
+  // Assimp read "0x1p3" (and "3.1+e2") as the number its first characters make, 0 (and 3.1),
+  // and skipped a vertex of two numbers or of words, its faces then refused as "vertex index
+  // out of range"; a face of two vertices among triangles failed its validation, naming no
+  // line. Each is refused at its line.
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\n";
+  for (const auto& [line, named] :
+       {std::pair<std::string, std::string>{"v 0x1p3 0 0",
+                                            ":7: v holds 0x1p3, which is not a decimal number"},
+        {"v 3.1+e2 0 0", ":7: v holds 3.1+e2, which is not a decimal number"},
+        {"v abc def ghi", ":7: v holds abc, which is not a decimal number"},
+        {"v 0 0", ":7: v holds 2 numbers; a vertex is x y z, x y z w or x y z r g b"},
+        {"vt 0.5", ":7: vt holds 1 number; a texture coordinate is u v or u v w"},
+        {"vn 0 1", ":7: vn holds 2 numbers; a normal is x y z"},
+        {"f 1 2", ":7: f gives 2 vertices; a face has at least 3 (a line is written l)"}}) {
+    const std::string message =
+        test::meshLoadError("misread.obj", triangle + line + "\nf 1/1 2/2 3/3\n");
+    EXPECT_NE(message.find("misread.obj" + named), std::string::npos) << line << ": " << message;
+  }
+  // A comma for the point (as some exporters write), a w, and u v w load.
+  EXPECT_EQ(test::meshLoadError("lenient.obj", triangle + "v 0,5 1 2\nv 1 2 3 1\nvt 0.5 0.5 0\n"
+                                                          "f 1/1 2/2 3/3\n"),
+            "(loaded)");
+}
+
 TEST(MeshFile, FaceTextureAndNormalIndicesPastTheirLinesAreRefusedAtTheirLine) {
   // Assimp refuses a face's vertex index past the v lines, but read a vt or vn index past its
   // lines as another vertex's or none, without a word (the texture mapped wrong, exit 0).
