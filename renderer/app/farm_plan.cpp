@@ -71,73 +71,80 @@ FrameRange parseFrameRange(const std::string& text, const std::string& what) {
 
 namespace {
 
-// Where the frame number goes in the file name (not the directories): the last run of '#', or
-// else the last printf-style "%d" / "%0Nd", read as printf reads them: "%%" is a literal '%'
-// (so "%%d" is not a field), and a '%' that starts no conversion stays as written. npos when
-// there is neither.
-struct FrameField {
-  size_t begin = std::string::npos, end = 0, width = 0;
-  size_t nameBegin = 0;
-  bool printf = false;  // the name's "%%" then stand for '%'
+// Where the file name (not the directories) begins.
+size_t nameBegin(const std::string& pattern) {
+  const size_t slash = pattern.find_last_of('/');
+  return slash == std::string::npos ? 0 : slash + 1;
+}
+
+// The last run of '#' in the file name: [begin, end), or begin = npos where there is none.
+struct HashRun {
+  size_t begin = std::string::npos, end = 0;
 };
 
-FrameField frameField(const std::string& pattern) {
-  const size_t slash = pattern.find_last_of('/');
-  const size_t nameBegin = slash == std::string::npos ? 0 : slash + 1;
-  FrameField f;
-  f.nameBegin = nameBegin;
+HashRun hashRun(const std::string& pattern) {
+  HashRun run;
   const size_t hash = pattern.find_last_of('#');
-  if (hash != std::string::npos && hash >= nameBegin) {
-    f.end = hash + 1;
-    f.begin = hash;
-    while (f.begin > nameBegin && pattern[f.begin - 1] == '#') --f.begin;
-    f.width = f.end - f.begin;
-    return f;
-  }
-  for (size_t at = nameBegin; at < pattern.size(); ++at) {
-    if (pattern[at] != '%') continue;
-    if (at + 1 < pattern.size() && pattern[at + 1] == '%') {
+  if (hash == std::string::npos || hash < nameBegin(pattern)) return run;
+  run.end = hash + 1;
+  run.begin = hash;
+  while (run.begin > nameBegin(pattern) && pattern[run.begin - 1] == '#') --run.begin;
+  return run;
+}
+
+// `frame` written in at least `width` digits, zero-padded.
+std::string padded(int frame, size_t width) {
+  std::string digits = std::to_string(frame);
+  if (digits.size() < width) digits.insert(0, width - digits.size(), '0');
+  return digits;
+}
+
+// `name` as printf formats it with `frame` for each "%d" and "%0Nd" (N capped at 32): "%%" is a
+// literal '%' (so "%%d" is no field), and a '%' that starts no conversion stays as written.
+// False where the name has no field.
+bool printfName(std::string_view name, int frame, std::string& out) {
+  bool any = false;
+  for (size_t at = 0; at < name.size(); ++at) {
+    if (name[at] != '%') {
+      out += name[at];
+      continue;
+    }
+    if (at + 1 < name.size() && name[at + 1] == '%') {
+      out += '%';
       ++at;
       continue;
     }
     size_t i = at + 1, width = 0;
-    if (i < pattern.size() && pattern[i] == '0') ++i;
-    for (; i < pattern.size() && std::isdigit(static_cast<unsigned char>(pattern[i])); ++i)
-      width = std::min<size_t>(width * 10 + size_t(pattern[i] - '0'), 32);
-    if (i < pattern.size() && pattern[i] == 'd') {
-      f = {at, i + 1, width, nameBegin, true};
+    if (i < name.size() && name[i] == '0') ++i;
+    for (; i < name.size() && std::isdigit(static_cast<unsigned char>(name[i])); ++i)
+      width = std::min<size_t>(width * 10 + size_t(name[i] - '0'), 32);
+    if (i < name.size() && name[i] == 'd') {
+      out += padded(frame, width);
       at = i;
+      any = true;
+    } else {
+      out += '%';
     }
   }
-  return f;
-}
-
-// `text` with each "%%" written as '%'.
-std::string percentsUnescaped(std::string_view text) {
-  std::string out;
-  for (size_t i = 0; i < text.size(); ++i) {
-    out += text[i];
-    if (text[i] == '%' && i + 1 < text.size() && text[i + 1] == '%') ++i;
-  }
-  return out;
+  return any;
 }
 
 }  // namespace
 
 bool hasFrameDigits(const std::string& pattern) {
-  return frameField(pattern).begin != std::string::npos;
+  std::string unused;
+  return hashRun(pattern).begin != std::string::npos ||
+         printfName(std::string_view(pattern).substr(nameBegin(pattern)), 0, unused);
 }
 
 std::string frameFileName(const std::string& pattern, int frame) {
-  const FrameField f = frameField(pattern);
-  if (f.begin == std::string::npos) return pattern;
-  std::string digits = std::to_string(frame);
-  if (digits.size() < f.width) digits.insert(0, f.width - digits.size(), '0');
-  if (!f.printf) return pattern.substr(0, f.begin) + digits + pattern.substr(f.end);
-  const std::string_view all(pattern);
-  return pattern.substr(0, f.nameBegin) +
-         percentsUnescaped(all.substr(f.nameBegin, f.begin - f.nameBegin)) + digits +
-         percentsUnescaped(all.substr(f.end));
+  if (const HashRun run = hashRun(pattern); run.begin != std::string::npos)
+    return pattern.substr(0, run.begin) + padded(frame, run.end - run.begin) +
+           pattern.substr(run.end);
+  std::string name = pattern.substr(0, nameBegin(pattern));
+  if (!printfName(std::string_view(pattern).substr(nameBegin(pattern)), frame, name))
+    return pattern;
+  return name;
 }
 
 }  // namespace glint

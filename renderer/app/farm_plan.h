@@ -27,8 +27,8 @@ FrameRange parseFrameRange(const std::string& text, const std::string& what);
 
 // The path with its last run of '#' in the file name replaced by the frame number, zero-padded
 // to the run's length (longer numbers are written in full): "out/a.####.exr", 7 →
-// "out/a.0007.exr"; without '#', the last printf-style "%04d" or "%d" likewise (Nuke's and
-// ffmpeg's way), the name's "%%" then written as '%'. A path with neither is returned unchanged.
+// "out/a.0007.exr"; without '#', the name as printf formats it, each "%04d" or "%d" the frame
+// (Nuke's and ffmpeg's way) and "%%" a '%'. A path with neither is returned unchanged.
 std::string frameFileName(const std::string& pattern, int frame);
 bool hasFrameDigits(const std::string& pattern);
 

@@ -108,6 +108,7 @@ TEST(FarmPlan, FrameNamesReplaceTheLastRunOfHashes) {
   EXPECT_EQ(frameFileName("100%%.%04d.exr", 7), "100%.0007.exr");
   EXPECT_EQ(frameFileName("a.%04d.%%%%.exr", 7), "a.0007.%%.exr");
   EXPECT_EQ(frameFileName("a.%%d.%d.exr", 7), "a.%d.7.exr");
+  EXPECT_EQ(frameFileName("e.%d_%03d.exr", 7), "e.7_007.exr");  // every field, as printf
   EXPECT_FALSE(hasFrameDigits("a.%%d.exr"));  // "%%d" is "%d" written out, not a field
   EXPECT_EQ(frameFileName("100%%.####.exr", 7), "100%%.0007.exr");  // '#' names are literal
   EXPECT_EQ(frameFileName("50%%/a.%d.exr", 7), "50%%/a.7.exr");     // directories too
