@@ -570,6 +570,7 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
   std::vector<int> partOfMaterial(s->mNumMaterials, -1);
   if (faceNames.any()) file.objectNames = faceNames.names();
   std::vector<bool> partWithoutTangents(s->mNumMaterials, false);
+  VertexColourChannels colour;
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
     const aiMesh* m = s->mMeshes[mi];
     if (!(m->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) continue;  // points and lines
@@ -591,14 +592,13 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
       mesh.positions.push_back({p.x, p.y, p.z});
       if (smooth) mesh.normals.push_back({m->mNormals[v].x, m->mNormals[v].y, m->mNormals[v].z});
     }
-    // Vertex colours (RGB of the first set; negative or non-finite channels read as 0), and
+    // Vertex colours (RGB of the first set, as VertexColourChannels reads them), and
     // texture coordinates: where one mesh of a part has them and another not, the other's
     // vertices take white and (0, 0).
     if (const aiColor4D* c = m->mColors[0]) {
       mesh.colors.resize(base, Rgb{1, 1, 1});
-      const auto channel = [](float v) { return std::isfinite(v) && v > 0 ? v : 0.0f; };
       for (unsigned v = 0; v < m->mNumVertices; ++v)
-        mesh.colors.push_back({channel(c[v].r), channel(c[v].g), channel(c[v].b)});
+        mesh.colors.push_back({colour(c[v].r), colour(c[v].g), colour(c[v].b)});
     }
     // The second set (glTF's TEXCOORD_1) likewise, where a mesh of the part has one.
     for (int set = 0; set < 2; ++set)
@@ -648,6 +648,7 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
     if (!tangentsUsable) mesh.tangents.clear();
     if (!tangents || !tangentsUsable) partWithoutTangents[size_t(part)] = true;
   }
+  colour.warnIfReplaced(path);
   for (size_t i = 0; i < file.parts.size(); ++i)
     if (partWithoutTangents[i]) file.parts[i].tangents.clear();
   // A material whose meshes held only points and lines leaves an empty part.

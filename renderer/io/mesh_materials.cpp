@@ -276,6 +276,12 @@ Material fromGltf(const MaterialValues& v, const TextureOpener& open, const Gltf
 
 }  // namespace
 
+void VertexColourChannels::warnIfReplaced(const std::string& mesh) const {
+  if (replaced > 0)
+    log::warning("mesh " + mesh + ": " + std::to_string(replaced) +
+                 " vertex colour channels are negative or not finite: 0 is used");
+}
+
 void multiplyDiffuseByVertexColors(Surface& surface) {
   if (surface.kd.pattern == TexturePattern::Constant)
     surface.kd.pattern = TexturePattern::VertexColor;

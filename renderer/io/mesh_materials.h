@@ -7,6 +7,8 @@
 // textures, with their KHR_texture_transform, texCoord and sampler), and their normal and bump
 // maps (MTL norm, bump / map_Bump with -bm; glTF's normalTexture with its scale). The table is
 // in docs/scene-format.md ("Materials from mesh files").
+#include <cmath>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -26,6 +28,21 @@ enum class MeshFileFormat { Obj, Ply, Gltf, Other };
 // Opens a texture a material names, its path as the file spells it; null where it cannot be
 // read (the opener says why).
 using TextureOpener = std::function<std::shared_ptr<const ImageTexture>(const std::string& named)>;
+
+// A mesh file's vertex colour channels as Glint uses them: a negative or non-finite one reads as
+// 0, and the mesh is warned of once it is read (as a material's colour would be), never
+// replaced silently.
+struct VertexColourChannels {
+  uint64_t replaced = 0;
+  float operator()(float c) {
+    if (std::isfinite(c) && c >= 0) [[likely]]
+      return c;
+    ++replaced;
+    return 0;
+  }
+  // The warning for `mesh` (its path) where any channel was replaced.
+  void warnIfReplaced(const std::string& mesh) const;
+};
 
 // A part with vertex colours: they multiply its diffuse colour (an image's too, as glTF's
 // COLOR_0 multiplies its base colour), and the ambient colour where it follows the diffuse.

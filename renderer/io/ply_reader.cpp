@@ -103,6 +103,7 @@ class PlyReader {
     }
     if (mesh_.indices.empty()) throw GlintError("mesh " + path_ + " has no triangles");
     dropUnusedVertices();
+    colour_.warnIfReplaced(path_);
     progress.finish(std::to_string(mesh_.triangleCount()) + " triangles, " +
                     std::to_string(mesh_.positions.size()) + " vertices");
     return std::move(mesh_);
@@ -255,11 +256,7 @@ class PlyReader {
                          ", " + std::to_string(p[7]) + ")");
       mesh_.uvs.push_back({p[6], p[7]});
     }
-    if (colours_) {
-      // As for Assimp's files (io/mesh_io.cpp): a negative or non-finite channel reads as 0.
-      const auto channel = [](float c) { return std::isfinite(c) && c > 0 ? c : 0.0f; };
-      mesh_.colors.push_back({channel(p[8]), channel(p[9]), channel(p[10])});
-    }
+    if (colours_) mesh_.colors.push_back({colour_(p[8]), colour_(p[9]), colour_(p[10])});
   }
 
   // A face's `n` corners, fanned into triangles from the first.
@@ -312,6 +309,7 @@ class PlyReader {
   int vertexElement_ = -1, faceElement_ = -1;
   uint64_t vertexCount_ = 0;
   bool normals_ = false, uvs_ = false, colours_ = false;
+  VertexColourChannels colour_;
   TriangleMesh mesh_;
 };
 

@@ -146,7 +146,7 @@ TEST(PlyReader, OtherElementsAndPropertiesAreSkippedBySize) {
 
 TEST(PlyReader, VertexColoursBecomeTheDiffuseColour) {
   // uchar channels count to 255: 255 0 51 is (1, 0, 0.2); alpha is ignored. Float channels are
-  // their values, a negative one 0 (as for Assimp's files, io/mesh_io.cpp).
+  // their values, a negative one 0 with a warning (as for Assimp's files, io/mesh_io.cpp).
   const std::string ply =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
       "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
@@ -170,8 +170,13 @@ TEST(PlyReader, VertexColoursBecomeTheDiffuseColour) {
                         0.f, 1.f, 1.f, 1.f})
     b.put(v);
   b.put(uint8_t{3}).put(int32_t{0}).put(int32_t{1}).put(int32_t{2});
-  const TriangleMesh f =
-      loadMeshFile(test::writeTemp("float-colours.ply", floats + b.bytes)).parts.at(0);
+  const std::string floatPath = test::writeTemp("float-colours.ply", floats + b.bytes);
+  testing::internal::CaptureStderr();
+  const TriangleMesh f = loadMeshFile(floatPath).parts.at(0);
+  // Replaced, never silently (as a material's negative colour is warned of).
+  EXPECT_EQ(testing::internal::GetCapturedStderr(),
+            "glint: warning: mesh " + floatPath +
+                ": 1 vertex colour channels are negative or not finite: 0 is used\n");
   ASSERT_EQ(f.colors.size(), 3u);
   EXPECT_EQ(f.colors[0].r, 0.5f);
   EXPECT_EQ(f.colors[0].g, 0.0f);  // -1: 0
