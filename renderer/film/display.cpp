@@ -120,6 +120,9 @@ struct DisplayTransform::Impl {
   OCIO::ConstCPUProcessorRcPtr cpu;
 };
 
+// The largest scene-linear value a view is given (half float's largest).
+constexpr float kDisplayCeiling = 65504.0f;
+
 DisplayTransform::DisplayTransform(const DisplaySettings& s) : impl_(new Impl) {
   try {
     const OCIO::ConstConfigRcPtr config = loadConfig(s.configPath, source_);
@@ -169,6 +172,15 @@ DisplayTransform::DisplayTransform(const DisplaySettings& s) : impl_(new Impl) {
       look->setDst(source.c_str());
       look->setLooks(s.look.c_str());
       group->appendTransform(look);
+      // What the look gives is held to the ceiling the pixels were: a gain of 1e25 took ACES's
+      // curve to NaN, a black image.
+      const auto ceiling = OCIO::RangeTransform::Create();
+      ceiling->setStyle(OCIO::RANGE_CLAMP);
+      ceiling->setMinInValue(-kDisplayCeiling);
+      ceiling->setMaxInValue(kDisplayCeiling);
+      ceiling->setMinOutValue(-kDisplayCeiling);
+      ceiling->setMaxOutValue(kDisplayCeiling);
+      group->appendTransform(ceiling);
     }
     const auto dv = OCIO::DisplayViewTransform::Create();
     dv->setSrc(source.c_str());
@@ -208,9 +220,6 @@ void warnOnce(const std::string& message) {
 }
 
 }  // namespace
-
-// The largest scene-linear value a view is given (half float's largest).
-constexpr float kDisplayCeiling = 65504.0f;
 
 void writeDisplayImage(const std::string& path, std::vector<float> rgba, int width, int height,
                        const DisplaySettings& settings, bool transparent) {

@@ -315,6 +315,30 @@ TEST(Ocio, EveryFileAConfigReadsIsCheckedBeforeOcioOpensIt) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Ocio, ALooksGainIsHeldToTheCeilingTheViewIsGiven) {
+  // The pixels reach the view clamped to ±65504, but a look applied after that clamp passed a
+  // gain of 1e25 on to ACES's curve, which made NaN: a black PNG. Past the look they are
+  // clamped again, so the channel the look raises shows as the brightest the view gives.
+  const std::filesystem::path dir = test::tempDir() / "ocio-gain";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  DisplaySettings s;
+  s.look = "gain";
+  s.configPath = bundledConfigWith(
+      dir,
+      "  - !<Look>\n    name: gain\n    process_space: lin_rec709\n    transform: "
+      "!<MatrixTransform> {matrix: [1e25, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}\n");
+  const std::vector<float> shown = through(s, {1, 0.18f, 0.18f});
+  s.look = "";
+  const std::vector<float> brightest = through(s, {65504, 0.18f, 0.18f});
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_TRUE(std::isfinite(shown[size_t(c)])) << c;
+    EXPECT_EQ(shown[size_t(c)], brightest[size_t(c)]) << c;  // the same clamped input
+  }
+  EXPECT_GT(shown[0], 0.5f);
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Ocio, ALoopOfReferencesIsRefusedBeforeOcioFollowsIt) {
   // OCIO's processor builder follows a look that applies itself, or a colour space converted
   // through itself, until the stack overflows (a segfault). Each loop is refused, named.
