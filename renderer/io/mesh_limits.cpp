@@ -67,15 +67,27 @@ void checkObjNumbers(const std::string& mesh, int lineNumber, std::string_view l
   int numbers = 0;
   for (std::string_view word = takeWord(line); !word.empty() && word[0] != '#';
        word = takeWord(line), ++numbers) {
-    // As strtod reads it: from_chars takes no leading '+', and gives no value out of range.
-    std::string digits(word[0] == '+' ? word.substr(1) : word);
-    if (const size_t comma = digits.find(','); comma != std::string::npos) digits[comma] = '.';
+    // Assimp counts a word as a number only where it starts with a digit or a sign (or is nan
+    // or inf): ".5" made the vertex one number short, and it was skipped.
+    if (word[0] == '.')
+      fail("holds " + excerpt(std::string(word)) +
+           ", which Assimp does not read as a number (write 0" + excerpt(std::string(word)) + ")");
+    // As strtod reads it: from_chars takes no leading '+', and gives no value out of range. A
+    // comma may stand for the point, as Assimp reads it (copied only then: files of 1 GiB).
+    std::string withPoint;
+    std::string_view digits = word[0] == '+' ? word.substr(1) : word;
+    if (const size_t comma = digits.find(','); comma != std::string_view::npos) {
+      withPoint = std::string(digits);
+      withPoint[comma] = '.';
+      digits = withPoint;
+    }
     double v = 0;
     const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
     if (digits.empty() || end != digits.data() + digits.size() ||
         (error != std::errc() && error != std::errc::result_out_of_range))
       fail("holds " + excerpt(std::string(word)) + ", which is not a decimal number");
-    if (error == std::errc::result_out_of_range) v = std::strtod(digits.c_str(), nullptr);
+    if (error == std::errc::result_out_of_range)
+      v = std::strtod(std::string(digits).c_str(), nullptr);
     if (!(std::fabs(v) <= std::numeric_limits<float>::max()))
       fail("holds " + excerpt(std::string(word)) + ", which is not a finite float");
   }
@@ -110,12 +122,12 @@ struct ObjFaceReferences {
   void checkFace(const std::string& mesh, int lineNumber, std::string_view line) {
     takeWord(line);  // "f"
     // Assimp takes a face of one or two vertices among triangles for a point or a line that its
-    // own validation then refuses, naming no line.
+    // own validation then refuses, naming no line. (It skips a face of none.)
     int vertices = 0;
     for (std::string_view words = line, w = takeWord(words); !w.empty() && w[0] != '#';
          w = takeWord(words))
       ++vertices;
-    if (vertices < 3)
+    if (vertices == 1 || vertices == 2)
       throw GlintError("mesh " + mesh + ":" + std::to_string(lineNumber) + ": f gives " +
                        std::to_string(vertices) + (vertices == 1 ? " vertex" : " vertices") +
                        "; a face has at least 3 (a line is written l)");
@@ -205,9 +217,20 @@ void collectObjNames(const std::string& mesh, const std::filesystem::path& file,
     return line.compare(at, word.size(), word) == 0 && at + word.size() < line.size() &&
            (line[at + word.size()] == ' ' || line[at + word.size()] == '\t');
   };
-  int lineNumber = 0;
+  // A line that ends in '\\' goes on into the next, as Assimp reads an OBJ file; a joined line
+  // is named by its first line's number.
+  const auto continues = [](const std::string& line) {
+    const size_t last = line.find_last_not_of(" \t\r");
+    return last != std::string::npos && line[last] == '\\' ? last : std::string::npos;
+  };
+  int lineNumber = 0, linesRead = 0;
   for (std::string line; std::getline(in, line);) {
-    ++lineNumber;
+    lineNumber = ++linesRead;
+    if (libraries)
+      for (std::string next; continues(line) != std::string::npos && std::getline(in, next);) {
+        ++linesRead;
+        line.replace(continues(line), std::string::npos, " " + next);
+      }
     size_t at = line.find_first_not_of(" \t");
     if (at == std::string::npos) continue;
     if (libraries && line[at] == 'v') {

@@ -321,14 +321,17 @@ TEST(MeshFile, VertexLinesAssimpMisreadsAreRefusedAtTheirLine) {
         {"v 0 0", ":7: v holds 2 numbers; a vertex is x y z, x y z w or x y z r g b"},
         {"vt 0.5", ":7: vt holds 1 number; a texture coordinate is u v or u v w"},
         {"vn 0 1", ":7: vn holds 2 numbers; a normal is x y z"},
-        {"f 1 2", ":7: f gives 2 vertices; a face has at least 3 (a line is written l)"}}) {
+        {"v .5 0 0", ":7: v holds .5, which Assimp does not read as a number (write 0.5)"},
+        {"f 1 2", ":7: f gives 2 vertices; a face has at least 3 (a line is written l)"},
+        {"v 1 \\\n 2", ":7: v holds 2 numbers"}}) {  // joined lines: named by the first
     const std::string message =
         test::meshLoadError("misread.obj", triangle + line + "\nf 1/1 2/2 3/3\n");
     EXPECT_NE(message.find("misread.obj" + named), std::string::npos) << line << ": " << message;
   }
-  // A comma for the point (as some exporters write), a w, and u v w load.
+  // A comma for the point (as some exporters write), a w, u v w, a line continued with '\'
+  // and an empty face (which Assimp skips) load.
   EXPECT_EQ(test::meshLoadError("lenient.obj", triangle + "v 0,5 1 2\nv 1 2 3 1\nvt 0.5 0.5 0\n"
-                                                          "f 1/1 2/2 3/3\n"),
+                                                          "v 1 0 \\\n 0\nf\nf 1/1 2/2 \\\n3/3\n"),
             "(loaded)");
 }
 
