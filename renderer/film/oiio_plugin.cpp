@@ -3,6 +3,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <climits>
 #include <cstdio>
 #include <cstring>
@@ -46,8 +47,8 @@ struct OpenedImage {
 // Why a texture's first channels, which Glint reads as its colour (or data) and alpha, are not
 // those of a texture; empty where they are. Names mean something only where the file can
 // name them freely (OpenEXR): there three or more channels must begin with R, G, B (A) or
-// X, Y, Z, under one layer's prefix or none. A frame's depth or a chroma image (Y, RY, BY)
-// was read as colour.
+// X, Y, Z (Red, Green, Blue; any case), under one layer's prefix or none. A frame's depth or a
+// chroma image (Y, RY, BY) was read as colour.
 std::string unreadChannels(const OIIO::ImageInput& in) {
   const OIIO::ImageSpec& spec = in.spec();
   if (std::string_view(in.format_name()) != "openexr" || spec.nchannels < 3 ||
@@ -62,17 +63,21 @@ std::string unreadChannels(const OIIO::ImageInput& in) {
   std::string prefix[3], names[3];
   for (int c = 0; c < 3; ++c) names[c] = suffix(c, prefix[c]);
   const bool oneLayer = prefix[0] == prefix[1] && prefix[1] == prefix[2];
+  // Upper case, as OpenImageIO matches colour channel names.
+  for (std::string& n : names)
+    for (char& ch : n) ch = char(std::toupper(static_cast<unsigned char>(ch)));
   const auto are = [&](const char* a, const char* b, const char* c) {
     return names[0] == a && names[1] == b && names[2] == c;
   };
-  if (oneLayer && (are("R", "G", "B") || are("X", "Y", "Z") || are("r", "g", "b"))) return "";
+  if (oneLayer && (are("R", "G", "B") || are("RED", "GREEN", "BLUE") || are("X", "Y", "Z")))
+    return "";
   std::string list;
   for (size_t c = 0; c < spec.channelnames.size() && c < 8; ++c)
     list += (c ? ", " : "") + spec.channelnames[c];
   if (spec.channelnames.size() > 8) list += ", ...";
   return "its channels are " + list +
          "; Glint reads a texture's first three channels as R, G, B (or X, Y, Z), and these are "
-         "not (pick a layer out with oiiotool --ch R,G,B)";
+         "not (oiiotool --ch R=...,G=...,B=... names the ones to read)";
 }
 
 // Opens `name` (through `proxy` when it is held in memory) and fills `info` from its header;

@@ -1,6 +1,7 @@
 #include "io/texture_file.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -32,7 +33,7 @@ int keptChannels(int fileChannels) { return fileChannels <= 4 ? fileChannels : 3
 class TextureFile final : public ImageTexture {
  public:
   TextureFile(std::string path, int fileChannels, MipPyramid pyramid,
-              std::unique_ptr<const ToRenderingSpace> toRendering, bool negative)
+              std::unique_ptr<const ToRenderingSpace> toRendering, size_t negative)
       : path_(std::move(path)),
         fileChannels_(fileChannels),
         pyramid_(std::move(pyramid)),
@@ -42,8 +43,8 @@ class TextureFile final : public ImageTexture {
   Rgb color(const ImageFootprint& at) const override {
     float texel[3];
     readRgb(at, texel);
-    if (negative_) [[unlikely]]
-      for (float& v : texel) v = std::max(v, 0.0f);
+    if (negative_ > 0) [[unlikely]]
+      clampNegative(texel);
     if (!toRendering_->isIdentity()) toRendering_->apply(texel);
     return {texel[0], texel[1], texel[2]};
   }
@@ -100,8 +101,18 @@ class TextureFile final : public ImageTexture {
   std::string path_;
   int fileChannels_;
   MipPyramid pyramid_;
+  // A colour filtered from negative texels counts as 0 in each such channel, and the first
+  // lookup that gives a colour says so once (as data, a normal map's, they are meaningful).
+  void clampNegative(float* texel) const {
+    for (int c = 0; c < 3; ++c) texel[c] = std::max(texel[c], 0.0f);
+    if (!warnedNegative_.exchange(true, std::memory_order_relaxed))
+      log::warning("texture " + path_ + ": " + std::to_string(negative_) +
+                   " colour values are negative; as a colour the image is read with them as 0");
+  }
+
   std::unique_ptr<const ToRenderingSpace> toRendering_;
-  bool negative_;  // some colour channel of a texel is negative: color() reads them as 0
+  size_t negative_;  // the colour channels' negative values in the file
+  mutable std::atomic<bool> warnedNegative_{false};
 };
 
 }  // namespace
@@ -187,17 +198,15 @@ std::shared_ptr<const ImageTexture> loadedTexture(const std::string& path, void*
                          (std::isnan(texels[i]) ? "NaN" : "an infinity") + " in channel " +
                          std::to_string(i % size_t(channels)) +
                          "; a texture's values must be finite");
-  // Negative values are data (a normal map's), never a colour: as one they count as 0.
+  // Negative values are data (a normal map's), never a colour (TextureFile::clampNegative).
   size_t negative = 0;
+  const int colourChannels = channels >= 3 ? 3 : 1;  // grey's one, not its alpha
   if (info.isFloat)
     for (size_t i = 0; i < texels.size(); i += size_t(channels))
-      for (int c = 0; c < std::min(channels, 3); ++c) negative += texels[i + size_t(c)] < 0;
-  if (negative > 0)
-    log::warning("texture " + path + ": " + std::to_string(negative) +
-                 " colour values are negative; where the image gives a colour they count as 0");
+      for (int c = 0; c < colourChannels; ++c) negative += texels[i + size_t(c)] < 0;
   return std::make_shared<TextureFile>(
       path, info.channels, MipPyramid(info.width, info.height, channels, std::move(texels)),
-      std::move(toRendering), negative > 0);
+      std::move(toRendering), negative);
 }
 
 // Refuses a Photoshop file whose sections run past its end before OpenImageIO allocates them

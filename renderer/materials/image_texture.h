@@ -31,8 +31,8 @@ class ImageTexture {
  public:
   virtual ~ImageTexture() = default;
   // The image's scene-linear colour filtered over the footprint; outside [0, 1]² the image
-  // continues as the footprint's wrap modes say. A float file's negative values, which no
-  // colour holds, count as 0 here (the file is warned of when it is read).
+  // continues as the footprint's wrap modes say. Where a float file holds negative values,
+  // which no colour does, each filtered channel is held at 0 (the first such lookup warns).
   virtual Rgb color(const ImageFootprint& at) const = 0;
   // The image's first three channels as the file stores them, filtered likewise but never
   // colour-converted (a grey image gives its one channel to all three): data such as normal,

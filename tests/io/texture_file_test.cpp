@@ -98,6 +98,8 @@ TEST(TextureFile, AnExrsFirstChannelsMustBeAColourOrAVector) {
   EXPECT_EQ(refusal("rgba", {"R", "G", "B", "A"}), "(accepted)");
   EXPECT_EQ(refusal("layer", {"diffuse.R", "diffuse.G", "diffuse.B"}), "(accepted)");
   EXPECT_EQ(refusal("normal", {"N.X", "N.Y", "N.Z"}), "(accepted)");
+  EXPECT_EQ(refusal("spelled", {"Red", "Green", "Blue"}), "(accepted)");
+  EXPECT_EQ(refusal("lower", {"x", "y", "z"}), "(accepted)");
   const std::string aov = refusal("aov", {"Z", "foo.R", "foo.G", "foo.B"});
   EXPECT_NE(aov.find("aov.exr: its channels are Z, foo.R, foo.G, foo.B; Glint reads a "
                      "texture's first three channels as R, G, B (or X, Y, Z)"),
@@ -168,9 +170,17 @@ TEST(TextureFile, NegativeValuesCountAsZeroAsAColourButStayAsData) {
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
   ASSERT_TRUE(out && out->open(path, spec) &&
               out->write_image(OIIO::TypeDesc::FLOAT, texels.data()) && out->close());
+  testing::internal::CaptureStderr();
   const auto t = openImageTexture(path);
   const ImageFootprint at{{0.5f, 0.5f}, {0, 0}, {0, 0}};
-  const Rgb data = t->data(at), colour = t->color(at);  // a float file: linear, no conversion
+  const Rgb data = t->data(at);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");  // a normal map's values: no warning
+  testing::internal::CaptureStderr();
+  const Rgb colour = t->color(at);  // a float file: linear, no conversion
+  t->color(at);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(),
+            "glint: warning: texture " + path +
+                ": 8 colour values are negative; as a colour the image is read with them as 0\n");
   EXPECT_EQ(data.r, -1.0f);
   EXPECT_EQ(data.b, -0.25f);
   EXPECT_EQ(colour.r, 0.0f);
