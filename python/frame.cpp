@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cfloat>
+#include <set>
 
 #include "app/frame_output.h"
 #include "convert.h"
@@ -104,11 +105,17 @@ Frame::Frame(const std::string& path) {
     const std::string layer = layerOf(channels_[k]);
     size_t end = k + 1;
     while (end < channels_.size() && layerOf(channels_[end]) == layer) ++end;
-    // Named as the render names it where its channels are an AOV's (Z: depth, N: normal).
-    const AovPlane* aov = aovPlaneWithChannels(
-        {channels_.begin() + ptrdiff_t(k), channels_.begin() + ptrdiff_t(end)});
-    layers_.push_back({aov ? aov->name : layer, int(k), int(end - k)});
+    layers_.push_back({layer, int(k), int(end - k)});
     k = end;
+  }
+  // Named as the render names it where its channels are an AOV's (Z: depth, N: normal), unless
+  // another layer of the file has that name already (another tool's "depth").
+  std::set<std::string> names;
+  for (const Layer& l : layers_) names.insert(l.name);
+  for (Layer& l : layers_) {
+    const AovPlane* aov =
+        aovPlaneWithChannels({channels_.begin() + l.first, channels_.begin() + l.first + l.count});
+    if (aov && names.insert(aov->name).second) l.name = aov->name;
   }
 }
 

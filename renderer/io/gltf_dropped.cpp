@@ -16,10 +16,11 @@ using nlohmann::json;
 
 // The extensions Glint renders (materials, io/mesh_materials.h; texture transforms; a file's
 // lights where it is the scene, io/gltf_scene.h) or that only encode geometry Assimp decodes.
+// (KHR_mesh_quantization's integer positions Assimp does not: io/gltf_layout.h refuses them.)
 constexpr std::string_view kRendered[] = {
-    "KHR_materials_transmission",      "KHR_materials_ior",         "KHR_materials_volume",
-    "KHR_materials_emissive_strength", "KHR_texture_transform",     "KHR_lights_punctual",
-    "KHR_mesh_quantization",           "KHR_draco_mesh_compression"};
+    "KHR_materials_transmission",      "KHR_materials_ior",     "KHR_materials_volume",
+    "KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_lights_punctual",
+    "KHR_draco_mesh_compression"};
 
 bool rendered(std::string_view extension) {
   return std::find(std::begin(kRendered), std::end(kRendered), extension) != std::end(kRendered);

@@ -143,23 +143,24 @@ class LayoutCheck {
     throw UsageError("mesh " + path_ + ": " + what);
   }
 
-  // The types glTF 2.0 gives the attribute `name` (floats, or normalized unsigned bytes and
-  // shorts where it allows them); attributes it leaves open (an application's _NAME) pass.
+  // The types Assimp reads the attribute `name` in as glTF 2.0 gives them: floats, and for
+  // colours unsigned bytes and shorts too (which Assimp scales to [0, 1], normalized or not).
+  // Texture coordinates stored as integers were dropped before (gltf_subset.cpp), and VEC3
+  // ones pass: Assimp reads their u and v. Attributes glTF leaves open (_NAME) pass.
   void attributeType(const std::string& where, const std::string& name, const json& index,
                      const json& accessor) const {
     const auto startsWith = [&](const char* prefix) { return name.rfind(prefix, 0) == 0; };
     std::vector<std::string> types;
-    bool normalizedIntegers = false;
+    bool integerColours = false;
     if (name == "POSITION" || name == "NORMAL") {
       types = {"VEC3"};
     } else if (name == "TANGENT") {
       types = {"VEC4"};
     } else if (startsWith("TEXCOORD_")) {
-      types = {"VEC2"};
-      normalizedIntegers = true;
+      types = {"VEC2", "VEC3"};
     } else if (startsWith("COLOR_")) {
       types = {"VEC3", "VEC4"};
-      normalizedIntegers = true;
+      integerColours = true;
     } else {
       return;
     }
@@ -168,19 +169,18 @@ class LayoutCheck {
                                  : std::string();
     const json& component = accessor.value("componentType", json());
     const int64_t c = component.is_number_integer() ? component.get<int64_t>() : 0;
-    const bool normalized = accessor.value("normalized", json(false)) == json(true);
     const bool typeOk = std::find(types.begin(), types.end(), type) != types.end();
-    const bool componentOk =
-        c == 5126 || (normalizedIntegers && normalized && (c == 5121 || c == 5123));
+    const bool componentOk = c == 5126 || (integerColours && (c == 5121 || c == 5123));
     if (typeOk && componentOk) return;
-    std::string allowed = types[0] + (types.size() > 1 ? " or " + types[1] : "") + " of floats";
-    if (normalizedIntegers) allowed += " or of normalized unsigned bytes or shorts";
-    if (typeOk && !normalizedIntegers && c >= 5120 && c <= 5125)
+    std::string allowed = types[0] + " or " + types[1] + " of floats";
+    if (name == "POSITION" || name == "NORMAL" || name == "TANGENT")
+      allowed = types[0] + " of floats";
+    if (integerColours) allowed += " or of unsigned bytes or shorts";
+    if (typeOk && !integerColours && c >= 5120 && c <= 5125)
       allowed += " (integers are KHR_mesh_quantization's, which Glint does not read)";
     fail(where + ": accessors[" + index.dump() + "] is " +
          excerpt(accessor.value("type", json()).dump()) + " of componentType " +
-         excerpt(component.dump()) + (normalized ? " (normalized)" : "") + "; glTF 2.0 stores " +
-         name + " as " + allowed);
+         excerpt(component.dump()) + "; Glint reads " + name + " as " + allowed);
   }
 
   static std::string sumText(uint64_t a, uint64_t b) {

@@ -26,9 +26,9 @@ const nlohmann::json* gltfElementAt(const nlohmann::json& doc, const char* list,
 uint64_t gltfElementBytes(const nlohmann::json& accessor);
 
 // Throws UsageError naming `path` and the element when, in `doc` (glTF 2.0 JSON, trimmed to what
-// Glint reads), an attribute is stored in a type glTF does not give it (POSITION and NORMAL
-// VEC3 of floats, TANGENT VEC4, TEXCOORD_n VEC2 and COLOR_n VEC3 or VEC4 of floats or of
-// normalized unsigned bytes or shorts), an accessor a primitive reads (an attribute, its indices,
+// Glint reads), an attribute is stored in a type Assimp does not read it in (POSITION and NORMAL
+// VEC3 of floats, TANGENT VEC4, TEXCOORD_n VEC2 or VEC3, COLOR_n VEC3 or VEC4 of floats or of
+// unsigned bytes or shorts), an accessor a primitive reads (an attribute, its indices,
 // their sparse indices and values) has no type or componentType glTF defines (Assimp reads a
 // missing one as the smallest), or does not lie within its buffer view; when such a view, or an
 // image's, does not lie within its buffer's byteLength or has a byteStride glTF does not allow (a

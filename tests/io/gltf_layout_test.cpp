@@ -53,9 +53,9 @@ TEST(GltfLayout, AccessorsWithinTheirViewsAndViewsWithinTheirBuffersPass) {
   EXPECT_EQ(refusal(doc), "(accepted)");
 }
 
-TEST(GltfLayout, AttributesMustBeStoredInTheTypesGltfGivesThem) {
-  // Assimp read a POSITION of SCALAR unsigned shorts, of VEC2 floats or of VEC3 shorts, and
-  // TEXCOORD_0 as VEC3, as whatever floats their bytes made: the file rendered, wrong.
+TEST(GltfLayout, AttributesMustBeStoredInTypesAssimpReads) {
+  // Assimp read a POSITION of SCALAR unsigned shorts, of VEC2 floats or of VEC3 shorts as
+  // whatever floats their bytes made: the file rendered, wrong.
   const auto positionAs = [](const char* type, int component, int count) {
     json doc = triangle();
     doc["accessors"][0]["type"] = type;
@@ -65,35 +65,35 @@ TEST(GltfLayout, AttributesMustBeStoredInTheTypesGltfGivesThem) {
   };
   EXPECT_EQ(positionAs("SCALAR", 5123, 3),
             "mesh m.gltf: meshes[0].primitives[0].attributes.POSITION: accessors[0] is "
-            "\"SCALAR\" of componentType 5123; glTF 2.0 stores POSITION as VEC3 of floats");
+            "\"SCALAR\" of componentType 5123; Glint reads POSITION as VEC3 of floats");
   EXPECT_NE(positionAs("VEC2", 5126, 3)
-                .find("is \"VEC2\" of componentType 5126; glTF 2.0 "
-                      "stores POSITION as VEC3 of floats"),
+                .find("is \"VEC2\" of componentType 5126; Glint reads "
+                      "POSITION as VEC3 of floats"),
             std::string::npos);
   EXPECT_NE(positionAs("VEC3", 5122, 3)
                 .find("(integers are KHR_mesh_quantization's, which "
                       "Glint does not read)"),
             std::string::npos);
-  // Texture coordinates and colours may be normalized unsigned integers as well as floats.
+  // Colours as unsigned integers (Assimp scales them, normalized or not) and texture
+  // coordinates as VEC3 (Assimp reads u and v) are read as they should be.
   json doc = triangle();
   doc["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2u;
   doc["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 3u;
-  doc["accessors"].push_back(json::parse(R"({"bufferView": 0, "componentType": 5123,
-                                             "normalized": true, "count": 3, "type": "VEC2"})"));
   doc["accessors"].push_back(json::parse(R"({"bufferView": 0, "componentType": 5126,
+                                             "count": 3, "type": "VEC3"})"));
+  doc["accessors"].push_back(json::parse(R"({"bufferView": 0, "componentType": 5121,
                                              "count": 2, "type": "VEC4"})"));
   EXPECT_EQ(refusal(doc), "(accepted)");
-  doc["accessors"][2]["type"] = "VEC3";
+  doc["accessors"][2]["type"] = "VEC4";
+  doc["accessors"][2]["count"] = 2;
   EXPECT_EQ(refusal(doc),
             "mesh m.gltf: meshes[0].primitives[0].attributes.TEXCOORD_0: accessors[2] is "
-            "\"VEC3\" of componentType 5123 (normalized); glTF 2.0 stores TEXCOORD_0 as VEC2 of "
-            "floats or of normalized unsigned bytes or shorts");
+            "\"VEC4\" of componentType 5126; Glint reads TEXCOORD_0 as VEC2 or VEC3 of floats");
   doc["accessors"][2]["type"] = "VEC2";
-  doc["accessors"][3]["normalized"] = false;
-  doc["accessors"][3]["componentType"] = 5121;
+  doc["accessors"][3]["componentType"] = 5120;  // signed bytes: not a colour glTF allows
   EXPECT_NE(refusal(doc).find("attributes.COLOR_0: accessors[3] is \"VEC4\" of componentType "
-                              "5121; glTF 2.0 stores COLOR_0 as VEC3 or VEC4 of floats or of "
-                              "normalized unsigned bytes or shorts"),
+                              "5120; Glint reads COLOR_0 as VEC3 or VEC4 of floats or of "
+                              "unsigned bytes or shorts"),
             std::string::npos)
       << refusal(doc);
 }

@@ -132,6 +132,12 @@ def test_read_frame_names_only_glints_own_planes_as_aovs(tmp_path):
     frame = glint.read_frame(path)
     assert set(frame.aovs) == {"N", "depth"}
     assert frame.aovs["N"].shape == (2, 4, 2) and np.all(frame.aovs["depth"] == 5)
+    # A layer the file itself names "depth" keeps the name; its Z then keeps its own.
+    subprocess.run(["oiiotool", "--pattern", "constant:color=0.5,0.25,1,2,3,4", "4x2", "6",
+                    "--chnames", "R,G,B,A,depth.V,Z", "-d", "float", "-o", str(path)], check=True)
+    frame = glint.read_frame(path)
+    assert set(frame.aovs) == {"depth", "Z"}
+    assert np.all(frame.aovs["depth"] == 3) and np.all(frame.aovs["Z"] == 4)
 
 
 def test_crop_and_sampler_as_the_command(tmp_path, scene_dict, binary):
