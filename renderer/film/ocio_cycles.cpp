@@ -77,14 +77,15 @@ class ReferenceGraph {
       std::vector<std::pair<Node, size_t>> path{{start, 0}};
       mark[start] = Mark::OnPath;
       while (!path.empty()) {
-        auto& [node, next] = path.back();
+        const Node node = path.back().first;  // a copy: the path may grow below
         const std::vector<Node>& out = edges_.at(node);
+        const size_t next = path.back().second++;
         if (next == out.size()) {
           mark[node] = Mark::Done;
           path.pop_back();
           continue;
         }
-        const Node& to = out[next++];
+        const Node& to = out[next];
         const Mark m = mark[to];
         if (m == Mark::OnPath) {
           std::vector<Node> loop;

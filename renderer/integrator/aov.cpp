@@ -43,26 +43,27 @@ AovSet AovSet::parse(const std::string& list) {
 namespace {
 
 const std::vector<AovPlane>& fixedPlanes() {
-  const auto rgb = [](const std::string& layer) {
-    return std::vector<std::string>{layer + ".R", layer + ".G", layer + ".B"};
-  };
   static const std::vector<AovPlane> planes = {
       {Aov::Depth, "depth", {"Z"}},
       {Aov::Normal, "normal", {"N.X", "N.Y", "N.Z"}},
-      {Aov::Albedo, "albedo", rgb("Albedo")},
+      {Aov::Albedo, "albedo", rgbChannels("Albedo")},
       {Aov::Position, "position", {"P.X", "P.Y", "P.Z"}},
       // Blender's name for its object index pass (pass IndexOB, channel X), which its EXR
       // reader and compositor take as a float pass; a channel it cannot name it drops, and a
       // part left with none stops its reading of the parts after it.
       {Aov::ObjectId, "objectid", {"IndexOB.X"}},
-      {Aov::Direct, "direct", rgb("direct")},
-      {Aov::Indirect, "indirect", rgb("indirect")},
-      {Aov::Variance, "variance", rgb("Variance")},
+      {Aov::Direct, "direct", rgbChannels("direct")},
+      {Aov::Indirect, "indirect", rgbChannels("indirect")},
+      {Aov::Variance, "variance", rgbChannels("Variance")},
   };
   return planes;
 }
 
 }  // namespace
+
+std::vector<std::string> rgbChannels(const std::string& layer) {
+  return {layer + ".R", layer + ".G", layer + ".B"};
+}
 
 const AovPlane& aovPlane(Aov aov) {
   const std::vector<AovPlane>& planes = fixedPlanes();

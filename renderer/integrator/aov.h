@@ -52,6 +52,8 @@ struct AovPlane {
   std::vector<std::string> channels;
 };
 const AovPlane& aovPlane(Aov aov);  // for every AOV but Lights and Cryptomatte
+// The channels of an RGB plane named `layer`: layer.R, layer.G, layer.B.
+std::vector<std::string> rgbChannels(const std::string& layer);
 // The AOV whose plane has exactly these channels, or null: how a frame read back names its
 // layers as the render did.
 const AovPlane* aovPlaneWithChannels(const std::vector<std::string>& channels);

@@ -78,9 +78,6 @@ AovLayout AovLayout::create(const AovSet& set, const Scene& scene, Film& film) {
     const AovPlane& p = aovPlane(aov);
     return film.addPlane(p.name, p.channels);
   };
-  const auto rgb = [](const std::string& layer) {
-    return std::vector<std::string>{layer + ".R", layer + ".G", layer + ".B"};
-  };
   if (set.has(Aov::Depth)) l.depth = add(Aov::Depth);
   if (set.has(Aov::Normal)) l.normal = add(Aov::Normal);
   if (set.has(Aov::Albedo)) l.albedo = add(Aov::Albedo);
@@ -106,7 +103,7 @@ AovLayout AovLayout::create(const AovSet& set, const Scene& scene, Film& film) {
     const std::vector<std::string> layers = lightLayerNames(scene);
     nlohmann::ordered_json names = nlohmann::ordered_json::object();
     for (size_t i = 0; i < lightCount; ++i) {
-      const size_t p = film.addPlane(layers[i], rgb(layers[i]));
+      const size_t p = film.addPlane(layers[i], rgbChannels(layers[i]));
       if (i == 0) l.firstLight = p;
       names[layers[i]] = scene.lightName(i);
     }
