@@ -172,9 +172,9 @@ class LayoutCheck {
     const bool typeOk = std::find(types.begin(), types.end(), type) != types.end();
     const bool componentOk = c == 5126 || (integerColours && (c == 5121 || c == 5123));
     if (typeOk && componentOk) return;
-    std::string allowed = types[0] + " or " + types[1] + " of floats";
-    if (name == "POSITION" || name == "NORMAL" || name == "TANGENT")
-      allowed = types[0] + " of floats";
+    std::string allowed = types[0];
+    for (size_t i = 1; i < types.size(); ++i) allowed += " or " + types[i];
+    allowed += " of floats";
     if (integerColours) allowed += " or of unsigned bytes or shorts";
     if (typeOk && !integerColours && c >= 5120 && c <= 5125)
       allowed += " (integers are KHR_mesh_quantization's, which Glint does not read)";
