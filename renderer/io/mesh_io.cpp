@@ -30,6 +30,7 @@
 #include "io/ac3d_shading.h"
 #include "io/assimp_scene_info.h"
 #include "io/expansion_limits.h"
+#include "io/face_normals.h"
 #include "io/gltf_indices.h"
 #include "io/gltf_subset.h"
 #include "io/json_source.h"
@@ -549,11 +550,15 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
   if (ext == ".ac") smoothAc3dSurfaces(*s, path);
   checkFlattenedTriangles(path, *s);
   checkNodePlacements(path, *s);
+  // The importer's own scene again (io/face_normals.h).
+  auto& faces = const_cast<aiScene&>(*s);
+  if (someMeshesLackNormals(faces)) giveFlatNormalsWhereMissing(faces, path);
+  windMirroredTrianglesOutward(faces);
   const FaceNames faceNames(*s);
   s = processOrThrow(importer, aiProcess_JoinIdenticalVertices | aiProcess_PreTransformVertices,
                      path);
-  // Shaded smooth when every mesh of the file gives vertex normals (one mesh without them would
-  // leave its vertices none to interpolate), else flat.
+  // Shaded smooth when the file gives vertex normals (where some of its meshes do, the others
+  // were given their faces' above), else flat from the triangles.
   bool smooth = true;
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi)
     if (s->mMeshes[mi]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE)

@@ -283,6 +283,84 @@ TEST(MeshFile, VertexNormalsOfObjPlyAndRealFilesAreKept) {
   }
 }
 
+TEST(MeshFile, AMeshWithoutNormalsIsFlatBesideMeshesThatKeepTheirs) {
+  // A floor without vn beside a smooth part made the whole file flat (a ball rendered in
+  // facets). glTF 2.0 (3.7.2.1) gives a primitive without NORMAL flat normals; the others keep
+  // their own. A bent quad (two triangles meeting at a ridge) without normals, beside a triangle
+  // with tilted vn: the triangle keeps its vn, each half of the quad its own face's normal.
+  const std::string obj =
+      test::writeTemp("smooth_and_flat.obj",
+                      "o Smooth\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvn 0.6 0 0.8\nvn 0 0.6 0.8\n"
+                      "f 1//1 2//2 3//3\n"
+                      "o Ridge\nv 0 0 5\nv 1 0 5\nv 1 1 6\nv 0 1 6\nv 0 2 5\nv 1 2 5\n"
+                      "f 4 5 6\nf 4 6 7\nf 7 6 9\nf 7 9 8\n");
+  const TriangleMesh mesh = loadMeshFile(obj).parts.at(0);
+  ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+  const float s = 1 / std::sqrt(2.0f);  // the ridge's faces rise and fall at 45 degrees
+  int smooth = 0, rising = 0, falling = 0;
+  for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+    const Vec3f& p0 = mesh.positions[mesh.indices[t]];
+    for (int c = 0; c < 3; ++c) {
+      const uint32_t v = mesh.indices[t + size_t(c)];
+      const Vec3f& n = mesh.normals[v];
+      if (p0.z < 1) {
+        ++smooth;
+        if (mesh.positions[v].x == 1) EXPECT_FLOAT_EQ(n.x, 0.6f);  // vn 2, as the file gives
+        continue;
+      }
+      // Every corner of a face of the ridge carries that face's normal, whichever face shares
+      // its position.
+      const Vec3f edge1 = mesh.positions[mesh.indices[t + 1]] - p0;
+      const Vec3f edge2 = mesh.positions[mesh.indices[t + 2]] - p0;
+      const Vec3f face = normalize(cross(edge1, edge2));
+      EXPECT_NEAR(n.x, face.x, 1e-6f);
+      EXPECT_NEAR(n.y, face.y, 1e-6f);
+      EXPECT_NEAR(n.z, face.z, 1e-6f);
+      EXPECT_NEAR(std::fabs(n.y), s, 1e-6f);
+      ++(n.y < 0 ? rising : falling);
+    }
+  }
+  EXPECT_EQ(smooth, 3);
+  EXPECT_EQ(rising, 6);
+  EXPECT_EQ(falling, 6);
+}
+
+TEST(MeshFile, ANodeThatMirrorsItsMeshKeepsItsTrianglesWoundOutward) {
+  // glTF 2.0 (3.5.2): under a transform of negative determinant a triangle winds clockwise
+  // about its outward side. Assimp flattened it wound as before, its geometric normal turned
+  // against its vertex normals (a normal map bent the wrong way; glass would be inside out).
+  // One mesh placed plain and mirrored in x: every triangle of both must wind counter-clockwise
+  // about its vertex normal.
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const float normals[9] = {0, 0, 1, 0, 0, 1, 0, 0, 1};
+  std::string buffer(reinterpret_cast<const char*>(positions), sizeof positions);
+  buffer.append(reinterpret_cast<const char*>(normals), sizeof normals);
+  const std::string gltf = test::writeTemp("mirrored.gltf", R"({"asset": {"version": "2.0"},
+      "scene": 0, "scenes": [{"nodes": [0, 1]}],
+      "nodes": [{"mesh": 0, "translation": [-2, 0, 0]},
+                {"mesh": 0, "translation": [2, 0, 0], "scale": [-1, 1, 1]}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}}]}],
+      "buffers": [{"uri": "data:application/octet-stream;base64,)" +
+                                                                test::base64(buffer) + R"(",
+                   "byteLength": 72}],
+      "bufferViews": [{"buffer": 0, "byteLength": 36},
+                      {"buffer": 0, "byteOffset": 36, "byteLength": 36}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC3"}]})");
+  const TriangleMesh mesh = loadMeshFile(gltf).parts.at(0);
+  ASSERT_EQ(mesh.triangleCount(), 2u);
+  int mirrored = 0;
+  for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+    const Vec3f& p0 = mesh.positions[mesh.indices[t]];
+    const Vec3f winding =
+        cross(mesh.positions[mesh.indices[t + 1]] - p0, mesh.positions[mesh.indices[t + 2]] - p0);
+    EXPECT_GT(dot(winding, mesh.normals[mesh.indices[t]]), 0) << "triangle " << t / 3;
+    mirrored += p0.x > 0;
+  }
+  EXPECT_EQ(mirrored, 1);
+}
+
 TEST(MeshFile, NonFiniteVertexValuesOfAnObjAreRefusedAtTheirLine) {
   // Assimp reads nan, inf and 1e39 (past float's range) in an OBJ file as 0 without a word: a
   // vertex moved to the origin, a texture coordinate to the image's corner. PLY files refuse the
