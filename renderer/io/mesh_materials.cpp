@@ -187,7 +187,11 @@ Material fromMtl(const MaterialValues& v, const TextureOpener& open, MeshFileFor
                     open);
   s.ka = ColorTexture::uniform(v.colour("ambient colour (Ka)", AI_MATKEY_COLOR_AMBIENT, {0, 0, 0}));
   s.ambientFollowsDiffuse = false;
-  s.ks = textured(src, aiTextureType_SPECULAR, ks, open);
+  // The highlight's strength scales its colour (an FBX's SpecularFactor: Blender writes a
+  // specular colour of 0.8 beside a factor of 0 for a matte surface). MTL has none.
+  const float strength = v.number("specular strength (shininess strength)",
+                                  AI_MATKEY_SHININESS_STRENGTH, 1.0f, 0.0f, 1e4f);
+  s.ks = textured(src, aiTextureType_SPECULAR, ks * strength, open);
   // Ns is the Phong exponent (0 … 1000 in the specification); Glint's must be at least 1, which
   // Ns in [0, 1) (Ns 0 is common in exported files) takes without a word.
   s.exponent = v.number("shininess (Ns)", AI_MATKEY_SHININESS, 32, 1.0f, 1e4f,

@@ -286,6 +286,23 @@ TEST(MeshMaterials, OtherFormatsLetTheDiffuseTextureReplaceTheColour) {
   EXPECT_FLOAT_EQ(uniform(mtl.surface.kd).r, 0.6f);
 }
 
+TEST(MeshMaterials, TheSpecularStrengthScalesTheHighlightsColour) {
+  // Blender writes a matte material to FBX as SpecularColor 0.8 with SpecularFactor 0 (Assimp's
+  // shininess strength): read without the factor, a matte sphere took a white sheen of 0.8.
+  const auto ks = [](const float* strength) {
+    aiMaterial src;
+    const aiColor3D specular(0.8f, 0.8f, 0.8f);
+    src.AddProperty(&specular, 1, AI_MATKEY_COLOR_SPECULAR);
+    if (strength) src.AddProperty(strength, 1, AI_MATKEY_SHININESS_STRENGTH);
+    const TextureOpener none = [](const std::string&) { return nullptr; };
+    return uniform(materialFromMeshFile(src, MeshFileFormat::Other, "ball.fbx", none).surface.ks);
+  };
+  const float zero = 0, half = 0.5f;
+  EXPECT_EQ(ks(&zero).r, 0.0f);
+  EXPECT_FLOAT_EQ(ks(&half).g, 0.4f);
+  EXPECT_FLOAT_EQ(ks(nullptr).b, 0.8f);  // absent (an MTL): the colour as given
+}
+
 TEST(MeshMaterials, ATexturePathOfAnotherMachineFindsTheImageBesideTheMesh) {
   // Exporters write the path the texture had where the file was made (assimp-testmodels'
   // spider.fbx: "D:\\projects\\...\\drkwood2.jpg"); the image of that name beside the mesh is used.
