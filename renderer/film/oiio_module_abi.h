@@ -19,12 +19,14 @@ struct GlintOiioTextureInfo {
   char colorspace[64];  // the file's oiio:ColorSpace, or empty
   int tileHeight;       // rows of a tiled file's tiles (reads start at a multiple), else 0
 };
-// Opens `path` and fills `info` from its header; returns its handle, or null with a message.
-using GlintOiioTextureOpen = void* (*)(const char* path, GlintOiioTextureInfo* info, char* error,
-                                       size_t errorSize);
-// The same for an image held in memory (a glTF file's embedded PNG or JPEG): `name` ends in the
-// format's extension; the bytes must outlive the handle.
-using GlintOiioTextureOpenMemory = void* (*)(const char* name, const void* bytes, size_t size,
+// Opens `path` with OpenImageIO's reader of `format` (its name: "tiff", "openexr", ...) and no
+// other, and fills `info` from its header; returns its handle, or null with a message.
+using GlintOiioTextureOpen = void* (*)(const char* path, const char* format,
+                                       GlintOiioTextureInfo* info, char* error, size_t errorSize);
+// The same for an image held in memory (an FBX's embedded image), which `name` names; the bytes
+// must outlive the handle.
+using GlintOiioTextureOpenMemory = void* (*)(const char* name, const char* format,
+                                             const void* bytes, size_t size,
                                              GlintOiioTextureInfo* info, char* error,
                                              size_t errorSize);
 // The texels of rows [y0, y1) (y0 a multiple of tileHeight, y1 too or the height) of an

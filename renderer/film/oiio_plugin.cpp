@@ -80,10 +80,13 @@ std::string unreadChannels(const OIIO::ImageInput& in) {
          "not (oiiotool --ch R=...,G=...,B=... names the ones to read)";
 }
 
-// Opens `name` (through `proxy` when it is held in memory) and fills `info` from its header;
-// null with OpenImageIO's message.
-void* openImage(const char* name, std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy,
-                GlintOiioTextureInfo* info, char* error, size_t errorSize) {
+// Opens `name` (through `proxy` when it is held in memory) with the reader of `format` alone
+// and fills `info` from its header; null with OpenImageIO's message. ImageInput::open would try
+// every other reader on a file its extension's reader refused (io/texture_formats.h says why
+// a texture must not reach them).
+void* openImage(const char* name, const char* format,
+                std::unique_ptr<OIIO::Filesystem::IOMemReader> proxy, GlintOiioTextureInfo* info,
+                char* error, size_t errorSize) {
   auto image = std::make_unique<OpenedImage>();
   image->proxy = std::move(proxy);
   OIIO::ImageSpec config;
@@ -94,9 +97,23 @@ void* openImage(const char* name, std::unique_ptr<OIIO::Filesystem::IOMemReader>
     OIIO::Filesystem::IOProxy* p = image->proxy.get();
     config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &p);
   }
-  image->in = OIIO::ImageInput::open(name, &config);
+  // A bare format name: the reader is made, not tried on the file.
+  image->in = OIIO::ImageInput::create(format);
   if (!image->in) {
     std::snprintf(error, errorSize, "%s", OIIO::geterror().c_str());
+    return nullptr;
+  }
+  // A reader without proxies would open a file of the embedded image's name instead.
+  if (image->proxy && !image->in->supports("ioproxy")) {
+    std::snprintf(error, errorSize, "OpenImageIO's %s reader does not read images held in memory",
+                  format);
+    return nullptr;
+  }
+  OIIO::ImageSpec opened;
+  if (!image->in->open(name, opened, config)) {
+    std::string why = image->in->geterror();
+    std::snprintf(error, errorSize, "%s",
+                  why.empty() ? "OpenImageIO could not open it" : why.c_str());
     return nullptr;
   }
   const OIIO::ImageSpec& spec = image->in->spec();
@@ -151,9 +168,10 @@ bool readScanlines(OIIO::ImageInput& in, int y0, int y1, int channels, float* ou
 }  // namespace
 
 extern "C" __attribute__((visibility("default"))) void* glint_oiio_texture_open(
-    const char* path, GlintOiioTextureInfo* info, char* error, size_t errorSize) {
+    const char* path, const char* format, GlintOiioTextureInfo* info, char* error,
+    size_t errorSize) {
   try {
-    return openImage(path, nullptr, info, error, errorSize);
+    return openImage(path, format, nullptr, info, error, errorSize);
   } catch (const std::exception& e) {
     std::snprintf(error, errorSize, "%s", e.what());
   }
@@ -162,11 +180,11 @@ extern "C" __attribute__((visibility("default"))) void* glint_oiio_texture_open(
 static_assert(std::is_same_v<decltype(&glint_oiio_texture_open), GlintOiioTextureOpen>);
 
 extern "C" __attribute__((visibility("default"))) void* glint_oiio_texture_open_memory(
-    const char* name, const void* bytes, size_t size, GlintOiioTextureInfo* info, char* error,
-    size_t errorSize) {
+    const char* name, const char* format, const void* bytes, size_t size,
+    GlintOiioTextureInfo* info, char* error, size_t errorSize) {
   try {
-    return openImage(name, std::make_unique<OIIO::Filesystem::IOMemReader>(bytes, size), info,
-                     error, errorSize);
+    return openImage(name, format, std::make_unique<OIIO::Filesystem::IOMemReader>(bytes, size),
+                     info, error, errorSize);
   } catch (const std::exception& e) {
     std::snprintf(error, errorSize, "%s", e.what());
   }

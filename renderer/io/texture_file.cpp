@@ -19,6 +19,7 @@
 #include "film/oiio_module.h"
 #include "io/own_texture_readers.h"
 #include "io/psd_sections.h"
+#include "io/texture_formats.h"
 #include "materials/mip_pyramid.h"
 
 namespace glint {
@@ -236,8 +237,9 @@ std::shared_ptr<const ImageTexture> openTextureFile(const std::string& path,
     if (void* handle = reader->open(path, &info, error, sizeof error, &declined); !declined)
       return loadedTexture(path, handle, info, error, colorspace, reader->functions());
   }
+  const std::string format = textureReaderFormat(path);
   const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(path);
-  void* handle = functions.open(path.c_str(), &info, error, sizeof error);
+  void* handle = functions.open(path.c_str(), format.c_str(), &info, error, sizeof error);
   return loadedTexture(path, handle, info, error, colorspace, functions);
 }
 
@@ -260,9 +262,10 @@ std::shared_ptr<const ImageTexture> openTextureBytes(const std::string& name,
         !declined)
       return loadedTexture(name, handle, info, error, "", reader->functions());
   }
+  const std::string format = textureReaderFormat(name);
   const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(name);
-  void* handle =
-      functions.openMemory(name.c_str(), bytes.data(), bytes.size(), &info, error, sizeof error);
+  void* handle = functions.openMemory(name.c_str(), format.c_str(), bytes.data(), bytes.size(),
+                                      &info, error, sizeof error);
   return loadedTexture(name, handle, info, error, "", functions);
 }
 

@@ -124,6 +124,48 @@ TEST(TextureFile, ADeepImageIsRefusedByName) {
             "cannot read texture " + path + ": it holds deep data, which Glint does not read");
 }
 
+TEST(TextureFile, OnlyTheFormatsGlintListsReachOpenImageIOsReaders) {
+  // OpenImageIO's IFF reader corrupted the heap on a 268-byte file, its DPX reader asserted, its
+  // SGI reader took 4.3 GB for 512 bytes: a texture reaches only the readers of
+  // io/texture_formats.h, chosen by its extension and never by its bytes.
+  const int width = 4, height = 2;
+  std::vector<float> texels(size_t(width) * height * 3);
+  for (size_t i = 0; i < texels.size(); ++i) texels[i] = float(i % 7) / 7;
+  const auto write = [&](const std::string& name) {
+    const std::string path = (test::tempDir() / name).string();
+    std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(path);
+    EXPECT_TRUE(out && out->open(path, OIIO::ImageSpec(width, height, 3, OIIO::TypeDesc::UINT8)) &&
+                out->write_image(OIIO::TypeDesc::FLOAT, texels.data()) && out->close());
+    return path;
+  };
+  const std::string iff = write("checker.iff");
+  EXPECT_EQ(textureRefusal(iff),
+            "cannot read texture " + iff +
+                ": \".iff\" is not an image format Glint reads textures from; Glint reads PNG, "
+                "JPEG, Radiance HDR (.hdr), OpenEXR (.exr), TIFF (.tif, .tiff, .tx), Photoshop "
+                "(.psd), Targa (.tga), BMP (.bmp) and PNM (.ppm, .pgm, .pfm) files, by their "
+                "extension (oiiotool converts the others: oiiotool IN -o OUT.exr)");
+  // The same bytes named as a TIFF meet the TIFF reader alone, which refuses them (OpenImageIO's
+  // ImageInput::open went on to try every reader on them).
+  const std::string disguised = (test::tempDir() / "checker_iff.tif").string();
+  std::filesystem::copy_file(iff, disguised, std::filesystem::copy_options::overwrite_existing);
+  const std::string refusal = textureRefusal(disguised);
+  EXPECT_EQ(refusal.rfind("cannot read texture " + disguised + ": ", 0), 0u) << refusal;
+  EXPECT_NE(refusal.find("TIFF"), std::string::npos) << refusal;
+  // The listed formats OpenImageIO reads give the file's texels (8-bit codes, exact to 1e-6).
+  for (const char* name : {"checker.tga", "checker.bmp", "checker.ppm"}) {
+    SCOPED_TRACE(name);
+    const auto t = openImageTexture(write(name));
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const size_t i = 3 * (size_t(y) * width + size_t(x));
+        const Rgb texel = texelAt(*t, width, height, x, y);
+        EXPECT_NEAR(texel.r, std::round(texels[i] * 255) / 255, 1e-6);
+        EXPECT_NEAR(texel.b, std::round(texels[i + 2] * 255) / 255, 1e-6);
+      }
+  }
+}
+
 // A 2 × 2 RGB Photoshop file of 8-bit raw texels (red 10, 20, 30, 40; green 50 ...; blue 90
 // ...), its colour mode data section claiming `colourModeBytes` (holding none).
 std::string photoshopFile(uint32_t colourModeBytes) {
@@ -230,7 +272,9 @@ TEST(TextureFile, BandsReadInTheFilesTypeGiveOpenImageIOsFloats) {
 
     GlintOiioTextureInfo info{};
     char error[512] = "";
-    void* handle = functions.open(path.c_str(), &info, error, sizeof error);
+    void* handle =
+        functions.open(path.c_str(), extension == std::string("exr") ? "openexr" : "tiff", &info,
+                       error, sizeof error);
     ASSERT_NE(handle, nullptr) << error;
     const std::unique_ptr<void, GlintOiioTextureClose> opened(handle, functions.close);
     ASSERT_EQ(info.channels, fileChannels);

@@ -19,6 +19,7 @@
 #include "io/own_texture_readers.h"
 #include "io/texture_bands.h"
 #include "io/texture_file.h"
+#include "io/texture_formats.h"
 #include "test_util.h"
 
 namespace glint::test {
@@ -70,7 +71,8 @@ inline Reading readWithOpenImageIO(const std::string& path) {
   Reading r;
   const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(path);
   char error[512] = "";
-  void* handle = functions.open(path.c_str(), &r.info, error, sizeof error);
+  void* handle =
+      functions.open(path.c_str(), textureReaderFormat(path).c_str(), &r.info, error, sizeof error);
   r.error = error;
   if (handle) readRows(r, handle, functions, kOpenImageIOBand);
   return r;
@@ -80,8 +82,8 @@ inline Reading readBytesWithOpenImageIO(const std::string& name, const Bytes& by
   Reading r;
   const oiio_module::TextureFunctions& functions = oiio_module::textureFunctions(name);
   char error[512] = "";
-  void* handle =
-      functions.openMemory(name.c_str(), bytes.data(), bytes.size(), &r.info, error, sizeof error);
+  void* handle = functions.openMemory(name.c_str(), textureReaderFormat(name).c_str(), bytes.data(),
+                                      bytes.size(), &r.info, error, sizeof error);
   r.error = error;
   if (handle) readRows(r, handle, functions, kOpenImageIOBand);
   return r;
