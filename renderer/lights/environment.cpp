@@ -111,33 +111,47 @@ struct EnvironmentLight::Map {
   // Whether cellsInLanes may run: AVX2's gathers, and every table index an int.
   bool searchesInLanes() const;
   // cellOf's x and y, and the bounds of each cell's row and texel in the tables, for the
-  // samples (us[i], vs[i]), i in [0, count), count a multiple of 8: eight searches side by side.
+  // samples (us[i], vs[i]), i in [0, count), count a multiple of 8·kSearchGroups: that many
+  // groups of eight searches side by side.
+  static constexpr int kSearchGroups = 2;
   void cellsInLanes(const float* us, const float* vs, int count, int* xs, int* ys, float* rowLo,
                     float* rowHi, float* texelLo, float* texelHi) const;
 };
 
 namespace {
 
-// std::upper_bound of u over table[base + lo, base + hi) in each of eight lanes, as the index
-// (from base) of the first entry above u, or hi: the same steps, each lane going on while its
-// range is not empty.
-[[gnu::target("avx2")]] inline __m256i upperBoundLanes(const float* table, __m256i base, __m256i lo,
-                                                       __m256i hi, __m256 u) {
+// std::upper_bound of u over table[base + lo, base + hi) in each of eight lanes of each of G
+// groups, as the index (from base) of the first entry above u, or hi: the same steps, each lane
+// going on while its range is not empty. The groups step side by side: each step's gathers wait
+// on the step before, and one group alone left the core waiting on them.
+template <int G>
+[[gnu::target("avx2")]] inline void upperBoundLanes(const float* table, const __m256i* base,
+                                                    __m256i* lo, const __m256i* hi,
+                                                    const __m256* u) {
   const __m256i zero = _mm256_setzero_si256(), one = _mm256_set1_epi32(1);
-  __m256i len = _mm256_sub_epi32(hi, lo);
-  for (__m256i active = _mm256_cmpgt_epi32(len, zero); !_mm256_testz_si256(active, active);
-       active = _mm256_cmpgt_epi32(len, zero)) {
-    const __m256i half = _mm256_srli_epi32(len, 1);
-    const __m256i middle = _mm256_add_epi32(lo, half);
-    const __m256 at = _mm256_mask_i32gather_ps(
-        _mm256_setzero_ps(), table, _mm256_add_epi32(base, middle), _mm256_castsi256_ps(active), 4);
-    // upper_bound's step: past the middle unless u < *middle.
-    const __m256i past =
-        _mm256_andnot_si256(_mm256_castps_si256(_mm256_cmp_ps(u, at, _CMP_LT_OQ)), active);
-    lo = _mm256_blendv_epi8(lo, _mm256_add_epi32(middle, one), past);
-    len = _mm256_blendv_epi8(half, _mm256_sub_epi32(_mm256_sub_epi32(len, half), one), past);
+  __m256i len[G], active[G];
+  for (int g = 0; g < G; ++g) len[g] = _mm256_sub_epi32(hi[g], lo[g]);
+  for (;;) {
+    __m256i any = zero;
+    for (int g = 0; g < G; ++g) {
+      active[g] = _mm256_cmpgt_epi32(len[g], zero);
+      any = _mm256_or_si256(any, active[g]);
+    }
+    if (_mm256_testz_si256(any, any)) return;
+    for (int g = 0; g < G; ++g) {
+      const __m256i half = _mm256_srli_epi32(len[g], 1);
+      const __m256i middle = _mm256_add_epi32(lo[g], half);
+      const __m256 at =
+          _mm256_mask_i32gather_ps(_mm256_setzero_ps(), table, _mm256_add_epi32(base[g], middle),
+                                   _mm256_castsi256_ps(active[g]), 4);
+      // upper_bound's step: past the middle unless u < *middle.
+      const __m256i past =
+          _mm256_andnot_si256(_mm256_castps_si256(_mm256_cmp_ps(u[g], at, _CMP_LT_OQ)), active[g]);
+      lo[g] = _mm256_blendv_epi8(lo[g], _mm256_add_epi32(middle, one), past);
+      len[g] =
+          _mm256_blendv_epi8(half, _mm256_sub_epi32(_mm256_sub_epi32(len[g], half), one), past);
+    }
   }
-  return lo;
 }
 
 // GuidedCdf::cell's clamp of the index found into [0, n).
@@ -171,46 +185,59 @@ bool EnvironmentLight::Map::searchesInLanes() const {
                                                                  float* rowLo, float* rowHi,
                                                                  float* texelLo,
                                                                  float* texelHi) const {
+  constexpr int G = kSearchGroups;
   const int w = image.width, h = image.height;
-  const __m256i one = _mm256_set1_epi32(1), zero = _mm256_setzero_si256();
+  const __m256i one = _mm256_set1_epi32(1);
   const auto* rowGuideData = reinterpret_cast<const int*>(rowGuide.data());
   const auto* texelGuideData = reinterpret_cast<const int*>(texelGuide.data());
-  for (int i = 0; i < count; i += 8) {
-    const __m256 u = _mm256_loadu_ps(us + i), v = _mm256_loadu_ps(vs + i);
+  for (int first = 0; first < count; first += 8 * G) {
+    __m256 u[G], v[G];
+    __m256i valid[G], base[G], lo[G], hi[G], y[G], x[G];
     // The guide serves u in [0, 1) (GuidedCdf::cell); other lanes search from bin 0 here and
     // are searched again one at a time below.
-    const __m256i valid = _mm256_and_si256(inUnitLanes(u), inUnitLanes(v));
-    const __m256i rowBin = binLanes(v, rowBins, valid);
-    const __m256i y = cellLanes(
-        upperBoundLanes(rowCdf.data(), zero, _mm256_i32gather_epi32(rowGuideData, rowBin, 4),
-                        _mm256_i32gather_epi32(rowGuideData, _mm256_add_epi32(rowBin, one), 4), v),
-        h);
-    const __m256i tableBase = _mm256_mullo_epi32(y, _mm256_set1_epi32(w + 1));
-    const __m256i guideAt = _mm256_add_epi32(
-        _mm256_mullo_epi32(y, _mm256_set1_epi32(texelBins + 1)), binLanes(u, texelBins, valid));
-    const __m256i x = cellLanes(
-        upperBoundLanes(
-            texelCdf.data(), tableBase, _mm256_i32gather_epi32(texelGuideData, guideAt, 4),
-            _mm256_i32gather_epi32(texelGuideData, _mm256_add_epi32(guideAt, one), 4), u),
-        w);
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(xs + i), x);
-    _mm256_storeu_si256(reinterpret_cast<__m256i*>(ys + i), y);
-    _mm256_storeu_ps(rowLo + i, _mm256_i32gather_ps(rowCdf.data(), y, 4));
-    _mm256_storeu_ps(rowHi + i, _mm256_i32gather_ps(rowCdf.data(), _mm256_add_epi32(y, one), 4));
-    const __m256i texelAt = _mm256_add_epi32(tableBase, x);
-    _mm256_storeu_ps(texelLo + i, _mm256_i32gather_ps(texelCdf.data(), texelAt, 4));
-    _mm256_storeu_ps(texelHi + i,
-                     _mm256_i32gather_ps(texelCdf.data(), _mm256_add_epi32(texelAt, one), 4));
-    for (int invalid = ~_mm256_movemask_ps(_mm256_castsi256_ps(valid)) & 0xff; invalid != 0;
-         invalid &= invalid - 1) {
-      const int k = i + __builtin_ctz(static_cast<unsigned>(invalid));
-      ys[k] = rows().cell(vs[k]);
-      const GuidedCdf texels = texelsOfRow(ys[k]);
-      xs[k] = texels.cell(us[k]);
-      rowLo[k] = rowCdf[static_cast<size_t>(ys[k])];
-      rowHi[k] = rowCdf[static_cast<size_t>(ys[k]) + 1];
-      texelLo[k] = texels.cdf[xs[k]];
-      texelHi[k] = texels.cdf[xs[k] + 1];
+    for (int g = 0; g < G; ++g) {
+      u[g] = _mm256_loadu_ps(us + first + 8 * g);
+      v[g] = _mm256_loadu_ps(vs + first + 8 * g);
+      valid[g] = _mm256_and_si256(inUnitLanes(u[g]), inUnitLanes(v[g]));
+      const __m256i rowBin = binLanes(v[g], rowBins, valid[g]);
+      base[g] = _mm256_setzero_si256();
+      lo[g] = _mm256_i32gather_epi32(rowGuideData, rowBin, 4);
+      hi[g] = _mm256_i32gather_epi32(rowGuideData, _mm256_add_epi32(rowBin, one), 4);
+    }
+    upperBoundLanes<G>(rowCdf.data(), base, lo, hi, v);
+    for (int g = 0; g < G; ++g) {
+      y[g] = cellLanes(lo[g], h);
+      base[g] = _mm256_mullo_epi32(y[g], _mm256_set1_epi32(w + 1));
+      const __m256i guideAt =
+          _mm256_add_epi32(_mm256_mullo_epi32(y[g], _mm256_set1_epi32(texelBins + 1)),
+                           binLanes(u[g], texelBins, valid[g]));
+      lo[g] = _mm256_i32gather_epi32(texelGuideData, guideAt, 4);
+      hi[g] = _mm256_i32gather_epi32(texelGuideData, _mm256_add_epi32(guideAt, one), 4);
+    }
+    upperBoundLanes<G>(texelCdf.data(), base, lo, hi, u);
+    for (int g = 0; g < G; ++g) {
+      const int i = first + 8 * g;
+      x[g] = cellLanes(lo[g], w);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(xs + i), x[g]);
+      _mm256_storeu_si256(reinterpret_cast<__m256i*>(ys + i), y[g]);
+      _mm256_storeu_ps(rowLo + i, _mm256_i32gather_ps(rowCdf.data(), y[g], 4));
+      _mm256_storeu_ps(rowHi + i,
+                       _mm256_i32gather_ps(rowCdf.data(), _mm256_add_epi32(y[g], one), 4));
+      const __m256i texelAt = _mm256_add_epi32(base[g], x[g]);
+      _mm256_storeu_ps(texelLo + i, _mm256_i32gather_ps(texelCdf.data(), texelAt, 4));
+      _mm256_storeu_ps(texelHi + i,
+                       _mm256_i32gather_ps(texelCdf.data(), _mm256_add_epi32(texelAt, one), 4));
+      for (int invalid = ~_mm256_movemask_ps(_mm256_castsi256_ps(valid[g])) & 0xff; invalid != 0;
+           invalid &= invalid - 1) {
+        const int k = i + __builtin_ctz(static_cast<unsigned>(invalid));
+        ys[k] = rows().cell(vs[k]);
+        const GuidedCdf texels = texelsOfRow(ys[k]);
+        xs[k] = texels.cell(us[k]);
+        rowLo[k] = rowCdf[static_cast<size_t>(ys[k])];
+        rowHi[k] = rowCdf[static_cast<size_t>(ys[k]) + 1];
+        texelLo[k] = texels.cdf[xs[k]];
+        texelHi[k] = texels.cdf[xs[k] + 1];
+      }
     }
   }
 }
@@ -308,9 +335,11 @@ void EnvironmentLight::sample(const Vec3f& n, const Vec2f* u, int count,
     // Lanes past the block's end hold any cell; their values are never read.
     const int lanes = (size + kLanes - 1) / kLanes * kLanes;
     if (searchInLanes) {
-      // Eight searches side by side: one at a time, their branches and dependent loads were
+      // Sixteen searches side by side: one at a time, their branches and dependent loads were
       // the largest part of a sample after its sines.
-      const int searched = (size + 7) / 8 * 8;
+      constexpr int kSearched = 8 * Map::kSearchGroups;
+      static_assert(kBlock % kSearched == 0);
+      const int searched = (size + kSearched - 1) / kSearched * kSearched;
       for (int i = 0; i < size; ++i) us[i] = u[first + i].x, vs[i] = u[first + i].y;
       for (int i = size; i < searched; ++i) us[i] = vs[i] = 0;
       m.cellsInLanes(us, vs, searched, xs, ys, rowLo, rowHi, texelLo, texelHi);
