@@ -31,6 +31,7 @@
 #include "io/assimp_scene_info.h"
 #include "io/expansion_limits.h"
 #include "io/face_normals.h"
+#include "io/fbx_axes.h"
 #include "io/gltf_indices.h"
 #include "io/gltf_subset.h"
 #include "io/json_source.h"
@@ -486,6 +487,7 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
   // vertices through the faces before any check of ours, and a face naming a vertex that does
   // not exist made them read and write out of bounds.
   const aiScene* s = importOrThrow(importer, *files, path);
+  if (ext == ".fbx") turnFbxAxesToGlints(const_cast<aiScene&>(*s));
   for (unsigned mi = 0; mi < s->mNumMeshes; ++mi) {
     // The importer's own scene, not const: the primitive types its readers declare are replaced
     // by those of the faces. Assimp's triangulation asserts (an abort, in Debian's build) when a
@@ -694,7 +696,10 @@ FileSceneInfo readMeshFileSceneInfo(const std::string& path) {
       auto* files = new BoundedFiles(path);
       importer.SetIOHandler(files);  // the importer owns it
       checkAnImporterOfTheExtensionReadsIt(importer, path);
-      return sceneInfoFromAssimp(*importOrThrow(importer, *files, path), path);
+      const aiScene& scene = *importOrThrow(importer, *files, path);
+      // The cameras and lights stand where the meshes do (readMeshFile).
+      if (lowerExtension(path) == ".fbx") turnFbxAxesToGlints(const_cast<aiScene&>(scene));
+      return sceneInfoFromAssimp(scene, path);
     } catch (const OutOfMemoryError&) {
       throw;
     } catch (const UsageError&) {
