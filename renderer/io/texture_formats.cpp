@@ -1,11 +1,9 @@
 #include "io/texture_formats.h"
 
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
 #include <string_view>
 
 #include "core/error.h"
+#include "core/file_names.h"
 
 namespace glint {
 
@@ -28,9 +26,7 @@ constexpr TextureFormat kTextureFormats[] = {
 }  // namespace
 
 std::string textureReaderFormat(const std::string& name) {
-  std::string extension = std::filesystem::path(name).extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string extension = lowerExtension(name);
   for (const TextureFormat& f : kTextureFormats)
     if (f.extension == extension) return std::string(f.reader);
   throw GlintError(
