@@ -2,9 +2,9 @@
 
 #include <assimp/SceneCombiner.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <map>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
