@@ -261,6 +261,16 @@ void writeDisplayImage(const std::string& path, std::vector<float> rgba, int wid
                  "-infinity as empty");
   const DisplayTransform transform(settings);
   transform.apply(rgba.data(), width, height, 4);
+  // Finite pixels in, yet a view can overflow (a colour space scaled by 1e38) and give infinity
+  // or NaN, which a PNG shows as black: that view is refused and nothing is written.
+  size_t shownNonFinite = 0;
+  for (size_t p = 0; p < rgba.size(); p += 4)
+    for (size_t c = 0; c < 3; ++c) shownNonFinite += std::isfinite(rgba[p + c]) ? 0 : 1;
+  if (shownNonFinite > 0)
+    throw UsageError(
+        "OCIO (" + transform.configSource() + "): display " + inQuotes(transform.display()) +
+        ", view " + inQuotes(transform.view()) + " gives " + std::to_string(shownNonFinite) +
+        " colour values that are not finite from finite pixels; " + path + " is not written");
   if (format == ImageFormat::Png && !transform.tagKnown())
     warnOnce("the OCIO display " + inQuotes(transform.display()) +
              " is not one Glint knows a PNG colour tag for (sRGB, Display P3, Rec.1886 / Rec.709, "

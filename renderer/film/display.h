@@ -86,7 +86,8 @@ class ToRenderingSpace {
 // format comes from the extension (film/image_format.h): .png and .jpg/.jpeg 8-bit, .tif/.tiff
 // 16-bit. A `transparent` frame gives PNG and TIFF a straight alpha channel: each pixel's colour
 // is un-premultiplied in scene-linear and then developed (alpha 0: colour 0); a JPEG, which has
-// no alpha, shows the frame over black. PNGs carry the display's colour tag.
+// no alpha, shows the frame over black. PNGs carry the display's colour tag. Throws UsageError,
+// writing nothing, where the view gives values that are not finite.
 void writeDisplayImage(const std::string& path, std::vector<float> rgba, int width, int height,
                        const DisplaySettings& settings, bool transparent);
 void writeDisplayImage(const std::string& path, const Film& film, const DisplaySettings& settings,

@@ -6,6 +6,9 @@
 #include <OpenImageIO/imageio.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 
 #include "film/display.h"
@@ -65,6 +68,43 @@ TEST(DisplayImage, AnOpaqueFrameGivesRgbOverBlack) {
   ASSERT_EQ(png.samples.size(), 9u);
   EXPECT_NEAR(png.samples[0], 255 * srgbEncode(0.09), 1.5);
   EXPECT_EQ(png.samples[3], 0);
+}
+
+TEST(DisplayImage, AViewThatOverflowsIsRefusedAndWritesNothing) {
+  // A view whose colour space scales by 1e38 takes a finite grey (16) to infinity, which was
+  // written as a black PNG with exit 0. What the view gives is checked as well as what it is
+  // given: the image is refused, naming the view and the count (3 channels of the one pixel).
+  std::string text = [] {
+    std::ifstream f(std::string(GLINT_SOURCE_DIR) + "/ocio/config.ocio");
+    return std::string(std::istreambuf_iterator<char>(f), {});
+  }();
+  const std::string raw = "{name: Raw, colorspace: Raw}";  // the sRGB display's, the first
+  text.replace(text.find(raw), raw.size(), "{name: Raw, colorspace: huge}");
+  text +=
+      "\n  - !<ColorSpace>\n    name: huge\n    from_scene_reference: !<MatrixTransform> "
+      "{matrix: [1e38, 0, 0, 0, 0, 1e38, 0, 0, 0, 0, 1e38, 0, 0, 0, 0, 1]}\n";
+  DisplaySettings s;
+  s.configPath = test::writeTemp("huge-view.ocio", text);
+  s.display = "sRGB";
+  s.view = "Raw";
+  const std::string path = tmp("huge-view.png");
+  std::filesystem::remove(path);
+  std::string error;
+  try {
+    writeDisplayImage(path, {16.0f, 16.0f, 16.0f, 1}, 1, 1, s, false);
+  } catch (const UsageError& e) {
+    error = e.what();
+  }
+  EXPECT_NE(error.find("display \"sRGB\", view \"Raw\" gives 3 colour values that are not "
+                       "finite from finite pixels; " +
+                       path + " is not written"),
+            std::string::npos)
+      << error;
+  EXPECT_FALSE(std::filesystem::exists(path));
+  // The same config's Standard view does not overflow: the check refuses only what is wrong.
+  s.view = "Standard";
+  writeDisplayImage(path, {0.5f, 0.5f, 0.5f, 1}, 1, 1, s, false);
+  EXPECT_TRUE(std::filesystem::exists(path));
 }
 
 TEST(DisplayImage, ValuesPastWhiteStayWhiteAndNonFiniteOnesAreNamed) {
