@@ -23,6 +23,9 @@ std::string formatSceneError(const FileLoc& loc, const std::string& path,
   return s.append(problem);
 }
 
+// Whether byte c continues a UTF-8 sequence (10xxxxxx): a cut there would split a character.
+bool continuesCharacter(char c) { return (static_cast<unsigned char>(c) & 0xC0) == 0x80; }
+
 }  // namespace
 
 GlintError::GlintError(const std::string& message) : std::runtime_error(withNulsWritten(message)) {}
@@ -31,12 +34,33 @@ SceneError::SceneError(const FileLoc& loc, const std::string& path, const std::s
     : GlintError(formatSceneError(loc, path, problem)), loc_(loc), path_(path), problem_(problem) {}
 
 std::string excerpt(const std::string& text) {
-  constexpr size_t kMaxEchoed = 200;
-  if (text.size() <= kMaxEchoed) return text;
-  return text.substr(0, kMaxEchoed) + "… (" + std::to_string(text.size()) + " characters)";
+  // The head names what failed; the tail is where libraries put why ("...: Length 2000000000").
+  constexpr size_t kHead = 150, kTail = 50;
+  if (text.size() <= kHead + kTail) return text;
+  size_t headEnd = kHead, tailBegin = text.size() - kTail;
+  while (headEnd > 0 && continuesCharacter(text[headEnd])) --headEnd;
+  while (tailBegin < text.size() && continuesCharacter(text[tailBegin])) ++tailBegin;
+  return text.substr(0, headEnd) + "… (" + std::to_string(text.size()) + " characters) …" +
+         text.substr(tailBegin);
 }
 
 std::string inQuotes(const std::string& value) { return "\"" + excerpt(value) + "\""; }
+
+bool isUtf8(std::string_view text) {
+  for (size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    const size_t length = c < 0x80           ? 1
+                          : (c >> 5) == 0x6  ? 2
+                          : (c >> 4) == 0xe  ? 3
+                          : (c >> 3) == 0x1e ? 4
+                                             : 0;
+    if (length == 0 || i + length > text.size()) return false;
+    for (size_t k = 1; k < length; ++k)
+      if (!continuesCharacter(text[i + k])) return false;
+    i += length;
+  }
+  return true;
+}
 
 size_t editDistance(const std::string& a, const std::string& b) {
   std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);

@@ -3,6 +3,7 @@
 // formats as `scene.json:14: objects[3].radius: must be > 0, got -1`.
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace glint {
 
@@ -47,10 +48,16 @@ class SceneError : public GlintError {
   std::string path_, problem_;
 };
 
-// Text from the input, for a message: cut to its first 200 characters ("… (N characters)"), so
-// that hostile input (a 10 MB enum value) cannot flood the terminal. inQuotes() adds the quotes.
+// Text from the input or from a library, for a message: beyond 200 bytes, its first 150 and last
+// 50 ("head… (N characters) …tail", cut between UTF-8 characters), so that hostile input (a 10 MB
+// enum value) cannot flood the terminal and a long library message keeps its reason, which comes
+// last. inQuotes() adds the quotes.
 std::string excerpt(const std::string& text);
 std::string inQuotes(const std::string& value);
+
+// Whether `text` is well-formed UTF-8 as far as sequence lengths go: every lead byte followed by
+// the continuation bytes it announces, none standing alone.
+bool isUtf8(std::string_view text);
 
 // Edit distance, for "did you mean" suggestions on unknown keys and names.
 size_t editDistance(const std::string& a, const std::string& b);

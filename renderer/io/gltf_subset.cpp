@@ -262,27 +262,6 @@ std::optional<size_t> gltfMaterialIndex(const std::string& name) {
   return index;
 }
 
-namespace {
-
-// Whether `text` is well-formed UTF-8 (the JSON the subset is written as holds nothing else).
-bool isUtf8(const std::string& text) {
-  for (size_t i = 0; i < text.size();) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    const size_t length = c < 0x80           ? 1
-                          : (c >> 5) == 0x6  ? 2
-                          : (c >> 4) == 0xe  ? 3
-                          : (c >> 3) == 0x1e ? 4
-                                             : 0;
-    if (length == 0 || i + length > text.size()) return false;
-    for (size_t k = 1; k < length; ++k)
-      if ((static_cast<unsigned char>(text[i + k]) >> 6) != 0x2) return false;
-    i += length;
-  }
-  return true;
-}
-
-}  // namespace
-
 std::string gltfUriPath(const std::string& uri, const std::string& dir) {
   if (uri.rfind("data:", 0) == 0 || uri.find('%') == std::string::npos) return uri;
   std::string decoded;
