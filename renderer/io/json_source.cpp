@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <limits>
 
 #include "core/hash.h"
 #include "core/unit_vector.h"
@@ -296,7 +297,15 @@ double JsonNode::real() const {
 float JsonNode::number() const { return static_cast<float>(real()); }
 
 float JsonNode::number(float lo, float hi, bool loOpen) const {
-  const float v = number();
+  const double exact = real();
+  const float v = static_cast<float>(exact);
+  // Render threads flush subnormal floats to zero (core/fp_env.h): a value that must be positive
+  // must be a normal float, or it is zero where it is used (a marble's scale of 1e-38 divided
+  // by zero, every sample NaN).
+  if (loOpen && lo == 0 && exact > 0 && !(v >= std::numeric_limits<float>::min()))
+    fail("must be >= " + formatNumber(std::numeric_limits<float>::min()) +
+         " (the smallest normal float: smaller values are zero to the renderer), got " +
+         formatNumber(exact));
   if (loOpen ? !(v > lo) : !(v >= lo))
     fail("must be " + std::string(loOpen ? "> " : ">= ") + formatNumber(lo) + ", got " +
          formatNumber(v));

@@ -23,6 +23,29 @@ TEST(SceneError, NegativeRadiusNamesLineAndPath) {
   EXPECT_EQ(test::sceneErrorOf(text), "scene.json:8: objects[1].radius: must be > 0, got -1");
 }
 
+TEST(SceneError, APositiveValueMustBeANormalFloat) {
+  // Render threads flush subnormal floats to zero: a marble's scale of 1e-38 was accepted and
+  // divided the pattern's coordinates by zero, every sample NaN. A radius of 1e-55 was refused
+  // as "got 0". Both are refused with the smallest normal float and the value as written.
+  EXPECT_EQ(test::sceneErrorOf(
+                "{\n\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0]},\n"
+                "\"materials\": {\"m\": {\"type\": \"phong\",\n"
+                "  \"kd\": {\"marble\": {\"scale\": 1e-38, \"a\": [1,1,1], \"b\": [0,0,0]}}}},\n"
+                "\"objects\": []}"),
+            "scene.json:4: materials.m.kd.marble.scale: must be >= 1.17549435e-38 (the smallest "
+            "normal float: smaller values are zero to the renderer), got 1e-38");
+  EXPECT_EQ(test::sceneErrorOf(std::string(kHead) +
+                               "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0,0], "
+                               "\"radius\": 1e-55, \"material\": \"red\"}]}"),
+            "scene.json:4: objects[0].radius: must be >= 1.17549435e-38 (the smallest normal "
+            "float: smaller values are zero to the renderer), got 1e-55");
+  // The smallest normal float itself is a radius.
+  EXPECT_EQ(test::sceneErrorOf(std::string(kHead) +
+                               "\"objects\": [{\"type\": \"sphere\", \"center\": [0,0,0], "
+                               "\"radius\": 1.1754944e-38, \"material\": \"red\"}]}"),
+            "(no error)");
+}
+
 TEST(SceneError, CameraWindowPlaneAndLensAreChecked) {
   const auto camera = [](const std::string& keys) {
     return test::sceneErrorOf("{\n\"camera\": {\"eye\": [0,0,5], \"look_at\": [0,0,0], " + keys +
