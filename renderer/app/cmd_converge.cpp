@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/hash.h"
 #include "core/input_files.h"
+#include "core/json_memory.h"
 #include "core/log.h"
 #include "core/sampler.h"
 #include "film/atomic_file.h"
@@ -111,6 +112,7 @@ std::vector<PassRecord> passesOf(const std::string& path) {
     return *record.passes;
   }
   const std::string text = readInputFile(path, size_t{64} << 20, "render record (--stats-json)");
+  checkJsonTreeFits(text, 0, 0, "render record " + path);
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(text);

@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/input_files.h"
+#include "core/json_memory.h"
 #include "core/log.h"
 #include "io/gltf_dropped.h"
 #include "io/gltf_expansion.h"
@@ -291,6 +292,7 @@ json parseGltfDocument(const std::string& path, const std::string& text) {
   if (nestingDepth(text) > kMaxDepth)
     throw UsageError("mesh " + path + ": its JSON nests more than " + std::to_string(kMaxDepth) +
                      " levels deep (a glTF file needs about 6)");
+  checkJsonTreeFits(text, 0, 0, "glTF " + path);
   // Only what Glint has parsed reaches Assimp: a file nlohmann's strict reader refuses (invalid
   // UTF-8, say) is refused here, since Assimp's lenient one would read all of it, skins too.
   json doc;

@@ -6,8 +6,8 @@
 
 #include "core/hash.h"
 #include "core/input_files.h"
+#include "core/json_memory.h"
 #include "core/log.h"
-#include "core/memory.h"
 #include "core/sampler.h"
 #include "io/animation.h"
 #include "io/object_names.h"
@@ -517,11 +517,7 @@ void parseScene(SceneBuilder& b, const JsonNode& root, std::optional<int> frame)
 
 Scene loadSceneText(const std::string& text, const std::string& fileName,
                     const std::string& baseDir, std::optional<int> frame) {
-  // Small scenes are not checked: the budget is read from several files, which would cost the
-  // scene fuzzer more than its parse, and a failure is reported all the same, only later.
-  if (text.size() >= (size_t{1} << 20))
-    checkMemoryFits(kSceneBytesPerTextByte * double(text.size()),
-                    "parsing scene " + fileName + " (" + std::to_string(text.size()) + " bytes)");
+  checkJsonTreeFits(text, kSceneBytesPerValue, kSceneBytesPerLine, "scene " + fileName);
   const JsonDocument doc(text, fileName);
   SceneBuilder b;
   b.baseDir = baseDir;

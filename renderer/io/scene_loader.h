@@ -8,13 +8,17 @@
 
 namespace glint {
 
-// A JSON scene's size limit: parsed, each byte costs about 10 in memory, and a scene's own
-// geometry at this size is millions of inline triangles, which belong in mesh files.
+// A JSON scene's size limit: parsed, a byte of an inline mesh costs about 19 in memory, and a
+// scene's own geometry at this size is millions of inline triangles, which belong in mesh files.
 inline constexpr size_t kMaxSceneFileBytes = size_t{128} << 20;
-// What parsing a JSON scene takes per byte of its text (the JSON tree, its line map, the
-// builder's copies; docs/hardening.md): checked against the memory budget before parsing, since
-// nlohmann-json cannot unwind from a failed allocation (its destructor allocates).
-inline constexpr double kSceneBytesPerTextByte = 11;
+// What a JSON scene keeps for each value beside nlohmann-json's tree (core/json_memory.h): its
+// line map entry (an unordered_map node with malloc's header and a bucket, 40 bytes) and the
+// builder's copies of what it reads (a mesh's numbers as floats, in the scene and in Embree).
+// Checked with the tree against the memory budget before parsing (docs/hardening.md).
+inline constexpr double kSceneBytesPerValue = 48;
+// And for each line: where it starts, for the line of an error (a size_t, in a vector that may
+// have grown to twice its size).
+inline constexpr double kSceneBytesPerLine = 16;
 
 // `frame`: which frame of an animated scene (default: its first); asking a still scene for one
 // is a UsageError (io/animation.h).

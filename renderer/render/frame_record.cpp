@@ -20,6 +20,7 @@
 #include "core/affine.h"
 #include "core/error.h"
 #include "core/hash.h"
+#include "core/json_memory.h"
 #include "core/log.h"
 #include "film/display.h"
 #include "film/exr_input.h"
@@ -231,6 +232,7 @@ std::string passesJson(const std::vector<PassRecord>& passes) {
 
 std::vector<PassRecord> parsePasses(const std::string& path, const std::string& key,
                                     const std::string& json) {
+  checkJsonTreeFits(json, 0, 0, key + " of " + path);
   nlohmann::json list;
   try {
     list = nlohmann::json::parse(json);

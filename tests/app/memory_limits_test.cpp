@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -185,9 +186,10 @@ TEST(MemoryLimits, TheImageModuleIsNotLoadedWithoutTheAddressSpaceItNeeds) {
 
 TEST(MemoryLimits, AJsonSceneIsCheckedAgainstTheLimitBeforeParsing) {
   SKIP_UNDER_ASAN();
-  // A 10 MB inline mesh takes about 110 MB to parse (11 bytes per byte); under a 150 MB limit
-  // about 75 MB are left once Glint is loaded. nlohmann-json, failing there, threw from its
-  // destructor: std::terminate and SIGABRT. Now it is exit 1 before parsing, naming the scene.
+  // A 10 MB inline mesh of 1.9 million JSON values is counted at about 180 MB to parse (its
+  // tree, and 48 bytes a value beside it: core/json_memory.h); under a 150 MB limit about 75 MB
+  // are left once Glint is loaded. nlohmann-json, failing there, threw from its destructor:
+  // std::terminate and SIGABRT. Now it is exit 1 before parsing, naming the scene.
   std::string positions, indices;
   for (int i = 0; i < 240000; ++i) {
     positions += (i ? ",[" : "[") + std::to_string(i % 1000) + ".25," + std::to_string(i / 1000) +
@@ -207,6 +209,33 @@ TEST(MemoryLimits, AJsonSceneIsCheckedAgainstTheLimitBeforeParsing) {
                           " --width 8 --height 8 --spp 1 --quiet");
   EXPECT_EQ(o.status, 1) << o.output;
   EXPECT_NE(o.output.find("out of memory: parsing scene " + scene), std::string::npos) << o.output;
+}
+
+TEST(MemoryLimits, JsonIsCheckedByItsValuesNotItsBytes) {
+  SKIP_UNDER_ASAN();
+  // Two million empty objects: 6 MB of text whose tree takes about 166 MB in nlohmann-json (83
+  // bytes each), where 11 bytes per byte of text counted 66 MB. Under a 150 MB limit (about 75
+  // MB left once Glint is loaded) such a scene passed that check and parsing failed inside
+  // nlohmann-json (std::terminate, SIGABRT); in a glTF it was not checked at all. Counted by
+  // their values, both are exit 1 before parsing, naming the file.
+  std::string objects = "[{}";
+  for (int i = 1; i < 2'000'000; ++i) objects += ",{}";
+  objects += "]";
+  const std::string scene = test::writeTemp(
+      "many-objects.json",
+      R"({"camera": {"eye": [0,0,4], "look_at": [0,0,0]}, "comment": )" + objects + "}");
+  const std::string gltf = test::writeTemp(
+      "many-objects.gltf", R"({"asset": {"version": "2.0"}, "extras": )" + objects + "}");
+  for (const auto& [file, what] : {std::pair{scene, "scene"}, std::pair{gltf, "glTF"}}) {
+    const Outcome o = underLimit(150, "render " + file + " -o " +
+                                          (test::tempDir() / "many-objects.exr").string() +
+                                          " --width 8 --height 8 --spp 1 --quiet");
+    EXPECT_EQ(o.status, 1) << o.output;
+    EXPECT_NE(o.output.find("out of memory: parsing " + std::string(what) + " " + file + " (" +
+                            std::to_string(std::filesystem::file_size(file)) + " bytes) needs "),
+              std::string::npos)
+        << o.output;
+  }
 }
 
 TEST(MemoryLimits, AMeshThatOutgrowsTheLimitInAssimpsProcessingIsOutOfMemory) {
