@@ -37,6 +37,7 @@
 #include "io/json_source.h"
 #include "io/mesh_limits.h"
 #include "io/mesh_materials.h"
+#include "io/obj_smoothing.h"
 #include "io/object_names.h"
 #include "io/ply_reader.h"
 #include "io/texture_file.h"
@@ -49,12 +50,14 @@ namespace {
 // materials) pass checkInputFile (core/input_files.h: regular files only, since a device or FIFO
 // such as /dev/zero would never end) and together hold at most kMaxMeshFileBytes. Opens of the
 // mesh file itself (Assimp opens it several times) are not counted; it was checked before the
-// import. A glTF mesh file is served as Glint's subset of it (io/gltf_subset.h).
+// import. A glTF mesh file is served as Glint's subset of it (io/gltf_subset.h), an OBJ file
+// with its smoothing groups' normals (io/obj_smoothing.h).
 class BoundedFiles : public Assimp::DefaultIOSystem {
  public:
   explicit BoundedFiles(std::string meshPath) : meshPath_(std::move(meshPath)) {}
 
-  // Serves `bytes` whenever Assimp opens the mesh file itself (a glTF reduced to Glint's subset).
+  // Serves `bytes` whenever Assimp opens the mesh file itself (a glTF reduced to Glint's subset,
+  // an OBJ given its smoothing groups' normals).
   void replaceMeshBytes(std::string bytes) { meshBytes_ = std::move(bytes); }
 
   // Why the last file refused was refused, for the message of the failed import.
@@ -478,6 +481,12 @@ MeshFile readMeshFile(const std::string& path, bool readTextures) {
       checkGltfIndices(path, bytes);
     else
       checkGltfIndices(path, glbJsonChunk(path, bytes), glbBinaryChunk(bytes));
+  }
+  if (ext == ".obj") {
+    std::ifstream in(path, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), {});
+    if (std::optional<std::string> smoothed = objWithSmoothingGroupNormals(text, path))
+      files->replaceMeshBytes(std::move(*smoothed));
   }
   checkAnImporterOfTheExtensionReadsIt(importer, path);
   // Positions, the file's vertex normals (smooth shading), its first two texture coordinates and

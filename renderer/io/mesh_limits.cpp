@@ -18,6 +18,7 @@
 #include "core/log.h"
 #include "io/collada_limits.h"
 #include "io/fbx_limits.h"
+#include "io/obj_words.h"
 #include "io/ply_header.h"
 #include "io/scene_formats.h"
 
@@ -38,17 +39,6 @@ std::string headOf(const std::string& path, size_t bytes) {
   return head;
 }
 
-// The next word of `line`, split at `spaces`, taken off it; empty at the line's end. Split
-// without a stream or a string a word: these checks read every line of OBJ files of up to 1 GiB
-// before Assimp does.
-std::string_view takeWord(std::string_view& line, const char* spaces = " \t\r\v\f") {
-  const size_t begin = std::min(line.find_first_not_of(spaces), line.size());
-  const size_t end = std::min(line.find_first_of(spaces, begin), line.size());
-  const std::string_view word = line.substr(begin, end - begin);
-  line.remove_prefix(end);
-  return word;
-}
-
 // Throws when a `v`, `vt` or `vn` line (`line`, number `lineNumber`) of OBJ file `mesh` holds a
 // word that is not a decimal number as Assimp reads one (a comma may stand for the point), or
 // one that is not a finite float (nan, inf, past float's range), or a count of numbers Assimp
@@ -58,15 +48,15 @@ std::string_view takeWord(std::string_view& line, const char* spaces = " \t\r\v\
 // and a vertex of two numbers, or of words, it skipped, its faces then refused as "vertex index
 // out of range".
 void checkObjNumbers(const std::string& mesh, int lineNumber, std::string_view line) {
-  const std::string_view keyword = takeWord(line);
+  const std::string_view keyword = takeObjWord(line);
   if (keyword != "v" && keyword != "vt" && keyword != "vn") return;
   const auto fail = [&](const std::string& why) {
     throw GlintError("mesh " + mesh + ":" + std::to_string(lineNumber) + ": " +
                      std::string(keyword) + " " + why);
   };
   int numbers = 0;
-  for (std::string_view word = takeWord(line); !word.empty() && word[0] != '#';
-       word = takeWord(line), ++numbers) {
+  for (std::string_view word = takeObjWord(line); !word.empty() && word[0] != '#';
+       word = takeObjWord(line), ++numbers) {
     // Assimp counts a word as a number only where it starts with a digit or a sign (or is nan
     // or inf): ".5" made the vertex one number short, and it was skipped.
     if (word[0] == '.')
@@ -111,7 +101,7 @@ struct ObjFaceReferences {
   int furthestLine[2] = {0, 0};
 
   void countVertexLine(std::string_view line) {
-    const std::string_view word = takeWord(line, " \t\r");
+    const std::string_view word = takeObjWord(line, " \t\r");
     if (word == "vt") ++lines[0];
     if (word == "vn") ++lines[1];
   }
@@ -120,19 +110,19 @@ struct ObjFaceReferences {
   // before this one (negative indices count back from the line). Words that are not numbers
   // are Assimp's to judge.
   void checkFace(const std::string& mesh, int lineNumber, std::string_view line) {
-    takeWord(line);  // "f"
+    takeObjWord(line);  // "f"
     // Assimp takes a face of one or two vertices among triangles for a point or a line that its
     // own validation then refuses, naming no line. (It skips a face of none.)
     int vertices = 0;
-    for (std::string_view words = line, w = takeWord(words); !w.empty() && w[0] != '#';
-         w = takeWord(words))
+    for (std::string_view words = line, w = takeObjWord(words); !w.empty() && w[0] != '#';
+         w = takeObjWord(words))
       ++vertices;
     if (vertices == 1 || vertices == 2)
       throw GlintError("mesh " + mesh + ":" + std::to_string(lineNumber) + ": f gives " +
                        std::to_string(vertices) + (vertices == 1 ? " vertex" : " vertices") +
                        "; a face has at least 3 (a line is written l)");
-    for (std::string_view word = takeWord(line); !word.empty() && word[0] != '#';
-         word = takeWord(line)) {
+    for (std::string_view word = takeObjWord(line); !word.empty() && word[0] != '#';
+         word = takeObjWord(line)) {
       for (int k = -1; k < 2 && !word.empty(); ++k) {  // the vertex (k = -1), vt, vn
         const size_t slash = std::min(word.find('/'), word.size());
         const std::string_view index = word.substr(0, slash);
@@ -183,9 +173,9 @@ struct IgnoredMapOptions {
                      [&](std::string_view m) { return line.substr(0, m.size()) == m; }))
       return;
     constexpr const char* kSpace = " \t\r";
-    takeWord(line, kSpace);  // the map's keyword
-    for (std::string_view taken = takeWord(line, kSpace); !taken.empty();
-         taken = takeWord(line, kSpace)) {
+    takeObjWord(line, kSpace);  // the map's keyword
+    for (std::string_view taken = takeObjWord(line, kSpace); !taken.empty();
+         taken = takeObjWord(line, kSpace)) {
       const std::string word(taken);
       if (std::find(std::begin(kIgnored), std::end(kIgnored), word) == std::end(kIgnored) ||
           std::find(options.begin(), options.end(), word) != options.end())

@@ -325,6 +325,36 @@ TEST(MeshFile, AMeshWithoutNormalsIsFlatBesideMeshesThatKeepTheirs) {
   EXPECT_EQ(falling, 6);
 }
 
+TEST(MeshFile, AnObjsSmoothingGroupsShadeItSmoothWithoutNormals) {
+  // An octahedron without vn in smoothing group 1 rendered faceted: Assimp's reader drops `s`
+  // lines. Each vertex now takes its four faces' normals averaged, which for the octahedron is
+  // the direction to the vertex itself. In groups of its own (s 1 ... s 8), each face is flat.
+  const char* corners[8] = {"1 3 5", "3 2 5", "2 4 5", "4 1 5", "3 1 6", "2 3 6", "4 2 6", "1 4 6"};
+  const std::string vertices = "v 1 0 0\nv -1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nv 0 0 -1\n";
+  std::string smooth = vertices + "s 1\n", apart = vertices;
+  for (int f = 0; f < 8; ++f) {
+    smooth += "f " + std::string(corners[f]) + "\n";
+    apart += "s " + std::to_string(f + 1) + "\nf " + corners[f] + "\n";
+  }
+  const TriangleMesh round = loadMeshFile(test::writeTemp("octahedron.obj", smooth)).parts.at(0);
+  ASSERT_EQ(round.normals.size(), round.positions.size());
+  EXPECT_EQ(round.positions.size(), 6u);  // one normal per vertex: joined into six
+  for (size_t v = 0; v < round.positions.size(); ++v) {
+    EXPECT_NEAR(round.normals[v].x, round.positions[v].x, 1e-6f);
+    EXPECT_NEAR(round.normals[v].y, round.positions[v].y, 1e-6f);
+    EXPECT_NEAR(round.normals[v].z, round.positions[v].z, 1e-6f);
+  }
+  const TriangleMesh faceted =
+      loadMeshFile(test::writeTemp("octahedron-apart.obj", apart)).parts.at(0);
+  ASSERT_EQ(faceted.normals.size(), faceted.positions.size());
+  const float third = 1 / std::sqrt(3.0f);  // each face's normal is (±1, ±1, ±1)/√3
+  for (const Vec3f& n : faceted.normals) {
+    EXPECT_NEAR(std::fabs(n.x), third, 1e-6f);
+    EXPECT_NEAR(std::fabs(n.y), third, 1e-6f);
+    EXPECT_NEAR(std::fabs(n.z), third, 1e-6f);
+  }
+}
+
 TEST(MeshFile, ANodeThatMirrorsItsMeshKeepsItsTrianglesWoundOutward) {
   // glTF 2.0 (3.5.2): under a transform of negative determinant a triangle winds clockwise
   // about its outward side. Assimp flattened it wound as before, its geometric normal turned
