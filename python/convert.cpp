@@ -143,6 +143,7 @@ py::dict recordDict(const FrameRecord& r) {
   put("glint:estimated_relmse", r.estimatedRelmse);
   put("glint:clamped_values", r.clampedValues);
   put("glint:merged_crops", r.mergedCrops);
+  put("pixelAspectRatio", r.pixelAspectRatio);
   d["display_window"] = py::make_tuple(r.frameWidth, r.frameHeight);
   return d;
 }

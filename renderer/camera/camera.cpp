@@ -56,6 +56,10 @@ Camera::Camera(const CameraDesc& desc, int width, int height) : desc_(desc) {
   // Per ray, a multiply instead of a division.
   uPerPixel_ = (window_.r - window_.l) / static_cast<float>(width);
   vPerPixel_ = (window_.t - window_.b) / static_cast<float>(height);
+  // In double: a window too small for float's per-pixel steps still has an aspect.
+  const double ratio =
+      (double(window_.r) - window_.l) / width * height / (double(window_.t) - window_.b);
+  pixelAspectRatio_ = ratio > 0 && std::isfinite(ratio) ? ratio : 1;
 }
 
 void Camera::checkRayRange() const {

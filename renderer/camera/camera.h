@@ -71,6 +71,10 @@ class Camera {
   Mat4 worldToCamera() const;
   Mat4 worldToNdc() const;
 
+  // A pixel's width over its height on the image plane: 1 unless a window's aspect differs
+  // from the image's (OpenEXR's pixelAspectRatio, which compositors use to display the frame).
+  double pixelAspectRatio() const { return pixelAspectRatio_; }
+
   const CameraDesc& desc() const { return desc_; }
   Vec3f u() const { return u_; }
   Vec3f v() const { return v_; }
@@ -88,6 +92,7 @@ class Camera {
   ImageWindow window_;   // on the image plane at distance 1 (or in units, ortho)
   float uPerPixel_ = 1;  // (r − l) / width
   float vPerPixel_ = 1;  // (t − b) / height
+  double pixelAspectRatio_ = 1;
 };
 
 }  // namespace glint

@@ -248,6 +248,7 @@ uint64_t writeExr(const std::string& path, const Film& film, ExrMetadata meta,
     // OpenEXR's standard statement of the pixels' primaries and white (its default: Rec.709,
     // D65), and when the frame was made.
     Imf::addChromaticities(h, Imf::Chromaticities());
+    h.pixelAspectRatio() = meta.pixelAspectRatio;
     const auto [date, utcOffset] = captureDate();
     Imf::addCapDate(h, date);
     Imf::addUtcOffset(h, utcOffset);

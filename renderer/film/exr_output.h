@@ -24,6 +24,7 @@ struct ExrMetadata {
   std::vector<std::pair<std::string, float>> floats;
   // Written as OpenEXR M44f (Imath's row-vector convention, so transposed from Glint's).
   std::vector<std::pair<std::string, Mat4>> matrices;
+  float pixelAspectRatio = 1;  // OpenEXR's standard attribute: a pixel's width over its height
 };
 
 struct ExrOptions {

@@ -10,6 +10,7 @@
 #include <OpenEXR/ImfMultiPartInputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -195,9 +196,9 @@ bool FrameRecord::operator==(const FrameRecord& o) const {
          frame == o.frame && renderSeconds == o.renderSeconds && rays == o.rays &&
          estimatedRmse == o.estimatedRmse && estimatedRelmse == o.estimatedRelmse &&
          worldToCamera == o.worldToCamera && worldToNdc == o.worldToNdc &&
-         clampedValues == o.clampedValues && mergedCrops == o.mergedCrops &&
-         resumeChecksum == o.resumeChecksum && frameWidth == o.frameWidth &&
-         frameHeight == o.frameHeight && holdsState == o.holdsState;
+         pixelAspectRatio == o.pixelAspectRatio && clampedValues == o.clampedValues &&
+         mergedCrops == o.mergedCrops && resumeChecksum == o.resumeChecksum &&
+         frameWidth == o.frameWidth && frameHeight == o.frameHeight && holdsState == o.holdsState;
 }
 
 uint64_t settingsHash(const Scene& scene, int spp, const std::string& accel,
@@ -338,6 +339,9 @@ FrameRecord frameRecord(const Scene& scene, const FrameSettings& s, const PassPl
   const Vec3d toRender = Vec3d{} - scene.worldOrigin;
   r.worldToCamera = afterTranslation(camera.worldToCamera(), toRender);
   r.worldToNdc = afterTranslation(camera.worldToNdc(), toRender);
+  // OpenEXR refuses a header whose ratio is outside [1e-6, 1e6]: a window a million times wider
+  // than the image's aspect is written at the bound rather than lose the frame.
+  r.pixelAspectRatio = float(std::clamp(camera.pixelAspectRatio(), 1e-6, 1e6));
   return r;
 }
 
@@ -385,6 +389,7 @@ void writeFrameRecord(const FrameRecord& r, ExrMetadata& m) {
   amount("glint:estimated_relmse", r.estimatedRelmse);
   if (r.worldToCamera) m.matrices.emplace_back("worldToCamera", *r.worldToCamera);
   if (r.worldToNdc) m.matrices.emplace_back("worldToNDC", *r.worldToNdc);
+  if (r.pixelAspectRatio) m.pixelAspectRatio = *r.pixelAspectRatio;
 }
 
 void writeResumeState(Film& film, ExrMetadata& metadata, std::span<const PixelEstimate> estimates,
@@ -443,6 +448,7 @@ FrameRecord readFrameRecord(const std::string& path) {
   r.estimatedRelmse = read.amount("glint:estimated_relmse");
   r.worldToCamera = read.matrix("worldToCamera");
   r.worldToNdc = read.matrix("worldToNDC");
+  r.pixelAspectRatio = read.amount("pixelAspectRatio");
   r.clampedValues = read.number("glint:clamped_values", 0, kMostInt);
   r.mergedCrops = read.number("glint:merged_crops", 1, kMostInt);
   r.resumeChecksum = read.hash(kResumeChecksumKey);

@@ -77,6 +77,7 @@ struct FrameRecord {
   std::optional<float> estimatedRmse;             // glint:estimated_rmse
   std::optional<float> estimatedRelmse;           // glint:estimated_relmse
   std::optional<Mat4> worldToCamera, worldToNdc;  // worldToCamera, worldToNDC (world space)
+  std::optional<float> pixelAspectRatio;          // pixelAspectRatio: a pixel's width / height
   // Written with the frame's pixels, not by writeFrameRecord: by writeExr and merge
   // (glint:clamped_values, glint:merged_crops), by addResumeState (glint:resume_checksum).
   std::optional<int> clampedValues, mergedCrops;

@@ -65,6 +65,30 @@ TEST(Output, MetadataHalfAndCompression) {
             2);
 }
 
+TEST(Output, NonSquarePixelsAreStatedInTheFrameAndItsMerge) {
+  // A window of aspect 2 on a square image: each pixel is twice as wide as it is tall. The EXR
+  // said 1 (OpenEXR's default), so Nuke and oiiotool showed the frame squeezed to half its
+  // width. Its crops, merged, keep what they say.
+  std::string text = kScene;
+  const std::string vfov = R"("vfov": 40)";
+  text.replace(text.find(vfov), vfov.size(), R"("window": [-0.8, 0.8, -0.2, 0.2])");
+  const std::string wide = test::writeTemp("wide-pixels.json", text);
+  // 48 × 32 pixels over 1.6 × 0.4: (1.6 / 48) / (0.4 / 32) = 8 / 3.
+  const std::string left = tmp("wide-left.exr"), right = tmp("wide-right.exr");
+  ASSERT_EQ(runGlint("render " + wide + " --quiet --crop 0 20 0 32 -o " + left).exitCode, 0);
+  ASSERT_EQ(runGlint("render " + wide + " --quiet --crop 20 48 0 32 -o " + right).exitCode, 0);
+  const float ratio = specOf(left).get_float_attribute("PixelAspectRatio");
+  EXPECT_FLOAT_EQ(ratio, 8.0f / 3);
+  EXPECT_EQ(specOf(right).get_float_attribute("PixelAspectRatio"), ratio);
+  const std::string merged = tmp("wide-merged.exr");
+  ASSERT_EQ(runGlint("merge " + merged + " " + left + " " + right).exitCode, 0);
+  EXPECT_EQ(specOf(merged).get_float_attribute("PixelAspectRatio"), ratio);
+  // Square pixels (the vfov's window follows the image's aspect) say 1.
+  const std::string square = test::writeTemp("square-pixels.json", kScene);
+  ASSERT_EQ(runGlint("render " + square + " --quiet -o " + tmp("square.exr")).exitCode, 0);
+  EXPECT_EQ(specOf(tmp("square.exr")).get_float_attribute("PixelAspectRatio", -1), 1.0f);
+}
+
 // A point through an EXR's standard matrix as OpenEXR's tools apply it: Imath's row vector
 // p' = p·M, then the divide by w (Imath's multVecMatrix).
 Vec3d throughExrMatrix(const OIIO::ImageSpec& spec, const char* name, Vec3d p) {

@@ -101,13 +101,15 @@ def test_write_is_the_exr_the_command_writes(rendered):
     assert np.array_equal(written.channel("N.Y"), command.channel("N.Y"))
     # The record: the settings that make the pixels (its hash), the plan and the result.
     for key in ("glint:settings_hash", "glint:spp", "glint:seed", "glint:sampler",
-                "glint:passes", "glint:min_pixel_spp", "glint:accel", "glint:integrator"):
+                "glint:passes", "glint:min_pixel_spp", "glint:accel", "glint:integrator",
+                "pixelAspectRatio"):
         if key == "glint:passes":
             assert [p["spp"] for p in written.record[key]] == \
                 [p["spp"] for p in command.record[key]]
         else:
             assert written.record[key] == command.record[key], key
     assert written.record["glint:seed"] == 3 and written.record["glint:spp"] == 4
+    assert written.record["pixelAspectRatio"] == 1.0  # the scene's vfov: square pixels
 
 
 def test_multipart_frame_reads_as_the_single_part_one(rendered, binary):

@@ -112,6 +112,7 @@ struct Fixture {
     }
     r.worldToCamera = toCamera;
     r.worldToNdc = toNdc;
+    r.pixelAspectRatio = 0.75f;
     r.frameWidth = 4;
     r.frameHeight = 3;
   }
@@ -209,6 +210,7 @@ TEST(FrameRecord, EveryFieldReadsBackAsWritten) {
   EXPECT_EQ(r.worldToNdc->m[13], -1.625f);  // row 3, column 1: -13 / 8
   EXPECT_EQ(r.worldToCamera, f.record.worldToCamera);
   EXPECT_EQ(r.worldToNdc, f.record.worldToNdc);
+  EXPECT_EQ(r.pixelAspectRatio, 0.75f);
   EXPECT_EQ(r.frameWidth, 4);
   EXPECT_EQ(r.frameHeight, 3);
   // Written with the pixels: writeExr counts no clamped value, the state its checksum.
