@@ -7,6 +7,10 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <string>
+#include <unordered_map>
+#include <unordered_set>
+#include <vector>
 
 #include "core/error.h"
 #include "core/file_names.h"
@@ -50,6 +54,7 @@ class Reader {
     }
     std::vector<bool> onPath(nodes->size());
     for (size_t root : roots) visit(*nodes, root, Affine{}, onPath, 0);
+    nameCamerasApart();
     return info_;
   }
 
@@ -129,8 +134,10 @@ class Reader {
     const Affine world = parent * localTransform(node, where);
     const std::string nodeName =
         node.contains("name") && node["name"].is_string() ? node["name"].get<std::string>() : "";
-    if (const auto c = node.find("camera"); c != node.end())
+    if (const auto c = node.find("camera"); c != node.end()) {
       addCamera(index(*c, where + ".camera"), world, nodeName);
+      cameraNodes_.push_back(where);
+    }
     if (const auto e = node.find("extensions"); e != node.end() && e->is_object())
       if (const auto l = e->find("KHR_lights_punctual"); l != e->end() && l->is_object())
         if (const auto li = l->find("light"); li != l->end())
@@ -200,6 +207,26 @@ class Reader {
     info_.cameras.push_back(cam);
   }
 
+  // Two nodes may place one camera, or name theirs alike: each camera is then chosen (--camera)
+  // by a name of its own, the first by the shared name, the others by it and their node
+  // ("Camera (nodes[4])", then "Camera (nodes[4] #2)" for a node reached again through shared
+  // parents: each name is tried from the last number given, so a million copies take linear
+  // time).
+  void nameCamerasApart() {
+    std::unordered_set<std::string> taken;
+    std::unordered_map<std::string, int> copies;  // by "Camera (nodes[4]"
+    for (size_t k = 0; k < info_.cameras.size(); ++k) {
+      std::string& name = info_.cameras[k].name;
+      if (taken.count(name)) {
+        const std::string atNode = name + " (" + cameraNodes_[k];
+        name = atNode + ")";
+        for (int& n = copies[atNode]; taken.count(name);)
+          name = atNode + " #" + std::to_string(++n + 1) + ")";
+      }
+      taken.insert(name);
+    }
+  }
+
   void addLight(size_t i, const Affine& world, const std::string& nodeName) {
     const auto ext = doc_.find("extensions");
     const json* lights = nullptr;
@@ -248,6 +275,7 @@ class Reader {
   std::string path_;
   json doc_;
   FileSceneInfo info_;
+  std::vector<std::string> cameraNodes_;  // "nodes[i]" of each of info_.cameras
 };
 
 }  // namespace

@@ -112,6 +112,33 @@ TEST(GltfScene, AnUnknownCameraNamesTheCamerasThereAre) {
   }
 }
 
+TEST(GltfScene, ACameraPlacedByTwoNodesIsChosenByEither) {
+  // Camera "front" placed again by a child of the mesh's node, 5 units out (visited first): the
+  // cameras were listed as "front", "front", "side", and the second could not be chosen.
+  std::string nodes = kNodes;
+  const std::string meshNode = R"({"mesh": 0})";
+  nodes.replace(nodes.find(meshNode), meshNode.size(), R"({"mesh": 0, "children": [5]})");
+  nodes += R"(, {"camera": 0, "translation": [0, 0, 5]})";
+  const std::string file = test::writeTemp("quad_twice.gltf", quadScene(nodes));
+  const FileSceneInfo info = readGltfSceneInfo(file);
+  ASSERT_EQ(info.cameras.size(), 3u);
+  EXPECT_EQ(info.cameras[0].name, "front");
+  EXPECT_NEAR(info.cameras[0].eye.z, 5, 1e-12);
+  EXPECT_EQ(info.cameras[1].name, "front (nodes[1])");
+  EXPECT_NEAR(info.cameras[1].eye.z, 3, 1e-12);
+  EXPECT_EQ(info.cameras[2].name, "side");
+  EXPECT_EQ(loadSceneOrDefault(file, std::nullopt, "front (nodes[1])").cameraDesc.eye.z, 3.0f);
+  EXPECT_EQ(loadSceneOrDefault(file, std::nullopt, "front").cameraDesc.eye.z, 5.0f);
+  try {
+    loadSceneOrDefault(file, std::nullopt, "top");
+    FAIL() << "no error";
+  } catch (const UsageError& e) {
+    EXPECT_NE(std::string(e.what()).find("\"front\", \"front (nodes[1])\", \"side\""),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // quadScene with its one light replaced by `light`.
 std::string quadWithLight(const std::string& light) {
   std::string text = quadScene(kNodes);
