@@ -60,6 +60,15 @@ bool blankAt(std::string_view line, size_t at) {
   return at < line.size() && (line[at] == ' ' || line[at] == '\t');
 }
 
+// The group an `s` line puts the faces after it in: its name, empty for none (`s off`, `s 0`);
+// nullopt for any other line.
+std::optional<std::string_view> smoothingGroupOf(std::string_view line) {
+  if (line.empty() || line[0] != 's' || !blankAt(line, 1)) return std::nullopt;
+  std::string_view rest = line.substr(1);
+  const std::string_view name = takeObjWord(rest);
+  return name == "off" || name == "0" ? std::string_view() : name;
+}
+
 // x y z, x y z w (divided by w) or x y z r g b, as Assimp reads a vertex (a comma may stand for
 // the point); nullopt for other counts, which Assimp skips (Glint's checks refuse them before:
 // io/mesh_limits.h).
@@ -113,11 +122,8 @@ std::optional<std::string> objWithSmoothingGroupNormals(const std::string& text,
       std::string_view words = line.substr(1);
       while (!takeObjWord(words).empty()) ++faceWords;
     }
-    if (line.rfind('s', 0) == 0 && blankAt(line, 1)) {
-      std::string_view rest = line.substr(1);
-      const std::string_view value = takeObjWord(rest);
-      grouped = grouped || !(value.empty() || value == "off" || value == "0");
-    }
+    if (const std::optional<std::string_view> name = smoothingGroupOf(line))
+      grouped = grouped || !name->empty();
   });
   if (unreadable || !grouped) return std::nullopt;
   // Beside the text and its rewriting: each vertex's position, each face and its own normal's
@@ -142,12 +148,10 @@ std::optional<std::string> objWithSmoothingGroupNormals(const std::string& text,
       } else if (line.size() > 1 && line[1] == 't') {
         ++textureLines;
       }
-    } else if (line[0] == 's' && blankAt(line, 1)) {
-      std::string_view rest = line.substr(1);
-      const std::string_view value = takeObjWord(rest);
-      group = value.empty() || value == "off" || value == "0"
+    } else if (const std::optional<std::string_view> name = smoothingGroupOf(line)) {
+      group = name->empty()
                   ? 0
-                  : groupIds.try_emplace(value, uint32_t(groupIds.size() + 1)).first->second;
+                  : groupIds.try_emplace(*name, uint32_t(groupIds.size() + 1)).first->second;
     } else if (line[0] == 'f') {
       if (!blankAt(line, 1) || line.find('#') != std::string_view::npos) {
         unreadable = true;
