@@ -12,6 +12,7 @@
 #include "accel/cutout_hits.h"
 #include "core/error.h"
 #include "core/motion.h"
+#include "core/seconds_since.h"
 #include "geometry/shape_lanes.h"
 #include "scene/scene.h"
 
@@ -351,7 +352,7 @@ EmbreeAccel::EmbreeAccel(const Scene& scene) : scene_(scene), range_(embreeRayRa
       if (built) rtcReleaseScene(built);
     throw;
   }
-  buildSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  buildSeconds_ = secondsSince(start);
   bytes_ = embreeMemoryBytes() - bytesBefore;
 }
 

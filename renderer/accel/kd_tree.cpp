@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "core/seconds_since.h"
+
 namespace glint {
 
 namespace {
@@ -29,9 +31,9 @@ struct Split {
   float plane = 0;
 };
 
-class Builder {
+class KdTreeBuilder {
  public:
-  Builder(KdTree::Tree& tree)
+  KdTreeBuilder(KdTree::Tree& tree)
       : t_(tree),
         budget_(referenceBudget(tree.prims.size())),
         references_(double(tree.prims.size())),
@@ -133,7 +135,7 @@ KdTree::KdTree(const Scene& scene) : TwoLevelAccelerator(scene) {
     std::vector<uint32_t> all(t.prims.size());
     for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
     t.nodes.resize(1);
-    Builder(t).build(0, t.box, all, 0, stats_.maxDepth);
+    KdTreeBuilder(t).build(0, t.box, all, 0, stats_.maxDepth);
     stats_.primitives += t.prims.size();
     stats_.references += t.refs.size();
     stats_.nodes += t.nodes.size();
@@ -141,8 +143,7 @@ KdTree::KdTree(const Scene& scene) : TwoLevelAccelerator(scene) {
     stats_.bytes += t.nodes.size() * sizeof(Node) + t.refs.size() * sizeof(uint32_t) +
                     t.prims.size() * sizeof(PrimitiveBox);
   }
-  stats_.buildSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.buildSeconds = secondsSince(start);
 }
 
 template <bool AnyHit, class Counter>

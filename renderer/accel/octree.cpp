@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "accel/surface_cell_overlap.h"
+#include "core/seconds_since.h"
 
 namespace glint {
 
@@ -35,10 +36,10 @@ Vec3f octantCenter(const Vec3f& c, float half, int k) {
                    (k & 4) ? quarter : -quarter};
 }
 
-class Builder {
+class OctreeBuilder {
  public:
-  Builder(const Scene& scene, uint32_t groupId, Octree::Tree& tree, int levels,
-          SubdivisionStats& stats)
+  OctreeBuilder(const Scene& scene, uint32_t groupId, Octree::Tree& tree, int levels,
+                SubdivisionStats& stats)
       : scene_(scene),
         groupId_(groupId),
         t_(tree),
@@ -122,7 +123,7 @@ Octree::Tree buildTree(const Scene& scene, uint32_t groupId, std::vector<Primiti
   std::vector<uint32_t> all(t.prims.size());
   for (uint32_t i = 0; i < all.size(); ++i) all[i] = i;
   t.nodes.resize(1);
-  Builder(scene, groupId, t, cut, stats)
+  OctreeBuilder(scene, groupId, t, cut, stats)
       .build(0, t.center, t.half, t.cube, std::move(all), 0, false);
   return t;
 }
@@ -146,8 +147,7 @@ Octree::Octree(const Scene& scene, int levels, Walk walk)
     stats_.bytes += t.nodes.size() * sizeof(Node) + t.refs.size() * sizeof(uint32_t) +
                     t.prims.size() * sizeof(PrimitiveBox);
   }
-  stats_.buildSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.buildSeconds = secondsSince(start);
 }
 
 template <bool AnyHit, class Counter>

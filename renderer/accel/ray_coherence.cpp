@@ -8,6 +8,8 @@
 #include <optional>
 #include <variant>
 
+#include "core/seconds_since.h"
+
 namespace glint {
 
 namespace {
@@ -163,8 +165,7 @@ RayCoherence::RayCoherence(const Scene& scene, int resolution, size_t pairBudget
                     sizeof(Row);
   for (const BoxTree& t : meshTrees_) stats_.bytes += t.bytes();
   for (const BoxTree& t : groupTrees_) stats_.bytes += t.bytes();
-  stats_.buildSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.buildSeconds = secondsSince(start);
 }
 
 void RayCoherence::buildRows(const std::vector<Shell>& origins, const std::vector<Shell>& targets,

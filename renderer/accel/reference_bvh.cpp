@@ -11,6 +11,7 @@
 #include "accel/primitives.h"
 #include "accel/sah_bins.h"
 #include "core/check.h"
+#include "core/seconds_since.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -38,9 +39,9 @@ struct BuildNode {
   size_t first = 0, count = 0;  // leaf range in the prims array
 };
 
-class Builder {
+class BvhBuilder {
  public:
-  Builder(std::vector<BuildPrim>& prims, BvhSplit split) : prims_(prims), split_(split) {}
+  BvhBuilder(std::vector<BuildPrim>& prims, BvhSplit split) : prims_(prims), split_(split) {}
 
   std::unique_ptr<BuildNode> build(size_t begin, size_t end) {
     auto node = std::make_unique<BuildNode>();
@@ -190,7 +191,7 @@ ReferenceBvh::ReferenceBvh(const Scene& scene, BvhSplit split) : TwoLevelAcceler
          }))
       prims.push_back({p.box, centroid(p.box), {p.geom, p.prim}});
     if (prims.empty()) continue;
-    Builder builder(prims, split);
+    BvhBuilder builder(prims, split);
     const auto root = builder.build(0, prims.size());
     flatten(*root, prims, trees_[g], stats_, 0, surfaceArea(root->box));
     Tree& tree = trees_[g];
@@ -210,8 +211,7 @@ ReferenceBvh::ReferenceBvh(const Scene& scene, BvhSplit split) : TwoLevelAcceler
   }
   // The traversal stack holds at most one entry per level.
   GLINT_CHECK(stats_.maxDepth < kMaxDepth);
-  stats_.buildSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.buildSeconds = secondsSince(start);
 }
 
 template <class Counter>

@@ -7,6 +7,7 @@
 
 #include "accel/sah_bins.h"
 #include "core/check.h"
+#include "core/seconds_since.h"
 #include "scene/scene.h"
 
 namespace glint {
@@ -106,9 +107,10 @@ struct BuildPrim {
   SphereHierarchy::Slot slot;
 };
 
-class Builder {
+class HierarchyBuilder {
  public:
-  Builder(std::vector<BuildPrim>& prims, SphereHierarchy::Tree& tree, SubdivisionStats& stats)
+  HierarchyBuilder(std::vector<BuildPrim>& prims, SphereHierarchy::Tree& tree,
+                   SubdivisionStats& stats)
       : prims_(prims), tree_(tree), stats_(stats) {}
 
   // Appends the subtree of prims [begin, end) in pre-order and returns its root's index.
@@ -247,7 +249,7 @@ SphereHierarchy::SphereHierarchy(const Scene& scene) : TwoLevelAccelerator(scene
       prims.push_back({p.box, boxCenter(p.box), slotOf(scene, uint32_t(g), p)});
     }
     if (prims.empty()) continue;
-    Builder(prims, tree, stats_).build(0, prims.size(), 0);
+    HierarchyBuilder(prims, tree, stats_).build(0, prims.size(), 0);
     stats_.nodes += tree.nodes.size();
     stats_.primitives += tree.slots.size();
     stats_.bytes += tree.nodes.size() * sizeof(Node) + tree.slots.size() * sizeof(Slot);
@@ -255,8 +257,7 @@ SphereHierarchy::SphereHierarchy(const Scene& scene) : TwoLevelAccelerator(scene
   stats_.references = stats_.primitives;
   // The traversal stack holds at most one entry per level.
   GLINT_CHECK(stats_.maxDepth < kMaxDepth);
-  stats_.buildSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.buildSeconds = secondsSince(start);
 }
 
 Sphere SphereHierarchy::rootSphere(uint32_t groupId) const {

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "accel/surface_cell_overlap.h"
+#include "core/seconds_since.h"
 
 namespace glint {
 
@@ -129,8 +130,7 @@ UniformGrid::UniformGrid(const Scene& scene, int resolution) : TwoLevelAccelerat
     stats_.bytes += grid.cellStart.size() * sizeof(uint32_t) + grid.refs.size() * sizeof(uint32_t) +
                     grid.prims.size() * sizeof(PrimitiveBox);
   }
-  stats_.buildSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.buildSeconds = secondsSince(start);
 }
 
 template <bool AnyHit, class Counter>

@@ -31,6 +31,7 @@
 #include "core/fp_env.h"
 #include "core/hash.h"
 #include "core/memory.h"
+#include "core/seconds_since.h"
 #include "film/atomic_file.h"
 #include "render/tile_scheduler.h"
 
@@ -116,8 +117,7 @@ int runBench(const BenchArgs& a) {
   Scene scene = a.procedural ? makeProceduralScene(a.procedural) : loadSceneOrDefault(a.scenePath);
   if (a.width > 0) scene.render.width = a.width;
   if (a.height > 0) scene.render.height = a.height;
-  const double loadSeconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - loadStart).count();
+  const double loadSeconds = secondsSince(loadStart);
   if (a.structures) {
     const RaySets rays = makeRays(scene, nullptr, a.randomRays);
     nlohmann::json j = studyStructures(scene, kinds, rays.camera, rays.random, a.accelOptions);
@@ -278,8 +278,7 @@ int runBench(const BenchArgs& a) {
     size_t hits = 0;
     for (const Ray& r : rays.random) hits += bool(bvh.intersect(r));
     benchmark::DoNotOptimize(hits);
-    const double secs =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double secs = secondsSince(start);
     const BvhStats& st = bvh.stats();
     const double rate = double(rays.random.size()) / secs * 1e-6;
     std::printf("%-9s %9.3f %9zu %8zu %10.2f %12.2f\n", std::string(bvhSplitName(split)).c_str(),

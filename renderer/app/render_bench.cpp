@@ -14,6 +14,7 @@
 #include "camera/camera.h"
 #include "core/fp_env.h"
 #include "core/sampler.h"
+#include "core/seconds_since.h"
 #include "render/pass_plan.h"
 #include "render/render_job.h"
 
@@ -22,10 +23,6 @@ namespace glint {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double secondsSince(Clock::time_point start) {
-  return std::chrono::duration<double>(Clock::now() - start).count();
-}
 
 template <typename F>
 double bestOf(int runs, F&& f) {

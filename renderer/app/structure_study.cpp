@@ -17,14 +17,11 @@
 #include "accel/two_level.h"
 #include "accel/uniform_grid.h"
 #include "core/fp_env.h"
+#include "core/seconds_since.h"
 
 namespace glint {
 
 namespace {
-
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // Bytes the structure holds beside the scene (its nodes, cells, references and boxes).
 size_t structureBytes(const Accelerator& accel) {

@@ -4,14 +4,9 @@
 #include <cstdio>
 
 #include "core/log.h"
+#include "core/seconds_since.h"
 
 namespace glint {
-
-namespace {
-double secondsSince(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-}  // namespace
 
 LoadProgress::LoadProgress(std::string what, const std::string& about, uint64_t totalWork, bool big)
     : what_(std::move(what)),

@@ -355,7 +355,7 @@ void addInstance(SceneBuilder& b, uint32_t groupId, const Transform& xf, std::ve
 }
 
 // Nested groups deeper than this are refused (a glTF node tree is a dozen levels).
-constexpr size_t kMaxNesting = 64;
+constexpr size_t kMaxGroupNesting = 64;
 
 // Places group `groupId` by `toRender` (its space → render space), moving by `motion` when
 // given: a world-level instance of its own geometry, then, recursively, one for each instance
@@ -367,8 +367,8 @@ void placeGroup(SceneBuilder& b, uint32_t groupId, const Affine& toRender,
   const std::string& name = b.scene.groups[groupId].name;
   if (std::find(path.begin(), path.end(), groupId) != path.end())
     where.fail("group " + inQuotes(name) + " holds an instance of itself");
-  if (path.size() >= kMaxNesting)
-    where.fail("groups nest deeper than " + std::to_string(kMaxNesting) + " levels");
+  if (path.size() >= kMaxGroupNesting)
+    where.fail("groups nest deeper than " + std::to_string(kMaxGroupNesting) + " levels");
   const auto nested = b.nested.find(groupId);
   if (nested != b.nested.end() && !motion.empty())
     where.fail("group " + inQuotes(name) +
@@ -392,13 +392,13 @@ void placeGroup(SceneBuilder& b, uint32_t groupId, const Affine& toRender,
 // The world-level instances placeGroup creates for group `groupId`, counted from the nesting
 // without placing any, each group's count kept (SceneBuilder::flattenedInstances): linear in
 // the groups and their instances however many paths they have. A cycle or a nesting deeper
-// than kMaxNesting counts what lies before it; placeGroup then refuses the scene for it.
+// than kMaxGroupNesting counts what lies before it; placeGroup then refuses the scene for it.
 uint64_t flattenedInstances(SceneBuilder& b, uint32_t groupId, size_t depth) {
   if (const auto it = b.flattenedInstances.find(groupId); it != b.flattenedInstances.end())
     return it->second;
   const auto nested = b.nested.find(groupId);
   if (nested == b.nested.end()) return 1;
-  if (depth >= kMaxNesting) return 0;
+  if (depth >= kMaxGroupNesting) return 0;
   b.flattenedInstances[groupId] = 0;  // a cycle back to this group adds nothing
   uint64_t count = b.scene.groups[groupId].geometries.empty() ? 0 : 1;
   for (const SceneBuilder::NestedInstance& n : nested->second)
