@@ -89,7 +89,9 @@ ImageErrors compareImages(const Image& a, const Image& b, double threshold,
       finite = finite && std::isfinite(channel(a, p, c)) && std::isfinite(ref);
       const double ad = std::isfinite(d) ? std::fabs(d) : std::numeric_limits<double>::infinity();
       se += ad * ad;
-      rel += ad * ad / (ref * ref + kRelMseEpsilon);
+      // Not ∞/∞ (NaN) where the reference is the infinite one: every measure of a non-finite
+      // pixel is infinite, whichever image holds it.
+      rel += std::isfinite(d) ? ad * ad / (ref * ref + kRelMseEpsilon) : ad;
       ae += ad;
       e.maxAbs = std::max(e.maxAbs, ad);
     }

@@ -58,6 +58,18 @@ TEST(Compare, OnePixelOffAndIdentical) {
             "count as infinite");
 }
 
+TEST(Compare, AnInfinityInTheReferenceAloneIsAnInfiniteErrorInEveryMeasure) {
+  // The relative MSE divides by the reference's square: ∞/∞ would make it NaN, which reads as
+  // "not measured", where the test image's own infinity gives +∞.
+  Image a = constant(2, 2, 0.5f, 0.5f, 0.5f), b = a;
+  b.pixels[5] = std::numeric_limits<float>::infinity();
+  const ImageErrors e = compareImages(a, b);
+  EXPECT_EQ(e.nonfinitePixels, 1u);
+  for (const double v : {e.rmse, e.relmse, e.mae, e.maxAbs})
+    EXPECT_EQ(v, std::numeric_limits<double>::infinity());
+  EXPECT_EQ(compareImages(b, a).relmse, std::numeric_limits<double>::infinity());
+}
+
 TEST(Compare, SizeMismatchIsAUsageErrorNamingBothImages) {
   EXPECT_THROW(compareImages(constant(2, 2, 0, 0, 0), constant(2, 3, 0, 0, 0)), UsageError);
   try {
